@@ -1,0 +1,170 @@
+"""The expand stage: run the real xacro on a document, with ``$(find ...)`` resolved without ROS.
+
+xacro is driven through ``xacro.process_file`` (``xacro.process`` calls ``sys.exit``). Two things xacro does not do on
+its own are done here:
+
+* ``$(find PKG)`` normally needs ``ament_index_python``. We resolve ``xacrokit`` to the installed macro library,
+  packages named in ``package_paths`` to the folders given, and anything else through ``ament_index_python`` when it is
+  importable or an ``AMENT_PREFIX_PATH`` share folder when it is not.
+* xacro silently ignores a mapping ``name:=value`` that the document never declares with ``<xacro:arg>``; a typo in an
+  argument name then goes unnoticed. We record which arguments the document declares and reject the others.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import xml.parsers.expat
+from collections.abc import Iterator, Mapping
+from pathlib import Path
+
+import xacro
+import xacro.substitution_args
+
+from .errors import ExpandError
+from .resources import package_share_dir
+
+PACKAGE_NAME = "xacrokit"
+
+
+class _DeclaredArgs(dict):
+    """The mapping table xacro writes its arguments into; remembers which names ``<xacro:arg>`` asked about.
+
+    xacro declares an argument by testing ``name in table`` and adding the default when absent; looking the table up
+    for ``$(arg name)`` goes through ``__getitem__`` and so does not count as a declaration.
+    """
+
+    def __init__(self, mappings: Mapping[str, str]) -> None:
+        super().__init__(mappings)
+        self.declared: set[str] = set()
+
+    def __contains__(self, name: object) -> bool:
+        if isinstance(name, str):
+            self.declared.add(name)
+        return super().__contains__(name)
+
+
+def find_package(name: str, package_paths: Mapping[str, str | os.PathLike[str]] | None = None) -> str:
+    """Resolve ``$(find name)`` the way ROS would, without needing ROS.
+
+    Args:
+        name: the package name.
+        package_paths: explicit package folders, consulted first.
+
+    Returns:
+        The package's share folder, as a string (xacro splices it into a path).
+
+    Raises:
+        ExpandError-compatible ``LookupError`` when the package is nowhere to be found.
+    """
+    if package_paths and name in package_paths:
+        return str(Path(package_paths[name]).resolve())
+    if name == PACKAGE_NAME:
+        return str(package_share_dir())
+    with contextlib.suppress(ImportError):
+        from ament_index_python.packages import PackageNotFoundError, get_package_share_directory
+
+        with contextlib.suppress(PackageNotFoundError):
+            return get_package_share_directory(name)
+    for prefix in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep):
+        candidate = Path(prefix, "share", name)
+        if prefix and (candidate / "package.xml").is_file():
+            return str(candidate)
+    raise LookupError(
+        f"$(find {name}): package {name!r} is not known here; pass its folder with --package {name}=PATH "
+        f"(or package_paths={{{name!r}: PATH}} in Python), or source a ROS workspace that has it"
+    )
+
+
+@contextlib.contextmanager
+def _find_resolver(package_paths: Mapping[str, str | os.PathLike[str]] | None) -> Iterator[None]:
+    """Point xacro's ``$(find)`` at :func:`find_package` for the duration of one expansion."""
+    module = xacro.substitution_args
+    saved_find, saved_eval = module._eval_find, module._eval_dict.get("find")
+
+    def resolve(name: str) -> str:
+        return find_package(name, package_paths)
+
+    module._eval_find = resolve
+    module._eval_dict["find"] = resolve
+    try:
+        yield
+    finally:
+        module._eval_find = saved_find
+        module._eval_dict["find"] = saved_eval
+
+
+def _macro_stack() -> tuple[str, ...]:
+    """Macros being instantiated, innermost first; our private helpers are left out (users never call them)."""
+    names = (m.body.getAttribute("name") for m in reversed(xacro.macrostack or []))
+    return tuple(name for name in names if not name.startswith("_xacrokit"))
+
+
+def _file_stack() -> tuple[str, ...]:
+    return tuple(str(f) for f in reversed(xacro.filestack or []) if f)
+
+
+def _xacro_message(exc: BaseException) -> str:
+    """xacro wraps a ``xacro.fatal`` message in 'when evaluating expression ...'; the macro's own words suffice."""
+    inner = getattr(exc, "exc", None)
+    if isinstance(exc, xacro.XacroException) and isinstance(inner, xacro.XacroException):
+        return _xacro_message(inner)
+    if isinstance(exc, xacro.XacroException) and isinstance(inner, LookupError) and inner.args:
+        return str(inner.args[0])
+    return str(exc).strip()
+
+
+def expand_file(
+    path: str | os.PathLike[str],
+    mappings: Mapping[str, str] | None = None,
+    *,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
+) -> str:
+    """Expand a xacro document to URDF text with the real xacro.
+
+    Args:
+        path: the ``.xacro`` file.
+        mappings: ``xacro:arg`` values, as on xacro's command line (``name:=value``). Every name must be declared by
+            the document with ``<xacro:arg name=...>``.
+        package_paths: folders for ``$(find PKG)`` of packages other than xacrokit.
+
+    Returns:
+        The expanded URDF as pretty-printed XML text.
+
+    Raises:
+        ExpandError: the file cannot be read or parsed, xacro stops (a macro's argument check, an undefined property,
+            an unknown package), or a mapping names an argument the document does not declare.
+    """
+    source = Path(path).resolve()
+    where = str(path)
+    table = _DeclaredArgs({str(k): str(v) for k, v in (mappings or {}).items()})
+    xacro.all_includes = []  # module-level list xacro only ever appends to
+    try:
+        with _find_resolver(package_paths):
+            document = xacro.process_file(str(source), mappings=table)
+    except xacro.XacroException as exc:
+        raise ExpandError(_xacro_message(exc), file=where, macro_stack=_macro_stack(), file_stack=_file_stack()) from None
+    except xml.parsers.expat.ExpatError as exc:
+        raise ExpandError(f"not well-formed XML: {exc}", file=_file_stack()[0] if _file_stack() else where) from None
+    except (OSError, LookupError) as exc:
+        raise ExpandError(str(exc), file=where, file_stack=_file_stack()) from None
+    undeclared = sorted(set(mappings or {}) - table.declared)
+    if undeclared:
+        declared = ", ".join(sorted(table.declared)) or "none"
+        raise ExpandError(
+            f"argument(s) {', '.join(undeclared)} not declared by the document with <xacro:arg>; "
+            f"it declares: {declared}",
+            file=where,
+        )
+    return document.toprettyxml(indent="  ")
+
+
+def parse_mappings(words: list[str]) -> dict[str, str]:
+    """Turn command-line words ``name:=value`` into a mapping; reject anything else with a clear message."""
+    result: dict[str, str] = {}
+    for word in words:
+        name, sep, value = word.partition(":=")
+        if not sep or not name.isidentifier():
+            raise ExpandError(f"expected an argument as name:=value, got {word!r}", file="<command line>")
+        result[name] = value
+    return result

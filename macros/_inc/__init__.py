@@ -1,0 +1,1 @@
+"""Data folder shipped with xacrokit (found through importlib.resources); holds no code."""

@@ -1,0 +1,83 @@
+"""Shared test helpers: hypothesis profiles, expanding xacro snippets, and reading URDF numbers."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, settings
+from lxml import etree
+
+import xacrokit
+
+REPO = Path(__file__).resolve().parent.parent
+
+# CI keeps example counts modest; HYPOTHESIS_PROFILE=dev (or thorough) raises them locally.
+settings.register_profile("ci", max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+settings.register_profile("dev", max_examples=100, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+settings.register_profile("thorough", max_examples=1000, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
+
+XACRO_HEADER = '<?xml version="1.0"?>\n<robot name="t" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
+
+
+def xacro_doc(body: str, includes: tuple[str, ...] = ("inertia",)) -> str:
+    """A xacro document including the given public macro files (by stem) through $(find xacrokit)."""
+    lines = [f'  <xacro:include filename="$(find xacrokit)/macros/{name}.xacro"/>' for name in includes]
+    return XACRO_HEADER + "\n".join(lines) + "\n" + body + "\n</robot>\n"
+
+
+def expand_text(doc: str, folder: Path, name: str = "doc.urdf.xacro", **kwargs) -> etree._Element:
+    """Write ``doc`` to ``folder/name``, expand it with xacrokit.expand, and return the parsed URDF root."""
+    path = folder / name
+    path.write_text(doc, encoding="utf-8")
+    return etree.fromstring(xacrokit.expand(path, **kwargs).encode())
+
+
+def floats(text: str) -> list[float]:
+    return [float(v) for v in text.split()]
+
+
+def rpy_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """URDF fixed-axis roll-pitch-yaw: R = Rz(yaw) Ry(pitch) Rx(roll)."""
+    cr, sr, cp, sp, cy, sy = np.cos(roll), np.sin(roll), np.cos(pitch), np.sin(pitch), np.cos(yaw), np.sin(yaw)
+    rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
+    ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
+    rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
+    return rz @ ry @ rx
+
+
+def link_inertial(root: etree._Element, link: str) -> tuple[float, np.ndarray, np.ndarray, np.ndarray]:
+    """(mass, 3x3 tensor about the COM in the inertial frame, COM xyz, inertial-frame rotation) of a link."""
+    inertial = root.find(f"link[@name='{link}']/inertial")
+    assert inertial is not None, f"link {link} has no inertial"
+    i = {k: float(v) for k, v in inertial.find("inertia").attrib.items()}
+    tensor = np.array(
+        [[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]]
+    )
+    origin = inertial.find("origin")
+    xyz = np.array(floats(origin.get("xyz", "0 0 0")))
+    rot = rpy_matrix(*floats(origin.get("rpy", "0 0 0")))
+    return float(inertial.find("mass").get("value")), tensor, xyz, rot
+
+
+def assert_physical_tensor(tensor: np.ndarray, rel: float = 1e-9) -> None:
+    """Positive definite, and principal moments obey the triangle inequality."""
+    moments = np.linalg.eigvalsh(tensor)
+    assert moments.min() > 0, f"not positive definite: {moments}"
+    total = moments.sum()
+    for k in range(3):
+        assert moments[k] <= total - moments[k] + rel * total, f"triangle inequality violated: {moments}"
+
+
+@pytest.fixture(scope="session")
+def expand(tmp_path_factory):
+    """expand(doc_text, **kwargs) -> URDF root. Session-wide (hypothesis-safe): each call rewrites one file."""
+    folder = tmp_path_factory.mktemp("expand")
+
+    def run(doc: str, **kwargs):
+        return expand_text(doc, folder, **kwargs)
+
+    return run
