@@ -101,6 +101,21 @@ def read_macro_docs(folder: Path | None = None) -> list[MacroDoc]:
     return docs
 
 
+_CODE_LIKE = re.compile(r"(<[^<>]+>|[\w<>.]*(?:\$\{[^}]*\}[\w<>.]*)+|`[^`]*`)")
+
+
+def _markdown(text: str) -> str:
+    """Banner prose to Markdown: XML tags and ${...} become code spans; a bare * is escaped (not emphasis)."""
+    parts = _CODE_LIKE.split(text)
+    out = []
+    for k, part in enumerate(parts):
+        if k % 2 == 0:
+            out.append(part.replace("*", "\\*").replace("|", "\\|"))
+        else:
+            out.append(part if part.startswith("`") else f"`{part}`")
+    return "".join(out)
+
+
 def render_reference(docs: list[MacroDoc] | None = None) -> str:
     """The Markdown macro reference (the README section between the macro-reference markers)."""
     docs = read_macro_docs() if docs is None else docs
@@ -111,12 +126,12 @@ def render_reference(docs: list[MacroDoc] | None = None) -> str:
             current_file = doc.file
             out.append(f"### `macros/{doc.file}`\n")
         out.append(f"#### `{doc.name}`\n")
-        out.append(f"{doc.makes}\n")
+        out.append(f"{_markdown(doc.makes)}\n")
         out.append("| parameter | unit | default | meaning |")
         out.append("|---|---|---|---|")
         for p in doc.params:
             default = "required" if p.default is None else f"`{p.default}`"
-            out.append(f"| `{p.name}` | {p.unit} | {default} | {p.description} |")
+            out.append(f"| `{p.name}` | {_markdown(p.unit)} | {default} | {_markdown(p.description)} |")
         out.append("")
-        out.append(f"Creates: {doc.creates}\n")
+        out.append(f"Creates: {_markdown(doc.creates)}\n")
     return "\n".join(out).rstrip() + "\n"

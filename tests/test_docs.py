@@ -1,0 +1,98 @@
+"""Documentation that cannot drift: macro banners vs. the macros, the README's reference and its two commands."""
+
+from __future__ import annotations
+
+import re
+import shlex
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from lxml import etree
+
+import xacrokit
+from conftest import REPO
+from xacrokit.macrodoc import XACRO_NS, read_macro_docs, render_reference
+from xacrokit.resources import PUBLIC_MACRO_FILES
+
+_PARAM = re.compile(r"""(\*{0,2}\w+)(?::=(?:'([^']*)'|"([^"]*)"|(\S+)))?""")
+
+
+def declared_params(text: str) -> list[tuple[str, str | None]]:
+    """Parse a xacro params="..." attribute into (name, default-or-None) pairs."""
+    result = []
+    for match in _PARAM.finditer(text):
+        name, *defaults = match.groups()
+        given = [d for d in defaults if d is not None]
+        result.append((name, given[0] if given else None))
+    return result
+
+
+def test_every_public_macro_file_is_listed_and_has_a_header():
+    on_disk = sorted(p.name for p in xacrokit.macros_dir().glob("*.xacro"))
+    assert on_disk == sorted(PUBLIC_MACRO_FILES)
+    for name in PUBLIC_MACRO_FILES:
+        text = (xacrokit.macros_dir() / name).read_text(encoding="utf-8")
+        assert f"xacrokit macro library (public API v1): {name}" in text
+
+
+def test_banners_document_exactly_the_real_parameters():
+    docs = read_macro_docs()
+    assert {d.name for d in docs} == {
+        "box_inertial", "cylinder_inertial", "sphere_inertial", "hollow_cylinder_inertial", "inertial",
+        "box_link", "cylinder_link", "sphere_link", "wheel", "dh_arm",
+    }
+    for doc in docs:
+        documented = [(p.name, None if p.default is None else p.default.strip("'")) for p in doc.params]
+        assert documented == declared_params(doc.declared_params), doc.name
+        assert doc.makes and doc.creates and all(p.unit and p.description for p in doc.params), doc.name
+
+
+def test_private_macros_are_marked_private():
+    for path in xacrokit.macros_dir().rglob("*.xacro"):
+        for macro in etree.parse(str(path)).getroot().iter(f"{{{XACRO_NS}}}macro"):
+            name = macro.get("name")
+            public = path.parent == xacrokit.macros_dir() and not name.startswith("_")
+            assert public or name.startswith("_xacrokit"), f"{path.name}: {name}"
+
+
+def test_readme_macro_reference_is_current():
+    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    block = readme.split("<!-- macro-reference:start -->\n", 1)[1].split("<!-- macro-reference:end -->", 1)[0]
+    assert block == render_reference(), "run: gen-robot macros --reference, and paste it between the markers"
+
+
+def readme_commands() -> list[str]:
+    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    return re.findall(r"```sh\n(.*?)\n```", readme, flags=re.S)[:2]
+
+
+def test_readme_starts_with_the_two_commands_and_ci_runs_the_second():
+    main_job, tests = readme_commands()
+    assert "pip install" in main_job and "gen-robot" in main_job
+    assert tests.endswith("python -m pytest")
+    assert tests in (REPO / ".ci" / "run").read_text(encoding="utf-8")
+
+
+def test_readme_main_job_runs(tmp_path):
+    """Run the README's first command after its install step, with this environment's tools."""
+    main_job, _ = readme_commands()
+    steps = [shlex.split(step) for step in main_job.split("&&")]
+    bin_dir = Path(sys.executable).parent
+    ran = 0
+    for words in steps:
+        if words[0].startswith(".venv/bin/") and words[0] != ".venv/bin/pip":
+            words[0] = str(bin_dir / words[0].removeprefix(".venv/bin/"))
+            words = [str(REPO / w) if w.startswith("examples/") else w for w in words]
+            result = subprocess.run(words, cwd=tmp_path, capture_output=True, text=True, timeout=300)
+            assert result.returncode == 0, (words, result.stdout, result.stderr)
+            ran += 1
+    assert ran == 2
+    assert "Successfully Parsed XML" in result.stdout  # check_urdf's verdict on the expanded example
+
+
+@pytest.mark.parametrize("snippet", ["box_inertial", "dh_arm"])
+def test_readme_documents_the_include_path(snippet):
+    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    assert "$(find xacrokit)/macros/" in readme and f"`{snippet}`" in readme
