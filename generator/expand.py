@@ -143,7 +143,9 @@ def expand_file(
         with _find_resolver(package_paths):
             document = xacro.process_file(str(source), mappings=table)
     except xacro.XacroException as exc:
-        raise ExpandError(_xacro_message(exc), file=where, macro_stack=_macro_stack(), file_stack=_file_stack()) from None
+        raise ExpandError(
+            _xacro_message(exc), file=where, macro_stack=_macro_stack(), file_stack=_file_stack()
+        ) from None
     except xml.parsers.expat.ExpatError as exc:
         raise ExpandError(f"not well-formed XML: {exc}", file=_file_stack()[0] if _file_stack() else where) from None
     except (OSError, LookupError) as exc:

@@ -22,7 +22,9 @@ from lxml import etree
 from .resources import PUBLIC_MACRO_FILES, macros_dir
 
 XACRO_NS = "http://www.ros.org/wiki/xacro"
-_PARAM_LINE = re.compile(r"^(?P<name>\*{0,2}\w+) \[(?P<unit>[^\]]*)\] \((?P<kind>required|default (?P<default>.*?))\) (?P<text>.+)$")
+_PARAM_LINE = re.compile(
+    r"^(?P<name>\*{0,2}\w+) \[(?P<unit>[^\]]*)\] \((?P<kind>required|default (?P<default>.*?))\) (?P<text>.+)$"
+)
 _FIELD = re.compile(r"^(macro|makes|param|creates):\s*(.*)$")
 
 
@@ -66,7 +68,9 @@ def _banner_fields(comment: str) -> dict[str, list[str]]:
 def _parse_param(line: str, where: str) -> MacroParam:
     match = _PARAM_LINE.match(line)
     if not match:
-        raise ValueError(f"{where}: banner param line not in the form 'NAME [UNIT] (required|default X) text': {line!r}")
+        raise ValueError(
+            f"{where}: banner param line not in the form 'NAME [UNIT] (required|default X) text': {line!r}"
+        )
     default = match.group("default")
     return MacroParam(match.group("name"), match.group("unit"), default, match.group("text"))
 

@@ -54,9 +54,7 @@ def link_inertial(root: etree._Element, link: str) -> tuple[float, np.ndarray, n
     inertial = root.find(f"link[@name='{link}']/inertial")
     assert inertial is not None, f"link {link} has no inertial"
     i = {k: float(v) for k, v in inertial.find("inertia").attrib.items()}
-    tensor = np.array(
-        [[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]]
-    )
+    tensor = np.array([[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]])
     origin = inertial.find("origin")
     xyz = np.array(floats(origin.get("xyz", "0 0 0")))
     rot = rpy_matrix(*floats(origin.get("rpy", "0 0 0")))

@@ -40,8 +40,16 @@ def test_every_public_macro_file_is_listed_and_has_a_header():
 def test_banners_document_exactly_the_real_parameters():
     docs = read_macro_docs()
     assert {d.name for d in docs} == {
-        "box_inertial", "cylinder_inertial", "sphere_inertial", "hollow_cylinder_inertial", "inertial",
-        "box_link", "cylinder_link", "sphere_link", "wheel", "dh_arm",
+        "box_inertial",
+        "cylinder_inertial",
+        "sphere_inertial",
+        "hollow_cylinder_inertial",
+        "inertial",
+        "box_link",
+        "cylinder_link",
+        "sphere_link",
+        "wheel",
+        "dh_arm",
     }
     for doc in docs:
         documented = [(p.name, None if p.default is None else p.default.strip("'")) for p in doc.params]

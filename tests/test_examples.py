@@ -13,10 +13,10 @@ import pinocchio as pin
 import pytest
 import xacro
 from lxml import etree
+from test_macros_dh import dh_product
 
 import xacrokit
 from conftest import REPO, assert_physical_tensor, link_inertial
-from test_macros_dh import dh_product
 
 DEMO = REPO / "examples" / "macros_demo.urdf.xacro"
 
@@ -44,8 +44,11 @@ def test_demo_loads_in_pinocchio_and_yourdfpy_with_the_written_masses(demo_urdf)
     import yourdfpy
 
     root = etree.parse(str(demo_urdf)).getroot()
-    masses = {link.get("name"): float(link.find("inertial/mass").get("value"))
-              for link in root.iter("link") if link.find("inertial") is not None}
+    masses = {
+        link.get("name"): float(link.find("inertial/mass").get("value"))
+        for link in root.iter("link")
+        if link.find("inertial") is not None
+    }
     assert sum(masses.values()) == pytest.approx(8.0 + 2 * 0.5 + 0.1 + 1.0 + 0.6 + 0.5 + 0.3 + 0.05 + 0.05 + 0.01)
     for name in masses:
         assert_physical_tensor(link_inertial(root, name)[1])
@@ -54,8 +57,15 @@ def test_demo_loads_in_pinocchio_and_yourdfpy_with_the_written_masses(demo_urdf)
     # its total; on a free-flyer they form the floating body and count.
     model = pin.buildModelFromUrdf(str(demo_urdf), pin.JointModelFreeFlyer())
     assert pin.computeTotalMass(model) == pytest.approx(sum(masses.values()), rel=1e-12)
-    assert {model.names[j] for j in range(1, model.njoints)} == {"root_joint",
-        "left_wheel_joint", "right_wheel_joint", "arm_joint_1", "arm_joint_2", "arm_joint_3", "arm_lift_joint"}
+    assert {model.names[j] for j in range(1, model.njoints)} == {
+        "root_joint",
+        "left_wheel_joint",
+        "right_wheel_joint",
+        "arm_joint_1",
+        "arm_joint_2",
+        "arm_joint_3",
+        "arm_lift_joint",
+    }
 
     robot = yourdfpy.URDF.load(str(demo_urdf), build_scene_graph=False, load_meshes=False)
     assert set(robot.link_map) == {link.get("name") for link in root.iter("link")}

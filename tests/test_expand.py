@@ -11,12 +11,15 @@ from lxml import etree
 import xacrokit
 from conftest import XACRO_HEADER, xacro_doc
 
-ARG_DOC = XACRO_HEADER + """  <xacro:arg name="prefix" default=""/>
+ARG_DOC = (
+    XACRO_HEADER
+    + """  <xacro:arg name="prefix" default=""/>
   <xacro:arg name="use_gripper" default="false"/>
   <link name="$(arg prefix)base_link"/>
   <xacro:if value="$(arg use_gripper)"><link name="$(arg prefix)gripper"/></xacro:if>
 </robot>
 """
+)
 
 
 def test_find_xacrokit_resolves_to_the_installed_library(expand):
@@ -44,12 +47,11 @@ def test_unknown_package_says_how_to_provide_it(expand):
 def test_package_paths_resolve_other_packages(tmp_path):
     share = tmp_path / "my_robot_description"
     (share / "urdf").mkdir(parents=True)
-    (share / "urdf" / "part.xacro").write_text(
-        XACRO_HEADER + '<link name="from_package"/></robot>\n', encoding="utf-8"
-    )
+    (share / "urdf" / "part.xacro").write_text(XACRO_HEADER + '<link name="from_package"/></robot>\n', encoding="utf-8")
     doc = tmp_path / "top.urdf.xacro"
-    doc.write_text(xacro_doc('<xacro:include filename="$(find my_robot_description)/urdf/part.xacro"/>', ()),
-                   encoding="utf-8")
+    doc.write_text(
+        xacro_doc('<xacro:include filename="$(find my_robot_description)/urdf/part.xacro"/>', ()), encoding="utf-8"
+    )
     root = etree.fromstring(xacrokit.expand(doc, package_paths={"my_robot_description": share}).encode())
     assert root.find("link").get("name") == "from_package"
 
@@ -67,7 +69,7 @@ def test_find_resolution_is_restored_after_expansion(expand):
     [
         (XACRO_HEADER + "<link name='a'>\n", "not well-formed XML"),
         (xacro_doc('<link name="${undefined_property}"/>', ()), "undefined_property"),
-        (xacro_doc('<xacro:no_such_macro/>', ()), "unknown macro name: xacro:no_such_macro"),
+        (xacro_doc("<xacro:no_such_macro/>", ()), "unknown macro name: xacro:no_such_macro"),
     ],
 )
 def test_bad_documents_raise_expand_error(expand, doc, words):
@@ -109,8 +111,12 @@ def test_cli_expand_writes_the_urdf(tmp_path):
 def test_cli_errors_exit_2_with_a_message_and_no_traceback(tmp_path):
     doc = tmp_path / "a.urdf.xacro"
     doc.write_text(ARG_DOC, encoding="utf-8")
-    for args in (["expand", str(doc), "nope:=1"], ["expand", str(doc), "notamapping"],
-                 ["expand", str(tmp_path / "missing.xacro")], ["expand", str(doc), "--package", "nopath"]):
+    for args in (
+        ["expand", str(doc), "nope:=1"],
+        ["expand", str(doc), "notamapping"],
+        ["expand", str(tmp_path / "missing.xacro")],
+        ["expand", str(doc), "--package", "nopath"],
+    ):
         result = run_cli(*args)
         assert result.returncode == 2, args
         assert result.stderr.startswith("gen-robot: error: ") and "Traceback" not in result.stderr, result.stderr

@@ -41,7 +41,7 @@ def trans(x, y, z):
 def dh_product(rows, q, convention, origin, tool):
     """The DH chain written out from the textbook definitions, independent of the macro's algebra."""
     total = transform(rpy_matrix(*origin[1]), origin[0])
-    for row, value in zip(rows, q):
+    for row, value in zip(rows, q, strict=False):
         theta, d = row.get("theta", 0.0), row["d"]
         kind = row.get("type", "revolute")
         if kind in ("revolute", "continuous"):
@@ -59,8 +59,14 @@ def dh_product(rows, q, convention, origin, tool):
 @st.composite
 def dh_row(draw, index: int):
     kind = draw(st.sampled_from(["revolute", "revolute", "prismatic", "continuous", "fixed"]))
-    row = {"name": f"joint_{index}", "link": f"link_{index}", "a": draw(dh_length), "d": draw(dh_length),
-           "alpha": draw(dh_angle), "type": kind}
+    row = {
+        "name": f"joint_{index}",
+        "link": f"link_{index}",
+        "a": draw(dh_length),
+        "d": draw(dh_length),
+        "alpha": draw(dh_angle),
+        "type": kind,
+    }
     if draw(st.booleans()):
         row["theta"] = draw(dh_angle)
     if kind in ("revolute", "prismatic"):
@@ -90,10 +96,10 @@ def arm_document(case, table_file="table.yaml") -> str:
     (oxyz, orpy), (txyz, trpy) = case["origin"], case["tool"]
     body = f"""
   <link name="world"/>
-  <xacro:dh_arm prefix="{case['prefix']}" parent="world" convention="{case['convention']}"
+  <xacro:dh_arm prefix="{case["prefix"]}" parent="world" convention="{case["convention"]}"
                 table="${{xacro.load_yaml('{table_file}')['joints']}}"
-                tool_xyz="{' '.join(map(repr, txyz))}" tool_rpy="{' '.join(map(repr, trpy))}">
-    <origin xyz="{' '.join(map(repr, oxyz))}" rpy="{' '.join(map(repr, orpy))}"/>
+                tool_xyz="{" ".join(map(repr, txyz))}" tool_rpy="{" ".join(map(repr, trpy))}">
+    <origin xyz="{" ".join(map(repr, oxyz))}" rpy="{" ".join(map(repr, orpy))}"/>
   </xacro:dh_arm>"""
     return xacro_doc(body, includes=("dh",))
 
@@ -102,7 +108,7 @@ def pinocchio_tool_pose(urdf: str, case) -> np.ndarray:
     model = pin.buildModelFromXML(urdf)
     data = model.createData()
     q = pin.neutral(model)
-    for row, value in zip(case["rows"], case["q"]):
+    for row, value in zip(case["rows"], case["q"], strict=False):
         if row["type"] == "fixed":
             continue
         jid = model.getJointId(case["prefix"] + row["name"])
@@ -123,7 +129,7 @@ def test_dh_arm_forward_kinematics_equal_the_dh_product(tmp_path_factory, case):
     urdf = xacrokit.expand(folder / "arm.urdf.xacro")
 
     got = pinocchio_tool_pose(urdf, case)
-    q = [0.0 if r["type"] == "fixed" else v for r, v in zip(case["rows"], case["q"])]
+    q = [0.0 if r["type"] == "fixed" else v for r, v in zip(case["rows"], case["q"], strict=False)]
     want = dh_product(case["rows"], q, case["convention"], case["origin"], case["tool"])
     np.testing.assert_allclose(got[:3, 3], want[:3, 3], rtol=0, atol=1e-9)
     np.testing.assert_allclose(got[:3, :3], want[:3, :3], rtol=0, atol=1e-9)
@@ -140,12 +146,20 @@ def test_dh_arm_forward_kinematics_equal_the_dh_product(tmp_path_factory, case):
 
 def test_dh_arm_names_frames_as_documented(expand, tmp_path_factory):
     folder = tmp_path_factory.mktemp("names")
-    rows = [{"name": "j1", "link": "l1", "a": 0.1, "d": 0.2, "alpha": 0.0, "limit": {"lower": -1.0, "upper": 1.0,
-             "effort": 1.0, "velocity": 1.0}}]
+    rows = [
+        {
+            "name": "j1",
+            "link": "l1",
+            "a": 0.1,
+            "d": 0.2,
+            "alpha": 0.0,
+            "limit": {"lower": -1.0, "upper": 1.0, "effort": 1.0, "velocity": 1.0},
+        }
+    ]
     (folder / "t.yaml").write_text(yaml.safe_dump({"joints": rows}), encoding="utf-8")
     doc = xacro_doc(
         f"""<link name="world"/>
-        <xacro:dh_arm prefix="p_" parent="world" table="${{xacro.load_yaml('{folder / 't.yaml'}')['joints']}}">
+        <xacro:dh_arm prefix="p_" parent="world" table="${{xacro.load_yaml('{folder / "t.yaml"}')['joints']}}">
           <origin xyz="0 0 0" rpy="0 0 0"/></xacro:dh_arm>""",
         includes=("dh",),
     )
@@ -177,8 +191,14 @@ BAD_ROWS = [
 @pytest.mark.parametrize(("change", "words"), BAD_ROWS)
 def test_dh_arm_rejects_bad_rows_naming_the_row_and_key(tmp_path_factory, change, words):
     folder = tmp_path_factory.mktemp("bad")
-    row = {"name": "j1", "link": "l1", "a": 0.1, "d": 0.2, "alpha": 0.0,
-           "limit": {"lower": -1.0, "upper": 1.0, "effort": 1.0, "velocity": 1.0}}
+    row = {
+        "name": "j1",
+        "link": "l1",
+        "a": 0.1,
+        "d": 0.2,
+        "alpha": 0.0,
+        "limit": {"lower": -1.0, "upper": 1.0, "effort": 1.0, "velocity": 1.0},
+    }
     row.update(change)
     row = {k: v for k, v in row.items() if v is not None}
     (folder / "t.yaml").write_text(yaml.safe_dump({"joints": [row]}), encoding="utf-8")

@@ -51,8 +51,12 @@ def inertia_call(draw):
         p.update(radius=draw(length), length=draw(length), axis=draw(axis_name))
     elif kind == "hollow_cylinder":
         outer = draw(length)
-        p.update(inner_radius=outer * draw(st.floats(0.0, 0.999)), outer_radius=outer, length=draw(length),
-                 axis=draw(axis_name))
+        p.update(
+            inner_radius=outer * draw(st.floats(0.0, 0.999)),
+            outer_radius=outer,
+            length=draw(length),
+            axis=draw(axis_name),
+        )
     else:
         p.update(radius=draw(length))
     xyz = [draw(coord) for _ in range(3)]
@@ -62,9 +66,7 @@ def inertia_call(draw):
 
 def _call(kind: str, p: dict, xyz, rpy) -> str:
     attrs = " ".join(f'{k}="{v!r}"' if isinstance(v, float) else f'{k}="{v}"' for k, v in p.items())
-    return (
-        f'<xacro:{kind}_inertial {attrs} xyz="{" ".join(map(repr, xyz))}" rpy="{" ".join(map(repr, rpy))}"/>'
-    )
+    return f'<xacro:{kind}_inertial {attrs} xyz="{" ".join(map(repr, xyz))}" rpy="{" ".join(map(repr, rpy))}"/>'
 
 
 @given(call=inertia_call())

@@ -49,7 +49,9 @@ def test_wheel_inertia_about_the_axle_is_half_m_r_squared(expand, axis, radius, 
 
 
 def test_wheel_joint_limits_dynamics_and_gazebo_friction(expand):
-    root = expand(wheel_doc("y", 0.1, 0.04, 0.5, 'effort="5" velocity="12" damping="0.2" friction="0.1" mu1="0.9" mu2="0.7"'))
+    root = expand(
+        wheel_doc("y", 0.1, 0.04, 0.5, 'effort="5" velocity="12" damping="0.2" friction="0.1" mu1="0.9" mu2="0.7"')
+    )
     joint = root.find("joint[@name='left_wheel_joint']")
     assert joint.find("parent").get("link") == "base_link" and joint.find("child").get("link") == "left_wheel"
     assert floats(joint.find("origin").get("xyz")) == [0.0, 0.2, 0.0]
@@ -75,12 +77,15 @@ def test_wheel_rejects_bad_parameters(expand, extra, words):
         expand(wheel_doc("y", 0.1, 0.04, 0.5, extra))
 
 
-@pytest.mark.parametrize(("axis", "radius", "width", "mass", "words"), [
-    ("w", 0.1, 0.04, 0.5, "wheel: parameter axis must be one of x, y, z"),
-    ("y", -0.1, 0.04, 0.5, "wheel: parameter radius must be > 0"),
-    ("y", 0.1, 0.0, 0.5, "wheel: parameter width must be > 0"),
-    ("y", 0.1, 0.04, -0.5, "wheel: parameter mass must be > 0"),
-])
+@pytest.mark.parametrize(
+    ("axis", "radius", "width", "mass", "words"),
+    [
+        ("w", 0.1, 0.04, 0.5, "wheel: parameter axis must be one of x, y, z"),
+        ("y", -0.1, 0.04, 0.5, "wheel: parameter radius must be > 0"),
+        ("y", 0.1, 0.0, 0.5, "wheel: parameter width must be > 0"),
+        ("y", 0.1, 0.04, -0.5, "wheel: parameter mass must be > 0"),
+    ],
+)
 def test_wheel_rejects_bad_shape(expand, axis, radius, width, mass, words):
     with pytest.raises(xacrokit.ExpandError, match=words):
         expand(wheel_doc(axis, radius, width, mass))
@@ -89,21 +94,32 @@ def test_wheel_rejects_bad_shape(expand, axis, radius, width, mass, words):
 @pytest.mark.parametrize(
     ("call", "geometry", "expected"),
     [
-        ('<xacro:box_link name="b" mass="2" x="0.1" y="0.2" z="0.3" xyz="0 0 0.15" rpy="0 0 0.5"/>', "box",
-         np.diag([2 * (0.04 + 0.09) / 12, 2 * (0.01 + 0.09) / 12, 2 * (0.01 + 0.04) / 12])),
-        ('<xacro:cylinder_link name="b" mass="2" radius="0.1" length="0.4" xyz="0 0 0.2" rpy="0 1.5 0"/>', "cylinder",
-         np.diag([2 * (0.03 + 0.16) / 12, 2 * (0.03 + 0.16) / 12, 2 * 0.01 / 2])),
+        (
+            '<xacro:box_link name="b" mass="2" x="0.1" y="0.2" z="0.3" xyz="0 0 0.15" rpy="0 0 0.5"/>',
+            "box",
+            np.diag([2 * (0.04 + 0.09) / 12, 2 * (0.01 + 0.09) / 12, 2 * (0.01 + 0.04) / 12]),
+        ),
+        (
+            '<xacro:cylinder_link name="b" mass="2" radius="0.1" length="0.4" xyz="0 0 0.2" rpy="0 1.5 0"/>',
+            "cylinder",
+            np.diag([2 * (0.03 + 0.16) / 12, 2 * (0.03 + 0.16) / 12, 2 * 0.01 / 2]),
+        ),
         ('<xacro:sphere_link name="b" mass="2" radius="0.1" xyz="0 0 0.15"/>', "sphere", np.eye(3) * 2 * 2 * 0.01 / 5),
     ],
 )
 def test_shape_links_put_visual_collision_and_inertial_at_one_origin(expand, call, geometry, expected):
-    root = expand(xacro_doc(call.replace('name="b"', 'prefix="r1_" name="b" material="xacrokit_red"'),
-                            includes=("materials", "links")))
+    root = expand(
+        xacro_doc(
+            call.replace('name="b"', 'prefix="r1_" name="b" material="xacrokit_red"'), includes=("materials", "links")
+        )
+    )
     link = root.find("link[@name='r1_b']")
     assert link is not None
     origins = {e: link.find(f"{e}/origin").attrib for e in ("visual", "collision", "inertial")}
     assert origins["visual"] == origins["collision"] == origins["inertial"]
-    assert link.find(f"visual/geometry/{geometry}") is not None and link.find(f"collision/geometry/{geometry}") is not None
+    assert (
+        link.find(f"visual/geometry/{geometry}") is not None and link.find(f"collision/geometry/{geometry}") is not None
+    )
     assert link.find("visual/material").get("name") == "xacrokit_red"
     mass, tensor, _, _ = link_inertial(root, "r1_b")
     assert mass == 2.0

@@ -17,7 +17,9 @@ def wheel(tmp_path_factory):
     out = tmp_path_factory.mktemp("wheel")
     result = subprocess.run(
         [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q", "-w", str(out), str(REPO)],
-        capture_output=True, text=True, timeout=600,
+        capture_output=True,
+        text=True,
+        timeout=600,
     )
     assert result.returncode == 0, result.stderr
     (path,) = out.glob("xacrokit-*.whl")
@@ -37,8 +39,12 @@ def test_wheel_contains_the_macro_library_and_data_packages(wheel):
 
 def test_installed_wheel_finds_its_macros_and_expands_the_demo(wheel, tmp_path):
     target = tmp_path / "site"
-    subprocess.run([sys.executable, "-m", "pip", "install", "-q", "--no-deps", "--target", str(target), str(wheel)],
-                   check=True, capture_output=True, timeout=600)
+    subprocess.run(
+        [sys.executable, "-m", "pip", "install", "-q", "--no-deps", "--target", str(target), str(wheel)],
+        check=True,
+        capture_output=True,
+        timeout=600,
+    )
     script = (
         "import sys, xacrokit; from pathlib import Path\n"
         "assert Path(xacrokit.__file__).is_relative_to(sys.argv[1]), xacrokit.__file__\n"
@@ -50,6 +56,10 @@ def test_installed_wheel_finds_its_macros_and_expands_the_demo(wheel, tmp_path):
     env = dict(os.environ, PYTHONPATH=str(target))
     result = subprocess.run(
         [sys.executable, "-c", script, str(target), str(REPO / "examples" / "macros_demo.urdf.xacro")],
-        capture_output=True, text=True, env=env, cwd=tmp_path, timeout=300,
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path,
+        timeout=300,
     )
     assert result.returncode == 0 and result.stdout.strip() == "ok", result.stderr
