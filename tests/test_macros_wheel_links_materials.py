@@ -161,3 +161,10 @@ def test_pi_is_not_a_literal_in_the_macros():
     for path in xacrokit.macros_dir().rglob("*.xacro"):
         text = path.read_text(encoding="utf-8")
         assert "3.14159" not in text and "1.5707" not in text, path
+
+
+def test_wheel_name_parameter_names_link_joint_and_gazebo_reference(expand):
+    root = expand(wheel_doc("y", 0.1, 0.04, 0.5, 'name="caster_front"'))
+    assert root.find("link[@name='left_caster_front']") is not None
+    assert root.find("joint[@name='left_caster_front_joint']/child").get("link") == "left_caster_front"
+    assert [g.get("reference") for g in root.iter("gazebo")] == ["left_caster_front"]
