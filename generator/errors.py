@@ -42,3 +42,37 @@ class ExpandError(XacrokitError):
         lines += [f"  in macro {name}" for name in self.macro_stack]
         lines += [f"  in file {name}" for name in self.file_stack if name != self.file]
         return "\n".join(lines)
+
+
+class SpecError(XacrokitError):
+    """One located problem in a spec file; prints as ``spec.yaml:12:7: $.joints.elbow.limit.lower: message``."""
+
+    def __init__(self, message: str, *, file: str, path: str = "$", line: int | None = None, column: int | None = None):
+        self.file = file
+        self.path = path
+        self.line = line
+        self.column = column
+        self.message = message
+        super().__init__(str(self))
+
+    def __str__(self) -> str:
+        where = self.file
+        if self.line is not None:
+            where += f":{self.line}" + (f":{self.column}" if self.column is not None else "")
+        return f"{where}: {self.path}: {self.message}"
+
+    def to_dict(self) -> dict[str, object]:
+        return {"file": self.file, "path": self.path, "line": self.line, "column": self.column, "message": self.message}
+
+
+class SpecErrors(XacrokitError):
+    """Every problem found in a spec, reported together; ``errors`` is sorted by position."""
+
+    def __init__(self, errors: list[SpecError]):
+        self.errors = sorted(errors, key=lambda e: (e.file, e.line or 0, e.column or 0, e.path, e.message))
+        super().__init__(str(self))
+
+    def __str__(self) -> str:
+        count = len(self.errors)
+        head = f"{count} problem{'s' if count != 1 else ''} in the spec:"
+        return "\n".join([head, *(f"  {e}" for e in self.errors)])

@@ -119,6 +119,7 @@ def expand_file(
     mappings: Mapping[str, str] | None = None,
     *,
     package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
+    xacro_banner: bool = True,
 ) -> str:
     """Expand a xacro document to URDF text with the real xacro.
 
@@ -127,6 +128,8 @@ def expand_file(
         mappings: ``xacro:arg`` values, as on xacro's command line (``name:=value``). Every name must be declared by
             the document with ``<xacro:arg name=...>``.
         package_paths: folders for ``$(find PKG)`` of packages other than xacrokit.
+        xacro_banner: keep the comment xacro puts on top (it names the input path, so output that must not depend
+            on where it was made leaves it out).
 
     Returns:
         The expanded URDF as pretty-printed XML text.
@@ -158,6 +161,9 @@ def expand_file(
             f"it declares: {declared}",
             file=where,
         )
+    if not xacro_banner:
+        while document.firstChild is not None and document.firstChild.nodeType == document.COMMENT_NODE:
+            document.removeChild(document.firstChild)
     return document.toprettyxml(indent="  ")
 
 

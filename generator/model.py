@@ -1,0 +1,254 @@
+"""The resolved robot: plain frozen dataclasses in SI units, the single source of truth after validation.
+
+Everything downstream (templates, checks, the direct URDF emitter) reads this model and nothing else.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+Vec3 = tuple[float, float, float]
+ZERO: Vec3 = (0.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class Origin:
+    """A pose in a parent frame: xyz in m, rpy in rad (URDF fixed-axis roll-pitch-yaw)."""
+
+    xyz: Vec3 = ZERO
+    rpy: Vec3 = ZERO
+
+
+@dataclass(frozen=True)
+class Box:
+    size: Vec3
+
+
+@dataclass(frozen=True)
+class Cylinder:
+    """A cylinder along the z axis of its origin."""
+
+    radius: float
+    length: float
+
+
+@dataclass(frozen=True)
+class Sphere:
+    radius: float
+
+
+@dataclass(frozen=True)
+class Mesh:
+    filename: str
+    scale: Vec3 = (1.0, 1.0, 1.0)
+
+
+Shape = Box | Cylinder | Sphere | Mesh
+
+
+@dataclass(frozen=True)
+class Inertia:
+    """Mass (kg) and tensor about the centre of mass (kg*m^2) in the frame ``origin`` places in the link frame.
+
+    ``kind`` says where the tensor came from: ``box``, ``cylinder``, ``sphere`` (computed from the shape) or
+    ``explicit`` (given in the spec).
+    """
+
+    mass: float
+    ixx: float
+    ixy: float
+    ixz: float
+    iyy: float
+    iyz: float
+    izz: float
+    origin: Origin = Origin()
+    kind: str = "explicit"
+
+
+@dataclass(frozen=True)
+class Visual:
+    shape: Shape
+    origin: Origin = Origin()
+    material: str | None = None
+
+
+@dataclass(frozen=True)
+class Collision:
+    shape: Shape
+    origin: Origin = Origin()
+
+
+@dataclass(frozen=True)
+class Link:
+    name: str
+    visual: Visual | None = None
+    collision: Collision | None = None
+    inertial: Inertia | None = None
+
+
+@dataclass(frozen=True)
+class Limit:
+    """lower/upper in rad or m (None for continuous joints), effort in N*m or N, velocity in rad/s or m/s."""
+
+    effort: float
+    velocity: float
+    lower: float | None = None
+    upper: float | None = None
+
+
+@dataclass(frozen=True)
+class Dynamics:
+    damping: float = 0.0
+    friction: float = 0.0
+
+
+@dataclass(frozen=True)
+class Mimic:
+    joint: str
+    multiplier: float = 1.0
+    offset: float = 0.0
+
+
+@dataclass(frozen=True)
+class SafetyController:
+    k_velocity: float
+    k_position: float | None = None
+    soft_lower_limit: float | None = None
+    soft_upper_limit: float | None = None
+
+
+@dataclass(frozen=True)
+class Joint:
+    name: str
+    type: str
+    parent: str
+    child: str
+    origin: Origin = Origin()
+    axis: Vec3 | None = None
+    limit: Limit | None = None
+    dynamics: Dynamics | None = None
+    mimic: Mimic | None = None
+    safety_controller: SafetyController | None = None
+
+
+@dataclass(frozen=True)
+class DHRow:
+    """One DH row; a, d in m, alpha, theta in rad. ``mass``/``radius`` give the link a cylinder body."""
+
+    name: str
+    link: str
+    a: float
+    d: float
+    alpha: float
+    theta: float = 0.0
+    type: str = "revolute"
+    limit: Limit | None = None
+    dynamics: Dynamics | None = None
+    mass: float | None = None
+    radius: float = 0.03
+    material: str | None = None
+
+
+@dataclass(frozen=True)
+class Arm:
+    """A DH chain: parent -> ``base`` (DH frame 0, at ``origin``) -> rows -> ``tool`` (DH frame n + ``tool_origin``)."""
+
+    name: str
+    parent: str
+    origin: Origin
+    convention: str
+    rows: tuple[DHRow, ...]
+    base: str
+    tool: str
+    tool_origin: Origin = Origin()
+
+    @property
+    def link_names(self) -> tuple[str, ...]:
+        return (self.base, *(row.link for row in self.rows), self.tool)
+
+    @property
+    def joint_names(self) -> tuple[str, ...]:
+        return (f"{self.base}_joint", *(row.name for row in self.rows), f"{self.tool}_joint")
+
+
+@dataclass(frozen=True)
+class Wheel:
+    """A wheel link ``name`` on the continuous joint ``name``_joint; SI units throughout."""
+
+    name: str
+    parent: str
+    origin: Origin
+    radius: float
+    width: float
+    mass: float
+    axis: str = "y"
+    material: str | None = None
+    effort: float = 10.0
+    velocity: float = 10.0
+    damping: float = 0.01
+    friction: float = 0.0
+    mu1: float = 1.0
+    mu2: float = 1.0
+
+    @property
+    def joint_name(self) -> str:
+        return f"{self.name}_joint"
+
+
+@dataclass(frozen=True)
+class Interfaces:
+    command: tuple[str, ...]
+    state: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class ControlledJoint:
+    name: str
+    interfaces: Interfaces
+    initial_position: float = 0.0
+
+
+@dataclass(frozen=True)
+class Surface:
+    link: str
+    mu1: float | None = None
+    mu2: float | None = None
+    kp: float | None = None
+    kd: float | None = None
+
+
+@dataclass(frozen=True)
+class Robot:
+    """A whole robot. ``links``/``joints`` hold the spec's links, joints and frames; arms and wheels keep their own
+    records (they are emitted through the dh_arm and wheel macros) and add the names listed by their properties."""
+
+    name: str
+    root: str
+    materials: tuple[tuple[str, tuple[float, float, float, float]], ...] = ()
+    links: tuple[Link, ...] = ()
+    joints: tuple[Joint, ...] = ()
+    arms: tuple[Arm, ...] = ()
+    wheels: tuple[Wheel, ...] = ()
+    ros2_control: tuple[ControlledJoint, ...] | None = None
+    surfaces: tuple[Surface, ...] = ()
+    source: str = field(default="", compare=False)
+
+    @property
+    def link_names(self) -> tuple[str, ...]:
+        names = [link.name for link in self.links]
+        for arm in self.arms:
+            names += arm.link_names
+        names += [wheel.name for wheel in self.wheels]
+        return tuple(names)
+
+    @property
+    def joint_names(self) -> tuple[str, ...]:
+        names = [joint.name for joint in self.joints]
+        for arm in self.arms:
+            names += arm.joint_names
+        names += [wheel.joint_name for wheel in self.wheels]
+        return tuple(names)
+
+    @property
+    def package(self) -> str:
+        return f"{self.name}_description"

@@ -1,0 +1,178 @@
+"""The render stage: the model becomes the files of a ROS 2 description package, in memory.
+
+jinja2 with StrictUndefined (a template that asks for something the model lacks fails loudly) and XML autoescaping
+for the .xacro/.xml templates. Every user string that lands in a xacro file goes through ``xacro_text``, so a ``${``
+or ``$(`` in it is written escaped and never evaluated by xacro. Numbers are written with ``repr`` (round-trip exact).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from functools import cache
+from pathlib import PurePosixPath
+from typing import Literal
+
+import jinja2
+import yaml
+
+from . import __version__
+from .model import Box, Cylinder, Link, Mesh, Origin, Robot, Sphere
+from .resources import macros_dir, templates_dir
+
+MacroMode = Literal["copy", "find"]
+COPIED_MACROS_DIR = "urdf/xacrokit"
+
+
+@dataclass(frozen=True)
+class RenderedFile:
+    """One file of the package: a POSIX path relative to the package root and its full text."""
+
+    path: str
+    content: str
+
+
+def xacro_text(value: object) -> str:
+    """Text xacro must copy verbatim: every run of ``$`` before ``{`` or ``(`` gets one more ``$`` (xacro drops one)."""
+    return re.sub(r"(\$+)(?=[{(])", r"$\1", str(value))
+
+
+def num(value: float) -> str:
+    """A float written so that reading it back gives the same float."""
+    text = repr(float(value))
+    return "0.0" if text == "-0.0" else text
+
+
+def vec(values: tuple[float, ...]) -> str:
+    return " ".join(num(v) for v in values)
+
+
+def material_name(robot: Robot, name: str | None) -> str:
+    """Materials are namespaced by robot so several robots (and instances) in one scene never clash."""
+    return f"{robot.name}/{name}" if name else ""
+
+
+def simple_shape_link(link: Link) -> str | None:
+    """The links.xacro macro that makes exactly this link (visual, same collision, shape inertia), if there is one."""
+    visual, collision, inertial = link.visual, link.collision, link.inertial
+    if visual is None or inertial is None or isinstance(visual.shape, Mesh):
+        return None
+    same_collision = collision is not None and collision.shape == visual.shape and collision.origin == visual.origin
+    computed_here = inertial.kind != "explicit" and inertial.origin == visual.origin
+    if not (same_collision and computed_here):
+        return None
+    return {Box: "box_link", Cylinder: "cylinder_link", Sphere: "sphere_link"}[type(visual.shape)]
+
+
+@cache
+def _environment() -> jinja2.Environment:
+    env = jinja2.Environment(
+        loader=jinja2.FileSystemLoader(str(templates_dir())),
+        undefined=jinja2.StrictUndefined,
+        autoescape=jinja2.select_autoescape(enabled_extensions=("xacro.j2", "xml.j2"), default_for_string=False),
+        keep_trailing_newline=True,
+        trim_blocks=True,
+        lstrip_blocks=True,
+    )
+    env.filters.update(num=num, vec=vec, xacro_text=xacro_text)
+    env.globals.update(
+        simple_shape_link=simple_shape_link,
+        is_box=lambda s: isinstance(s, Box),
+        is_cylinder=lambda s: isinstance(s, Cylinder),
+        is_sphere=lambda s: isinstance(s, Sphere),
+        is_mesh=lambda s: isinstance(s, Mesh),
+        zero_origin=Origin(),
+    )
+    return env
+
+
+def used_macro_files(robot: Robot) -> list[str]:
+    """Library files the robot's macro includes (each brings inertia.xacro and the private helpers with it)."""
+    files = ["inertia.xacro"]
+    if any(simple_shape_link(link) for link in robot.links):
+        files.append("links.xacro")
+    if robot.wheels:
+        files.append("wheel.xacro")
+    if robot.arms:
+        files.append("dh.xacro")
+    return files
+
+
+def _copied_macros(files: list[str]) -> list[RenderedFile]:
+    """The library files a self-contained package carries, with the private helpers they include."""
+    folder = macros_dir()
+    names = [*files, "_inc/checks.xacro"]
+    return [RenderedFile(f"{COPIED_MACROS_DIR}/{name}", (folder / name).read_text(encoding="utf-8")) for name in names]
+
+
+def dh_table_yaml(robot: Robot, arm_index: int) -> str:
+    """The arm's DH table as the YAML that dh_arm reads (SI numbers, material names already namespaced)."""
+    arm = robot.arms[arm_index]
+    rows = []
+    for row in arm.rows:
+        entry: dict[str, object] = {"name": row.name, "link": row.link, "type": row.type, "a": row.a, "d": row.d,
+                                    "alpha": row.alpha, "theta": row.theta}
+        if row.limit is not None:
+            limit = {"effort": row.limit.effort, "velocity": row.limit.velocity}
+            if row.limit.lower is not None:
+                limit.update(lower=row.limit.lower, upper=row.limit.upper)
+            entry["limit"] = limit
+        if row.dynamics is not None:
+            entry["dynamics"] = {"damping": row.dynamics.damping, "friction": row.dynamics.friction}
+        if row.mass is not None:
+            entry.update(mass=row.mass, radius=row.radius)
+            if row.material:
+                entry["material"] = material_name(robot, row.material)
+        rows.append(entry)
+    header = (f"# DH table of arm '{arm.name}' ({arm.convention} convention), SI units: m and rad.\n"
+              f"# Generated by xacrokit {__version__}; read by urdf/{robot.name}_macro.xacro through dh_arm.\n")
+    return header + yaml.safe_dump({"joints": rows}, sort_keys=False, default_flow_style=None, width=120)
+
+
+def render_package(robot: Robot, *, macros: MacroMode = "copy", spec_name: str = "spec.yaml") -> list[RenderedFile]:
+    """Every file of ``NAME_description/`` except the expanded URDF (the expand stage adds that)."""
+    env = _environment()
+    macro_files = used_macro_files(robot)
+    include_prefix = "xacrokit/" if macros == "copy" else "$(find xacrokit)/macros/"
+    context = {
+        "robot": robot,
+        "version": __version__,
+        "spec_name": spec_name,
+        "macros": macros,
+        "macro_includes": [include_prefix + name for name in macro_files],
+        "material_name": lambda name: material_name(robot, name),
+        "has_control": robot.ros2_control is not None,
+        "command_groups": _command_groups(robot),
+    }
+    name = robot.name
+    plan = {
+        "package.xml": "package/package.xml.j2",
+        "CMakeLists.txt": "package/CMakeLists.txt.j2",
+        "README.md": "package/README.md.j2",
+        f"urdf/{name}.urdf.xacro": "package/urdf/robot.urdf.xacro.j2",
+        f"urdf/{name}_macro.xacro": "package/urdf/robot_macro.xacro.j2",
+        f"urdf/{name}.materials.xacro": "package/urdf/robot.materials.xacro.j2",
+        f"urdf/{name}.gazebo.xacro": "package/urdf/robot.gazebo.xacro.j2",
+        f"urdf/{name}.ros2_control.xacro": "package/urdf/robot.ros2_control.xacro.j2",
+        "launch/display.launch.py": "package/launch/display.launch.py.j2",
+        f"rviz/{name}.rviz": "package/rviz/robot.rviz.j2",
+    }
+    if robot.ros2_control is not None:
+        plan[f"config/{name}_controllers.yaml"] = "package/config/controllers.yaml.j2"
+    files = [RenderedFile(path, env.get_template(template).render(context)) for path, template in plan.items()]
+    files += [RenderedFile(f"config/{arm.name}.dh.yaml", dh_table_yaml(robot, i)) for i, arm in enumerate(robot.arms)]
+    if macros == "copy":
+        files += _copied_macros(macro_files)
+    for file in files:  # generated paths come from validated names; keep it that way
+        parts = PurePosixPath(file.path).parts
+        assert not PurePosixPath(file.path).is_absolute() and ".." not in parts, file.path
+    return sorted(files, key=lambda f: f.path)
+
+
+def _command_groups(robot: Robot) -> dict[str, list[str]]:
+    """Controlled joints grouped by their first command interface (one forward controller per group)."""
+    groups: dict[str, list[str]] = {}
+    for joint in robot.ros2_control or ():
+        if joint.interfaces.command:
+            groups.setdefault(joint.interfaces.command[0], []).append(joint.name)
+    return groups

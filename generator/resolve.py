@@ -1,0 +1,242 @@
+"""The resolve stage: a validated spec becomes the frozen :class:`~xacrokit.model.Robot` (SI, defaults filled in).
+
+Pure: no I/O and no errors of its own (validation already guarantees what this relies on).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from .model import (
+    Arm,
+    Box,
+    Collision,
+    ControlledJoint,
+    Cylinder,
+    DHRow,
+    Dynamics,
+    Inertia,
+    Interfaces,
+    Joint,
+    Limit,
+    Link,
+    Mesh,
+    Mimic,
+    Origin,
+    Robot,
+    SafetyController,
+    Shape,
+    Sphere,
+    Surface,
+    Vec3,
+    Visual,
+    Wheel,
+)
+from .validate import MOVING, Spec
+
+DEFAULT_INTERFACES = Interfaces(command=("position",), state=("position", "velocity"))
+WHEEL_INTERFACES = Interfaces(command=("velocity",), state=("position", "velocity"))
+
+
+def _vec3(values: Any, default: Vec3 = (0.0, 0.0, 0.0)) -> Vec3:
+    if values is None:
+        return default
+    x, y, z = (float(v) for v in values)
+    return (x, y, z)
+
+
+def origin(data: dict[str, Any] | None) -> Origin:
+    data = data or {}
+    return Origin(xyz=_vec3(data.get("xyz")), rpy=_vec3(data.get("rpy")))
+
+
+def shape(data: dict[str, Any]) -> Shape:
+    if "box" in data:
+        return Box(size=_vec3(data["box"]["size"]))
+    if "cylinder" in data:
+        return Cylinder(radius=float(data["cylinder"]["radius"]), length=float(data["cylinder"]["length"]))
+    if "sphere" in data:
+        return Sphere(radius=float(data["sphere"]["radius"]))
+    mesh = data["mesh"]
+    return Mesh(filename=mesh["filename"], scale=_vec3(mesh.get("scale"), (1.0, 1.0, 1.0)))
+
+
+def shape_inertia(body: Shape, mass: float, frame: Origin) -> Inertia:
+    """The closed-form tensor of a solid primitive about its centre, in the primitive's own axes."""
+    if isinstance(body, Box):
+        x, y, z = body.size
+        xx, yy, zz = mass / 12.0 * (y * y + z * z), mass / 12.0 * (x * x + z * z), mass / 12.0 * (x * x + y * y)
+        kind = "box"
+    elif isinstance(body, Cylinder):
+        r, h = body.radius, body.length
+        xx = yy = mass * (3.0 * r * r + h * h) / 12.0
+        zz = mass * r * r / 2.0
+        kind = "cylinder"
+    elif isinstance(body, Sphere):
+        xx = yy = zz = 2.0 * mass * body.radius * body.radius / 5.0
+        kind = "sphere"
+    else:  # validation guarantees meshes come with an explicit tensor
+        raise TypeError(f"no closed-form inertia for {body!r}")
+    return Inertia(mass=mass, ixx=xx, ixy=0.0, ixz=0.0, iyy=yy, iyz=0.0, izz=zz, origin=frame, kind=kind)
+
+
+def _link(name: str, data: dict[str, Any]) -> Link:
+    if "shape" not in data:
+        inertial = _explicit_inertia(data, origin(data.get("com") or data.get("origin")))
+        return Link(name=name, inertial=inertial)
+    body, where = shape(data["shape"]), origin(data.get("origin"))
+    visual = Visual(shape=body, origin=where, material=data.get("material"))
+    collision_spec = data.get("collision", "same")
+    if collision_spec == "same":
+        collision: Collision | None = Collision(shape=body, origin=where)
+    elif collision_spec == "none":
+        collision = None
+    else:
+        collision = Collision(shape=shape(collision_spec["shape"]), origin=origin(collision_spec.get("origin")))
+    frame = origin(data["com"]) if "com" in data else where
+    inertial = _explicit_inertia(data, frame)
+    if inertial is None and "mass" in data:
+        inertial = shape_inertia(body, float(data["mass"]), frame)
+    return Link(name=name, visual=visual, collision=collision, inertial=inertial)
+
+
+def _explicit_inertia(data: dict[str, Any], default_frame: Origin) -> Inertia | None:
+    tensor = data.get("inertia")
+    if tensor is None:
+        return None
+    frame = origin(tensor["origin"]) if "origin" in tensor else default_frame
+    return Inertia(
+        mass=float(data["mass"]),
+        ixx=float(tensor["ixx"]), ixy=float(tensor.get("ixy", 0.0)), ixz=float(tensor.get("ixz", 0.0)),
+        iyy=float(tensor["iyy"]), iyz=float(tensor.get("iyz", 0.0)), izz=float(tensor["izz"]),
+        origin=frame, kind="explicit",
+    )
+
+
+def _limit(data: dict[str, Any], joint_type: str) -> Limit | None:
+    limit = data.get("limit")
+    if joint_type not in MOVING or not limit:
+        return None
+    bounded = joint_type != "continuous"
+    return Limit(
+        effort=float(limit["effort"]), velocity=float(limit["velocity"]),
+        lower=float(limit["lower"]) if bounded else None, upper=float(limit["upper"]) if bounded else None,
+    )
+
+
+def _dynamics(data: dict[str, Any]) -> Dynamics | None:
+    dynamics = data.get("dynamics")
+    if dynamics is None:
+        return None
+    return Dynamics(damping=float(dynamics.get("damping", 0.0)), friction=float(dynamics.get("friction", 0.0)))
+
+
+def _joint(name: str, data: dict[str, Any]) -> Joint:
+    kind = data["type"]
+    axis = None
+    if kind not in ("fixed", "floating"):
+        raw_axis = _vec3(data.get("axis"), (1.0, 0.0, 0.0))
+        norm = math.sqrt(sum(v * v for v in raw_axis))
+        axis = (raw_axis[0] / norm, raw_axis[1] / norm, raw_axis[2] / norm)
+    mimic = data.get("mimic")
+    safety = data.get("safety_controller")
+    return Joint(
+        name=name, type=kind, parent=data["parent"], child=data["child"], origin=origin(data.get("origin")),
+        axis=axis, limit=_limit(data, kind), dynamics=_dynamics(data) if kind in MOVING else None,
+        mimic=Mimic(joint=mimic["joint"], multiplier=float(mimic.get("multiplier", 1.0)),
+                    offset=float(mimic.get("offset", 0.0))) if mimic else None,
+        safety_controller=SafetyController(
+            k_velocity=float(safety["k_velocity"]),
+            k_position=_optional_float(safety.get("k_position")),
+            soft_lower_limit=_optional_float(safety.get("soft_lower_limit")),
+            soft_upper_limit=_optional_float(safety.get("soft_upper_limit")),
+        ) if safety else None,
+    )
+
+
+def _optional_float(value: Any) -> float | None:
+    return None if value is None else float(value)
+
+
+def _arm(name: str, data: dict[str, Any]) -> Arm:
+    rows = []
+    for row in data["joints"]:
+        kind = row.get("type", "revolute")
+        rows.append(DHRow(
+            name=row["name"], link=row["link"], a=float(row["a"]), d=float(row["d"]), alpha=float(row["alpha"]),
+            theta=float(row.get("theta", 0.0)), type=kind, limit=_limit(row, kind),
+            dynamics=_dynamics(row) if kind != "fixed" else None,
+            mass=_optional_float(row.get("mass")), radius=float(row.get("radius", 0.03)), material=row.get("material"),
+        ))
+    tool = data.get("tool", {})
+    return Arm(
+        name=name, parent=data["parent"], origin=origin(data.get("origin")),
+        convention=data.get("convention", "standard"), rows=tuple(rows), base=f"{name}_base",
+        tool=tool.get("name", "tool0"), tool_origin=origin(tool.get("origin")),
+    )
+
+
+def _wheel(name: str, data: dict[str, Any]) -> Wheel:
+    limit, dynamics = data.get("limit", {}), data.get("dynamics", {})
+    return Wheel(
+        name=name, parent=data["parent"], origin=origin(data.get("origin")), radius=float(data["radius"]),
+        width=float(data["width"]), mass=float(data["mass"]), axis=data.get("axis", "y"),
+        material=data.get("material"), effort=float(limit.get("effort", 10.0)),
+        velocity=float(limit.get("velocity", 10.0)), damping=float(dynamics.get("damping", 0.01)),
+        friction=float(dynamics.get("friction", 0.0)), mu1=float(data.get("mu1", 1.0)), mu2=float(data.get("mu2", 1.0)),
+    )
+
+
+def _frame(name: str, data: dict[str, Any]) -> tuple[Link, Joint]:
+    body = {k: data[k] for k in ("shape", "mass", "material") if k in data}
+    joint = Joint(name=f"{name}_joint", type="fixed", parent=data["parent"], child=name, origin=origin(data.get("origin")))
+    return _link(name, body), joint
+
+
+def _controlled(data: dict[str, Any], robot_joints: list[tuple[str, str, bool]]) -> tuple[ControlledJoint, ...] | None:
+    """Every moving, non-mimic joint with its interfaces (per-joint override, else wheel or global default)."""
+    control = data.get("ros2_control")
+    if control is None:
+        return None
+    default = control.get("interfaces", {})
+    overrides = control.get("joints", {})
+    result = []
+    for name, kind, is_wheel in robot_joints:
+        base = WHEEL_INTERFACES if is_wheel else DEFAULT_INTERFACES
+        if not is_wheel and default:
+            base = Interfaces(tuple(default.get("command", base.command)), tuple(default.get("state", base.state)))
+        override = overrides.get(name, {})
+        chosen = Interfaces(tuple(override.get("command", base.command)), tuple(override.get("state", base.state)))
+        result.append(ControlledJoint(name=name, interfaces=chosen))
+    return tuple(result)
+
+
+def resolve(spec: Spec) -> Robot:
+    """Build the model of a validated spec."""
+    data = spec.data
+    links = [_link(name, link) for name, link in data.get("links", {}).items()]
+    joints = [_joint(name, joint) for name, joint in data.get("joints", {}).items()]
+    for name, frame in data.get("frames", {}).items():
+        link, joint = _frame(name, frame)
+        links.append(link)
+        joints.append(joint)
+    arms = tuple(_arm(name, arm) for name, arm in data.get("arms", {}).items())
+    wheels = tuple(_wheel(name, wheel) for name, wheel in data.get("wheels", {}).items())
+    moving = [(j.name, j.type, False) for j in joints if j.type in MOVING and j.mimic is None]
+    moving += [(row.name, row.type, False) for arm in arms for row in arm.rows if row.type in MOVING]
+    moving += [(w.joint_name, "continuous", True) for w in wheels]
+    surfaces = tuple(
+        Surface(link=name, mu1=s.get("mu1"), mu2=s.get("mu2"), kp=s.get("kp"), kd=s.get("kd"))
+        for name, s in data.get("gazebo", {}).get("links", {}).items()
+    )
+    children = {j.child for j in joints} | {w.name for w in wheels}
+    for arm in arms:
+        children |= set(arm.link_names)
+    root = next(link.name for link in links if link.name not in children)
+    return Robot(
+        name=data["robot"], root=root,
+        materials=tuple((n, tuple(float(c) for c in rgba)) for n, rgba in data.get("materials", {}).items()),  # type: ignore[misc]
+        links=tuple(links), joints=tuple(joints), arms=arms, wheels=wheels,
+        ros2_control=_controlled(data, moving), surfaces=surfaces, source=spec.raw.file,
+    )

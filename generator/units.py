@@ -1,0 +1,147 @@
+"""A small safe parser for quantities written in specs: ``0.3``, ``"150 mm"``, ``"90 deg"``, ``"pi/2"``, ``"-2*pi"``.
+
+Grammar (no ``eval``; nothing but these tokens is accepted)::
+
+    quantity := expr [unit]
+    expr     := term (('+' | '-') term)*
+    term     := factor (('*' | '/') factor)*
+    factor   := ('+' | '-') factor | NUMBER | 'pi' | '(' expr ')'
+
+The unit must belong to the field's kind; a bare number is already in SI (m, rad, kg).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from typing import Literal
+
+Kind = Literal["length", "angle", "mass", "number"]
+
+UNITS: dict[str, dict[str, float]] = {
+    "length": {"m": 1.0, "mm": 1e-3, "cm": 1e-2, "km": 1e3, "in": 0.0254, "ft": 0.3048},
+    "angle": {"rad": 1.0, "deg": math.pi / 180.0, "degree": math.pi / 180.0, "degrees": math.pi / 180.0},
+    "mass": {"kg": 1.0, "g": 1e-3},
+    "number": {},
+}
+
+_TOKEN = re.compile(r"\s*(?:(?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)|(?P<word>[A-Za-z_]+)|(?P<op>[-+*/()]))")
+
+
+class UnitError(ValueError):
+    """A quantity that does not parse, has a unit of the wrong kind, or is not finite. The message says which."""
+
+
+def _tokens(text: str) -> list[tuple[str, str]]:
+    tokens: list[tuple[str, str]] = []
+    position = 0
+    text = text.rstrip()
+    while position < len(text):
+        match = _TOKEN.match(text, position)
+        if not match or match.end() == position:
+            raise UnitError(f"unexpected {text[position:].strip()[:1]!r} in {text!r}")
+        kind = match.lastgroup or ""
+        tokens.append((kind, match.group(kind)))
+        position = match.end()
+    return tokens
+
+
+class _Parser:
+    def __init__(self, tokens: list[tuple[str, str]], source: str) -> None:
+        self.tokens, self.source, self.at = tokens, source, 0
+
+    def peek(self) -> tuple[str, str] | None:
+        return self.tokens[self.at] if self.at < len(self.tokens) else None
+
+    def take(self) -> tuple[str, str]:
+        token = self.peek()
+        if token is None:
+            raise UnitError(f"{self.source!r} ends too early")
+        self.at += 1
+        return token
+
+    def expr(self) -> float:
+        value = self.term()
+        while (token := self.peek()) and token[1] in "+-" and token[0] == "op":
+            self.take()
+            value = value + self.term() if token[1] == "+" else value - self.term()
+        return value
+
+    def term(self) -> float:
+        value = self.factor()
+        while (token := self.peek()) and token[0] == "op" and token[1] in "*/":
+            self.take()
+            right = self.factor()
+            if token[1] == "/" and right == 0:
+                raise UnitError(f"division by zero in {self.source!r}")
+            value = value * right if token[1] == "*" else value / right
+        return value
+
+    def factor(self) -> float:
+        kind, text = self.take()
+        if kind == "op" and text in "+-":
+            return self.factor() if text == "+" else -self.factor()
+        if kind == "number":
+            return float(text)
+        if kind == "word" and text == "pi":
+            return math.pi
+        if kind == "op" and text == "(":
+            value = self.expr()
+            if self.take() != ("op", ")"):
+                raise UnitError(f"missing ')' in {self.source!r}")
+            return value
+        raise UnitError(f"unexpected {text!r} in {self.source!r}")
+
+
+def _unit_kind(word: str) -> str | None:
+    return next((kind for kind, table in UNITS.items() if word in table), None)
+
+
+def parse_quantity(value: object, kind: Kind) -> float:
+    """Turn a spec value into a finite SI float.
+
+    Args:
+        value: a number, or a string such as ``"150 mm"``, ``"90 deg"``, ``"pi/2"``, ``"1e-3"``.
+        kind: what the field measures; a unit of another kind is an error.
+
+    Raises:
+        UnitError: the value is not a number or a well-formed expression, the unit is unknown or of another kind, or
+            the result is not finite.
+    """
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise UnitError(f"expected a number or a string such as {_example(kind)!r}, got {value!r}")
+    if isinstance(value, str):
+        tokens = _tokens(value)
+        if not tokens:
+            raise UnitError(f"expected a quantity such as {_example(kind)!r}, got an empty string")
+        scale = 1.0
+        if len(tokens) > 1 and tokens[-1][0] == "word" and tokens[-1][1] != "pi":
+            unit = tokens.pop()[1]
+            unit_kind = _unit_kind(unit)
+            if unit_kind is None:
+                raise UnitError(f"unknown unit {unit!r} in {value!r}; {kind} units: {_unit_list(kind)}")
+            if unit_kind != kind:
+                raise UnitError(f"{value!r} is {_article(unit_kind)} {unit_kind}, expected {_article(kind)} {kind}")
+            scale = UNITS[kind][unit]
+        parser = _Parser(tokens, value)
+        number = parser.expr()
+        if parser.peek() is not None:
+            raise UnitError(f"unexpected {parser.peek()[1]!r} in {value!r}")  # type: ignore[index]
+        number *= scale
+    else:
+        number = float(value)
+    if not math.isfinite(number):
+        raise UnitError(f"{value!r} is not a finite number")
+    return number
+
+
+def _article(kind: str) -> str:
+    return "an" if kind[0] in "aeiou" else "a"
+
+
+def _unit_list(kind: str) -> str:
+    return ", ".join(UNITS[kind]) or "none (a plain number)"
+
+
+def _example(kind: str) -> str:
+    return {"length": "150 mm", "angle": "90 deg", "mass": "500 g", "number": "1.5"}[kind]

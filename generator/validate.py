@@ -1,0 +1,487 @@
+"""The validate stage: JSON Schema first, then units and semantic checks; every problem located, all reported at once.
+
+``validate(raw) -> Spec`` where ``Spec.data`` is the spec with every length, angle and mass converted to an SI float.
+Nothing here writes or prints; failure is one :class:`SpecErrors` holding the list.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+from collections.abc import Iterator
+from dataclasses import dataclass
+from functools import cache
+from typing import Any
+
+import jsonschema
+import numpy as np
+
+from .errors import SpecError, SpecErrors
+from .load import PathKey, RawSpec
+from .resources import schemas_dir
+from .units import Kind, UnitError, parse_quantity
+
+MOVING = ("revolute", "continuous", "prismatic")
+LIMITED = ("revolute", "prismatic")
+
+
+@dataclass(frozen=True)
+class Spec:
+    """A valid spec: ``data`` has SI floats for every quantity; ``raw`` keeps the file positions."""
+
+    raw: RawSpec
+    data: dict[str, Any]
+
+
+@cache
+def robot_schema() -> dict[str, Any]:
+    return json.loads((schemas_dir() / "robot.schema.json").read_text(encoding="utf-8"))
+
+
+@cache
+def _validator() -> jsonschema.Draft202012Validator:
+    return jsonschema.Draft202012Validator(robot_schema())
+
+
+# ---------------------------------------------------------------- schema errors
+def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bool]:
+    """(path, message, point-at-key) for one schema error, in words a spec author understands."""
+    path: PathKey = tuple(error.absolute_path)
+    keyword = error.validator
+    if keyword == "additionalProperties":
+        allowed = sorted(error.schema.get("properties", {}))
+        extra = sorted(set(error.instance) - set(allowed)) if isinstance(error.instance, dict) else []
+        where = (*path, extra[0]) if extra else path
+        return where, f"unknown key {extra[0]!r}" + (f"; allowed here: {', '.join(allowed)}" if allowed else ""), True
+    if keyword == "propertyNames":
+        name = error.instance
+        return (*path, name), f"{name!r} is not a valid name: use letters, digits and _, not starting with a digit", True
+    if keyword == "pattern":
+        return path, f"{error.instance!r} is not a valid name: use letters, digits and _, not starting with a digit", False
+    if keyword == "oneOf" and _ref_name(error) in ("length", "angle", "quantity", "mass"):
+        kind = _ref_name(error)
+        example = {"length": "150 mm", "angle": "90 deg", "quantity": "90 deg", "mass": "500 g"}[kind]
+        if kind == "mass" and isinstance(error.instance, (int, float)) and not isinstance(error.instance, bool):
+            return path, f"mass must be > 0 kg, got {error.instance!r}", False
+        return path, f"expected a number or a string such as {example!r}, got {error.instance!r}", False
+    if keyword == "oneOf" and path and path[-1] == "collision":
+        return path, "collision must be same, none, or a mapping with a shape (and an origin)", False
+    if keyword in ("minProperties", "maxProperties") and "box" in error.schema.get("properties", {}):
+        return path, "a shape needs exactly one of box, cylinder, sphere, mesh", False
+    if keyword == "exclusiveMinimum":
+        return path, f"must be > {error.validator_value}, got {error.instance!r}", False
+    if keyword == "minimum":
+        return path, f"must be >= {error.validator_value}, got {error.instance!r}", False
+    if keyword == "required":
+        return path, error.message.replace("is a required property", "is required here"), False
+    return path, error.message, False
+
+
+def _ref_name(error: jsonschema.ValidationError) -> str | None:
+    """Which $defs entry an error's schema is (schemas are compared by identity with the loaded definitions)."""
+    for name, definition in robot_schema()["$defs"].items():
+        if definition is error.schema or definition == error.schema:
+            return name
+    return None
+
+
+def schema_errors(raw: RawSpec) -> list[SpecError]:
+    errors = []
+    for error in _validator().iter_errors(raw.data):
+        path, message, at_key = _schema_message(error)
+        errors.append(raw.error(path, message, key=at_key))
+    return errors
+
+
+# ---------------------------------------------------------------- quantities
+class _Quantities:
+    """Converts every quantity of a schema-valid spec to SI in place, collecting located errors."""
+
+    def __init__(self, raw: RawSpec) -> None:
+        self.raw = raw
+        self.data: dict[str, Any] = copy.deepcopy(raw.data)
+        self.errors: list[SpecError] = []
+
+    def convert(self, container: Any, key: str | int, path: PathKey, kind: Kind) -> None:
+        if isinstance(container, dict) and key not in container:
+            return
+        try:
+            container[key] = parse_quantity(container[key], kind)
+        except UnitError as exc:
+            self.errors.append(self.raw.error((*path, key), str(exc)))
+
+    def origin(self, holder: dict[str, Any], key: str, path: PathKey) -> None:
+        origin = holder.get(key)
+        if not isinstance(origin, dict):
+            return
+        for index in range(len(origin.get("xyz", []))):
+            self.convert(origin["xyz"], index, (*path, key, "xyz"), "length")
+        for index in range(len(origin.get("rpy", []))):
+            self.convert(origin["rpy"], index, (*path, key, "rpy"), "angle")
+
+    def shape(self, holder: dict[str, Any], path: PathKey) -> None:
+        shape = holder.get("shape")
+        if not isinstance(shape, dict):
+            return
+        path = (*path, "shape")
+        if "box" in shape:
+            for index in range(3):
+                self.convert(shape["box"]["size"], index, (*path, "box", "size"), "length")
+        for name in ("cylinder", "sphere"):
+            for key in ("radius", "length"):
+                if name in shape:
+                    self.convert(shape[name], key, (*path, name), "length")
+
+    def limits(self, holder: dict[str, Any], path: PathKey, joint_type: str) -> None:
+        kind: Kind = "length" if joint_type == "prismatic" else "angle"
+        for key in ("lower", "upper"):
+            if isinstance(holder.get("limit"), dict):
+                self.convert(holder["limit"], key, (*path, "limit"), kind)
+        if isinstance(holder.get("mimic"), dict):
+            self.convert(holder["mimic"], "offset", (*path, "mimic"), kind)
+        if isinstance(holder.get("safety_controller"), dict):
+            for key in ("soft_lower_limit", "soft_upper_limit"):
+                self.convert(holder["safety_controller"], key, (*path, "safety_controller"), kind)
+
+    def run(self) -> tuple[dict[str, Any], list[SpecError]]:
+        data = self.data
+        for name, link in data.get("links", {}).items():
+            path = ("links", name)
+            self.shape(link, path)
+            self.origin(link, "origin", path)
+            self.origin(link, "com", path)
+            self.convert(link, "mass", path, "mass")
+            if isinstance(link.get("collision"), dict):
+                self.shape(link["collision"], (*path, "collision"))
+                self.origin(link["collision"], "origin", (*path, "collision"))
+            if isinstance(link.get("inertia"), dict):
+                self.origin(link["inertia"], "origin", (*path, "inertia"))
+        for name, joint in data.get("joints", {}).items():
+            self.origin(joint, "origin", ("joints", name))
+            self.limits(joint, ("joints", name), joint["type"])
+        for name, arm in data.get("arms", {}).items():
+            self.origin(arm, "origin", ("arms", name))
+            if isinstance(arm.get("tool"), dict):
+                self.origin(arm["tool"], "origin", ("arms", name, "tool"))
+            for index, row in enumerate(arm["joints"]):
+                path = ("arms", name, "joints", index)
+                for key, kind in (("a", "length"), ("d", "length"), ("alpha", "angle"), ("theta", "angle"),
+                                  ("mass", "mass"), ("radius", "length")):
+                    self.convert(row, key, path, kind)  # type: ignore[arg-type]
+                self.limits(row, path, row.get("type", "revolute"))
+        for name, wheel in data.get("wheels", {}).items():
+            self.origin(wheel, "origin", ("wheels", name))
+            for key, kind in (("radius", "length"), ("width", "length"), ("mass", "mass")):
+                self.convert(wheel, key, ("wheels", name), kind)  # type: ignore[arg-type]
+        for name, frame in data.get("frames", {}).items():
+            self.origin(frame, "origin", ("frames", name))
+            self.shape(frame, ("frames", name))
+            self.convert(frame, "mass", ("frames", name), "mass")
+        return data, self.errors
+
+
+# ---------------------------------------------------------------- semantic checks
+@dataclass(frozen=True)
+class _Named:
+    name: str
+    path: PathKey
+    at_key: bool
+
+
+def _link_and_joint_names(data: dict[str, Any]) -> tuple[list[_Named], list[_Named]]:
+    """Every link and joint name the spec will create, with where each comes from."""
+    links = [_Named(n, ("links", n), True) for n in data.get("links", {})]
+    joints = [_Named(n, ("joints", n), True) for n in data.get("joints", {})]
+    for arm_name, arm in data.get("arms", {}).items():
+        base = f"{arm_name}_base"
+        links.append(_Named(base, ("arms", arm_name), True))
+        joints.append(_Named(f"{base}_joint", ("arms", arm_name), True))
+        for index, row in enumerate(arm["joints"]):
+            links.append(_Named(row["link"], ("arms", arm_name, "joints", index, "link"), False))
+            joints.append(_Named(row["name"], ("arms", arm_name, "joints", index, "name"), False))
+        tool = arm.get("tool", {}).get("name", "tool0")
+        tool_path = ("arms", arm_name, "tool", "name") if "name" in arm.get("tool", {}) else ("arms", arm_name)
+        links.append(_Named(tool, tool_path, "name" not in arm.get("tool", {})))
+        joints.append(_Named(f"{tool}_joint", tool_path, "name" not in arm.get("tool", {})))
+    for section in ("wheels", "frames"):
+        for name in data.get(section, {}):
+            links.append(_Named(name, (section, name), True))
+            joints.append(_Named(f"{name}_joint", (section, name), True))
+    return links, joints
+
+
+def _duplicates(raw: RawSpec, named: list[_Named], what: str) -> Iterator[SpecError]:
+    first: dict[str, _Named] = {}
+    for item in named:
+        if item.name in first:
+            other = first[item.name]
+            line, _ = raw.locate(other.path, key=other.at_key)
+            yield raw.error(item.path, f"{what} name {item.name!r} is already used by {_describe(other.path)} "
+                                       f"(line {line}); names must be unique", key=item.at_key)
+        else:
+            first[item.name] = item
+
+
+def _describe(path: PathKey) -> str:
+    from .load import json_path
+
+    return json_path(path)
+
+
+def _edges(data: dict[str, Any]) -> list[tuple[str, str, PathKey]]:
+    """(parent, child, where) for every parent-child relation the spec creates."""
+    edges = [(j["parent"], j["child"], ("joints", n)) for n, j in data.get("joints", {}).items()]
+    for arm_name, arm in data.get("arms", {}).items():
+        chain = [f"{arm_name}_base", *(row["link"] for row in arm["joints"]), arm.get("tool", {}).get("name", "tool0")]
+        edges.append((arm["parent"], chain[0], ("arms", arm_name, "parent")))
+        edges += [(a, b, ("arms", arm_name)) for a, b in zip(chain, chain[1:], strict=False)]
+    for section in ("wheels", "frames"):
+        edges += [(item["parent"], name, (section, name, "parent")) for name, item in data.get(section, {}).items()]
+    return edges
+
+
+def _tree_errors(raw: RawSpec, data: dict[str, Any], link_names: set[str]) -> Iterator[SpecError]:
+    edges = _edges(data)
+    parent_of: dict[str, tuple[str, PathKey]] = {}
+    children: dict[str, list[str]] = {}
+    for parent, child, where in edges:
+        if parent not in link_names:
+            continue  # reported as an unknown reference
+        if child in parent_of:
+            yield raw.error(where, f"link {child!r} already has parent {parent_of[child][0]!r}; "
+                                   "a link can hang from one joint only (URDF is a tree)")
+            continue
+        parent_of[child] = (parent, where)
+        children.setdefault(parent, []).append(child)
+    roots = sorted(name for name in link_names if name not in parent_of)
+    reachable: set[str] = set()
+    stack = list(roots)
+    while stack:
+        name = stack.pop()
+        if name not in reachable:
+            reachable.add(name)
+            stack += children.get(name, [])
+    stranded = sorted(link_names - reachable)
+    if stranded:
+        where = parent_of[stranded[0]][1]
+        yield raw.error(where, f"links {', '.join(stranded)} form a cycle (each hangs from another in the loop)")
+    if len(roots) > 1:
+        listed = ", ".join(roots)
+        yield raw.error(("links",), f"the links form {len(roots)} separate trees (roots: {listed}); connect them with "
+                                    "joints so that exactly one link has no parent", key=True)
+    elif not roots and not stranded:
+        yield raw.error(("links",), "no root link", key=True)
+
+
+def _reference_errors(raw: RawSpec, data: dict[str, Any], link_names: set[str],
+                      joint_types: dict[str, str]) -> Iterator[SpecError]:
+    materials = set(data.get("materials", {}))
+
+    def link_ref(path: PathKey, name: str, role: str) -> Iterator[SpecError]:
+        if name not in link_names:
+            yield raw.error(path, f"{role} {name!r} is not a link of this robot{_closest(name, link_names)}")
+
+    def material_ref(holder: dict[str, Any], path: PathKey) -> Iterator[SpecError]:
+        name = holder.get("material")
+        if name is not None and name not in materials:
+            known = ", ".join(sorted(materials)) or "none defined"
+            yield raw.error((*path, "material"), f"material {name!r} is not in materials (known: {known})")
+
+    for name, link in data.get("links", {}).items():
+        yield from material_ref(link, ("links", name))
+    for name, joint in data.get("joints", {}).items():
+        path = ("joints", name)
+        yield from link_ref((*path, "parent"), joint["parent"], "parent")
+        if joint["child"] not in data.get("links", {}):
+            yield raw.error((*path, "child"), f"child {joint['child']!r} is not in links"
+                                              f"{_closest(joint['child'], set(data.get('links', {})))}")
+        if joint["parent"] == joint["child"]:
+            yield raw.error((*path, "child"), "a joint cannot connect a link to itself")
+        mimic = joint.get("mimic")
+        if mimic:
+            target = mimic["joint"]
+            if target not in joint_types:
+                yield raw.error((*path, "mimic", "joint"), f"mimic joint {target!r} is not a joint of this robot")
+            elif target == name:
+                yield raw.error((*path, "mimic", "joint"), "a joint cannot mimic itself")
+            elif joint_types[target] not in MOVING or joint["type"] not in MOVING:
+                yield raw.error((*path, "mimic", "joint"), f"mimic needs two moving joints; {target!r} is "
+                                                           f"{joint_types[target]} and this one is {joint['type']}")
+    for name, arm in data.get("arms", {}).items():
+        yield from link_ref(("arms", name, "parent"), arm["parent"], "parent")
+        for index, row in enumerate(arm["joints"]):
+            yield from material_ref(row, ("arms", name, "joints", index))
+    for section in ("wheels", "frames"):
+        for name, item in data.get(section, {}).items():
+            yield from link_ref((section, name, "parent"), item["parent"], "parent")
+            yield from material_ref(item, (section, name))
+    for name in data.get("gazebo", {}).get("links", {}):
+        if name not in link_names:
+            yield raw.error(("gazebo", "links", name), f"gazebo settings for {name!r}, which is not a link", key=True)
+    for name in data.get("ros2_control", {}).get("joints", {}):
+        if joint_types.get(name) not in MOVING:
+            what = "is not a joint" if name not in joint_types else f"is a {joint_types[name]} joint"
+            yield raw.error(("ros2_control", "joints", name), f"{name!r} {what}; only moving joints are controlled",
+                            key=True)
+
+
+def _closest(name: str, known: set[str]) -> str:
+    import difflib
+
+    match = difflib.get_close_matches(name, sorted(known), n=1)
+    return f" (did you mean {match[0]!r}?)" if match else ""
+
+
+def _limit_errors(raw: RawSpec, holder: dict[str, Any], path: PathKey, joint_type: str) -> Iterator[SpecError]:
+    limit = holder.get("limit")
+    if joint_type in LIMITED:
+        if not isinstance(limit, dict):
+            yield raw.error(path, f"a {joint_type} joint needs limit: lower, upper, effort, velocity")
+            return
+        missing = [k for k in ("lower", "upper") if k not in limit]
+        if missing:
+            yield raw.error((*path, "limit"), f"a {joint_type} joint needs limit {' and '.join(missing)}")
+            return
+        if limit["lower"] > limit["upper"]:
+            yield raw.error((*path, "limit", "lower"),
+                            f"lower ({limit['lower']!r}) is greater than upper ({limit['upper']!r})")
+        safety = holder.get("safety_controller")
+        if isinstance(safety, dict):
+            low, high = safety.get("soft_lower_limit"), safety.get("soft_upper_limit")
+            if low is not None and low < limit["lower"]:
+                yield raw.error((*path, "safety_controller", "soft_lower_limit"),
+                                f"soft lower limit {low!r} is below the hard lower limit {limit['lower']!r}")
+            if high is not None and high > limit["upper"]:
+                yield raw.error((*path, "safety_controller", "soft_upper_limit"),
+                                f"soft upper limit {high!r} is above the hard upper limit {limit['upper']!r}")
+    elif isinstance(limit, dict) and ("lower" in limit or "upper" in limit):
+        hint = "; make it revolute to limit its range" if joint_type == "continuous" else ""
+        yield raw.error((*path, "limit"), f"a {joint_type} joint takes no lower/upper limits{hint}")
+
+
+def _shape_errors(raw: RawSpec, holder: dict[str, Any], path: PathKey) -> Iterator[SpecError]:
+    shape = holder.get("shape")
+    if not isinstance(shape, dict):
+        return
+    values: list[tuple[PathKey, float]] = []
+    if "box" in shape:
+        values = [((*path, "shape", "box", "size", i), v) for i, v in enumerate(shape["box"]["size"])]
+    for name in ("cylinder", "sphere"):
+        if name in shape:
+            values = [((*path, "shape", name, k), v) for k, v in shape[name].items()]
+    for where, value in values:
+        if isinstance(value, float) and not value > 0:
+            yield raw.error(where, f"sizes must be > 0 m, got {value!r}")
+
+
+def _inertia_errors(raw: RawSpec, inertia: dict[str, Any], path: PathKey) -> Iterator[SpecError]:
+    tensor = np.array([[inertia["ixx"], inertia.get("ixy", 0.0), inertia.get("ixz", 0.0)],
+                       [inertia.get("ixy", 0.0), inertia["iyy"], inertia.get("iyz", 0.0)],
+                       [inertia.get("ixz", 0.0), inertia.get("iyz", 0.0), inertia["izz"]]], dtype=float)
+    problem = tensor_problem(tensor)
+    if problem:
+        yield raw.error(path, problem)
+
+
+def tensor_problem(tensor: np.ndarray, rel: float = 1e-9) -> str | None:
+    """Why ``tensor`` cannot be a rigid body's inertia about its centre of mass, or None when it can."""
+    if not np.all(np.isfinite(tensor)):
+        return "the inertia tensor has entries that are not finite"
+    moments = np.linalg.eigvalsh(tensor)
+    scale = max(float(np.abs(moments).max()), 1e-300)
+    if moments.min() <= rel * scale:
+        return (f"the inertia tensor is not positive definite (principal moments {_fmt(moments)}); "
+                "every principal moment must be > 0")
+    total = float(moments.sum())
+    if any(m > total - m + rel * total for m in moments):
+        return (f"the inertia tensor violates the triangle inequality (principal moments {_fmt(moments)}); "
+                "each must be at most the sum of the other two")
+    return None
+
+
+def _fmt(values: np.ndarray) -> str:
+    return ", ".join(f"{v:.6g}" for v in values)
+
+
+def _physics_errors(raw: RawSpec, data: dict[str, Any]) -> Iterator[SpecError]:
+    for name, link in data.get("links", {}).items():
+        path = ("links", name)
+        yield from _shape_errors(raw, link, path)
+        if isinstance(link.get("collision"), dict):
+            yield from _shape_errors(raw, link["collision"], (*path, "collision"))
+        if "mass" in link:
+            yield from _mass_error(raw, link["mass"], (*path, "mass"))
+            shape = link.get("shape", {})
+            if "inertia" not in link and ("mesh" in shape or not shape):
+                what = "a mesh" if "mesh" in shape else "no shape"
+                yield raw.error((*path, "mass"), f"link has a mass but {what}, so its inertia cannot be computed; "
+                                                 "give inertia: {ixx, iyy, izz, ...}")
+        elif "inertia" in link:
+            yield raw.error((*path, "inertia"), "inertia needs a mass")
+        if "inertia" in link:
+            yield from _inertia_errors(raw, link["inertia"], (*path, "inertia"))
+    for name, joint in data.get("joints", {}).items():
+        path = ("joints", name)
+        yield from _limit_errors(raw, joint, path, joint["type"])
+        axis = joint.get("axis")
+        if axis is not None and not any(axis):
+            yield raw.error((*path, "axis"), "axis must not be zero; e.g. [0, 0, 1] for the z axis")
+        if axis is not None and joint["type"] in ("fixed", "floating"):
+            yield raw.error((*path, "axis"), f"a {joint['type']} joint takes no axis")
+    for name, arm in data.get("arms", {}).items():
+        for index, row in enumerate(arm["joints"]):
+            path = ("arms", name, "joints", index)
+            yield from _limit_errors(raw, row, path, row.get("type", "revolute"))
+            if "mass" in row:
+                yield from _mass_error(raw, row["mass"], (*path, "mass"))
+            if "radius" in row and not row["radius"] > 0:
+                yield raw.error((*path, "radius"), f"radius must be > 0 m, got {row['radius']!r}")
+    for name, wheel in data.get("wheels", {}).items():
+        for key in ("radius", "width"):
+            if not wheel[key] > 0:
+                yield raw.error(("wheels", name, key), f"{key} must be > 0 m, got {wheel[key]!r}")
+        yield from _mass_error(raw, wheel["mass"], ("wheels", name, "mass"))
+    for name, frame in data.get("frames", {}).items():
+        yield from _shape_errors(raw, frame, ("frames", name))
+        if "mass" in frame:
+            yield from _mass_error(raw, frame["mass"], ("frames", name, "mass"))
+            if "mesh" in frame.get("shape", {"mesh": None}):
+                yield raw.error(("frames", name, "mass"), "a frame's mass needs a box, cylinder or sphere shape")
+
+
+def _mass_error(raw: RawSpec, mass: float, path: PathKey) -> Iterator[SpecError]:
+    if not (isinstance(mass, float) and mass > 0 and math.isfinite(mass)):
+        yield raw.error(path, f"mass must be > 0 kg, got {mass!r}")
+
+
+def semantic_errors(raw: RawSpec, data: dict[str, Any], *, physics: bool = True) -> list[SpecError]:
+    """Names, references and the tree always; physics only when every quantity parsed (it compares numbers)."""
+    link_named, joint_named = _link_and_joint_names(data)
+    errors = list(_duplicates(raw, link_named, "link")) + list(_duplicates(raw, joint_named, "joint"))
+    link_names = {item.name for item in link_named}
+    joint_types = {n: j["type"] for n, j in data.get("joints", {}).items()}
+    for arm in data.get("arms", {}).values():
+        joint_types.update({row["name"]: row.get("type", "revolute") for row in arm["joints"]})
+    joint_types.update({f"{n}_joint": "continuous" for n in data.get("wheels", {})})
+    errors += _reference_errors(raw, data, link_names, joint_types)
+    errors += _tree_errors(raw, data, link_names)
+    if physics:
+        errors += _physics_errors(raw, data)
+    return errors
+
+
+def validate(raw: RawSpec) -> Spec:
+    """Check a loaded spec against the schema and the rules a robot must obey.
+
+    Raises:
+        SpecErrors: every problem found, each with file, JSON path, line and column.
+    """
+    errors = schema_errors(raw)
+    if errors:  # the later checks rely on the shapes the schema guarantees
+        raise SpecErrors(errors)
+    data, errors = _Quantities(raw).run()
+    errors += semantic_errors(raw, data, physics=not errors)
+    if errors:
+        raise SpecErrors(errors)
+    return Spec(raw=raw, data=data)
