@@ -1,17 +1,42 @@
 """xacrokit: an Xacro macro library and code-generation toolkit for correct ROS 2 robot descriptions.
 
 Public API:
+    generate(spec, output=None, *, dry_run=False, force=False, macros="copy") -> GenerateResult
+                                                                the main job: spec -> ROS 2 description package
     expand(path, mappings=None, *, package_paths=None) -> str   expand a xacro document to URDF text
     macros_dir() -> Path                                        where the shipped macro library is
-    XacrokitError, ExpandError                                   the errors raised on bad input
+    XacrokitError, SpecError, SpecErrors, ExpandError, ConflictError   the errors raised on bad input
+
+Heavy modules load on first use, so that ``gen-robot --help`` stays fast.
 """
 
 from __future__ import annotations
 
-from .errors import ExpandError, ResourceError, XacrokitError
-from .expand import expand_file as expand
+from importlib import import_module
+from typing import Any
+
+from .errors import ExpandError, ResourceError, SpecError, SpecErrors, XacrokitError
 from .resources import macros_dir
 
 __version__ = "0.1.0"
 
-__all__ = ["ExpandError", "ResourceError", "XacrokitError", "expand", "macros_dir", "__version__"]
+_LAZY = {
+    "generate": ("xacrokit.pipeline", "generate"),
+    "GenerateResult": ("xacrokit.pipeline", "GenerateResult"),
+    "expand": ("xacrokit.expansion", "expand_file"),
+    "ConflictError": ("xacrokit.write", "ConflictError"),
+}
+
+__all__ = [
+    "ConflictError", "ExpandError", "GenerateResult", "ResourceError", "SpecError", "SpecErrors", "XacrokitError",
+    "expand", "generate", "macros_dir", "__version__",
+]
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        module, attribute = _LAZY[name]
+        value = getattr(import_module(module), attribute)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'xacrokit' has no attribute {name!r}")

@@ -16,7 +16,7 @@ from .errors import XacrokitError
 
 
 def _cmd_expand(args: argparse.Namespace) -> int:
-    from .expand import expand_file, parse_mappings
+    from .expansion import expand_file, parse_mappings
 
     packages = {}
     for item in args.package:
@@ -31,6 +31,36 @@ def _cmd_expand(args: argparse.Namespace) -> int:
         write_text_atomic(Path(args.output), urdf)
     else:
         sys.stdout.write(urdf)
+    return 0
+
+
+def _cmd_generate(args: argparse.Namespace) -> int:
+    from .pipeline import generate
+
+    result = generate(args.spec, args.output, dry_run=args.dry_run, force=args.force, macros=args.macros)
+    width = max(len(a.action) for a in result.actions)
+    verb = "would write" if args.dry_run else "wrote"
+    for action in result.actions:
+        note = f"  ({action.reason})" if action.reason else ""
+        print(f"{action.action:<{width}}  {action.path}{note}")
+    changed = sum(a.action != "identical" for a in result.actions)
+    print(f"{result.robot.package}: {verb} {changed} of {len(result.actions)} files in {result.output}"
+          + (" (dry run: nothing written)" if args.dry_run else ""))
+    return 0
+
+
+def _cmd_new(args: argparse.Namespace) -> int:
+    from .starter import write_starter
+
+    path = write_starter(args.name, kind=args.kind, output=args.output)
+    print(f"wrote {path}; generate its package with: gen-robot {path}")
+    return 0
+
+
+def _cmd_schema(args: argparse.Namespace) -> int:
+    from .resources import schemas_dir
+
+    sys.stdout.write((schemas_dir() / "robot.schema.json").read_text(encoding="utf-8"))
     return 0
 
 
@@ -53,10 +83,44 @@ def _cmd_macros(args: argparse.Namespace) -> int:
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="gen-robot",
-        description="xacrokit: correct robot descriptions from a macro library and short YAML specs.",
+        description="xacrokit: correct robot descriptions from a macro library and short YAML specs. "
+        "`gen-robot SPEC.yaml [options]` is short for `gen-robot generate SPEC.yaml [options]`.",
+        epilog="Exit codes: 0 success, 1 refused (files edited since generated), 2 bad input or usage.",
     )
     parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
+
+    gen = commands.add_parser(
+        "generate",
+        help="turn a YAML robot spec into a ROS 2 description package (also: gen-robot SPEC.yaml)",
+        description="Validate SPEC, render the package NAME_description (xacro macro, entry, materials, Gazebo, "
+        "ros2_control, launch, RViz), expand it with the real xacro into urdf/NAME.urdf, and write it. Invalid "
+        "specs are reported with file:line:column and write nothing; files edited since they were generated are "
+        "conflicts and stop the write unless --force.",
+    )
+    gen.add_argument("spec", help="the robot spec (YAML; see `gen-robot schema`)")
+    gen.add_argument("-o", "--output", help="package folder (default: ./NAME_description)")
+    gen.add_argument("--dry-run", action="store_true", help="print what would be written; write nothing")
+    gen.add_argument("--force", action="store_true", help="overwrite files edited since they were generated")
+    gen.add_argument(
+        "--macros", choices=("copy", "find"), default="copy",
+        help="copy the xacrokit macros into the package (default; self-contained) or include them with "
+        "$(find xacrokit) (the package then depends on xacrokit)",
+    )
+    gen.set_defaults(handler=_cmd_generate)
+
+    new = commands.add_parser(
+        "new", help="write a commented starter spec", description="Write NAME.yaml, a commented starter spec."
+    )
+    new.add_argument("name", help="robot name (letters, digits, _)")
+    new.add_argument("--kind", choices=("arm", "mobile", "humanoid"), default="arm", help="what to start from")
+    new.add_argument("-o", "--output", help="where to write the spec (default: ./NAME.yaml); never overwritten")
+    new.set_defaults(handler=_cmd_new)
+
+    schema = commands.add_parser(
+        "schema", help="print the spec's JSON Schema", description="Print the JSON Schema (2020-12) of robot specs."
+    )
+    schema.set_defaults(handler=_cmd_schema)
 
     expand = commands.add_parser(
         "expand",
@@ -84,10 +148,16 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+COMMANDS = ("generate", "new", "schema", "expand", "macros")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run ``gen-robot`` with ``argv`` (default: the process arguments); returns the exit code."""
     parser = build_parser()
-    args = parser.parse_args(argv)
+    words = list(sys.argv[1:] if argv is None else argv)
+    if words and not words[0].startswith("-") and words[0] not in COMMANDS:
+        words.insert(0, "generate")  # gen-robot SPEC.yaml ...
+    args = parser.parse_args(words)
     if not getattr(args, "handler", None):
         parser.print_help(sys.stderr)
         return 2

@@ -194,7 +194,9 @@ def _frame(name: str, data: dict[str, Any]) -> tuple[Link, Joint]:
     return _link(name, body), joint
 
 
-def _controlled(data: dict[str, Any], robot_joints: list[tuple[str, str, bool]]) -> tuple[ControlledJoint, ...] | None:
+def _controlled(
+    data: dict[str, Any], robot_joints: list[tuple[str, Limit | None, bool]]
+) -> tuple[ControlledJoint, ...] | None:
     """Every moving, non-mimic joint with its interfaces (per-joint override, else wheel or global default)."""
     control = data.get("ros2_control")
     if control is None:
@@ -202,13 +204,16 @@ def _controlled(data: dict[str, Any], robot_joints: list[tuple[str, str, bool]])
     default = control.get("interfaces", {})
     overrides = control.get("joints", {})
     result = []
-    for name, kind, is_wheel in robot_joints:
+    for name, limit, is_wheel in robot_joints:
         base = WHEEL_INTERFACES if is_wheel else DEFAULT_INTERFACES
         if not is_wheel and default:
             base = Interfaces(tuple(default.get("command", base.command)), tuple(default.get("state", base.state)))
         override = overrides.get(name, {})
         chosen = Interfaces(tuple(override.get("command", base.command)), tuple(override.get("state", base.state)))
-        result.append(ControlledJoint(name=name, interfaces=chosen))
+        start = 0.0  # the zero position, moved inside the limits when they exclude it
+        if limit is not None and limit.lower is not None and limit.upper is not None:
+            start = min(max(0.0, limit.lower), limit.upper)
+        result.append(ControlledJoint(name=name, interfaces=chosen, initial_position=start))
     return tuple(result)
 
 
@@ -223,9 +228,9 @@ def resolve(spec: Spec) -> Robot:
         joints.append(joint)
     arms = tuple(_arm(name, arm) for name, arm in data.get("arms", {}).items())
     wheels = tuple(_wheel(name, wheel) for name, wheel in data.get("wheels", {}).items())
-    moving = [(j.name, j.type, False) for j in joints if j.type in MOVING and j.mimic is None]
-    moving += [(row.name, row.type, False) for arm in arms for row in arm.rows if row.type in MOVING]
-    moving += [(w.joint_name, "continuous", True) for w in wheels]
+    moving = [(j.name, j.limit, False) for j in joints if j.type in MOVING and j.mimic is None]
+    moving += [(row.name, row.limit, False) for arm in arms for row in arm.rows if row.type in MOVING]
+    moving += [(w.joint_name, None, True) for w in wheels]
     surfaces = tuple(
         Surface(link=name, mu1=s.get("mu1"), mu2=s.get("mu2"), kp=s.get("kp"), kd=s.get("kd"))
         for name, s in data.get("gazebo", {}).get("links", {}).items()

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from . import __version__
-from .expand import expand_file
+from .expansion import expand_file
 from .fileio import write_text_atomic
 from .load import load_file
 from .model import Robot

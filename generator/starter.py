@@ -1,0 +1,36 @@
+"""``gen-robot new``: a commented starter spec to edit, one per kind of robot."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from .errors import XacrokitError
+from .render import _environment
+from .resources import schemas_dir
+
+KINDS = ("arm", "mobile", "humanoid")
+
+
+def starter_text(name: str, kind: str = "arm") -> str:
+    """The starter spec for robot ``name`` of ``kind`` (arm, mobile or humanoid)."""
+    if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*", name):
+        raise XacrokitError(f"robot name {name!r} must be letters, digits and _, not starting with a digit")
+    if kind not in KINDS:
+        raise XacrokitError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
+    schema = schemas_dir() / "robot.schema.json"  # the installed copy, so editors validate offline
+    return _environment().get_template(f"specs/{kind}.yaml.j2").render(name=name, schema_path=schema.as_posix())
+
+
+def write_starter(name: str, *, kind: str = "arm", output: str | Path | None = None) -> Path:
+    """Write the starter spec (default ``./NAME.yaml``); an existing file is never overwritten."""
+    text = starter_text(name, kind)
+    path = Path(output) if output else Path.cwd() / f"{name}.yaml"
+    try:
+        with path.open("x", encoding="utf-8") as handle:
+            handle.write(text)
+    except FileExistsError:
+        raise XacrokitError(f"{path} already exists; not overwritten (choose another name or -o PATH)") from None
+    except OSError as exc:
+        raise XacrokitError(f"cannot write {path}: {exc.strerror}") from None
+    return path
