@@ -18,6 +18,8 @@ from yaml.constructor import SafeConstructor
 from .errors import SpecError, SpecErrors
 
 PathKey = tuple[str | int, ...]
+_PLAIN_TAGS = {f"tag:yaml.org,2002:{name}" for name in ("str", "int", "float", "bool", "null", "map", "seq",
+                                                         "timestamp", "binary", "merge")}
 _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 MAX_SPEC_BYTES = 16 * 1024 * 1024
 
@@ -86,6 +88,10 @@ class _Builder:
             return None
         self.seen.add(id(node))
         self.positions[path] = _mark(node)
+        if node.tag not in _PLAIN_TAGS:
+            shown = node.tag.replace("tag:yaml.org,2002:", "!!")
+            self.fail(node, path, f"YAML tag {shown} is not allowed in specs; write a plain value")
+            return None
         if isinstance(node, yaml.MappingNode):
             return self.mapping(node, path)
         if isinstance(node, yaml.SequenceNode):

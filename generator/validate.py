@@ -57,6 +57,9 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
     if keyword == "propertyNames":
         name = error.instance
         return (*path, name), f"{name!r} is not a valid name: use letters, digits and _, not starting with a digit", True
+    if keyword == "pattern" and "propertyNames" in error.absolute_schema_path:
+        name = error.instance  # a mapping key that is not a valid name: point at the key itself
+        return (*path, name), f"{name!r} is not a valid name: use letters, digits and _, not starting with a digit", True
     if keyword == "pattern":
         return path, f"{error.instance!r} is not a valid name: use letters, digits and _, not starting with a digit", False
     if keyword == "oneOf" and _ref_name(error) in ("length", "angle", "quantity", "mass"):
@@ -245,9 +248,12 @@ def _tree_errors(raw: RawSpec, data: dict[str, Any], link_names: set[str]) -> It
     edges = _edges(data)
     parent_of: dict[str, tuple[str, PathKey]] = {}
     children: dict[str, list[str]] = {}
+    dangling: list[str] = []  # children of unknown parents: the bad reference is reported, not the tree again
     for parent, child, where in edges:
         if parent not in link_names:
-            continue  # reported as an unknown reference
+            dangling.append(child)
+            parent_of.setdefault(child, (parent, where))
+            continue
         if child in parent_of:
             yield raw.error(where, f"link {child!r} already has parent {parent_of[child][0]!r}; "
                                    "a link can hang from one joint only (URDF is a tree)")
@@ -256,7 +262,7 @@ def _tree_errors(raw: RawSpec, data: dict[str, Any], link_names: set[str]) -> It
         children.setdefault(parent, []).append(child)
     roots = sorted(name for name in link_names if name not in parent_of)
     reachable: set[str] = set()
-    stack = list(roots)
+    stack = list(roots) + dangling
     while stack:
         name = stack.pop()
         if name not in reachable:
@@ -464,6 +470,7 @@ def semantic_errors(raw: RawSpec, data: dict[str, Any], *, physics: bool = True)
     for arm in data.get("arms", {}).values():
         joint_types.update({row["name"]: row.get("type", "revolute") for row in arm["joints"]})
     joint_types.update({f"{n}_joint": "continuous" for n in data.get("wheels", {})})
+    joint_types.update({f"{n}_joint": "fixed" for n in data.get("frames", {})})
     errors += _reference_errors(raw, data, link_names, joint_types)
     errors += _tree_errors(raw, data, link_names)
     if physics:

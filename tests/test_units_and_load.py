@@ -1,0 +1,98 @@
+"""The unit parser and the located YAML loader."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from xacrokit.errors import SpecErrors
+from xacrokit.load import load_file, load_text
+from xacrokit.units import UnitError, parse_quantity
+
+
+@pytest.mark.parametrize(
+    ("text", "kind", "value"),
+    [
+        (0.3, "length", 0.3), (2, "length", 2.0), ("150 mm", "length", 0.15), ("15 cm", "length", 0.15),
+        ("1e-3", "length", 1e-3), ("2 in", "length", 0.0508), ("0.1*2", "length", 0.2), ("-0.5 m", "length", -0.5),
+        ("90 deg", "angle", math.pi / 2), ("pi/2", "angle", math.pi / 2), ("-2*pi", "angle", -2 * math.pi),
+        ("pi", "angle", math.pi), ("(1 + 1) * pi / 4 rad", "angle", math.pi / 2), ("45deg", "angle", math.pi / 4),
+        ("500 g", "mass", 0.5), ("1.5 kg", "mass", 1.5), ("-pi", "angle", -math.pi),
+    ],
+)
+def test_quantities_parse_to_si(text, kind, value):
+    assert parse_quantity(text, kind) == pytest.approx(value, rel=1e-15)
+
+
+@pytest.mark.parametrize(
+    ("text", "kind", "words"),
+    [
+        ("150 mm", "angle", "is a length, expected an angle"), ("90 deg", "length", "is an angle, expected a length"),
+        ("3 parsecs", "length", "unknown unit 'parsecs'"), ("__import__('os')", "length", "unexpected"),
+        ("1/0", "length", "division by zero"), ("2 pi", "angle", "unexpected 'pi'"), ("", "length", "empty"),
+        ("(1", "length", "ends too early"), ("1e999", "length", "not a finite number"), (True, "length", "expected"),
+        ([1], "length", "expected a number"), ("${x}", "length", "unexpected '$'"), ("1 kg", "length", "is a mass"),
+    ],
+)
+def test_bad_quantities_say_what_is_wrong(text, kind, words):
+    with pytest.raises(UnitError, match=None) as caught:
+        parse_quantity(text, kind)
+    assert words in str(caught.value)
+
+
+@given(st.floats(allow_nan=False, allow_infinity=False, min_value=-1e9, max_value=1e9))
+def test_numbers_pass_through_exactly_and_as_text(value):
+    assert parse_quantity(value, "length") == value
+    assert parse_quantity(repr(value), "length") == value
+    assert parse_quantity(f"{value!r} mm", "length") == pytest.approx(value / 1000, rel=1e-15, abs=1e-300)
+
+
+def test_load_keeps_positions_and_reads_exponents_as_numbers():
+    raw = load_text("robot: r\nlinks:\n  a:\n    mass: 1e-3\n    name: '1e-3'\n", "s.yaml")
+    assert raw.data == {"robot": "r", "links": {"a": {"mass": 1e-3, "name": "1e-3"}}}
+    assert raw.positions[("links", "a", "mass")] == (4, 11)
+    assert raw.key_positions[("links", "a")] == (3, 3)
+    error = raw.error(("links", "a", "nothing", "deeper"), "x")
+    assert (error.line, error.column, error.path) == (4, 5, "$.links.a.nothing.deeper")  # where a's mapping starts
+
+
+@pytest.mark.parametrize(
+    ("text", "line", "words"),
+    [
+        ("a: 1\nb: 2\na: 3\n", 3, "duplicate key 'a' (first given on line 1)"),
+        ("a: &x [1, 2]\nb: *x\n", 2, "aliases"),
+        ("a: {<<: {b: 1}}\n", 1, "merge keys"),
+        ("a: [1\n", 2, "not valid YAML"),
+        ("a: 1\n---\nb: 2\n", 2, "not valid YAML"),
+        ("", 1, "empty"),
+        ("a: !!python/object:os.system x\n", 1, "YAML tag !!python/object:os.system is not allowed"),
+        ("a: !custom [1]\n", 1, "YAML tag !custom is not allowed"),
+        ("? [1, 2]\n: x\n", 1, "plain names"),
+    ],
+)
+def test_unreadable_yaml_gives_one_located_error(text, line, words):
+    with pytest.raises(SpecErrors) as caught:
+        load_text(text, "s.yaml")
+    (error,) = caught.value.errors
+    assert error.file == "s.yaml" and error.line == line and words in error.message
+
+
+def test_alias_bomb_is_rejected_without_expanding(tmp_path):
+    lines = ["a0: &a0 [x, x, x, x, x, x, x, x, x, x]"]
+    lines += [f"a{i}: &a{i} [*a{i-1}, *a{i-1}, *a{i-1}, *a{i-1}, *a{i-1}, *a{i-1}, *a{i-1}, *a{i-1}]" for i in range(1, 12)]
+    with pytest.raises(SpecErrors, match="aliases"):
+        load_text("\n".join(lines) + "\n")
+
+
+def test_non_utf8_and_missing_files_are_located(tmp_path):
+    bad = tmp_path / "latin1.yaml"
+    bad.write_bytes("robot: r\nlinks: {caf\xe9: {}}\n".encode("latin-1"))
+    with pytest.raises(SpecErrors) as caught:
+        load_file(bad)
+    (error,) = caught.value.errors
+    assert (error.line, error.column) == (2, 12) and "not UTF-8" in error.message
+    with pytest.raises(SpecErrors, match="cannot read the spec"):
+        load_file(tmp_path / "missing.yaml")

@@ -1,0 +1,151 @@
+"""Validation: every class of mistake in a spec is reported at its place, all at once, with what would be right."""
+
+from __future__ import annotations
+
+import copy
+
+import pytest
+import yaml
+
+from xacrokit.errors import SpecErrors
+from xacrokit.load import load_text
+from xacrokit.validate import validate
+
+BASE = {
+    "robot": "r",
+    "materials": {"gray": [0.5, 0.5, 0.5, 1.0]},
+    "links": {
+        "base_link": {"shape": {"box": {"size": [0.4, 0.3, 0.1]}}, "mass": 2.0, "material": "gray"},
+        "arm": {"shape": {"cylinder": {"radius": 0.05, "length": 0.3}}, "origin": {"xyz": [0, 0, 0.15]}, "mass": 1.0},
+    },
+    "joints": {
+        "shoulder": {"type": "revolute", "parent": "base_link", "child": "arm", "axis": [0, 1, 0],
+                     "limit": {"lower": -1.0, "upper": 1.0, "effort": 5.0, "velocity": 1.0}},
+    },
+    "arms": {"dh": {"parent": "base_link", "joints": [
+        {"name": "j1", "link": "l1", "a": 0.1, "d": 0.1, "alpha": "pi/2",
+         "limit": {"lower": -1.0, "upper": 1.0, "effort": 5.0, "velocity": 1.0}}]}},
+    "wheels": {"left_wheel": {"parent": "base_link", "radius": 0.05, "width": 0.02, "mass": 0.2}},
+    "frames": {"camera_link": {"parent": "base_link", "origin": {"xyz": [0.2, 0, 0.1]}}},
+}
+
+
+def errors_of(data) -> list:
+    text = yaml.safe_dump(data, sort_keys=False)
+    with pytest.raises(SpecErrors) as caught:
+        validate(load_text(text, "spec.yaml"))
+    for error in caught.value.errors:
+        assert error.file == "spec.yaml" and error.line is not None and error.column is not None
+        assert str(error).startswith(f"spec.yaml:{error.line}:{error.column}: {error.path}: ")
+    return caught.value.errors
+
+
+def mutated(path: str, value=None, *, delete: bool = False):
+    data = copy.deepcopy(BASE)
+    *parents, last = [int(p) if p.isdigit() else p for p in path.split(".")]
+    holder = data
+    for part in parents:
+        holder = holder[part]
+    if delete:
+        del holder[last]
+    else:
+        holder[last] = value
+    return data
+
+
+def test_the_base_spec_is_valid():
+    spec = validate(load_text(yaml.safe_dump(BASE, sort_keys=False), "spec.yaml"))
+    assert spec.data["arms"]["dh"]["joints"][0]["alpha"] == pytest.approx(1.5707963267948966, rel=1e-15)
+
+
+CASES = [
+    # (what is changed, new value or "DELETE", expected JSON path, words of the message)
+    ("robot", "my robot", "$.robot", "not a valid name"),
+    ("robot", "${evil}", "$.robot", "not a valid name"),
+    ("links.base_link.mass", -1.0, "$.links.base_link.mass", "mass must be > 0 kg, got -1.0"),
+    ("links.base_link.mass", "-2 kg", "$.links.base_link.mass", "mass must be > 0 kg"),
+    ("links.base_link.mass", "3 parsecs", "$.links.base_link.mass", "unknown unit 'parsecs'"),
+    ("links.base_link.mass", "[1]", "$.links.base_link.mass", "unexpected '['"),
+    ("links.base_link.colour", "red", "$.links.base_link.colour", "unknown key 'colour'"),
+    ("links.base_link.material", "grey", "$.links.base_link.material", "material 'grey' is not in materials"),
+    ("links.base_link.shape", {"box": {"size": [1, 1, 0]}}, "$.links.base_link.shape.box.size[2]", "must be > 0 m"),
+    ("links.base_link.shape", {"box": {"size": [1, 1]}}, "$.links.base_link.shape.box.size", "too short"),
+    ("links.base_link.shape", {"mesh": {"filename": "package://p/m.stl"}}, "$.links.base_link.mass",
+     "cannot be computed; give inertia"),
+    ("links.base_link.shape", {"box": {"size": [1, 1, 1]}, "sphere": {"radius": 1}}, "$.links.base_link.shape",
+     "exactly one of box"),
+    ("links.base_link.inertia", {"ixx": 1.0, "iyy": 1.0, "izz": 3.0}, "$.links.base_link.inertia", "triangle inequality"),
+    ("links.base_link.inertia", {"ixx": 1.0, "iyy": 1.0, "izz": 1.0, "ixy": 2.0}, "$.links.base_link.inertia",
+     "not positive definite"),
+    ("links.base_link.origin", {"xyz": [0, 0, "90 deg"]}, "$.links.base_link.origin.xyz[2]",
+     "is an angle, expected a length"),
+    ("links.bad-name", {}, "$.links['bad-name']", "not a valid name"),
+    ("joints.shoulder.parent", "base_lnk", "$.joints.shoulder.parent", "did you mean 'base_link'"),
+    ("joints.shoulder.child", "nothing", "$.joints.shoulder.child", "child 'nothing' is not in links"),
+    ("joints.shoulder.type", "ball", "$.joints.shoulder.type", "is not one of"),
+    ("joints.shoulder.axis", [0, 0, 0], "$.joints.shoulder.axis", "axis must not be zero"),
+    ("joints.shoulder.limit", {"lower": 1.0, "upper": -1.0, "effort": 1.0, "velocity": 1.0},
+     "$.joints.shoulder.limit.lower", "lower (1.0) is greater than upper (-1.0)"),
+    ("joints.shoulder.limit", "DELETE", "$.joints.shoulder", "a revolute joint needs limit"),
+    ("joints.shoulder.limit", {"lower": -1.0, "upper": 1.0, "effort": 0, "velocity": 1.0},
+     "$.joints.shoulder.limit.effort", "must be > 0"),
+    ("joints.shoulder.mimic", {"joint": "shoulder"}, "$.joints.shoulder.mimic.joint", "cannot mimic itself"),
+    ("joints.shoulder.mimic", {"joint": "nope"}, "$.joints.shoulder.mimic.joint", "not a joint of this robot"),
+    ("joints.dup", {"type": "fixed", "parent": "base_link", "child": "arm"}, "$.joints.dup",
+     "link 'arm' already has parent 'base_link'"),
+    ("joints.left_wheel_joint", {"type": "fixed", "parent": "arm", "child": "arm"}, "$.wheels.left_wheel",
+     "joint name 'left_wheel_joint' is already used by $.joints.left_wheel_joint"),
+    ("wheels.arm", {"parent": "base_link", "radius": 0.1, "width": 0.1, "mass": 1.0}, "$.wheels.arm",
+     "link name 'arm' is already used by $.links.arm"),
+    ("wheels.left_wheel.radius", "-5 cm", "$.wheels.left_wheel.radius", "radius must be > 0 m"),
+    ("arms.dh.joints.0.alpha", "90 mm", "$.arms.dh.joints[0].alpha", "is a length, expected an angle"),
+    ("arms.dh.joints.0.link", "arm", "$.arms.dh.joints[0].link", "link name 'arm' is already used"),
+    ("arms.dh.parent", "ghost", "$.arms.dh.parent", "parent 'ghost' is not a link"),
+    ("frames.camera_link.parent", "camera_link", "$.frames.camera_link.parent", "form a cycle"),
+    ("gazebo", {"links": {"ghost": {"mu1": 1.0}}}, "$.gazebo.links.ghost", "not a link"),
+    ("ros2_control", {"joints": {"camera_link_joint": {"command": ["position"]}}},
+     "$.ros2_control.joints.camera_link_joint", "is a fixed joint"),
+]
+
+
+@pytest.mark.parametrize(("change", "value", "path", "words"), CASES, ids=[c[0] + ":" + str(c[1])[:20] for c in CASES])
+def test_each_mistake_is_located_and_explained(change, value, path, words):
+    data = mutated(change, delete=True) if value == "DELETE" else mutated(change, value)
+    errors = errors_of(data)
+    matching = [e for e in errors if e.path == path and words in e.message]
+    assert matching, "\n".join(str(e) for e in errors)
+
+
+def test_two_roots_are_reported():
+    data = mutated("links.island", {"shape": {"sphere": {"radius": 0.1}}, "mass": 1.0})
+    (error,) = errors_of(data)
+    assert "2 separate trees" in error.message and "base_link, island" in error.message
+
+
+def test_a_cycle_through_joints_is_reported():
+    data = copy.deepcopy(BASE)
+    data["links"]["x"] = {}
+    data["links"]["y"] = {}
+    data["joints"]["xy"] = {"type": "fixed", "parent": "x", "child": "y"}
+    data["joints"]["yx"] = {"type": "fixed", "parent": "y", "child": "x"}
+    messages = [e.message for e in errors_of(data)]
+    assert any("links x, y form a cycle" in m for m in messages)
+
+
+def test_all_problems_are_reported_together_in_file_order():
+    data = copy.deepcopy(BASE)
+    data["links"]["base_link"]["material"] = "grey"
+    data["joints"]["shoulder"]["parent"] = "nowhere"
+    data["wheels"]["left_wheel"]["mass"] = "-1 kg"
+    errors = errors_of(data)
+    assert len(errors) >= 3
+    assert [e.line for e in errors] == sorted(e.line for e in errors)
+
+
+def test_the_line_points_at_the_offending_value():
+    text = yaml.safe_dump(mutated("joints.shoulder.parent", "base_lnk"), sort_keys=False)
+    with pytest.raises(SpecErrors) as caught:
+        validate(load_text(text, "spec.yaml"))
+    (error,) = caught.value.errors
+    line = text.splitlines()[error.line - 1]
+    assert line[error.column - 1:].startswith("base_lnk")

@@ -1,0 +1,202 @@
+"""The write stage and the gen-robot generate / new / schema commands."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+
+import jsonschema
+import pytest
+import yaml
+
+import xacrokit
+from conftest import REPO
+from xacrokit.render import RenderedFile
+from xacrokit.write import MANIFEST, ConflictError, plan, write
+
+SPEC = REPO / "examples" / "two_dof_arm.yaml"
+
+
+def snapshot(root):
+    return {p.relative_to(root).as_posix(): (p.read_bytes(), p.stat().st_mtime_ns) for p in root.rglob("*") if p.is_file()}
+
+
+def gen_robot(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", "xacrokit.cli", *map(str, args)], capture_output=True, text=True,
+                          cwd=cwd, timeout=300)
+
+
+def test_first_run_creates_everything_and_a_second_changes_nothing(tmp_path):
+    out = tmp_path / "pkg"
+    first = xacrokit.generate(SPEC, out)
+    assert {a.action for a in first.actions} == {"create"}
+    before = snapshot(out)
+    second = xacrokit.generate(SPEC, out)
+    assert {a.action for a in second.actions} == {"identical"}
+    assert snapshot(out) == before  # same bytes and same mtimes: nothing was rewritten
+
+
+def test_an_edited_file_is_a_conflict_kept_and_nothing_is_written(tmp_path):
+    out = tmp_path / "pkg"
+    xacrokit.generate(SPEC, out)
+    edited = out / "README.md"
+    edited.write_text("my notes\n", encoding="utf-8")
+    spec = tmp_path / "two_dof_arm.yaml"
+    spec.write_text(SPEC.read_text(encoding="utf-8").replace("mass: 0.3", "mass: 0.35"), encoding="utf-8")
+    before = snapshot(out)
+    with pytest.raises(ConflictError) as caught:
+        xacrokit.generate(spec, out)
+    assert [c.path for c in caught.value.conflicts] == ["README.md"]
+    assert "edited since it was generated" in str(caught.value)
+    assert snapshot(out) == before  # not even the files that would merely have been updated
+
+
+def test_updates_replace_only_what_changed_and_force_overwrites_edits(tmp_path):
+    out = tmp_path / "pkg"
+    xacrokit.generate(SPEC, out)
+    spec = tmp_path / "two_dof_arm.yaml"
+    spec.write_text(SPEC.read_text(encoding="utf-8").replace("mass: 0.3", "mass: 0.35"), encoding="utf-8")
+    (out / "README.md").write_text("my notes\n", encoding="utf-8")
+    result = xacrokit.generate(spec, out, force=True)
+    actions = {a.path: a.action for a in result.actions}
+    assert actions["README.md"] == "overwrite"
+    assert actions["urdf/two_dof_arm_macro.xacro"] == actions["urdf/two_dof_arm.urdf"] == "update"
+    assert actions["package.xml"] == "identical"
+    assert "0.35" in (out / "urdf" / "two_dof_arm.urdf").read_text(encoding="utf-8")
+
+
+def test_dry_run_writes_nothing(tmp_path):
+    out = tmp_path / "pkg"
+    result = xacrokit.generate(SPEC, out, dry_run=True)
+    assert {a.action for a in result.actions} == {"create"} and not out.exists()
+
+
+def test_files_not_written_by_us_are_conflicts(tmp_path):
+    out = tmp_path / "pkg"
+    (out / "urdf").mkdir(parents=True)
+    (out / "package.xml").write_text("<package/>", encoding="utf-8")
+    with pytest.raises(ConflictError, match="not written by xacrokit"):
+        xacrokit.generate(SPEC, out)
+    assert sorted(p.name for p in out.rglob("*")) == ["package.xml", "urdf"]
+
+
+def test_writes_never_leave_the_output_folder(tmp_path):
+    with pytest.raises(xacrokit.XacrokitError, match="outside"):
+        plan([RenderedFile("../escape.txt", "x")], tmp_path / "pkg")
+    (tmp_path / "pkg").mkdir()
+    (tmp_path / "elsewhere").mkdir()
+    (tmp_path / "pkg" / "link").symlink_to(tmp_path / "elsewhere")
+    with pytest.raises(xacrokit.XacrokitError, match="outside"):
+        write([RenderedFile("link/file.txt", "x")], tmp_path / "pkg")
+    assert not any((tmp_path / "elsewhere").iterdir())
+
+
+def test_manifest_records_what_was_generated(tmp_path):
+    out = tmp_path / "pkg"
+    result = xacrokit.generate(SPEC, out)
+    manifest = json.loads((out / MANIFEST).read_text(encoding="utf-8"))
+    assert sorted(manifest["files"]) == sorted(f.path for f in result.files)
+
+
+def test_invalid_spec_writes_nothing_and_exits_2(tmp_path):
+    spec = tmp_path / "bad.yaml"
+    spec.write_text(SPEC.read_text(encoding="utf-8").replace("parent: upper_arm", "parent: upper_ram"), encoding="utf-8")
+    result = gen_robot(spec, "-o", tmp_path / "out")
+    assert result.returncode == 2, result.stderr
+    assert f"{spec}:" in result.stderr and "did you mean 'upper_arm'" in result.stderr
+    assert "Traceback" not in result.stderr and not (tmp_path / "out").exists()
+
+
+def test_cli_generate_reports_the_plan_and_conflicts_exit_1(tmp_path):
+    out = tmp_path / "pkg"
+    result = gen_robot(SPEC, "-o", out)
+    assert result.returncode == 0, result.stderr
+    assert "create  urdf/two_dof_arm.urdf" in result.stdout
+    (out / "package.xml").write_text("edited", encoding="utf-8")
+    again = gen_robot(SPEC, "-o", out)
+    assert again.returncode == 1 and "package.xml: edited since it was generated" in again.stderr
+    assert (out / "package.xml").read_text(encoding="utf-8") == "edited"
+    dry = gen_robot("generate", SPEC, "-o", out, "--dry-run", "--force")
+    assert dry.returncode == 0 and "overwrite  package.xml" in dry.stdout and "nothing written" in dry.stdout
+    assert (out / "package.xml").read_text(encoding="utf-8") == "edited"
+
+
+def test_default_output_is_name_description_in_the_working_folder(tmp_path):
+    result = gen_robot(SPEC, cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert (tmp_path / "two_dof_arm_description" / "urdf" / "two_dof_arm.urdf").is_file()
+
+
+def test_macros_find_includes_the_installed_library(tmp_path):
+    out = tmp_path / "pkg"
+    result = xacrokit.generate(SPEC, out, macros="find")
+    macro = (out / "urdf" / "two_dof_arm_macro.xacro").read_text(encoding="utf-8")
+    assert '<xacro:include filename="$(find xacrokit)/macros/inertia.xacro"/>' in macro
+    assert not (out / "urdf" / "xacrokit").exists()
+    assert "<exec_depend>xacrokit</exec_depend>" in (out / "package.xml").read_text(encoding="utf-8")
+    copy = xacrokit.generate(SPEC, tmp_path / "copy")
+    urdf = {f.path: f.content for f in copy.files}["urdf/two_dof_arm.urdf"]
+    assert {f.path: f.content for f in result.files}["urdf/two_dof_arm.urdf"] == urdf
+
+
+@pytest.mark.parametrize("kind", ["arm", "mobile", "humanoid"])
+def test_new_writes_a_starter_that_generates(tmp_path, kind):
+    result = gen_robot("new", f"my_{kind}", "--kind", kind, cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    spec = tmp_path / f"my_{kind}.yaml"
+    text = spec.read_text(encoding="utf-8")
+    assert text.startswith("# yaml-language-server: $schema=") and "# " in text.splitlines()[1]
+    generated = xacrokit.generate(spec, tmp_path / "out")
+    assert generated.robot.name == f"my_{kind}"
+    again = gen_robot("new", f"my_{kind}", cwd=tmp_path)
+    assert again.returncode == 2 and "already exists" in again.stderr
+    assert spec.read_text(encoding="utf-8") == text
+    assert gen_robot("new", "bad name", cwd=tmp_path).returncode == 2
+
+
+def test_schema_command_prints_a_valid_2020_12_schema_with_descriptions():
+    result = gen_robot("schema")
+    schema = json.loads(result.stdout)
+    jsonschema.Draft202012Validator.check_schema(schema)
+
+    def walk(node, where):
+        if isinstance(node, dict):
+            if "properties" in node:
+                for key, value in node["properties"].items():
+                    assert "description" in value or "$ref" in value, f"{where}.{key} has no description"
+            for key, value in node.items():
+                walk(value, f"{where}.{key}")
+        elif isinstance(node, list):
+            for item in node:
+                walk(item, where)
+
+    walk(schema, "$")
+    for name, definition in schema["$defs"].items():
+        assert "description" in definition, name
+
+
+def test_examples_carry_the_schema_modeline_and_validate_against_the_schema():
+    from xacrokit.validate import robot_schema
+
+    for path in (REPO / "examples").glob("*.yaml"):
+        text = path.read_text(encoding="utf-8")
+        if "macros_demo" in path.name:
+            continue  # a DH table for the hand-written demo, not a spec
+        assert text.startswith("# yaml-language-server: $schema=../schemas/robot.schema.json"), path.name
+        jsonschema.validate(yaml.safe_load(text), robot_schema())
+
+
+def test_help_of_every_command():
+    for args in (["--help"], ["generate", "--help"], ["new", "--help"], ["schema", "--help"], ["expand", "--help"]):
+        result = gen_robot(*args)
+        assert result.returncode == 0 and "usage: gen-robot" in result.stdout, args
+    assert "gen-robot SPEC.yaml" in gen_robot("--help").stdout
+
+
+def test_generated_launch_file_is_python(tmp_path):
+    result = xacrokit.generate(SPEC, tmp_path / "pkg")
+    launch = {f.path: f.content for f in result.files}["launch/display.launch.py"]
+    compile(launch, "display.launch.py", "exec")
+    assert os.path.exists(tmp_path / "pkg" / "launch" / "display.launch.py")
