@@ -1,0 +1,250 @@
+"""Hypothesis strategies for robot specs, for xacrokit's own tests and for yours.
+
+    from hypothesis import given
+    from xacrokit.testing import valid_specs, invalid_specs
+
+    @given(valid_specs())
+    def test_my_tool_accepts_any_robot(spec): ...      # spec: a dict, ready for yaml.safe_dump
+
+``valid_specs()`` draws specs that exercise every feature: links of every shape (and bare frames, meshes with
+explicit tensors), every joint type, DH arms in both conventions with revolute/prismatic/continuous/fixed rows,
+wheels, fixed frames, materials, unit strings (``"150 mm"``, ``"90 deg"``), ros2_control and Gazebo settings, and mesh
+filenames holding ``${`` / ``$(`` that must come out verbatim. ``invalid_specs()`` draws ``(spec, fault)``: a valid
+spec with exactly one fault of the kind named by ``fault``.
+
+Requires hypothesis (``pip install xacrokit[test]``).
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from typing import Any
+
+from hypothesis import strategies as st
+
+SHAPES = ("box", "cylinder", "sphere", "mesh", "none")
+JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
+FAULTS = (
+    "negative_mass", "swapped_limits", "dangling_parent", "cycle", "duplicate_name", "zero_axis", "not_positive_definite",
+    "triangle_violation", "missing_gazebo_reference", "wrong_type", "bad_unit", "injected_name", "unknown_material",
+)
+
+_size = st.floats(min_value=0.01, max_value=1.0, allow_nan=False)
+_mass = st.floats(min_value=0.01, max_value=20.0, allow_nan=False)
+_coord = st.floats(min_value=-1.0, max_value=1.0, allow_nan=False)
+_angle = st.one_of(st.sampled_from([k * math.pi / 2 for k in range(-4, 5)]), st.floats(-math.pi, math.pi))
+
+
+@st.composite
+def _length(draw, value=_size) -> Any:
+    """A length as a number, or as a string in mm or cm (the spec's unit syntax)."""
+    number = draw(value)
+    form = draw(st.sampled_from(["number", "number", "mm", "cm"]))
+    if form == "mm":
+        return f"{number * 1000!r} mm"
+    return f"{number * 100!r} cm" if form == "cm" else number
+
+
+@st.composite
+def _angle_value(draw) -> Any:
+    angle = draw(_angle)
+    form = draw(st.sampled_from(["number", "number", "deg"]))
+    return f"{math.degrees(angle)!r} deg" if form == "deg" else angle
+
+
+@st.composite
+def _origin(draw) -> dict[str, Any]:
+    origin: dict[str, Any] = {}
+    if draw(st.booleans()):
+        origin["xyz"] = [draw(_length(_coord)) for _ in range(3)]
+    if draw(st.booleans()):
+        origin["rpy"] = [draw(_angle_value()) for _ in range(3)]
+    return origin
+
+
+@st.composite
+def _shape(draw, kind: str) -> dict[str, Any]:
+    if kind == "box":
+        return {"box": {"size": [draw(_length()) for _ in range(3)]}}
+    if kind == "cylinder":
+        return {"cylinder": {"radius": draw(_length()), "length": draw(_length())}}
+    if kind == "sphere":
+        return {"sphere": {"radius": draw(_length())}}
+    weird = draw(st.sampled_from(["part", "${not_evaluated}", "$(find nothing)", "a&b<c>", "$${x}"]))
+    return {"mesh": {"filename": f"package://some_pkg/meshes/{weird}.stl", "scale": [1.0, 1.0, 1.0]}}
+
+
+@st.composite
+def _physical_tensor(draw) -> dict[str, float]:
+    a, b = draw(_mass), draw(_mass)
+    c = abs(a - b) + (a + b - abs(a - b)) * draw(st.floats(0.05, 0.95))
+    return {"ixx": a * 0.01, "iyy": b * 0.01, "izz": c * 0.01}
+
+
+@st.composite
+def _link(draw, materials: list[str]) -> dict[str, Any]:
+    kind = draw(st.sampled_from(SHAPES))
+    link: dict[str, Any] = {}
+    if kind == "none":
+        if draw(st.booleans()):
+            link.update(mass=draw(_mass), inertia=draw(_physical_tensor()))
+        return link
+    link["shape"] = draw(_shape(kind))
+    if draw(st.booleans()):
+        link["origin"] = draw(_origin())
+    if materials and draw(st.booleans()):
+        link["material"] = draw(st.sampled_from(materials))
+    if kind == "mesh":
+        if draw(st.booleans()):
+            link.update(mass=draw(_mass), inertia=draw(_physical_tensor()))
+    elif draw(st.integers(0, 4)):
+        link["mass"] = draw(st.one_of(_mass, _mass.map(lambda m: f"{m * 1000!r} g")))
+    collision = draw(st.sampled_from(["default", "same", "none", "other"]))
+    if collision == "other":
+        link["collision"] = {"shape": draw(_shape(draw(st.sampled_from(["box", "cylinder", "sphere"])))),
+                             "origin": draw(_origin())}
+    elif collision != "default":
+        link["collision"] = collision
+    return link
+
+
+def _limit(draw, kind: str) -> dict[str, Any]:
+    limit: dict[str, Any] = {"effort": draw(_mass), "velocity": draw(_mass)}
+    if kind in ("revolute", "prismatic"):
+        low = draw(st.floats(-3.0, 0.0))
+        limit.update(lower=low, upper=low + draw(st.floats(0.0, 3.0)))
+    return limit
+
+
+@st.composite
+def _joint(draw, parent: str, child: str) -> dict[str, Any]:
+    kind = draw(st.sampled_from(JOINT_TYPES))
+    joint: dict[str, Any] = {"type": kind, "parent": parent, "child": child, "origin": draw(_origin())}
+    if kind not in ("fixed", "floating"):
+        axis = [draw(st.sampled_from([0.0, 1.0, -1.0, 0.5])) for _ in range(3)]
+        joint["axis"] = axis if any(axis) else [0.0, 0.0, 1.0]
+    if kind in ("revolute", "prismatic") or (kind == "continuous" and draw(st.booleans())):
+        joint["limit"] = _limit(draw, kind)
+    if kind in ("revolute", "prismatic", "continuous") and draw(st.booleans()):
+        joint["dynamics"] = {"damping": draw(st.floats(0.0, 1.0)), "friction": draw(st.floats(0.0, 1.0))}
+    return joint
+
+
+@st.composite
+def _arm(draw, prefix: str, parent: str, materials: list[str]) -> dict[str, Any]:
+    rows = []
+    for index in range(draw(st.integers(1, 4))):
+        kind = draw(st.sampled_from(["revolute", "revolute", "prismatic", "continuous", "fixed"]))
+        row: dict[str, Any] = {"name": f"{prefix}_joint_{index}", "link": f"{prefix}_link_{index}",
+                               "a": draw(_length(_coord)), "d": draw(_length(_coord)), "alpha": draw(_angle_value()),
+                               "type": kind}
+        if draw(st.booleans()):
+            row["theta"] = draw(_angle_value())
+        if kind != "fixed" and (kind != "continuous" or draw(st.booleans())):
+            row["limit"] = _limit(draw, kind)
+        if draw(st.booleans()):
+            row["mass"] = draw(_mass)
+            if materials and draw(st.booleans()):
+                row["material"] = draw(st.sampled_from(materials))
+        rows.append(row)
+    arm: dict[str, Any] = {"parent": parent, "convention": draw(st.sampled_from(["standard", "modified"])),
+                           "joints": rows, "origin": draw(_origin())}
+    if draw(st.booleans()):
+        arm["tool"] = {"name": f"{prefix}_tool", "origin": draw(_origin())}
+    else:
+        arm["tool"] = {"name": f"{prefix}_tool0"}
+    return arm
+
+
+@st.composite
+def valid_specs(draw, max_links: int = 5) -> dict[str, Any]:
+    """A random valid spec (a dict): every name unique, one tree, physical masses and tensors."""
+    materials = [f"color_{i}" for i in range(draw(st.integers(0, 3)))]
+    spec: dict[str, Any] = {"robot": draw(st.sampled_from(["bot", "robot_1", "_r", "Arm7"]))}
+    if materials:
+        spec["materials"] = {name: [draw(st.floats(0, 1)) for _ in range(3)] + [1.0] for name in materials}
+    count = draw(st.integers(1, max_links))
+    spec["links"] = {f"link_{i}": draw(_link(materials)) for i in range(count)}
+    links = list(spec["links"])
+    spec["joints"] = {
+        f"joint_{i}": draw(_joint(links[draw(st.integers(0, i - 1))], links[i])) for i in range(1, count)
+    }
+    moving = [n for n, j in spec["joints"].items() if j["type"] in ("revolute", "continuous", "prismatic")]
+    if len(moving) >= 2 and draw(st.booleans()):
+        follower, leader = moving[-1], moving[0]
+        if spec["joints"][follower]["type"] == spec["joints"][leader]["type"]:
+            spec["joints"][follower]["mimic"] = {"joint": leader, "multiplier": draw(st.floats(-2, 2)), "offset": 0.0}
+    all_links = list(links)
+    arms = {}
+    for k in range(draw(st.integers(0, 2))):
+        arms[f"arm_{k}"] = draw(_arm(f"arm_{k}", draw(st.sampled_from(all_links)), materials))
+        all_links += [row["link"] for row in arms[f"arm_{k}"]["joints"]]
+    if arms:
+        spec["arms"] = arms
+    wheels = {}
+    for k in range(draw(st.integers(0, 2))):
+        wheels[f"wheel_{k}"] = {"parent": draw(st.sampled_from(links)), "origin": draw(_origin()),
+                                "radius": draw(_length()), "width": draw(_length()), "mass": draw(_mass),
+                                "axis": draw(st.sampled_from(["x", "y", "z"]))}
+    if wheels:
+        spec["wheels"] = wheels
+    frames = {}
+    for k in range(draw(st.integers(0, 2))):
+        frame: dict[str, Any] = {"parent": draw(st.sampled_from(links)), "origin": draw(_origin())}
+        if draw(st.booleans()):
+            frame.update(shape=draw(_shape("box")), mass=draw(_mass))
+        frames[f"frame_{k}"] = frame
+    if frames:
+        spec["frames"] = frames
+    if draw(st.booleans()):
+        spec["ros2_control"] = {}
+    if draw(st.booleans()):
+        spec["gazebo"] = {"links": {draw(st.sampled_from(links)): {"mu1": draw(st.floats(0, 2)), "mu2": 0.5}}}
+    return spec
+
+
+@st.composite
+def invalid_specs(draw, faults: tuple[str, ...] = FAULTS) -> tuple[dict[str, Any], str]:
+    """``(spec, fault)``: a valid spec with one fault of kind ``fault`` (one of :data:`FAULTS`)."""
+    spec = copy.deepcopy(draw(valid_specs()))
+    fault = draw(st.sampled_from(faults))
+    links = spec["links"]
+    name = draw(st.sampled_from(sorted(links)))
+    if fault == "negative_mass":
+        links[name] = {"shape": {"sphere": {"radius": 0.1}}, "mass": -draw(_mass)}
+    elif fault == "swapped_limits":
+        spec.setdefault("joints", {})["bad_joint"] = {"type": "revolute", "parent": name, "child": "bad_link",
+                                                      "limit": {"lower": 1.0, "upper": -1.0, "effort": 1, "velocity": 1}}
+        links["bad_link"] = {}
+    elif fault == "dangling_parent":
+        spec.setdefault("frames", {})["bad_frame"] = {"parent": "no_such_link"}
+    elif fault == "cycle":
+        links["loop_a"], links["loop_b"] = {}, {}
+        spec.setdefault("joints", {})["loop_ab"] = {"type": "fixed", "parent": "loop_a", "child": "loop_b"}
+        spec["joints"]["loop_ba"] = {"type": "fixed", "parent": "loop_b", "child": "loop_a"}
+    elif fault == "duplicate_name":
+        spec.setdefault("wheels", {})[name] = {"parent": name, "radius": 0.1, "width": 0.05, "mass": 1.0}
+    elif fault == "zero_axis":
+        spec.setdefault("joints", {})["bad_joint"] = {"type": "continuous", "parent": name, "child": "bad_link",
+                                                      "axis": [0, 0, 0]}
+        links["bad_link"] = {}
+    elif fault == "not_positive_definite":
+        links[name] = {"mass": 1.0, "inertia": {"ixx": 1.0, "iyy": 1.0, "izz": 1.0, "ixy": 1.5}}
+    elif fault == "triangle_violation":
+        links[name] = {"mass": 1.0, "inertia": {"ixx": 1.0, "iyy": 1.0, "izz": 2.5}}
+    elif fault == "missing_gazebo_reference":
+        spec["gazebo"] = {"links": {"no_such_link": {"mu1": 1.0}}}
+    elif fault == "wrong_type":
+        links[name] = {"shape": {"box": {"size": [1, 1, 1]}}, "mass": draw(st.sampled_from([[1.0], {"kg": 1}, True]))}
+    elif fault == "bad_unit":
+        links[name] = {"shape": {"sphere": {"radius": draw(st.sampled_from(["3 parsecs", "90 deg", "1 kg", "x"]))}}}
+    elif fault == "injected_name":
+        bad = draw(st.sampled_from(["a${x}", "b$(find y)", "c<d", "e&f", "g h", "1st"]))
+        links[bad] = links.pop(name)
+        for joint in spec.get("joints", {}).values():
+            joint["parent"] = bad if joint["parent"] == name else joint["parent"]
+            joint["child"] = bad if joint["child"] == name else joint["child"]
+    elif fault == "unknown_material":
+        links[name] = {"shape": {"sphere": {"radius": 0.1}}, "mass": 1.0, "material": "no_such_colour"}
+    return spec, fault

@@ -1,0 +1,88 @@
+"""Properties of gen-robot over random specs: every valid spec generates, expands and loads; every single-fault spec
+gives located errors (exit 2), never another exception, never a file written."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pinocchio as pin
+import pytest
+import yaml
+from hypothesis import HealthCheck, given, settings
+from lxml import etree
+
+import xacrokit
+from test_examples import check_urdf_binary
+from xacrokit.testing import invalid_specs, valid_specs
+
+FAULT_WORDS = {
+    "negative_mass": ["mass must be > 0"],
+    "swapped_limits": ["is greater than upper"],
+    "dangling_parent": ["'no_such_link' is not a link"],
+    "cycle": ["form a cycle"],
+    "duplicate_name": ["is already used"],
+    "zero_axis": ["axis must not be zero"],
+    "not_positive_definite": ["not positive definite"],
+    "triangle_violation": ["triangle inequality"],
+    "missing_gazebo_reference": ["'no_such_link', which is not a link"],
+    "wrong_type": ["expected a number or a string"],
+    "bad_unit": ["unknown unit", "expected a length", "unexpected 'x'"],
+    "injected_name": ["is not a valid name"],
+    "unknown_material": ["material 'no_such_colour' is not in materials"],
+}
+
+
+@settings(suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+@given(spec=valid_specs())
+def test_every_valid_spec_generates_expands_and_loads(tmp_path_factory, spec):
+    folder = tmp_path_factory.mktemp("valid")
+    path = folder / "spec.yaml"
+    path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
+    result = xacrokit.generate(path, folder / "pkg")
+    robot = result.robot
+    urdf_path = folder / "pkg" / "urdf" / f"{robot.name}.urdf"
+    root = etree.parse(str(urdf_path)).getroot()
+
+    assert sorted(e.get("name") for e in root.findall("link")) == sorted(robot.link_names)
+    assert sorted(e.get("name") for e in root.findall("joint")) == sorted(robot.joint_names)
+    for link in spec["links"].values():  # mesh filenames (with ${ and $( in them) arrive verbatim
+        if "mesh" in link.get("shape", {}):
+            wanted = link["shape"]["mesh"]["filename"]
+            assert wanted in {m.get("filename") for m in root.iter("mesh")}
+
+    checked = subprocess.run([check_urdf_binary(), str(urdf_path)], capture_output=True, text=True, timeout=60)
+    assert checked.returncode == 0, checked.stdout + checked.stderr
+    pin.buildModelFromUrdf(str(urdf_path))
+    import yourdfpy
+
+    yourdfpy.URDF.load(str(urdf_path), build_scene_graph=False, load_meshes=False)
+    again = xacrokit.generate(path, folder / "pkg")
+    assert {a.action for a in again.actions} == {"identical"}
+
+
+@given(case=invalid_specs())
+def test_every_single_fault_gives_located_errors_and_writes_nothing(tmp_path_factory, case):
+    spec, fault = case
+    folder = tmp_path_factory.mktemp("invalid")
+    path = folder / "spec.yaml"
+    path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
+    with pytest.raises(xacrokit.SpecErrors) as caught:
+        xacrokit.generate(path, folder / "pkg")
+    errors = caught.value.errors
+    assert errors and all(e.line is not None and e.column is not None and e.path.startswith("$") for e in errors)
+    assert any(words in e.message for e in errors for words in FAULT_WORDS[fault]), (fault, [str(e) for e in errors])
+    assert not (folder / "pkg").exists()
+
+
+@settings(max_examples=5)
+@given(case=invalid_specs())
+def test_invalid_specs_exit_2_from_the_command_line(tmp_path_factory, case):
+    spec, _ = case
+    folder = tmp_path_factory.mktemp("cli")
+    path = folder / "spec.yaml"
+    path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
+    result = subprocess.run([sys.executable, "-m", "xacrokit.cli", str(path), "-o", str(folder / "pkg")],
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 2 and "Traceback" not in result.stderr
+    assert f"{path}:" in result.stderr and not (folder / "pkg").exists()
