@@ -478,17 +478,39 @@ def semantic_errors(raw: RawSpec, data: dict[str, Any], *, physics: bool = True)
     return errors
 
 
+# Schema errors that leave the spec's structure intact: the later checks can still run and report more.
+_VALUE_ONLY = {"exclusiveMinimum", "minimum", "maximum", "exclusiveMaximum", "pattern"}
+
+
+def _value_only(error: jsonschema.ValidationError) -> bool:
+    if error.validator in _VALUE_ONLY:
+        return True
+    number = isinstance(error.instance, (int, float)) and not isinstance(error.instance, bool)
+    return error.validator == "oneOf" and number and _ref_name(error) == "mass"  # a mass <= 0
+
+
+def _unique(errors: list[SpecError]) -> list[SpecError]:
+    seen: set[tuple[str, str]] = set()
+    result = []
+    for error in errors:
+        if (error.path, error.message) not in seen:
+            seen.add((error.path, error.message))
+            result.append(error)
+    return result
+
+
 def validate(raw: RawSpec) -> Spec:
     """Check a loaded spec against the schema and the rules a robot must obey.
 
     Raises:
         SpecErrors: every problem found, each with file, JSON path, line and column.
     """
+    structural = [e for e in _validator().iter_errors(raw.data) if not _value_only(e)]
     errors = schema_errors(raw)
-    if errors:  # the later checks rely on the shapes the schema guarantees
+    if structural:  # the later checks rely on the shapes the schema guarantees
         raise SpecErrors(errors)
-    data, errors = _Quantities(raw).run()
-    errors += semantic_errors(raw, data, physics=not errors)
+    data, unit_errors = _Quantities(raw).run()
+    errors += unit_errors + semantic_errors(raw, data, physics=not unit_errors)
     if errors:
-        raise SpecErrors(errors)
+        raise SpecErrors(_unique(errors))
     return Spec(raw=raw, data=data)

@@ -104,3 +104,18 @@ def test_readme_main_job_runs(tmp_path):
 def test_readme_documents_the_include_path(snippet):
     readme = (REPO / "README.md").read_text(encoding="utf-8")
     assert "$(find xacrokit)/macros/" in readme and f"`{snippet}`" in readme
+
+
+def test_readme_error_sample_is_real_output(tmp_path):
+    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    sample = readme.split("$ gen-robot robot.yaml\n", 1)[1].split("```", 1)[0]
+    spec = (REPO / "examples" / "two_dof_arm.yaml").read_text(encoding="utf-8")
+    for old, new in (("    parent: upper_arm", "    parent: upper_ram"),
+                     ("limit: {lower: 0, upper: 2.8", "limit: {lower: 2.8, upper: 0"), ("    mass: 0.3", "    mass: -0.3")):
+        assert spec.count(old) == 1
+        spec = spec.replace(old, new)
+    (tmp_path / "robot.yaml").write_text(spec, encoding="utf-8")
+    result = subprocess.run([sys.executable, "-m", "xacrokit.cli", "robot.yaml"], cwd=tmp_path, capture_output=True,
+                            text=True, timeout=120)
+    assert result.returncode == 2
+    assert result.stderr == sample
