@@ -28,8 +28,17 @@ _LAZY = {
 }
 
 __all__ = [
-    "ConflictError", "ExpandError", "GenerateResult", "ResourceError", "SpecError", "SpecErrors", "XacrokitError",
-    "expand", "generate", "macros_dir", "__version__",
+    "ConflictError",
+    "ExpandError",
+    "GenerateResult",
+    "ResourceError",
+    "SpecError",
+    "SpecErrors",
+    "XacrokitError",
+    "expand",
+    "generate",
+    "macros_dir",
+    "__version__",
 ]
 
 

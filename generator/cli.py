@@ -44,8 +44,10 @@ def _cmd_generate(args: argparse.Namespace) -> int:
         note = f"  ({action.reason})" if action.reason else ""
         print(f"{action.action:<{width}}  {action.path}{note}")
     changed = sum(a.action != "identical" for a in result.actions)
-    print(f"{result.robot.package}: {verb} {changed} of {len(result.actions)} files in {result.output}"
-          + (" (dry run: nothing written)" if args.dry_run else ""))
+    print(
+        f"{result.robot.package}: {verb} {changed} of {len(result.actions)} files in {result.output}"
+        + (" (dry run: nothing written)" if args.dry_run else "")
+    )
     return 0
 
 
@@ -103,7 +105,9 @@ def build_parser() -> argparse.ArgumentParser:
     gen.add_argument("--dry-run", action="store_true", help="print what would be written; write nothing")
     gen.add_argument("--force", action="store_true", help="overwrite files edited since they were generated")
     gen.add_argument(
-        "--macros", choices=("copy", "find"), default="copy",
+        "--macros",
+        choices=("copy", "find"),
+        default="copy",
         help="copy the xacrokit macros into the package (default; self-contained) or include them with "
         "$(find xacrokit) (the package then depends on xacrokit)",
     )

@@ -18,8 +18,10 @@ from yaml.constructor import SafeConstructor
 from .errors import SpecError, SpecErrors
 
 PathKey = tuple[str | int, ...]
-_PLAIN_TAGS = {f"tag:yaml.org,2002:{name}" for name in ("str", "int", "float", "bool", "null", "map", "seq",
-                                                         "timestamp", "binary", "merge")}
+_PLAIN_TAGS = {
+    f"tag:yaml.org,2002:{name}"
+    for name in ("str", "int", "float", "bool", "null", "map", "seq", "timestamp", "binary", "merge")
+}
 _NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
 MAX_SPEC_BYTES = 16 * 1024 * 1024
 
@@ -83,7 +85,9 @@ class _Builder:
             # PyYAML hands back the anchored node itself; point at the key that used the alias instead.
             anchor_line, _ = _mark(node)
             line, column = self.key_positions.get(path, _mark(node))
-            message = f"YAML aliases (*name) are not supported in specs; write the value out (anchored on line {anchor_line})"
+            message = (
+                f"YAML aliases (*name) are not supported in specs; write the value out (anchored on line {anchor_line})"
+            )
             self.errors.append(SpecError(message, file=self.file, path=json_path(path), line=line, column=column))
             return None
         self.seen.add(id(node))
@@ -168,6 +172,6 @@ def load_file(path: str | Path) -> RawSpec:
         line = raw[: exc.start].count(b"\n") + 1
         column = exc.start - (raw.rfind(b"\n", 0, exc.start) + 1) + 1
         raise SpecErrors(
-            [SpecError("the spec is not UTF-8 text (byte %#04x)" % raw[exc.start], file=file, line=line, column=column)]
+            [SpecError(f"the spec is not UTF-8 text (byte {raw[exc.start]:#04x})", file=file, line=line, column=column)]
         ) from None
     return load_text(text.removeprefix("\ufeff"), file)

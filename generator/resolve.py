@@ -108,9 +108,14 @@ def _explicit_inertia(data: dict[str, Any], default_frame: Origin) -> Inertia | 
     frame = origin(tensor["origin"]) if "origin" in tensor else default_frame
     return Inertia(
         mass=float(data["mass"]),
-        ixx=float(tensor["ixx"]), ixy=float(tensor.get("ixy", 0.0)), ixz=float(tensor.get("ixz", 0.0)),
-        iyy=float(tensor["iyy"]), iyz=float(tensor.get("iyz", 0.0)), izz=float(tensor["izz"]),
-        origin=frame, kind="explicit",
+        ixx=float(tensor["ixx"]),
+        ixy=float(tensor.get("ixy", 0.0)),
+        ixz=float(tensor.get("ixz", 0.0)),
+        iyy=float(tensor["iyy"]),
+        iyz=float(tensor.get("iyz", 0.0)),
+        izz=float(tensor["izz"]),
+        origin=frame,
+        kind="explicit",
     )
 
 
@@ -120,8 +125,10 @@ def _limit(data: dict[str, Any], joint_type: str) -> Limit | None:
         return None
     bounded = joint_type != "continuous"
     return Limit(
-        effort=float(limit["effort"]), velocity=float(limit["velocity"]),
-        lower=float(limit["lower"]) if bounded else None, upper=float(limit["upper"]) if bounded else None,
+        effort=float(limit["effort"]),
+        velocity=float(limit["velocity"]),
+        lower=float(limit["lower"]) if bounded else None,
+        upper=float(limit["upper"]) if bounded else None,
     )
 
 
@@ -142,16 +149,27 @@ def _joint(name: str, data: dict[str, Any]) -> Joint:
     mimic = data.get("mimic")
     safety = data.get("safety_controller")
     return Joint(
-        name=name, type=kind, parent=data["parent"], child=data["child"], origin=origin(data.get("origin")),
-        axis=axis, limit=_limit(data, kind), dynamics=_dynamics(data) if kind in MOVING else None,
-        mimic=Mimic(joint=mimic["joint"], multiplier=float(mimic.get("multiplier", 1.0)),
-                    offset=float(mimic.get("offset", 0.0))) if mimic else None,
+        name=name,
+        type=kind,
+        parent=data["parent"],
+        child=data["child"],
+        origin=origin(data.get("origin")),
+        axis=axis,
+        limit=_limit(data, kind),
+        dynamics=_dynamics(data) if kind in MOVING else None,
+        mimic=Mimic(
+            joint=mimic["joint"], multiplier=float(mimic.get("multiplier", 1.0)), offset=float(mimic.get("offset", 0.0))
+        )
+        if mimic
+        else None,
         safety_controller=SafetyController(
             k_velocity=float(safety["k_velocity"]),
             k_position=_optional_float(safety.get("k_position")),
             soft_lower_limit=_optional_float(safety.get("soft_lower_limit")),
             soft_upper_limit=_optional_float(safety.get("soft_upper_limit")),
-        ) if safety else None,
+        )
+        if safety
+        else None,
     )
 
 
@@ -163,34 +181,60 @@ def _arm(name: str, data: dict[str, Any]) -> Arm:
     rows = []
     for row in data["joints"]:
         kind = row.get("type", "revolute")
-        rows.append(DHRow(
-            name=row["name"], link=row["link"], a=float(row["a"]), d=float(row["d"]), alpha=float(row["alpha"]),
-            theta=float(row.get("theta", 0.0)), type=kind, limit=_limit(row, kind),
-            dynamics=_dynamics(row) if kind != "fixed" else None,
-            mass=_optional_float(row.get("mass")), radius=float(row.get("radius", 0.03)), material=row.get("material"),
-        ))
+        rows.append(
+            DHRow(
+                name=row["name"],
+                link=row["link"],
+                a=float(row["a"]),
+                d=float(row["d"]),
+                alpha=float(row["alpha"]),
+                theta=float(row.get("theta", 0.0)),
+                type=kind,
+                limit=_limit(row, kind),
+                dynamics=_dynamics(row) if kind != "fixed" else None,
+                mass=_optional_float(row.get("mass")),
+                radius=float(row.get("radius", 0.03)),
+                material=row.get("material"),
+            )
+        )
     tool = data.get("tool", {})
     return Arm(
-        name=name, parent=data["parent"], origin=origin(data.get("origin")),
-        convention=data.get("convention", "standard"), rows=tuple(rows), base=f"{name}_base",
-        tool=tool.get("name", "tool0"), tool_origin=origin(tool.get("origin")),
+        name=name,
+        parent=data["parent"],
+        origin=origin(data.get("origin")),
+        convention=data.get("convention", "standard"),
+        rows=tuple(rows),
+        base=f"{name}_base",
+        tool=tool.get("name", "tool0"),
+        tool_origin=origin(tool.get("origin")),
     )
 
 
 def _wheel(name: str, data: dict[str, Any]) -> Wheel:
     limit, dynamics = data.get("limit", {}), data.get("dynamics", {})
     return Wheel(
-        name=name, parent=data["parent"], origin=origin(data.get("origin")), radius=float(data["radius"]),
-        width=float(data["width"]), mass=float(data["mass"]), axis=data.get("axis", "y"),
-        material=data.get("material"), effort=float(limit.get("effort", 10.0)),
-        velocity=float(limit.get("velocity", 10.0)), damping=float(dynamics.get("damping", 0.01)),
-        friction=float(dynamics.get("friction", 0.0)), mu1=float(data.get("mu1", 1.0)), mu2=float(data.get("mu2", 1.0)),
+        name=name,
+        parent=data["parent"],
+        origin=origin(data.get("origin")),
+        radius=float(data["radius"]),
+        width=float(data["width"]),
+        mass=float(data["mass"]),
+        axis=data.get("axis", "y"),
+        material=data.get("material"),
+        effort=float(limit.get("effort", 10.0)),
+        velocity=float(limit.get("velocity", 10.0)),
+        damping=float(dynamics.get("damping", 0.01)),
+        friction=float(dynamics.get("friction", 0.0)),
+        mu1=float(data.get("mu1", 1.0)),
+        mu2=float(data.get("mu2", 1.0)),
     )
 
 
 def _frame(name: str, data: dict[str, Any]) -> tuple[Link, Joint]:
     body = {k: data[k] for k in ("shape", "mass", "material") if k in data}
-    joint = Joint(name=f"{name}_joint", type="fixed", parent=data["parent"], child=name, origin=origin(data.get("origin")))
+    joint = Joint(
+        name=f"{name}_joint", type="fixed", parent=data["parent"], child=name, origin=origin(data.get("origin"))
+    )
     return _link(name, body), joint
 
 
@@ -240,8 +284,14 @@ def resolve(spec: Spec) -> Robot:
         children |= set(arm.link_names)
     root = next(link.name for link in links if link.name not in children)
     return Robot(
-        name=data["robot"], root=root,
+        name=data["robot"],
+        root=root,
         materials=tuple((n, tuple(float(c) for c in rgba)) for n, rgba in data.get("materials", {}).items()),  # type: ignore[misc]
-        links=tuple(links), joints=tuple(joints), arms=arms, wheels=wheels,
-        ros2_control=_controlled(data, moving), surfaces=surfaces, source=spec.raw.file,
+        links=tuple(links),
+        joints=tuple(joints),
+        arms=arms,
+        wheels=wheels,
+        ros2_control=_controlled(data, moving),
+        surfaces=surfaces,
+        source=spec.raw.file,
     )

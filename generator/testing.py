@@ -26,8 +26,19 @@ from hypothesis import strategies as st
 SHAPES = ("box", "cylinder", "sphere", "mesh", "none")
 JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 FAULTS = (
-    "negative_mass", "swapped_limits", "dangling_parent", "cycle", "duplicate_name", "zero_axis", "not_positive_definite",
-    "triangle_violation", "missing_gazebo_reference", "wrong_type", "bad_unit", "injected_name", "unknown_material",
+    "negative_mass",
+    "swapped_limits",
+    "dangling_parent",
+    "cycle",
+    "duplicate_name",
+    "zero_axis",
+    "not_positive_definite",
+    "triangle_violation",
+    "missing_gazebo_reference",
+    "wrong_type",
+    "bad_unit",
+    "injected_name",
+    "unknown_material",
 )
 
 _size = st.floats(min_value=0.01, max_value=1.0, allow_nan=False)
@@ -102,8 +113,10 @@ def _link(draw, materials: list[str]) -> dict[str, Any]:
         link["mass"] = draw(st.one_of(_mass, _mass.map(lambda m: f"{m * 1000!r} g")))
     collision = draw(st.sampled_from(["default", "same", "none", "other"]))
     if collision == "other":
-        link["collision"] = {"shape": draw(_shape(draw(st.sampled_from(["box", "cylinder", "sphere"])))),
-                             "origin": draw(_origin())}
+        link["collision"] = {
+            "shape": draw(_shape(draw(st.sampled_from(["box", "cylinder", "sphere"])))),
+            "origin": draw(_origin()),
+        }
     elif collision != "default":
         link["collision"] = collision
     return link
@@ -136,9 +149,14 @@ def _arm(draw, prefix: str, parent: str, materials: list[str]) -> dict[str, Any]
     rows = []
     for index in range(draw(st.integers(1, 4))):
         kind = draw(st.sampled_from(["revolute", "revolute", "prismatic", "continuous", "fixed"]))
-        row: dict[str, Any] = {"name": f"{prefix}_joint_{index}", "link": f"{prefix}_link_{index}",
-                               "a": draw(_length(_coord)), "d": draw(_length(_coord)), "alpha": draw(_angle_value()),
-                               "type": kind}
+        row: dict[str, Any] = {
+            "name": f"{prefix}_joint_{index}",
+            "link": f"{prefix}_link_{index}",
+            "a": draw(_length(_coord)),
+            "d": draw(_length(_coord)),
+            "alpha": draw(_angle_value()),
+            "type": kind,
+        }
         if draw(st.booleans()):
             row["theta"] = draw(_angle_value())
         if kind != "fixed" and (kind != "continuous" or draw(st.booleans())):
@@ -148,8 +166,12 @@ def _arm(draw, prefix: str, parent: str, materials: list[str]) -> dict[str, Any]
             if materials and draw(st.booleans()):
                 row["material"] = draw(st.sampled_from(materials))
         rows.append(row)
-    arm: dict[str, Any] = {"parent": parent, "convention": draw(st.sampled_from(["standard", "modified"])),
-                           "joints": rows, "origin": draw(_origin())}
+    arm: dict[str, Any] = {
+        "parent": parent,
+        "convention": draw(st.sampled_from(["standard", "modified"])),
+        "joints": rows,
+        "origin": draw(_origin()),
+    }
     if draw(st.booleans()):
         arm["tool"] = {"name": f"{prefix}_tool", "origin": draw(_origin())}
     else:
@@ -167,9 +189,7 @@ def valid_specs(draw, max_links: int = 5) -> dict[str, Any]:
     count = draw(st.integers(1, max_links))
     spec["links"] = {f"link_{i}": draw(_link(materials)) for i in range(count)}
     links = list(spec["links"])
-    spec["joints"] = {
-        f"joint_{i}": draw(_joint(links[draw(st.integers(0, i - 1))], links[i])) for i in range(1, count)
-    }
+    spec["joints"] = {f"joint_{i}": draw(_joint(links[draw(st.integers(0, i - 1))], links[i])) for i in range(1, count)}
     moving = [n for n, j in spec["joints"].items() if j["type"] in ("revolute", "continuous", "prismatic")]
     if len(moving) >= 2 and draw(st.booleans()):
         follower, leader = moving[-1], moving[0]
@@ -184,9 +204,14 @@ def valid_specs(draw, max_links: int = 5) -> dict[str, Any]:
         spec["arms"] = arms
     wheels = {}
     for k in range(draw(st.integers(0, 2))):
-        wheels[f"wheel_{k}"] = {"parent": draw(st.sampled_from(links)), "origin": draw(_origin()),
-                                "radius": draw(_length()), "width": draw(_length()), "mass": draw(_mass),
-                                "axis": draw(st.sampled_from(["x", "y", "z"]))}
+        wheels[f"wheel_{k}"] = {
+            "parent": draw(st.sampled_from(links)),
+            "origin": draw(_origin()),
+            "radius": draw(_length()),
+            "width": draw(_length()),
+            "mass": draw(_mass),
+            "axis": draw(st.sampled_from(["x", "y", "z"])),
+        }
     if wheels:
         spec["wheels"] = wheels
     frames = {}
@@ -214,8 +239,12 @@ def invalid_specs(draw, faults: tuple[str, ...] = FAULTS) -> tuple[dict[str, Any
     if fault == "negative_mass":
         links[name] = {"shape": {"sphere": {"radius": 0.1}}, "mass": -draw(_mass)}
     elif fault == "swapped_limits":
-        spec.setdefault("joints", {})["bad_joint"] = {"type": "revolute", "parent": name, "child": "bad_link",
-                                                      "limit": {"lower": 1.0, "upper": -1.0, "effort": 1, "velocity": 1}}
+        spec.setdefault("joints", {})["bad_joint"] = {
+            "type": "revolute",
+            "parent": name,
+            "child": "bad_link",
+            "limit": {"lower": 1.0, "upper": -1.0, "effort": 1, "velocity": 1},
+        }
         links["bad_link"] = {}
     elif fault == "dangling_parent":
         spec.setdefault("frames", {})["bad_frame"] = {"parent": "no_such_link"}
@@ -226,8 +255,12 @@ def invalid_specs(draw, faults: tuple[str, ...] = FAULTS) -> tuple[dict[str, Any
     elif fault == "duplicate_name":
         spec.setdefault("wheels", {})[name] = {"parent": name, "radius": 0.1, "width": 0.05, "mass": 1.0}
     elif fault == "zero_axis":
-        spec.setdefault("joints", {})["bad_joint"] = {"type": "continuous", "parent": name, "child": "bad_link",
-                                                      "axis": [0, 0, 0]}
+        spec.setdefault("joints", {})["bad_joint"] = {
+            "type": "continuous",
+            "parent": name,
+            "child": "bad_link",
+            "axis": [0, 0, 0],
+        }
         links["bad_link"] = {}
     elif fault == "not_positive_definite":
         links[name] = {"mass": 1.0, "inertia": {"ixx": 1.0, "iyy": 1.0, "izz": 1.0, "ixy": 1.5}}

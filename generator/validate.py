@@ -45,6 +45,10 @@ def _validator() -> jsonschema.Draft202012Validator:
 
 
 # ---------------------------------------------------------------- schema errors
+def _bad_name(name: object) -> str:
+    return f"{name!r} is not a valid name: use letters, digits and _, not starting with a digit"
+
+
 def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bool]:
     """(path, message, point-at-key) for one schema error, in words a spec author understands."""
     path: PathKey = tuple(error.absolute_path)
@@ -56,12 +60,24 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
         return where, f"unknown key {extra[0]!r}" + (f"; allowed here: {', '.join(allowed)}" if allowed else ""), True
     if keyword == "propertyNames":
         name = error.instance
-        return (*path, name), f"{name!r} is not a valid name: use letters, digits and _, not starting with a digit", True
+        return (
+            (*path, name),
+            _bad_name(name),
+            True,
+        )
     if keyword == "pattern" and "propertyNames" in error.absolute_schema_path:
         name = error.instance  # a mapping key that is not a valid name: point at the key itself
-        return (*path, name), f"{name!r} is not a valid name: use letters, digits and _, not starting with a digit", True
+        return (
+            (*path, name),
+            _bad_name(name),
+            True,
+        )
     if keyword == "pattern":
-        return path, f"{error.instance!r} is not a valid name: use letters, digits and _, not starting with a digit", False
+        return (
+            path,
+            _bad_name(error.instance),
+            False,
+        )
     if keyword == "oneOf" and _ref_name(error) in ("length", "angle", "quantity", "mass"):
         kind = _ref_name(error)
         example = {"length": "150 mm", "angle": "90 deg", "quantity": "90 deg", "mass": "500 g"}[kind]
@@ -169,8 +185,14 @@ class _Quantities:
                 self.origin(arm["tool"], "origin", ("arms", name, "tool"))
             for index, row in enumerate(arm["joints"]):
                 path = ("arms", name, "joints", index)
-                for key, kind in (("a", "length"), ("d", "length"), ("alpha", "angle"), ("theta", "angle"),
-                                  ("mass", "mass"), ("radius", "length")):
+                for key, kind in (
+                    ("a", "length"),
+                    ("d", "length"),
+                    ("alpha", "angle"),
+                    ("theta", "angle"),
+                    ("mass", "mass"),
+                    ("radius", "length"),
+                ):
                     self.convert(row, key, path, kind)  # type: ignore[arg-type]
                 self.limits(row, path, row.get("type", "revolute"))
         for name, wheel in data.get("wheels", {}).items():
@@ -220,8 +242,12 @@ def _duplicates(raw: RawSpec, named: list[_Named], what: str) -> Iterator[SpecEr
         if item.name in first:
             other = first[item.name]
             line, _ = raw.locate(other.path, key=other.at_key)
-            yield raw.error(item.path, f"{what} name {item.name!r} is already used by {_describe(other.path)} "
-                                       f"(line {line}); names must be unique", key=item.at_key)
+            yield raw.error(
+                item.path,
+                f"{what} name {item.name!r} is already used by {_describe(other.path)} "
+                f"(line {line}); names must be unique",
+                key=item.at_key,
+            )
         else:
             first[item.name] = item
 
@@ -255,8 +281,11 @@ def _tree_errors(raw: RawSpec, data: dict[str, Any], link_names: set[str]) -> It
             parent_of.setdefault(child, (parent, where))
             continue
         if child in parent_of:
-            yield raw.error(where, f"link {child!r} already has parent {parent_of[child][0]!r}; "
-                                   "a link can hang from one joint only (URDF is a tree)")
+            yield raw.error(
+                where,
+                f"link {child!r} already has parent {parent_of[child][0]!r}; "
+                "a link can hang from one joint only (URDF is a tree)",
+            )
             continue
         parent_of[child] = (parent, where)
         children.setdefault(parent, []).append(child)
@@ -274,14 +303,19 @@ def _tree_errors(raw: RawSpec, data: dict[str, Any], link_names: set[str]) -> It
         yield raw.error(where, f"links {', '.join(stranded)} form a cycle (each hangs from another in the loop)")
     if len(roots) > 1:
         listed = ", ".join(roots)
-        yield raw.error(("links",), f"the links form {len(roots)} separate trees (roots: {listed}); connect them with "
-                                    "joints so that exactly one link has no parent", key=True)
+        yield raw.error(
+            ("links",),
+            f"the links form {len(roots)} separate trees (roots: {listed}); connect them with "
+            "joints so that exactly one link has no parent",
+            key=True,
+        )
     elif not roots and not stranded:
         yield raw.error(("links",), "no root link", key=True)
 
 
-def _reference_errors(raw: RawSpec, data: dict[str, Any], link_names: set[str],
-                      joint_types: dict[str, str]) -> Iterator[SpecError]:
+def _reference_errors(
+    raw: RawSpec, data: dict[str, Any], link_names: set[str], joint_types: dict[str, str]
+) -> Iterator[SpecError]:
     materials = set(data.get("materials", {}))
 
     def link_ref(path: PathKey, name: str, role: str) -> Iterator[SpecError]:
@@ -300,8 +334,10 @@ def _reference_errors(raw: RawSpec, data: dict[str, Any], link_names: set[str],
         path = ("joints", name)
         yield from link_ref((*path, "parent"), joint["parent"], "parent")
         if joint["child"] not in data.get("links", {}):
-            yield raw.error((*path, "child"), f"child {joint['child']!r} is not in links"
-                                              f"{_closest(joint['child'], set(data.get('links', {})))}")
+            yield raw.error(
+                (*path, "child"),
+                f"child {joint['child']!r} is not in links{_closest(joint['child'], set(data.get('links', {})))}",
+            )
         if joint["parent"] == joint["child"]:
             yield raw.error((*path, "child"), "a joint cannot connect a link to itself")
         mimic = joint.get("mimic")
@@ -312,8 +348,11 @@ def _reference_errors(raw: RawSpec, data: dict[str, Any], link_names: set[str],
             elif target == name:
                 yield raw.error((*path, "mimic", "joint"), "a joint cannot mimic itself")
             elif joint_types[target] not in MOVING or joint["type"] not in MOVING:
-                yield raw.error((*path, "mimic", "joint"), f"mimic needs two moving joints; {target!r} is "
-                                                           f"{joint_types[target]} and this one is {joint['type']}")
+                yield raw.error(
+                    (*path, "mimic", "joint"),
+                    f"mimic needs two moving joints; {target!r} is "
+                    f"{joint_types[target]} and this one is {joint['type']}",
+                )
     for name, arm in data.get("arms", {}).items():
         yield from link_ref(("arms", name, "parent"), arm["parent"], "parent")
         for index, row in enumerate(arm["joints"]):
@@ -328,8 +367,9 @@ def _reference_errors(raw: RawSpec, data: dict[str, Any], link_names: set[str],
     for name in data.get("ros2_control", {}).get("joints", {}):
         if joint_types.get(name) not in MOVING:
             what = "is not a joint" if name not in joint_types else f"is a {joint_types[name]} joint"
-            yield raw.error(("ros2_control", "joints", name), f"{name!r} {what}; only moving joints are controlled",
-                            key=True)
+            yield raw.error(
+                ("ros2_control", "joints", name), f"{name!r} {what}; only moving joints are controlled", key=True
+            )
 
 
 def _closest(name: str, known: set[str]) -> str:
@@ -350,17 +390,22 @@ def _limit_errors(raw: RawSpec, holder: dict[str, Any], path: PathKey, joint_typ
             yield raw.error((*path, "limit"), f"a {joint_type} joint needs limit {' and '.join(missing)}")
             return
         if limit["lower"] > limit["upper"]:
-            yield raw.error((*path, "limit", "lower"),
-                            f"lower ({limit['lower']!r}) is greater than upper ({limit['upper']!r})")
+            yield raw.error(
+                (*path, "limit", "lower"), f"lower ({limit['lower']!r}) is greater than upper ({limit['upper']!r})"
+            )
         safety = holder.get("safety_controller")
         if isinstance(safety, dict):
             low, high = safety.get("soft_lower_limit"), safety.get("soft_upper_limit")
             if low is not None and low < limit["lower"]:
-                yield raw.error((*path, "safety_controller", "soft_lower_limit"),
-                                f"soft lower limit {low!r} is below the hard lower limit {limit['lower']!r}")
+                yield raw.error(
+                    (*path, "safety_controller", "soft_lower_limit"),
+                    f"soft lower limit {low!r} is below the hard lower limit {limit['lower']!r}",
+                )
             if high is not None and high > limit["upper"]:
-                yield raw.error((*path, "safety_controller", "soft_upper_limit"),
-                                f"soft upper limit {high!r} is above the hard upper limit {limit['upper']!r}")
+                yield raw.error(
+                    (*path, "safety_controller", "soft_upper_limit"),
+                    f"soft upper limit {high!r} is above the hard upper limit {limit['upper']!r}",
+                )
     elif isinstance(limit, dict) and ("lower" in limit or "upper" in limit):
         hint = "; make it revolute to limit its range" if joint_type == "continuous" else ""
         yield raw.error((*path, "limit"), f"a {joint_type} joint takes no lower/upper limits{hint}")
@@ -382,9 +427,14 @@ def _shape_errors(raw: RawSpec, holder: dict[str, Any], path: PathKey) -> Iterat
 
 
 def _inertia_errors(raw: RawSpec, inertia: dict[str, Any], path: PathKey) -> Iterator[SpecError]:
-    tensor = np.array([[inertia["ixx"], inertia.get("ixy", 0.0), inertia.get("ixz", 0.0)],
-                       [inertia.get("ixy", 0.0), inertia["iyy"], inertia.get("iyz", 0.0)],
-                       [inertia.get("ixz", 0.0), inertia.get("iyz", 0.0), inertia["izz"]]], dtype=float)
+    tensor = np.array(
+        [
+            [inertia["ixx"], inertia.get("ixy", 0.0), inertia.get("ixz", 0.0)],
+            [inertia.get("ixy", 0.0), inertia["iyy"], inertia.get("iyz", 0.0)],
+            [inertia.get("ixz", 0.0), inertia.get("iyz", 0.0), inertia["izz"]],
+        ],
+        dtype=float,
+    )
     problem = tensor_problem(tensor)
     if problem:
         yield raw.error(path, problem)
@@ -397,12 +447,16 @@ def tensor_problem(tensor: np.ndarray, rel: float = 1e-9) -> str | None:
     moments = np.linalg.eigvalsh(tensor)
     scale = max(float(np.abs(moments).max()), 1e-300)
     if moments.min() <= rel * scale:
-        return (f"the inertia tensor is not positive definite (principal moments {_fmt(moments)}); "
-                "every principal moment must be > 0")
+        return (
+            f"the inertia tensor is not positive definite (principal moments {_fmt(moments)}); "
+            "every principal moment must be > 0"
+        )
     total = float(moments.sum())
     if any(m > total - m + rel * total for m in moments):
-        return (f"the inertia tensor violates the triangle inequality (principal moments {_fmt(moments)}); "
-                "each must be at most the sum of the other two")
+        return (
+            f"the inertia tensor violates the triangle inequality (principal moments {_fmt(moments)}); "
+            "each must be at most the sum of the other two"
+        )
     return None
 
 
@@ -421,8 +475,11 @@ def _physics_errors(raw: RawSpec, data: dict[str, Any]) -> Iterator[SpecError]:
             shape = link.get("shape", {})
             if "inertia" not in link and ("mesh" in shape or not shape):
                 what = "a mesh" if "mesh" in shape else "no shape"
-                yield raw.error((*path, "mass"), f"link has a mass but {what}, so its inertia cannot be computed; "
-                                                 "give inertia: {ixx, iyy, izz, ...}")
+                yield raw.error(
+                    (*path, "mass"),
+                    f"link has a mass but {what}, so its inertia cannot be computed; "
+                    "give inertia: {ixx, iyy, izz, ...}",
+                )
         elif "inertia" in link:
             yield raw.error((*path, "inertia"), "inertia needs a mass")
         if "inertia" in link:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import json
+import os
 import re
 import shlex
 import subprocess
@@ -110,12 +112,60 @@ def test_readme_error_sample_is_real_output(tmp_path):
     readme = (REPO / "README.md").read_text(encoding="utf-8")
     sample = readme.split("$ gen-robot robot.yaml\n", 1)[1].split("```", 1)[0]
     spec = (REPO / "examples" / "two_dof_arm.yaml").read_text(encoding="utf-8")
-    for old, new in (("    parent: upper_arm", "    parent: upper_ram"),
-                     ("limit: {lower: 0, upper: 2.8", "limit: {lower: 2.8, upper: 0"), ("    mass: 0.3", "    mass: -0.3")):
+    for old, new in (
+        ("    parent: upper_arm", "    parent: upper_ram"),
+        ("limit: {lower: 0, upper: 2.8", "limit: {lower: 2.8, upper: 0"),
+        ("    mass: 0.3", "    mass: -0.3"),
+    ):
         assert spec.count(old) == 1
         spec = spec.replace(old, new)
     (tmp_path / "robot.yaml").write_text(spec, encoding="utf-8")
-    result = subprocess.run([sys.executable, "-m", "xacrokit.cli", "robot.yaml"], cwd=tmp_path, capture_output=True,
-                            text=True, timeout=120)
+    result = subprocess.run(
+        [sys.executable, "-m", "xacrokit.cli", "robot.yaml"], cwd=tmp_path, capture_output=True, text=True, timeout=120
+    )
     assert result.returncode == 2
     assert result.stderr == sample
+
+
+def readme_blocks(language: str) -> list[str]:
+    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    return re.findall(rf"```{language}\n(.*?)\n```", readme, flags=re.S)
+
+
+def test_readme_command_examples_run_in_sequence(tmp_path):
+    """Every sh block after the two set-up commands, then every Python block, run in one folder in order."""
+    env = dict(os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}")
+    ran = []
+    for block in readme_blocks("sh")[2:]:
+        for line in block.splitlines():
+            command = line.split("  #", 1)[0].strip()
+            if not command or command.startswith("pip "):
+                continue  # installing is what the README's first command shows
+            result = subprocess.run(
+                command, shell=True, cwd=tmp_path, env=env, capture_output=True, text=True, timeout=300
+            )
+            assert result.returncode == 0, (command, result.stdout, result.stderr)
+            ran.append(command)
+    assert any(c.startswith("gen-robot new") for c in ran) and any(c.startswith("gen-robot expand") for c in ran)
+    assert (tmp_path / "my_robot.urdf").is_file() and json.loads((tmp_path / "robot.schema.json").read_text())
+    assert not (tmp_path / "src").exists()  # the --dry-run line wrote nothing
+    for block in readme_blocks("python"):
+        cwd = REPO if "examples/" in block else tmp_path
+        result = subprocess.run(
+            [sys.executable, "-c", block], cwd=cwd, env=env, capture_output=True, text=True, timeout=300
+        )
+        assert result.returncode == 0, (block, result.stderr)
+
+
+def test_readme_spec_sample_generates(tmp_path):
+    (sample,) = [b for b in readme_blocks("yaml") if b.startswith("# yaml-language-server")]
+    (tmp_path / "spec.yaml").write_text(sample, encoding="utf-8")
+    result = xacrokit.generate(tmp_path / "spec.yaml", tmp_path / "out")
+    assert {"base_link", "upper_arm", "hand", "tool0", "camera_link"} <= set(result.robot.link_names)
+
+
+def test_readme_xml_sample_expands(tmp_path):
+    (sample,) = readme_blocks("xml")
+    (tmp_path / "my_robot.urdf.xacro").write_text(sample, encoding="utf-8")
+    root = etree.fromstring(xacrokit.expand(tmp_path / "my_robot.urdf.xacro").encode())
+    assert float(root.find("link/inertial/inertia").get("ixx")) == pytest.approx(8.0 * (0.35**2 + 0.12**2) / 12)

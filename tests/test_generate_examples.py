@@ -11,22 +11,31 @@ import numpy as np
 import pinocchio as pin
 import pytest
 from lxml import etree
+from test_examples import check_urdf_binary
+from test_macros_dh import dh_product
 
 import xacrokit
 from conftest import REPO, assert_physical_tensor, link_inertial
-from test_examples import check_urdf_binary
-from test_macros_dh import dh_product
 from xacrokit.load import load_file
 from xacrokit.validate import validate
 
 SPEC_MODELINE = "# yaml-language-server: $schema=../schemas/robot.schema.json"
-EXAMPLES = sorted(p for p in (REPO / "examples").glob("*.yaml") if p.read_text(encoding="utf-8").startswith(SPEC_MODELINE))
+EXAMPLES = sorted(
+    p for p in (REPO / "examples").glob("*.yaml") if p.read_text(encoding="utf-8").startswith(SPEC_MODELINE)
+)
 
 
 def test_the_issue_examples_are_all_here():
     names = {p.stem for p in EXAMPLES}
-    assert names >= {"two_dof_arm", "linkage", "planar_2dof", "humanoid_upper_body", "diff_drive",
-                     "industrial_arm_std_dh", "industrial_arm_mod_dh"}
+    assert names >= {
+        "two_dof_arm",
+        "linkage",
+        "planar_2dof",
+        "humanoid_upper_body",
+        "diff_drive",
+        "industrial_arm_std_dh",
+        "industrial_arm_mod_dh",
+    }
 
 
 @pytest.fixture(scope="module", params=EXAMPLES, ids=lambda p: p.stem)
@@ -40,7 +49,9 @@ def example(request, tmp_path_factory):
 
 
 def test_check_urdf_accepts_it(example):
-    result = subprocess.run([check_urdf_binary(), str(example["urdf_path"])], capture_output=True, text=True, timeout=60)
+    result = subprocess.run(
+        [check_urdf_binary(), str(example["urdf_path"])], capture_output=True, text=True, timeout=60
+    )
     assert result.returncode == 0 and "Successfully Parsed XML" in result.stdout, result.stdout + result.stderr
 
 
@@ -73,7 +84,10 @@ def test_names_and_counts_match_the_spec(example):
     for name, joint in spec.get("joints", {}).items():
         element = root.find(f"joint[@name='{name}']")
         assert element.get("type") == joint["type"]
-        assert (element.find("parent").get("link"), element.find("child").get("link")) == (joint["parent"], joint["child"])
+        assert (element.find("parent").get("link"), element.find("child").get("link")) == (
+            joint["parent"],
+            joint["child"],
+        )
         if "limit" in joint and "lower" in joint["limit"]:
             limit = element.find("limit")
             assert float(limit.get("lower")) == joint["limit"]["lower"]
@@ -102,8 +116,13 @@ def test_masses_and_inertias_match_the_spec(example):
         assert mass == body["mass"]
         if "inertia" in body:
             i = body["inertia"]
-            want = np.array([[i["ixx"], i.get("ixy", 0), i.get("ixz", 0)], [i.get("ixy", 0), i["iyy"], i.get("iyz", 0)],
-                             [i.get("ixz", 0), i.get("iyz", 0), i["izz"]]])
+            want = np.array(
+                [
+                    [i["ixx"], i.get("ixy", 0), i.get("ixz", 0)],
+                    [i.get("ixy", 0), i["iyy"], i.get("iyz", 0)],
+                    [i.get("ixz", 0), i.get("iyz", 0), i["izz"]],
+                ]
+            )
         else:
             want = _closed_form(body["shape"], body["mass"])
             np.testing.assert_allclose(com, body.get("origin", {}).get("xyz", [0, 0, 0]), atol=1e-15)
@@ -128,7 +147,7 @@ def test_dh_arms_follow_their_tables(example):
     model = pin.buildModelFromUrdf(str(example["urdf_path"]))
     data = model.createData()
     rng = np.random.default_rng(3)
-    for arm_name, arm in spec["arms"].items():
+    for arm in spec["arms"].values():
         rows = arm["joints"]
         tool = arm.get("tool", {})
         for _ in range(10):
@@ -145,7 +164,9 @@ def test_dh_arms_follow_their_tables(example):
             origin = arm.get("origin", {})
             tool_origin = tool.get("origin", {})
             want = dh_product(
-                rows, values, arm.get("convention", "standard"),
+                rows,
+                values,
+                arm.get("convention", "standard"),
                 (origin.get("xyz", [0, 0, 0]), origin.get("rpy", [0, 0, 0])),
                 (tool_origin.get("xyz", [0, 0, 0]), tool_origin.get("rpy", [0, 0, 0])),
             )
@@ -160,8 +181,9 @@ def test_ur5_home_pose_matches_the_published_geometry():
     model = pin.buildModelFromXML(urdf)
     data = model.createData()
     pin.framesForwardKinematics(model, data, pin.neutral(model))
-    np.testing.assert_allclose(data.oMf[model.getFrameId("tool0")].translation, [-0.81725, -0.19145, -0.005491],
-                               atol=1e-12)
+    np.testing.assert_allclose(
+        data.oMf[model.getFrameId("tool0")].translation, [-0.81725, -0.19145, -0.005491], atol=1e-12
+    )
 
 
 def test_panda_flange_at_zero_matches_the_published_geometry():

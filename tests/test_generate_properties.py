@@ -11,9 +11,9 @@ import pytest
 import yaml
 from hypothesis import HealthCheck, given, settings
 from lxml import etree
+from test_examples import check_urdf_binary
 
 import xacrokit
-from test_examples import check_urdf_binary
 from xacrokit.testing import invalid_specs, valid_specs
 
 FAULT_WORDS = {
@@ -82,7 +82,11 @@ def test_invalid_specs_exit_2_from_the_command_line(tmp_path_factory, case):
     folder = tmp_path_factory.mktemp("cli")
     path = folder / "spec.yaml"
     path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
-    result = subprocess.run([sys.executable, "-m", "xacrokit.cli", str(path), "-o", str(folder / "pkg")],
-                            capture_output=True, text=True, timeout=120)
+    result = subprocess.run(
+        [sys.executable, "-m", "xacrokit.cli", str(path), "-o", str(folder / "pkg")],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert result.returncode == 2 and "Traceback" not in result.stderr
     assert f"{path}:" in result.stderr and not (folder / "pkg").exists()

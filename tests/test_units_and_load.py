@@ -16,11 +16,23 @@ from xacrokit.units import UnitError, parse_quantity
 @pytest.mark.parametrize(
     ("text", "kind", "value"),
     [
-        (0.3, "length", 0.3), (2, "length", 2.0), ("150 mm", "length", 0.15), ("15 cm", "length", 0.15),
-        ("1e-3", "length", 1e-3), ("2 in", "length", 0.0508), ("0.1*2", "length", 0.2), ("-0.5 m", "length", -0.5),
-        ("90 deg", "angle", math.pi / 2), ("pi/2", "angle", math.pi / 2), ("-2*pi", "angle", -2 * math.pi),
-        ("pi", "angle", math.pi), ("(1 + 1) * pi / 4 rad", "angle", math.pi / 2), ("45deg", "angle", math.pi / 4),
-        ("500 g", "mass", 0.5), ("1.5 kg", "mass", 1.5), ("-pi", "angle", -math.pi),
+        (0.3, "length", 0.3),
+        (2, "length", 2.0),
+        ("150 mm", "length", 0.15),
+        ("15 cm", "length", 0.15),
+        ("1e-3", "length", 1e-3),
+        ("2 in", "length", 0.0508),
+        ("0.1*2", "length", 0.2),
+        ("-0.5 m", "length", -0.5),
+        ("90 deg", "angle", math.pi / 2),
+        ("pi/2", "angle", math.pi / 2),
+        ("-2*pi", "angle", -2 * math.pi),
+        ("pi", "angle", math.pi),
+        ("(1 + 1) * pi / 4 rad", "angle", math.pi / 2),
+        ("45deg", "angle", math.pi / 4),
+        ("500 g", "mass", 0.5),
+        ("1.5 kg", "mass", 1.5),
+        ("-pi", "angle", -math.pi),
     ],
 )
 def test_quantities_parse_to_si(text, kind, value):
@@ -30,11 +42,19 @@ def test_quantities_parse_to_si(text, kind, value):
 @pytest.mark.parametrize(
     ("text", "kind", "words"),
     [
-        ("150 mm", "angle", "is a length, expected an angle"), ("90 deg", "length", "is an angle, expected a length"),
-        ("3 parsecs", "length", "unknown unit 'parsecs'"), ("__import__('os')", "length", "unexpected"),
-        ("1/0", "length", "division by zero"), ("2 pi", "angle", "unexpected 'pi'"), ("", "length", "empty"),
-        ("(1", "length", "ends too early"), ("1e999", "length", "not a finite number"), (True, "length", "expected"),
-        ([1], "length", "expected a number"), ("${x}", "length", "unexpected '$'"), ("1 kg", "length", "is a mass"),
+        ("150 mm", "angle", "is a length, expected an angle"),
+        ("90 deg", "length", "is an angle, expected a length"),
+        ("3 parsecs", "length", "unknown unit 'parsecs'"),
+        ("__import__('os')", "length", "unexpected"),
+        ("1/0", "length", "division by zero"),
+        ("2 pi", "angle", "unexpected 'pi'"),
+        ("", "length", "empty"),
+        ("(1", "length", "ends too early"),
+        ("1e999", "length", "not a finite number"),
+        (True, "length", "expected"),
+        ([1], "length", "expected a number"),
+        ("${x}", "length", "unexpected '$'"),
+        ("1 kg", "length", "is a mass"),
     ],
 )
 def test_bad_quantities_say_what_is_wrong(text, kind, words):
@@ -82,7 +102,10 @@ def test_unreadable_yaml_gives_one_located_error(text, line, words):
 
 def test_alias_bomb_is_rejected_without_expanding(tmp_path):
     lines = ["a0: &a0 [x, x, x, x, x, x, x, x, x, x]"]
-    lines += [f"a{i}: &a{i} [*a{i-1}, *a{i-1}, *a{i-1}, *a{i-1}, *a{i-1}, *a{i-1}, *a{i-1}, *a{i-1}]" for i in range(1, 12)]
+    lines += [
+        f"a{i}: &a{i} [*a{i - 1}, *a{i - 1}, *a{i - 1}, *a{i - 1}, *a{i - 1}, *a{i - 1}, *a{i - 1}, *a{i - 1}]"
+        for i in range(1, 12)
+    ]
     with pytest.raises(SpecErrors, match="aliases"):
         load_text("\n".join(lines) + "\n")
 

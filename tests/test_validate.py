@@ -19,12 +19,29 @@ BASE = {
         "arm": {"shape": {"cylinder": {"radius": 0.05, "length": 0.3}}, "origin": {"xyz": [0, 0, 0.15]}, "mass": 1.0},
     },
     "joints": {
-        "shoulder": {"type": "revolute", "parent": "base_link", "child": "arm", "axis": [0, 1, 0],
-                     "limit": {"lower": -1.0, "upper": 1.0, "effort": 5.0, "velocity": 1.0}},
+        "shoulder": {
+            "type": "revolute",
+            "parent": "base_link",
+            "child": "arm",
+            "axis": [0, 1, 0],
+            "limit": {"lower": -1.0, "upper": 1.0, "effort": 5.0, "velocity": 1.0},
+        },
     },
-    "arms": {"dh": {"parent": "base_link", "joints": [
-        {"name": "j1", "link": "l1", "a": 0.1, "d": 0.1, "alpha": "pi/2",
-         "limit": {"lower": -1.0, "upper": 1.0, "effort": 5.0, "velocity": 1.0}}]}},
+    "arms": {
+        "dh": {
+            "parent": "base_link",
+            "joints": [
+                {
+                    "name": "j1",
+                    "link": "l1",
+                    "a": 0.1,
+                    "d": 0.1,
+                    "alpha": "pi/2",
+                    "limit": {"lower": -1.0, "upper": 1.0, "effort": 5.0, "velocity": 1.0},
+                }
+            ],
+        }
+    },
     "wheels": {"left_wheel": {"parent": "base_link", "radius": 0.05, "width": 0.02, "mass": 0.2}},
     "frames": {"camera_link": {"parent": "base_link", "origin": {"xyz": [0.2, 0, 0.1]}}},
 }
@@ -70,41 +87,86 @@ CASES = [
     ("links.base_link.material", "grey", "$.links.base_link.material", "material 'grey' is not in materials"),
     ("links.base_link.shape", {"box": {"size": [1, 1, 0]}}, "$.links.base_link.shape.box.size[2]", "must be > 0 m"),
     ("links.base_link.shape", {"box": {"size": [1, 1]}}, "$.links.base_link.shape.box.size", "too short"),
-    ("links.base_link.shape", {"mesh": {"filename": "package://p/m.stl"}}, "$.links.base_link.mass",
-     "cannot be computed; give inertia"),
-    ("links.base_link.shape", {"box": {"size": [1, 1, 1]}, "sphere": {"radius": 1}}, "$.links.base_link.shape",
-     "exactly one of box"),
-    ("links.base_link.inertia", {"ixx": 1.0, "iyy": 1.0, "izz": 3.0}, "$.links.base_link.inertia", "triangle inequality"),
-    ("links.base_link.inertia", {"ixx": 1.0, "iyy": 1.0, "izz": 1.0, "ixy": 2.0}, "$.links.base_link.inertia",
-     "not positive definite"),
-    ("links.base_link.origin", {"xyz": [0, 0, "90 deg"]}, "$.links.base_link.origin.xyz[2]",
-     "is an angle, expected a length"),
+    (
+        "links.base_link.shape",
+        {"mesh": {"filename": "package://p/m.stl"}},
+        "$.links.base_link.mass",
+        "cannot be computed; give inertia",
+    ),
+    (
+        "links.base_link.shape",
+        {"box": {"size": [1, 1, 1]}, "sphere": {"radius": 1}},
+        "$.links.base_link.shape",
+        "exactly one of box",
+    ),
+    (
+        "links.base_link.inertia",
+        {"ixx": 1.0, "iyy": 1.0, "izz": 3.0},
+        "$.links.base_link.inertia",
+        "triangle inequality",
+    ),
+    (
+        "links.base_link.inertia",
+        {"ixx": 1.0, "iyy": 1.0, "izz": 1.0, "ixy": 2.0},
+        "$.links.base_link.inertia",
+        "not positive definite",
+    ),
+    (
+        "links.base_link.origin",
+        {"xyz": [0, 0, "90 deg"]},
+        "$.links.base_link.origin.xyz[2]",
+        "is an angle, expected a length",
+    ),
     ("links.bad-name", {}, "$.links['bad-name']", "not a valid name"),
     ("joints.shoulder.parent", "base_lnk", "$.joints.shoulder.parent", "did you mean 'base_link'"),
     ("joints.shoulder.child", "nothing", "$.joints.shoulder.child", "child 'nothing' is not in links"),
     ("joints.shoulder.type", "ball", "$.joints.shoulder.type", "is not one of"),
     ("joints.shoulder.axis", [0, 0, 0], "$.joints.shoulder.axis", "axis must not be zero"),
-    ("joints.shoulder.limit", {"lower": 1.0, "upper": -1.0, "effort": 1.0, "velocity": 1.0},
-     "$.joints.shoulder.limit.lower", "lower (1.0) is greater than upper (-1.0)"),
+    (
+        "joints.shoulder.limit",
+        {"lower": 1.0, "upper": -1.0, "effort": 1.0, "velocity": 1.0},
+        "$.joints.shoulder.limit.lower",
+        "lower (1.0) is greater than upper (-1.0)",
+    ),
     ("joints.shoulder.limit", "DELETE", "$.joints.shoulder", "a revolute joint needs limit"),
-    ("joints.shoulder.limit", {"lower": -1.0, "upper": 1.0, "effort": 0, "velocity": 1.0},
-     "$.joints.shoulder.limit.effort", "must be > 0"),
+    (
+        "joints.shoulder.limit",
+        {"lower": -1.0, "upper": 1.0, "effort": 0, "velocity": 1.0},
+        "$.joints.shoulder.limit.effort",
+        "must be > 0",
+    ),
     ("joints.shoulder.mimic", {"joint": "shoulder"}, "$.joints.shoulder.mimic.joint", "cannot mimic itself"),
     ("joints.shoulder.mimic", {"joint": "nope"}, "$.joints.shoulder.mimic.joint", "not a joint of this robot"),
-    ("joints.dup", {"type": "fixed", "parent": "base_link", "child": "arm"}, "$.joints.dup",
-     "link 'arm' already has parent 'base_link'"),
-    ("joints.left_wheel_joint", {"type": "fixed", "parent": "arm", "child": "arm"}, "$.wheels.left_wheel",
-     "joint name 'left_wheel_joint' is already used by $.joints.left_wheel_joint"),
-    ("wheels.arm", {"parent": "base_link", "radius": 0.1, "width": 0.1, "mass": 1.0}, "$.wheels.arm",
-     "link name 'arm' is already used by $.links.arm"),
+    (
+        "joints.dup",
+        {"type": "fixed", "parent": "base_link", "child": "arm"},
+        "$.joints.dup",
+        "link 'arm' already has parent 'base_link'",
+    ),
+    (
+        "joints.left_wheel_joint",
+        {"type": "fixed", "parent": "arm", "child": "arm"},
+        "$.wheels.left_wheel",
+        "joint name 'left_wheel_joint' is already used by $.joints.left_wheel_joint",
+    ),
+    (
+        "wheels.arm",
+        {"parent": "base_link", "radius": 0.1, "width": 0.1, "mass": 1.0},
+        "$.wheels.arm",
+        "link name 'arm' is already used by $.links.arm",
+    ),
     ("wheels.left_wheel.radius", "-5 cm", "$.wheels.left_wheel.radius", "radius must be > 0 m"),
     ("arms.dh.joints.0.alpha", "90 mm", "$.arms.dh.joints[0].alpha", "is a length, expected an angle"),
     ("arms.dh.joints.0.link", "arm", "$.arms.dh.joints[0].link", "link name 'arm' is already used"),
     ("arms.dh.parent", "ghost", "$.arms.dh.parent", "parent 'ghost' is not a link"),
     ("frames.camera_link.parent", "camera_link", "$.frames.camera_link.parent", "form a cycle"),
     ("gazebo", {"links": {"ghost": {"mu1": 1.0}}}, "$.gazebo.links.ghost", "not a link"),
-    ("ros2_control", {"joints": {"camera_link_joint": {"command": ["position"]}}},
-     "$.ros2_control.joints.camera_link_joint", "is a fixed joint"),
+    (
+        "ros2_control",
+        {"joints": {"camera_link_joint": {"command": ["position"]}}},
+        "$.ros2_control.joints.camera_link_joint",
+        "is a fixed joint",
+    ),
 ]
 
 
@@ -148,4 +210,4 @@ def test_the_line_points_at_the_offending_value():
         validate(load_text(text, "spec.yaml"))
     (error,) = caught.value.errors
     line = text.splitlines()[error.line - 1]
-    assert line[error.column - 1:].startswith("base_lnk")
+    assert line[error.column - 1 :].startswith("base_lnk")

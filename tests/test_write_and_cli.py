@@ -20,12 +20,15 @@ SPEC = REPO / "examples" / "two_dof_arm.yaml"
 
 
 def snapshot(root):
-    return {p.relative_to(root).as_posix(): (p.read_bytes(), p.stat().st_mtime_ns) for p in root.rglob("*") if p.is_file()}
+    return {
+        p.relative_to(root).as_posix(): (p.read_bytes(), p.stat().st_mtime_ns) for p in root.rglob("*") if p.is_file()
+    }
 
 
 def gen_robot(*args, cwd=None):
-    return subprocess.run([sys.executable, "-m", "xacrokit.cli", *map(str, args)], capture_output=True, text=True,
-                          cwd=cwd, timeout=300)
+    return subprocess.run(
+        [sys.executable, "-m", "xacrokit.cli", *map(str, args)], capture_output=True, text=True, cwd=cwd, timeout=300
+    )
 
 
 def test_first_run_creates_everything_and_a_second_changes_nothing(tmp_path):
@@ -102,7 +105,9 @@ def test_manifest_records_what_was_generated(tmp_path):
 
 def test_invalid_spec_writes_nothing_and_exits_2(tmp_path):
     spec = tmp_path / "bad.yaml"
-    spec.write_text(SPEC.read_text(encoding="utf-8").replace("parent: upper_arm", "parent: upper_ram"), encoding="utf-8")
+    spec.write_text(
+        SPEC.read_text(encoding="utf-8").replace("parent: upper_arm", "parent: upper_ram"), encoding="utf-8"
+    )
     result = gen_robot(spec, "-o", tmp_path / "out")
     assert result.returncode == 2, result.stderr
     assert f"{spec}:" in result.stderr and "did you mean 'upper_arm'" in result.stderr
