@@ -23,6 +23,31 @@ from .resources import schemas_dir
 from .units import Kind, UnitError, parse_quantity
 
 MOVING = ("revolute", "continuous", "prismatic")
+# The robot name becomes a xacro macro name: it must not shadow a library macro or a xacro keyword.
+RESERVED_ROBOT_NAMES = frozenset(
+    {
+        "box_inertial",
+        "cylinder_inertial",
+        "sphere_inertial",
+        "hollow_cylinder_inertial",
+        "inertial",
+        "box_link",
+        "cylinder_link",
+        "sphere_link",
+        "wheel",
+        "dh_arm",
+        "call",
+        "arg",
+        "property",
+        "include",
+        "if",
+        "unless",
+        "macro",
+        "element",
+        "attribute",
+        "insert_block",
+    }
+)
 LIMITED = ("revolute", "prismatic")
 
 
@@ -522,6 +547,14 @@ def semantic_errors(raw: RawSpec, data: dict[str, Any], *, physics: bool = True)
     """Names, references and the tree always; physics only when every quantity parsed (it compares numbers)."""
     link_named, joint_named = _link_and_joint_names(data)
     errors = list(_duplicates(raw, link_named, "link")) + list(_duplicates(raw, joint_named, "joint"))
+    if data["robot"] in RESERVED_ROBOT_NAMES or data["robot"].startswith("_xacrokit"):
+        errors.append(
+            raw.error(
+                ("robot",),
+                f"robot name {data['robot']!r} is taken by a xacrokit macro or a xacro "
+                "keyword (the robot's macro is named after it); choose another name",
+            )
+        )
     link_names = {item.name for item in link_named}
     joint_types = {n: j["type"] for n, j in data.get("joints", {}).items()}
     for arm in data.get("arms", {}).values():

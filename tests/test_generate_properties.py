@@ -33,12 +33,17 @@ FAULT_WORDS = {
 }
 
 
+def write_spec(tmp_path_factory, spec, label):
+    folder = tmp_path_factory.mktemp(label)
+    path = folder / "spec.yaml"
+    path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
+    return folder, path
+
+
 @settings(suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 @given(spec=valid_specs())
 def test_every_valid_spec_generates_expands_and_loads(tmp_path_factory, spec):
-    folder = tmp_path_factory.mktemp("valid")
-    path = folder / "spec.yaml"
-    path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
+    folder, path = write_spec(tmp_path_factory, spec, "valid")
     result = xacrokit.generate(path, folder / "pkg")
     robot = result.robot
     urdf_path = folder / "pkg" / "urdf" / f"{robot.name}.urdf"
@@ -64,9 +69,7 @@ def test_every_valid_spec_generates_expands_and_loads(tmp_path_factory, spec):
 @given(case=invalid_specs())
 def test_every_single_fault_gives_located_errors_and_writes_nothing(tmp_path_factory, case):
     spec, fault = case
-    folder = tmp_path_factory.mktemp("invalid")
-    path = folder / "spec.yaml"
-    path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
+    folder, path = write_spec(tmp_path_factory, spec, "invalid")
     with pytest.raises(xacrokit.SpecErrors) as caught:
         xacrokit.generate(path, folder / "pkg")
     errors = caught.value.errors
@@ -79,9 +82,7 @@ def test_every_single_fault_gives_located_errors_and_writes_nothing(tmp_path_fac
 @given(case=invalid_specs())
 def test_invalid_specs_exit_2_from_the_command_line(tmp_path_factory, case):
     spec, _ = case
-    folder = tmp_path_factory.mktemp("cli")
-    path = folder / "spec.yaml"
-    path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
+    folder, path = write_spec(tmp_path_factory, spec, "cli")
     result = subprocess.run(
         [sys.executable, "-m", "xacrokit.cli", str(path), "-o", str(folder / "pkg")],
         capture_output=True,

@@ -144,18 +144,19 @@ def test_dh_arm_forward_kinematics_equal_the_dh_product(tmp_path_factory, case):
             assert_physical_tensor(tensor)
 
 
+ONE_ROW = {
+    "name": "j1",
+    "link": "l1",
+    "a": 0.1,
+    "d": 0.2,
+    "alpha": 0.0,
+    "limit": {"lower": -1.0, "upper": 1.0, "effort": 1.0, "velocity": 1.0},
+}
+
+
 def test_dh_arm_names_frames_as_documented(expand, tmp_path_factory):
     folder = tmp_path_factory.mktemp("names")
-    rows = [
-        {
-            "name": "j1",
-            "link": "l1",
-            "a": 0.1,
-            "d": 0.2,
-            "alpha": 0.0,
-            "limit": {"lower": -1.0, "upper": 1.0, "effort": 1.0, "velocity": 1.0},
-        }
-    ]
+    rows = [dict(ONE_ROW)]
     (folder / "t.yaml").write_text(yaml.safe_dump({"joints": rows}), encoding="utf-8")
     doc = xacro_doc(
         f"""<link name="world"/>
@@ -191,14 +192,7 @@ BAD_ROWS = [
 @pytest.mark.parametrize(("change", "words"), BAD_ROWS)
 def test_dh_arm_rejects_bad_rows_naming_the_row_and_key(tmp_path_factory, change, words):
     folder = tmp_path_factory.mktemp("bad")
-    row = {
-        "name": "j1",
-        "link": "l1",
-        "a": 0.1,
-        "d": 0.2,
-        "alpha": 0.0,
-        "limit": {"lower": -1.0, "upper": 1.0, "effort": 1.0, "velocity": 1.0},
-    }
+    row = dict(ONE_ROW)
     row.update(change)
     row = {k: v for k, v in row.items() if v is not None}
     (folder / "t.yaml").write_text(yaml.safe_dump({"joints": [row]}), encoding="utf-8")

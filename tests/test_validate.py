@@ -79,6 +79,8 @@ CASES = [
     # (what is changed, new value or "DELETE", expected JSON path, words of the message)
     ("robot", "my robot", "$.robot", "not a valid name"),
     ("robot", "${evil}", "$.robot", "not a valid name"),
+    ("robot", "wheel", "$.robot", "robot name 'wheel' is taken by a xacrokit macro"),
+    ("robot", "if", "$.robot", "robot name 'if' is taken"),
     ("links.base_link.mass", -1.0, "$.links.base_link.mass", "mass must be > 0 kg, got -1.0"),
     ("links.base_link.mass", "-2 kg", "$.links.base_link.mass", "mass must be > 0 kg"),
     ("links.base_link.mass", "3 parsecs", "$.links.base_link.mass", "unknown unit 'parsecs'"),
