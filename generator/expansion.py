@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import sys
 import xml.parsers.expat
 from collections.abc import Iterator, Mapping
 from pathlib import Path
@@ -66,9 +67,12 @@ def find_package(name: str, package_paths: Mapping[str, str | os.PathLike[str]] 
 
         with contextlib.suppress(PackageNotFoundError):
             return get_package_share_directory(name)
-    for prefix in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep):
+    # ROS prefixes, then the ament-style prefix that pip's cmeel packages (pinocchio's family) install into
+    prefixes = [p for p in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p]
+    prefixes += [str(Path(entry, "cmeel.prefix")) for entry in sys.path if entry]
+    for prefix in prefixes:
         candidate = Path(prefix, "share", name)
-        if prefix and (candidate / "package.xml").is_file():
+        if (candidate / "package.xml").is_file():
             return str(candidate)
     raise LookupError(
         f"$(find {name}): package {name!r} is not known here; pass its folder with --package {name}=PATH "

@@ -1,0 +1,694 @@
+"""The check stage: a strict verifier for any URDF, xacro document or spec.
+
+Our own rules run first (structure, joints, inertia, references, prefix, DH kinematics), then independent consumers
+(check_urdf, pinocchio, yourdfpy, MuJoCo when installed). Every finding has a stable rule id, a severity, the element
+it is about, where it came from when that can be known, and a message saying what is wrong and what would be right.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import tempfile
+from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Literal
+
+import numpy as np
+from lxml import etree
+
+from .consumers import CONSUMERS, ConsumerResult, available, run_consumers
+from .errors import XacrokitError
+
+Severity = Literal["error", "warning"]
+MOVING = ("revolute", "continuous", "prismatic")
+JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
+
+# rule id -> (name, severity, what it checks). The ids are stable: scripts may filter on them.
+RULES: dict[str, tuple[str, Severity, str]] = {
+    "U001": ("urdf-readable", "error", "the document is well-formed XML with a <robot> root"),
+    "S001": ("one-root", "error", "exactly one link has no parent"),
+    "S002": ("no-cycle", "error", "no chain of joints leads back to where it started"),
+    "S003": ("joint-links-exist", "error", "every joint's parent and child is a link of the document"),
+    "S004": ("unique-link-names", "error", "no two links share a name"),
+    "S005": ("unique-joint-names", "error", "no two joints share a name"),
+    "S006": ("one-parent", "error", "no link is the child of two joints"),
+    "J001": ("limit-present", "error", "revolute and prismatic joints have <limit> with lower and upper"),
+    "J002": ("limit-order", "error", "lower <= upper"),
+    "J003": ("limit-effort", "error", "moving joints' effort limit is > 0"),
+    "J004": ("limit-velocity", "error", "moving joints' velocity limit is > 0"),
+    "J005": ("continuous-limit", "error", "continuous joints have <limit> with effort and velocity"),
+    "J006": ("axis-nonzero", "error", "a joint's axis is not the zero vector"),
+    "J007": ("axis-unit", "warning", "a joint's axis has unit length"),
+    "J008": ("mimic-target", "error", "<mimic> names an existing moving joint of the same type, not itself"),
+    "J009": ("dynamics-present", "warning", "moving joints have <dynamics> (damping, friction)"),
+    "J010": ("safety-inside-limits", "error", "safety_controller soft limits lie inside the hard limits"),
+    "J011": ("joint-type", "error", "a joint's type is one URDF knows"),
+    "I001": ("mass-positive", "error", "links with geometry or on a moving joint have an inertial with mass > 0"),
+    "I002": ("inertia-positive-definite", "error", "the inertia tensor is positive definite"),
+    "I003": ("inertia-triangle", "error", "principal moments obey the triangle inequality"),
+    "I004": ("inertia-plausible", "warning", "inertia fits the collision geometry's size (within 100x)"),
+    "I005": ("inertia-placeholder", "warning", "the tensor is not an identity-like placeholder"),
+    "R001": ("gazebo-reference", "error", "<gazebo reference> names an existing link or joint"),
+    "R002": ("material-defined", "error", "a material used by name without a colour is defined"),
+    "R003": ("mesh-resolves", "error", "mesh files resolve (package://, file:// or paths) and exist"),
+    "P001": ("prefix", "error", "every link, joint, gazebo reference and ros2_control joint carries the prefix"),
+    "K001": ("dh-kinematics", "error", "for a spec's DH arms, URDF forward kinematics equal the DH product"),
+    "C001": ("consumer-accepts", "error", "an independent consumer loads the URDF"),
+}
+TOLERANCE = 1e-9
+
+
+@dataclass(frozen=True)
+class Finding:
+    rule: str
+    severity: Severity
+    element_kind: str  # robot, link, joint, gazebo, material, mesh, ros2_control, consumer
+    element: str
+    message: str
+    file: str | None = None
+    line: int | None = None
+
+    @property
+    def name(self) -> str:
+        return RULES[self.rule][0]
+
+    def to_dict(self) -> dict[str, object]:
+        return {
+            "rule": self.rule,
+            "name": self.name,
+            "severity": self.severity,
+            "element": {"kind": self.element_kind, "name": self.element},
+            "file": self.file,
+            "line": self.line,
+            "message": self.message,
+        }
+
+
+@dataclass(frozen=True)
+class CheckReport:
+    source: str
+    kind: str  # urdf, xacro or spec
+    robot: str | None
+    findings: tuple[Finding, ...]
+    consumers: tuple[ConsumerResult, ...] = field(default=())
+
+    @property
+    def errors(self) -> list[Finding]:
+        return [f for f in self.findings if f.severity == "error"]
+
+    @property
+    def warnings(self) -> list[Finding]:
+        return [f for f in self.findings if f.severity == "warning"]
+
+    def exit_code(self, strict: bool = False) -> int:
+        return 1 if self.errors or (strict and self.warnings) else 0
+
+    def to_dict(self) -> dict[str, object]:
+        return {
+            "format": "xacrokit-check/1",
+            "source": self.source,
+            "kind": self.kind,
+            "robot": self.robot,
+            "summary": {
+                "errors": len(self.errors),
+                "warnings": len(self.warnings),
+                "verdict": "clean" if not self.errors else "errors",
+            },
+            "findings": [f.to_dict() for f in self.findings],
+            "consumers": [{"name": c.name, "status": c.status, "message": c.message} for c in self.consumers],
+        }
+
+
+# ------------------------------------------------------------------------------------------------------------ rules
+class _Doc:
+    """The parts of a URDF the rules read, with source lines."""
+
+    def __init__(
+        self, root: etree._Element, file: str | None, lines: Mapping[tuple[str, str], int] | None, *, source_lines: bool
+    ) -> None:
+        self.root = root
+        self.file = file
+        self.spec_lines = lines  # for spec input: (kind, name) -> line in the spec
+        self.source_lines = source_lines  # URDF input: element lines are the file's own
+        self.links = [e for e in root if e.tag == "link"]
+        self.joints = [e for e in root if e.tag == "joint"]
+        self.link_names = {e.get("name", "") for e in self.links}
+        self.joint_by_name = {e.get("name", ""): e for e in self.joints}
+
+    def finding(self, rule: str, kind: str, name: str, message: str, element: etree._Element | None = None) -> Finding:
+        line = None
+        if self.spec_lines is not None:
+            line = self.spec_lines.get((kind, name))
+        elif element is not None and self.source_lines:
+            line = element.sourceline  # (an expanded xacro's lines are not the xacro file's: leave them out)
+        return Finding(rule, RULES[rule][1], kind, name, message, self.file, line)
+
+
+def _float(element: etree._Element | None, attribute: str, default: float | None = None) -> float | None:
+    if element is None or element.get(attribute) is None:
+        return default
+    try:
+        return float(element.get(attribute, ""))
+    except ValueError:
+        return math.nan
+
+
+def _vector(element: etree._Element | None, attribute: str, default: str = "0 0 0") -> np.ndarray:
+    text = default if element is None else element.get(attribute, default)
+    try:
+        values = [float(v) for v in text.split()]
+    except ValueError:
+        values = [math.nan] * 3
+    return np.array(values if len(values) == 3 else [math.nan] * 3)
+
+
+def structure_rules(doc: _Doc) -> Iterator[Finding]:
+    seen: dict[str, etree._Element] = {}
+    for link in doc.links:
+        name = link.get("name", "")
+        if name in seen:
+            yield doc.finding(
+                "S004",
+                "link",
+                name,
+                f"link {name!r} is defined twice (also on line {seen[name].sourceline}); rename one",
+                link,
+            )
+        seen[name] = link
+    seen_joints: dict[str, etree._Element] = {}
+    parent_of: dict[str, tuple[str, str]] = {}  # child -> (parent, joint)
+    children: dict[str, list[str]] = {}
+    for joint in doc.joints:
+        name = joint.get("name", "")
+        if name in seen_joints:
+            yield doc.finding(
+                "S005",
+                "joint",
+                name,
+                f"joint {name!r} is defined twice (also on line {seen_joints[name].sourceline}); rename one",
+                joint,
+            )
+        seen_joints[name] = joint
+        parent = joint.find("parent").get("link", "") if joint.find("parent") is not None else ""
+        child = joint.find("child").get("link", "") if joint.find("child") is not None else ""
+        missing = [
+            f"{role} {value!r}" for role, value in (("parent", parent), ("child", child)) if value not in doc.link_names
+        ]
+        if missing:
+            yield doc.finding("S003", "joint", name, f"{' and '.join(missing)} not a link of this robot", joint)
+            continue
+        if child in parent_of:
+            loop = _path_up(parent, child, parent_of)
+            if loop:  # following this joint leads back to the child: a cycle hanging off the tree
+                yield doc.finding(
+                    "S002",
+                    "joint",
+                    name,
+                    f"joint {name!r} closes a cycle {' -> '.join([*reversed(loop), child])}; remove it",
+                    joint,
+                )
+            else:
+                first_parent, first_joint = parent_of[child]
+                yield doc.finding(
+                    "S006",
+                    "link",
+                    child,
+                    f"link {child!r} has two parents: {first_parent!r} (joint "
+                    f"{first_joint!r}) and {parent!r} (joint {name!r}); a URDF is "
+                    "a tree: remove one of the joints",
+                    joint,
+                )
+            continue
+        parent_of[child] = (parent, name)
+        children.setdefault(parent, []).append(child)
+    roots = sorted(n for n in doc.link_names if n not in parent_of)
+    reachable: set[str] = set()
+    stack = list(roots)
+    while stack:
+        current = stack.pop()
+        if current not in reachable:
+            reachable.add(current)
+            stack += children.get(current, [])
+    in_cycles = sorted(doc.link_names - reachable)
+    if in_cycles:
+        yield doc.finding(
+            "S002",
+            "link",
+            in_cycles[0],
+            f"links {', '.join(in_cycles)} form a cycle; break it by removing one of its joints",
+        )
+    if len(roots) != 1 and doc.links:
+        what = "no link" if not roots else f"{len(roots)} links ({', '.join(roots)})"
+        yield doc.finding(
+            "S001",
+            "robot",
+            doc.root.get("name", ""),
+            f"{what} have no parent; a robot has exactly one root: connect the trees with joints",
+        )
+
+
+def _path_up(start: str, target: str, parent_of: Mapping[str, tuple[str, str]]) -> list[str]:
+    """Links from ``start`` up through its ancestors to ``target`` (inclusive), or [] when target is not above."""
+    path, current, seen = [start], start, {start}
+    while current != target:
+        if current not in parent_of:
+            return []
+        current = parent_of[current][0]
+        if current in seen:
+            return []
+        seen.add(current)
+        path.append(current)
+    return path
+
+
+def joint_rules(doc: _Doc) -> Iterator[Finding]:
+    types = {j.get("name", ""): j.get("type", "") for j in doc.joints}
+    for joint in doc.joints:
+        name, kind = joint.get("name", ""), joint.get("type", "")
+
+        def found(rule: str, message: str) -> Finding:
+            return doc.finding(rule, "joint", name, message, joint)
+
+        if kind not in JOINT_TYPES:
+            yield found("J011", f"type {kind!r} is not a URDF joint type ({', '.join(JOINT_TYPES)})")
+            continue
+        limit = joint.find("limit")
+        if kind in ("revolute", "prismatic"):
+            lower, upper = _float(limit, "lower"), _float(limit, "upper")
+            if limit is None or lower is None or upper is None:
+                yield found("J001", f"a {kind} joint needs <limit lower upper effort velocity>")
+            elif not lower <= upper:
+                yield found("J002", f"limit lower ({lower}) is greater than upper ({upper}); swap them")
+        if kind == "continuous" and (limit is None or limit.get("effort") is None or limit.get("velocity") is None):
+            yield found(
+                "J005",
+                "a continuous joint needs <limit effort=... velocity=...> (controllers and simulators read them)",
+            )
+        if kind in MOVING and limit is not None:
+            for rule, key, unit in (("J003", "effort", "N*m or N"), ("J004", "velocity", "rad/s or m/s")):
+                value = _float(limit, key)
+                if value is not None and not value > 0:
+                    yield found(rule, f"limit {key} is {value}; it must be > 0 ({unit})")
+                elif value is None and kind != "continuous":
+                    yield found(rule, f"limit has no {key}; give one > 0 ({unit})")
+        if kind in MOVING or kind == "planar":
+            axis = _vector(joint.find("axis"), "xyz", "1 0 0")
+            norm = float(np.linalg.norm(axis))
+            if not np.all(np.isfinite(axis)) or norm == 0:
+                yield found(
+                    "J006",
+                    f"axis {joint.find('axis').get('xyz') if joint.find('axis') is not None else ''!r}"
+                    " is zero or unreadable; give a direction such as '0 0 1'",
+                )
+            elif abs(norm - 1.0) > 1e-6:
+                yield found("J007", f"axis has length {norm:.6g}; consumers normalise it, write the unit vector")
+        if kind in MOVING and joint.find("dynamics") is None and joint.find("mimic") is None:
+            yield found("J009", "moving joint without <dynamics damping friction>; simulators then assume none")
+        mimic = joint.find("mimic")
+        if mimic is not None:
+            target = mimic.get("joint", "")
+            if target == name:
+                yield found("J008", "a joint cannot mimic itself")
+            elif target not in types:
+                yield found("J008", f"mimics {target!r}, which is not a joint of this robot")
+            elif (
+                types[target] not in MOVING
+                or kind not in MOVING
+                or (types[target] == "prismatic") != (kind == "prismatic")
+            ):
+                yield found(
+                    "J008",
+                    f"mimics {target!r} ({types[target]}) from a {kind} joint; both must move, "
+                    "and rotate (or slide) alike",
+                )
+        safety = joint.find("safety_controller")
+        if safety is not None and limit is not None and kind in ("revolute", "prismatic"):
+            lower, upper = _float(limit, "lower"), _float(limit, "upper")
+            soft_lower, soft_upper = _float(safety, "soft_lower_limit"), _float(safety, "soft_upper_limit")
+            if lower is not None and soft_lower is not None and soft_lower < lower:
+                yield found("J010", f"soft_lower_limit {soft_lower} is below the hard lower limit {lower}")
+            if upper is not None and soft_upper is not None and soft_upper > upper:
+                yield found("J010", f"soft_upper_limit {soft_upper} is above the hard upper limit {upper}")
+
+
+def _tensor(inertia: etree._Element) -> np.ndarray:
+    get = {k: _float(inertia, k, 0.0) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+    return np.array(
+        [
+            [get["ixx"], get["ixy"], get["ixz"]],
+            [get["ixy"], get["iyy"], get["iyz"]],
+            [get["ixz"], get["iyz"], get["izz"]],
+        ],
+        dtype=float,
+    )
+
+
+def _geometry_extent(geometry: etree._Element | None) -> np.ndarray | None:
+    """Edge lengths of the geometry's own bounding box, or None when unknown (meshes)."""
+    if geometry is None:
+        return None
+    if (box := geometry.find("box")) is not None:
+        return _vector(box, "size")
+    if (cylinder := geometry.find("cylinder")) is not None:
+        r, length = _float(cylinder, "radius", math.nan), _float(cylinder, "length", math.nan)
+        return np.array([2 * r, 2 * r, length])
+    if (sphere := geometry.find("sphere")) is not None:
+        return np.full(3, 2 * (_float(sphere, "radius", math.nan) or math.nan))
+    return None
+
+
+def inertia_rules(doc: _Doc) -> Iterator[Finding]:
+    moved = {j.find("child").get("link") for j in doc.joints if j.get("type") in MOVING and j.find("child") is not None}
+    for link in doc.links:
+        name = link.get("name", "")
+        inertial = link.find("inertial")
+        has_geometry = link.find("visual") is not None or link.find("collision") is not None
+        mass = _float(inertial.find("mass"), "value") if inertial is not None else None
+        if has_geometry or name in moved:
+            why = "has geometry" if has_geometry else "is moved by a joint"
+            if mass is None:
+                yield doc.finding(
+                    "I001", "link", name, f"link {why} but no <inertial> mass; give mass > 0 (kg) and its inertia", link
+                )
+                continue
+            if not mass > 0:
+                yield doc.finding("I001", "link", name, f"mass is {mass}; it must be > 0 kg", link)
+                continue
+        if inertial is None or inertial.find("inertia") is None:
+            continue
+        tensor = _tensor(inertial.find("inertia"))
+        if not np.all(np.isfinite(tensor)):
+            yield doc.finding("I002", "link", name, "the inertia tensor has unreadable entries", link)
+            continue
+        moments = np.linalg.eigvalsh(tensor)
+        scale = max(float(np.abs(moments).max()), 1e-300)
+        if moments.min() <= TOLERANCE * scale:
+            yield doc.finding(
+                "I002",
+                "link",
+                name,
+                f"inertia is not positive definite (principal moments "
+                f"{_fmt(moments)}); every principal moment must be > 0",
+                link,
+            )
+            continue
+        total = float(moments.sum())
+        if any(m > total - m + TOLERANCE * total for m in moments):
+            yield doc.finding(
+                "I003",
+                "link",
+                name,
+                f"principal moments {_fmt(moments)} violate the triangle "
+                "inequality: each must be at most the sum of the other two",
+                link,
+            )
+            continue
+        off_diagonal = tensor[np.triu_indices(3, 1)]
+        diagonal = np.diag(tensor)
+        if (
+            np.all(off_diagonal == 0)
+            and np.all(diagonal == diagonal[0])
+            and diagonal[0] in (1.0, 0.1, 0.01, 1e-3, 1e-4, 1e-5, 1e-6)
+        ):
+            yield doc.finding(
+                "I005",
+                "link",
+                name,
+                f"inertia is {diagonal[0]:g} * identity, a common placeholder; "
+                "compute it from the body (e.g. xacrokit's inertia macros)",
+                link,
+            )
+        if mass and mass > 0:
+            yield from _plausibility(doc, link, name, mass, total)
+
+
+def _plausibility(doc: _Doc, link: etree._Element, name: str, mass: float, trace: float) -> Iterator[Finding]:
+    """Compare trace(I) with a solid box filling the collision geometry's bounding box: m * diagonal^2 / 6."""
+    extents = [_geometry_extent(c.find("geometry")) for c in link.findall("collision")]
+    if not extents or any(e is None or not np.all(np.isfinite(e)) for e in extents):
+        return
+    diagonal_sq = max(float(np.dot(e, e)) for e in extents)  # type: ignore[arg-type]
+    expected = mass * diagonal_sq / 6.0
+    if expected > 0 and not 1e-2 <= trace / expected <= 1e2:
+        yield doc.finding(
+            "I004",
+            "link",
+            name,
+            f"inertia (trace {trace:.3g} kg*m^2) is {trace / expected:.3g} times "
+            f"that of a solid body filling the collision geometry ({expected:.3g}); "
+            "a units mistake (mm for m, g for kg)?",
+            link,
+        )
+
+
+def _fmt(values: np.ndarray) -> str:
+    return ", ".join(f"{v:.6g}" for v in values)
+
+
+def reference_rules(
+    doc: _Doc, package_paths: Mapping[str, str | Path] | None, base_dir: Path | None
+) -> Iterator[Finding]:
+    for gazebo in doc.root.findall("gazebo"):
+        reference = gazebo.get("reference")
+        if reference is not None and reference not in doc.link_names and reference not in doc.joint_by_name:
+            yield doc.finding(
+                "R001", "gazebo", reference, f"<gazebo reference={reference!r}> names no link or joint", gazebo
+            )
+    defined = {m.get("name") for m in doc.root.findall("material")}
+    for material in doc.root.iter("material"):
+        if material.getparent() is doc.root:
+            continue
+        name = material.get("name")
+        has_own = material.find("color") is not None or material.find("texture") is not None
+        if name and not has_own and name not in defined:
+            yield doc.finding(
+                "R002",
+                "material",
+                name,
+                f"material {name!r} is used but not defined; add <material name={name!r}><color rgba=.../></material>",
+                material,
+            )
+    for mesh in doc.root.iter("mesh"):
+        filename = mesh.get("filename", "")
+        problem, severity_rule = _mesh_problem(filename, package_paths, base_dir)
+        if problem:
+            finding = doc.finding("R003", "mesh", filename, problem, mesh)
+            if severity_rule == "warning":
+                finding = Finding(
+                    finding.rule,
+                    "warning",
+                    finding.element_kind,
+                    finding.element,
+                    finding.message,
+                    finding.file,
+                    finding.line,
+                )
+            yield finding
+
+
+def _mesh_problem(
+    filename: str, package_paths: Mapping[str, str | Path] | None, base_dir: Path | None
+) -> tuple[str | None, Severity]:
+    from .expansion import find_package
+
+    if filename.startswith("package://"):
+        package, _, rest = filename[len("package://") :].partition("/")
+        try:
+            folder = Path(find_package(package, package_paths))
+        except LookupError:
+            return (
+                f"package {package!r} is not known here, so {filename!r} cannot be checked; pass "
+                f"--package {package}=PATH",
+                "warning",
+            )
+        path = folder / rest
+    elif filename.startswith("file://"):
+        path = Path(filename[len("file://") :])
+    elif re.match(r"^[a-z][a-z0-9+.-]*://", filename):
+        return f"{filename!r}: unknown URI scheme; use package:// or file://", "error"
+    else:
+        path = (base_dir or Path.cwd()) / filename
+    if not path.is_file():
+        return f"mesh file {filename!r} does not exist (looked at {path})", "error"
+    return None, "error"
+
+
+def prefix_rules(doc: _Doc, prefix: str) -> Iterator[Finding]:
+    named = [("link", e) for e in doc.links] + [("joint", e) for e in doc.joints]
+    named += [("gazebo", g) for g in doc.root.findall("gazebo") if g.get("reference") is not None]
+    named += [("ros2_control", j) for j in doc.root.findall("ros2_control/joint")]
+    for kind, element in named:
+        name = element.get("reference") if kind == "gazebo" else element.get("name", "")
+        if not (name or "").startswith(prefix):
+            yield doc.finding(
+                "P001", kind, name or "", f"{kind} {name!r} does not start with the prefix {prefix!r}", element
+            )
+
+
+# ------------------------------------------------------------------------------------------------------------ inputs
+def _spec_lines(spec_path: Path) -> tuple[dict[tuple[str, str], int], object]:
+    """For spec input: the robot and where each generated link and joint is written in the spec."""
+    from .load import load_file
+    from .resolve import resolve
+    from .validate import validate
+
+    raw = load_file(spec_path)
+    robot = resolve(validate(raw))
+    lines: dict[tuple[str, str], int] = {}
+
+    def at(path: tuple[str | int, ...]) -> int:
+        return raw.locate(path, key=True)[0] or 0
+
+    for name in raw.data.get("links", {}):
+        lines[("link", name)] = at(("links", name))
+    for name in raw.data.get("joints", {}):
+        lines[("joint", name)] = at(("joints", name))
+    for section in ("wheels", "frames"):
+        for name in raw.data.get(section, {}):
+            lines[("link", name)] = lines[("joint", f"{name}_joint")] = at((section, name))
+    for arm in robot.arms:
+        lines[("link", arm.base)] = lines[("joint", f"{arm.base}_joint")] = at(("arms", arm.name))
+        lines[("link", arm.tool)] = lines[("joint", f"{arm.tool}_joint")] = at(("arms", arm.name))
+        for index, row in enumerate(arm.rows):
+            lines[("link", row.link)] = lines[("joint", row.name)] = at(("arms", arm.name, "joints", index))
+    return lines, robot
+
+
+def kinematics_rules(doc: _Doc, robot, urdf_text: str) -> Iterator[Finding]:
+    """K001: for each DH arm, FK from its parent to its tool frame equals the DH product at sample joint values."""
+    import pinocchio as pin
+
+    from .kinematics import dh_chain
+
+    model = pin.buildModelFromXML(urdf_text)
+    data = model.createData()
+    rng = np.random.default_rng(0)
+    for arm in robot.arms:
+        worst = 0.0
+        for trial in range(8):
+            q = pin.neutral(model)
+            values = []
+            for row in arm.rows:
+                value = 0.0 if row.type == "fixed" or trial == 0 else float(rng.uniform(-math.pi, math.pi))
+                if row.type != "fixed":
+                    joint = model.getJointId(row.name)
+                    start = model.idx_qs[joint]
+                    if model.nqs[joint] == 2:
+                        q[start], q[start + 1] = math.cos(value), math.sin(value)
+                    else:
+                        q[start] = value
+                values.append(value)
+            pin.framesForwardKinematics(model, data, q)
+            got = (data.oMf[model.getFrameId(arm.parent)].inverse() * data.oMf[model.getFrameId(arm.tool)]).homogeneous
+            want = dh_chain(arm.rows, values, arm.convention, arm.origin, arm.tool_origin)
+            worst = max(worst, float(np.abs(got - want).max()))
+        if not worst <= TOLERANCE:
+            yield doc.finding(
+                "K001",
+                "link",
+                arm.tool,
+                f"arm {arm.name!r}: URDF forward kinematics differ from the DH "
+                f"product by up to {worst:.3g} (m / rotation entries)",
+            )
+
+
+def _load_urdf(
+    path: Path, kind: str, mappings: Mapping[str, str] | None, package_paths: Mapping[str, str | Path] | None
+) -> tuple[str, object | None, dict | None]:
+    """URDF text, the spec's robot model (spec input only), and spec lines (spec input only)."""
+    if kind == "spec":
+        from .pipeline import expand_package
+        from .render import render_package
+
+        lines, robot = _spec_lines(path)
+        files = render_package(robot, spec_name=path.name)  # type: ignore[arg-type]
+        return expand_package(robot, files).content, robot, lines  # type: ignore[arg-type]
+    if kind == "xacro":
+        from .expansion import expand_file
+
+        return expand_file(path, mappings, package_paths=package_paths), None, None
+    try:
+        return path.read_text(encoding="utf-8"), None, None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise XacrokitError(f"cannot read {path}: {exc}") from None
+
+
+def input_kind(path: Path) -> str:
+    name = path.name.lower()
+    if name.endswith((".yaml", ".yml")):
+        return "spec"
+    if name.endswith(".xacro"):
+        return "xacro"
+    return "urdf"
+
+
+def check(
+    path: str | Path,
+    mappings: Mapping[str, str] | None = None,
+    *,
+    prefix: str | None = None,
+    consumers: Sequence[str] | None = None,
+    package_paths: Mapping[str, str | Path] | None = None,
+) -> CheckReport:
+    """Check a URDF, a xacro document (expanded with ``mappings``) or a spec (generated in memory, never written).
+
+    Args:
+        path: the file; ``.yaml``/``.yml`` is a spec, ``.xacro`` a xacro document, anything else URDF.
+        mappings: ``xacro:arg`` values for a xacro document.
+        prefix: when given, every link, joint, gazebo reference and ros2_control joint must start with it.
+        consumers: which independent consumers to run (default: every installed one of check_urdf, pinocchio,
+            yourdfpy, mujoco); ``[]`` for none.
+        package_paths: folders for ``$(find PKG)`` and ``package://PKG`` of packages not otherwise found.
+
+    Raises:
+        XacrokitError: the input cannot be read (a spec with errors raises SpecErrors, a xacro ExpandError).
+    """
+    path = Path(path)
+    kind = input_kind(path)
+    if mappings and kind != "xacro":
+        raise XacrokitError("name:=value arguments only apply to xacro input")
+    text, robot, lines = _load_urdf(path, kind, mappings, package_paths)
+    try:
+        root = etree.fromstring(text.encode("utf-8"))
+    except etree.XMLSyntaxError as exc:
+        finding = Finding("U001", "error", "robot", "", f"not well-formed XML: {exc}", str(path), exc.lineno)
+        return CheckReport(str(path), kind, None, (finding,))
+    if root.tag != "robot":
+        finding = Finding("U001", "error", "robot", "", f"the root element is <{root.tag}>, not <robot>", str(path), 1)
+        return CheckReport(str(path), kind, None, (finding,))
+    doc = _Doc(root, str(path), lines, source_lines=kind == "urdf")
+    findings = list(structure_rules(doc))
+    structural = any(f.rule.startswith("S") for f in findings)
+    findings += joint_rules(doc)
+    findings += inertia_rules(doc)
+    findings += reference_rules(doc, package_paths, path.parent)
+    if prefix is not None:
+        findings += prefix_rules(doc, prefix)
+    if robot is not None and not structural and getattr(robot, "arms", ()):
+        findings += kinematics_rules(doc, robot, text)
+    names = [c for c in (CONSUMERS if consumers is None else consumers) if consumers is not None or available(c)]
+    results = _consumers(names, text, structural)
+    findings += [
+        Finding("C001", "error", "consumer", r.name, f"{r.name} {r.status}: {r.message}".rstrip(": "), str(path))
+        for r in results
+        if r.failed
+    ]
+    return CheckReport(str(path), kind, root.get("name"), tuple(findings), tuple(results))
+
+
+def _consumers(names: list[str], text: str, structural: bool) -> list[ConsumerResult]:
+    unknown = [n for n in names if n not in CONSUMERS]
+    if unknown:
+        raise XacrokitError(f"unknown consumer(s) {', '.join(unknown)}; choose from {', '.join(CONSUMERS)}")
+    if not names:
+        return []
+    if structural:  # a tree that is not a tree hangs check_urdf and crashes others; our finding says it all
+        return [
+            ConsumerResult(n, "skipped", "not run: the structure errors above make the URDF unusable") for n in names
+        ]
+    with tempfile.TemporaryDirectory(prefix="xacrokit-check-") as folder:
+        urdf = Path(folder) / "robot.urdf"
+        urdf.write_text(text, encoding="utf-8")
+        return run_consumers(names, urdf)

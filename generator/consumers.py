@@ -1,0 +1,151 @@
+"""Independent consumers of a URDF: urdfdom's check_urdf, pinocchio, yourdfpy and (when installed) MuJoCo.
+
+Each runs in its own process with a time limit and an output cap, so a consumer that crashes, hangs or prints forever
+(check_urdf does on a cycle that hangs off the root) is reported, never propagated. Run as
+``python -m xacrokit.consumers NAME FILE`` this module loads FILE with one Python consumer and prints one JSON line.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import shutil
+import subprocess
+import sys
+import threading
+from dataclasses import dataclass
+from pathlib import Path
+
+CONSUMERS = ("check_urdf", "pinocchio", "yourdfpy", "mujoco")
+TIMEOUT_S = 30.0
+OUTPUT_CAP = 64 * 1024
+
+
+@dataclass(frozen=True)
+class ConsumerResult:
+    """``status``: accepted, rejected, crashed, timeout, skipped or unavailable."""
+
+    name: str
+    status: str
+    message: str = ""
+
+    @property
+    def failed(self) -> bool:
+        return self.status in ("rejected", "crashed", "timeout")
+
+
+def available(name: str) -> bool:
+    if name == "check_urdf":
+        return _check_urdf_binary() is not None
+    module = {"pinocchio": "pinocchio", "yourdfpy": "yourdfpy", "mujoco": "mujoco"}[name]
+    return importlib.util.find_spec(module) is not None
+
+
+def _check_urdf_binary() -> str | None:
+    return shutil.which("check_urdf", path=str(Path(sys.executable).parent)) or shutil.which("check_urdf")
+
+
+def _run_capped(command: list[str], timeout: float) -> tuple[int | None, str, bool]:
+    """Run ``command``; return (exit code or None on timeout, first OUTPUT_CAP bytes of output, output overflowed)."""
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL)
+    chunks: list[bytes] = []
+    overflow = threading.Event()
+
+    def drain() -> None:
+        size = 0
+        assert process.stdout is not None
+        for chunk in iter(lambda: process.stdout.read(4096), b""):
+            if size < OUTPUT_CAP:
+                chunks.append(chunk)
+            size += len(chunk)
+            if size > OUTPUT_CAP:
+                overflow.set()
+                process.kill()  # a consumer printing without end: its verdict is already clear
+                break
+
+    reader = threading.Thread(target=drain, daemon=True)
+    reader.start()
+    try:
+        code: int | None = process.wait(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        process.wait()
+        code = None
+    reader.join(timeout=5)
+    text = b"".join(chunks)[:OUTPUT_CAP].decode("utf-8", errors="replace")
+    return (None if overflow.is_set() else code), text, overflow.is_set()
+
+
+def _tail(text: str, lines: int = 3) -> str:
+    kept = [line.strip() for line in text.strip().splitlines() if line.strip()]
+    return " | ".join(kept[-lines:])
+
+
+def run_consumer(name: str, urdf_path: Path, timeout: float = TIMEOUT_S) -> ConsumerResult:
+    if not available(name):
+        return ConsumerResult(
+            name, "unavailable", "not installed" + (" (pip install xacrokit[mujoco])" if name == "mujoco" else "")
+        )
+    if name == "check_urdf":
+        command = [_check_urdf_binary() or "check_urdf", str(urdf_path)]
+    else:
+        command = [sys.executable, "-m", "xacrokit.consumers", name, str(urdf_path)]
+    code, output, overflow = _run_capped(command, timeout)
+    if overflow:
+        return ConsumerResult(name, "rejected", f"printed more than {OUTPUT_CAP} bytes without ending; stopped")
+    if code is None:
+        return ConsumerResult(name, "timeout", f"no verdict within {timeout:g} s; stopped")
+    if name == "check_urdf":
+        if code == 0 and "Successfully Parsed XML" in output:
+            return ConsumerResult(name, "accepted")
+        return ConsumerResult(name, "rejected", _tail(output) or f"exit code {code}")
+    try:
+        verdict = json.loads(output.strip().splitlines()[-1])
+    except (ValueError, IndexError):
+        return ConsumerResult(name, "crashed", _tail(output) or f"exit code {code}")
+    return ConsumerResult(name, verdict["status"], verdict.get("message", ""))
+
+
+def run_consumers(names: list[str], urdf_path: Path, timeout: float = TIMEOUT_S) -> list[ConsumerResult]:
+    """Run the named consumers side by side; results in the order asked."""
+    results: dict[str, ConsumerResult] = {}
+    threads = [
+        threading.Thread(target=lambda n=n: results.__setitem__(n, run_consumer(n, urdf_path, timeout))) for n in names
+    ]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    return [results[n] for n in names]
+
+
+def _load(name: str, path: str) -> str:
+    """Load the URDF with one library; return a one-line description of what it saw."""
+    if name == "pinocchio":
+        import pinocchio
+
+        model = pinocchio.buildModelFromUrdf(path)
+        return f"{model.njoints - 1} joints, {model.nframes} frames"
+    if name == "yourdfpy":
+        import yourdfpy
+
+        robot = yourdfpy.URDF.load(path, build_scene_graph=True, load_meshes=False, load_collision_meshes=False)
+        return f"{len(robot.link_map)} links, {len(robot.joint_map)} joints"
+    import mujoco
+
+    model = mujoco.MjModel.from_xml_path(path)
+    return f"{model.nbody} bodies"
+
+
+def main(argv: list[str] | None = None) -> int:
+    name, path = (argv if argv is not None else sys.argv[1:])[:2]
+    try:
+        seen = _load(name, path)
+        print(json.dumps({"status": "accepted", "message": seen}))
+    except Exception as exc:  # a consumer's own complaint is its verdict
+        print(json.dumps({"status": "rejected", "message": f"{type(exc).__name__}: {exc}"[:2000]}))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

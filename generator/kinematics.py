@@ -1,0 +1,60 @@
+"""Rigid transforms and the DH product, written from the textbook definitions (numpy, 4x4 homogeneous)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from .model import DHRow, Origin
+
+
+def rot_x(angle: float) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+
+
+def rot_y(angle: float) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def rot_z(angle: float) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def rpy_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """URDF's fixed-axis roll-pitch-yaw: R = Rz(yaw) Ry(pitch) Rx(roll)."""
+    return rot_z(yaw) @ rot_y(pitch) @ rot_x(roll)
+
+
+def transform(rotation: np.ndarray, translation: Sequence[float]) -> np.ndarray:
+    result = np.eye(4)
+    result[:3, :3] = rotation
+    result[:3, 3] = translation
+    return result
+
+
+def origin_transform(origin: Origin) -> np.ndarray:
+    return transform(rpy_matrix(*origin.rpy), origin.xyz)
+
+
+def dh_step(row: DHRow, q: float, convention: str) -> np.ndarray:
+    """One row: standard Rz(theta) Tz(d) Tx(a) Rx(alpha), modified Rx(alpha) Tx(a) Rz(theta) Tz(d); q moves the joint."""
+    theta, d = row.theta, row.d
+    if row.type in ("revolute", "continuous"):
+        theta += q
+    elif row.type == "prismatic":
+        d += q
+    screw_z = transform(rot_z(theta), (0.0, 0.0, 0.0)) @ transform(np.eye(3), (0.0, 0.0, d))
+    screw_x = transform(np.eye(3), (row.a, 0.0, 0.0)) @ transform(rot_x(row.alpha), (0.0, 0.0, 0.0))
+    return screw_z @ screw_x if convention == "standard" else screw_x @ screw_z
+
+
+def dh_chain(rows: Sequence[DHRow], q: Sequence[float], convention: str, base: Origin, tool: Origin) -> np.ndarray:
+    """Pose of the tool frame in the arm's parent: base origin, the DH rows at joint values q, the tool offset."""
+    result = origin_transform(base)
+    for row, value in zip(rows, q, strict=True):
+        result = result @ dh_step(row, value, convention)
+    return result @ origin_transform(tool)

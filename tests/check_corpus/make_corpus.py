@@ -1,0 +1,187 @@
+"""Writes the check corpus: for every rule, RULE_fail.urdf (the rule must fire) and RULE_pass.urdf (it must not).
+
+Each file is the small valid robot below with one targeted change. Run from this folder: python make_corpus.py
+"""
+
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+
+BASE_LINK = """  <link name="base_link">
+    <visual><geometry><box size="0.2 0.2 0.1"/></geometry><material name="gray"/></visual>
+    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision>
+    <inertial><mass value="1.0"/><inertia ixx="0.004166666666666667" ixy="0" ixz="0" iyy="0.004166666666666667" iyz="0" izz="0.006666666666666667"/></inertial>
+  </link>"""
+ARM = """  <link name="arm">
+    <visual><origin xyz="0 0 0.15"/><geometry><cylinder radius="0.02" length="0.3"/></geometry></visual>
+    <collision><origin xyz="0 0 0.15"/><geometry><cylinder radius="0.02" length="0.3"/></geometry></collision>
+    <inertial><origin xyz="0 0 0.15"/><mass value="0.5"/><inertia ixx="0.00380" ixy="0" ixz="0" iyy="0.00380" iyz="0" izz="0.0001"/></inertial>
+  </link>"""
+SHOULDER = """  <joint name="shoulder" type="revolute">
+    <parent link="base_link"/><child link="arm"/>
+    <origin xyz="0 0 0.05"/><axis xyz="0 1 0"/>
+    <limit lower="-1" upper="1" effort="10" velocity="1"/>
+    <dynamics damping="0.1" friction="0"/>
+  </joint>"""
+MATERIAL = """  <material name="gray"><color rgba="0.5 0.5 0.5 1"/></material>"""
+
+
+def robot(*parts: str, name: str = "corpus") -> str:
+    return f'<?xml version="1.0"?>\n<robot name="{name}">\n' + "\n".join(parts) + "\n</robot>\n"
+
+
+def base(**replace: str) -> str:
+    text = robot(MATERIAL, BASE_LINK, ARM, SHOULDER)
+    for old, new in replace.items():
+        assert old in text, old
+        text = text.replace(old, new)
+    return text
+
+
+def link(name: str) -> str:
+    return ARM.replace('"arm"', f'"{name}"')
+
+
+def joint(name: str, parent: str, child: str, kind: str = "revolute", extra: str = "") -> str:
+    return (
+        SHOULDER.replace('"shoulder"', f'"{name}"')
+        .replace('<parent link="base_link"/>', f'<parent link="{parent}"/>')
+        .replace('<child link="arm"/>', f'<child link="{child}"/>')
+        .replace('"revolute"', f'"{kind}"')
+        .replace("</joint>", extra + "</joint>")
+    )
+
+
+B, S = BASE_LINK, SHOULDER
+CASES = {
+    "U001": ('<robot name="x"><link name="a"></robot>\n', base()),
+    "S001": (robot(MATERIAL, B, link("arm")), base()),
+    "S002": (
+        robot(
+            MATERIAL,
+            B,
+            link("arm"),
+            link("a2"),
+            S,
+            joint("j2", "arm", "a2"),
+            link("c1"),
+            link("c2"),
+            joint("c12", "c1", "c2"),
+            joint("c21", "c2", "c1"),
+        ),
+        base(),
+    ),
+    "S003": (base(**{'<child link="arm"/>': '<child link="ghost"/>'}), base()),
+    "S004": (robot(MATERIAL, B, link("arm"), link("arm"), S), base()),
+    "S005": (robot(MATERIAL, B, link("arm"), link("a2"), S, joint("shoulder", "arm", "a2")), base()),
+    "S006": (
+        robot(MATERIAL, B, link("arm"), link("a2"), S, joint("j2", "a2", "arm"), joint("j3", "base_link", "a2")),
+        base(),
+    ),
+    "J001": (base(**{'<limit lower="-1" upper="1" effort="10" velocity="1"/>': ""}), base()),
+    "J002": (base(**{'lower="-1" upper="1"': 'lower="1" upper="-1"'}), base()),
+    "J003": (base(**{'effort="10"': 'effort="0"'}), base()),
+    "J004": (base(**{'velocity="1"': 'velocity="-2"'}), base()),
+    "J005": (
+        base(**{'type="revolute"': 'type="continuous"', '<limit lower="-1" upper="1" effort="10" velocity="1"/>': ""}),
+        base(**{'type="revolute"': 'type="continuous"', 'lower="-1" upper="1" ': ""}),
+    ),
+    "J006": (base(**{'<axis xyz="0 1 0"/>': '<axis xyz="0 0 0"/>'}), base()),
+    "J007": (base(**{'<axis xyz="0 1 0"/>': '<axis xyz="0 2 0"/>'}), base()),
+    "J008": (
+        robot(
+            MATERIAL,
+            B,
+            link("arm"),
+            link("a2"),
+            S,
+            joint("j2", "base_link", "a2", "prismatic", '<mimic joint="shoulder"/>'),
+        ),
+        robot(
+            MATERIAL,
+            B,
+            link("arm"),
+            link("a2"),
+            S,
+            joint("j2", "base_link", "a2", "revolute", '<mimic joint="shoulder"/>'),
+        ),
+    ),
+    "J009": (base(**{'<dynamics damping="0.1" friction="0"/>': ""}), base()),
+    "J010": (
+        base(
+            **{"</joint>": '<safety_controller soft_lower_limit="-2" soft_upper_limit="0.9" k_velocity="10"/></joint>'}
+        ),
+        base(
+            **{
+                "</joint>": '<safety_controller soft_lower_limit="-0.9" soft_upper_limit="0.9" k_velocity="10"/></joint>'
+            }
+        ),
+    ),
+    "J011": (base(**{'type="revolute"': 'type="ball"'}), base()),
+    "I001": (base(**{'<mass value="0.5"/>': '<mass value="-0.5"/>'}), base()),
+    "I002": (base(**{'ixx="0.00380" ixy="0"': 'ixx="0.00380" ixy="0.005"'}), base()),
+    "I003": (base(**{'izz="0.0001"': 'izz="0.009"'}), base()),
+    "I004": (
+        base(
+            **{
+                'ixx="0.00380" ixy="0" ixz="0" iyy="0.00380" iyz="0" izz="0.0001"': 'ixx="3800" ixy="0" ixz="0" iyy="3800" iyz="0" izz="100"'
+            }
+        ),
+        base(),
+    ),
+    "I005": (
+        base(
+            **{
+                'ixx="0.00380" ixy="0" ixz="0" iyy="0.00380" iyz="0" izz="0.0001"': 'ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"'
+            }
+        ),
+        base(),
+    ),
+    "R001": (
+        base(**{"</robot>": '<gazebo reference="nowhere"><mu1>1</mu1></gazebo>\n</robot>'}),
+        base(**{"</robot>": '<gazebo reference="arm"><mu1>1</mu1></gazebo>\n</robot>'}),
+    ),
+    "R002": (base(**{'<material name="gray"/>': '<material name="grey"/>'}), base()),
+    "R003": (
+        base(
+            **{
+                '<box size="0.2 0.2 0.1"/></geometry><material': '<mesh filename="meshes/missing.stl"/></geometry><material'
+            }
+        ),
+        base(
+            **{
+                '<box size="0.2 0.2 0.1"/></geometry><material': '<mesh filename="meshes/cube.stl"/></geometry><material'
+            }
+        ),
+    ),
+    "P001": (
+        base(**{'"arm"': '"r1_arm"', '"base_link"': '"r1_base_link"', '"shoulder"': '"shoulder"'}),
+        base(**{'"arm"': '"r1_arm"', '"base_link"': '"r1_base_link"', '"shoulder"': '"r1_shoulder"'}),
+    ),
+    "C001": (
+        base(
+            **{
+                '<visual><geometry><box size="0.2 0.2 0.1"/></geometry><material name="gray"/></visual>': '<visual><material name="gray"/></visual>'
+            }
+        ),
+        base(),
+    ),
+}
+
+CUBE_STL = """solid cube
+facet normal 0 0 1
+ outer loop
+  vertex 0 0 0
+  vertex 1 0 0
+  vertex 1 1 0
+ endloop
+endfacet
+endsolid cube
+"""
+
+if __name__ == "__main__":
+    for rule, (failing, passing) in CASES.items():
+        (HERE / f"{rule}_fail.urdf").write_text(failing, encoding="utf-8")
+        (HERE / f"{rule}_pass.urdf").write_text(passing, encoding="utf-8")
+    (HERE / "meshes" / "cube.stl").write_text(CUBE_STL, encoding="utf-8")
+    print(f"wrote {2 * len(CASES)} files")
