@@ -268,7 +268,7 @@ def joint_rules(doc: _Doc) -> Iterator[Finding]:
     for joint in doc.joints:
         name, kind = joint.get("name", ""), joint.get("type", "")
 
-        def found(rule: str, message: str) -> Finding:
+        def found(rule: str, message: str, name: str = name, joint: etree._Element = joint) -> Finding:
             return doc.finding(rule, "joint", name, message, joint)
 
         if kind not in JOINT_TYPES:

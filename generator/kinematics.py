@@ -41,7 +41,11 @@ def origin_transform(origin: Origin) -> np.ndarray:
 
 
 def dh_step(row: DHRow, q: float, convention: str) -> np.ndarray:
-    """One row: standard Rz(theta) Tz(d) Tx(a) Rx(alpha), modified Rx(alpha) Tx(a) Rz(theta) Tz(d); q moves the joint."""
+    """One DH row at joint value q.
+
+    standard: Rz(theta) Tz(d) Tx(a) Rx(alpha); modified: Rx(alpha) Tx(a) Rz(theta) Tz(d). q adds to theta (revolute,
+    continuous) or d (prismatic).
+    """
     theta, d = row.theta, row.d
     if row.type in ("revolute", "continuous"):
         theta += q
