@@ -106,10 +106,9 @@ def _link(draw, materials: list[str]) -> dict[str, Any]:
         link["origin"] = draw(_origin())
     if materials and draw(st.booleans()):
         link["material"] = draw(st.sampled_from(materials))
-    if kind == "mesh":
-        if draw(st.booleans()):
-            link.update(mass=draw(_mass), inertia=draw(_physical_tensor()))
-    elif draw(st.integers(0, 4)):
+    if kind == "mesh":  # a body with a shape has a mass (gen-robot check requires it); a mesh, a tensor too
+        link.update(mass=draw(_mass), inertia=draw(_physical_tensor()))
+    else:
         link["mass"] = draw(st.one_of(_mass, _mass.map(lambda m: f"{m * 1000!r} g")))
     collision = draw(st.sampled_from(["default", "same", "none", "other"]))
     if collision == "other":
@@ -137,7 +136,7 @@ def _joint(draw, parent: str, child: str) -> dict[str, Any]:
     if kind not in ("fixed", "floating"):
         axis = [draw(st.sampled_from([0.0, 1.0, -1.0, 0.5])) for _ in range(3)]
         joint["axis"] = axis if any(axis) else [0.0, 0.0, 1.0]
-    if kind in ("revolute", "prismatic") or (kind == "continuous" and draw(st.booleans())):
+    if kind in ("revolute", "prismatic", "continuous"):
         joint["limit"] = _limit(draw, kind)
     if kind in ("revolute", "prismatic", "continuous") and draw(st.booleans()):
         joint["dynamics"] = {"damping": draw(st.floats(0.0, 1.0)), "friction": draw(st.floats(0.0, 1.0))}
@@ -159,9 +158,9 @@ def _arm(draw, prefix: str, parent: str, materials: list[str]) -> dict[str, Any]
         }
         if draw(st.booleans()):
             row["theta"] = draw(_angle_value())
-        if kind != "fixed" and (kind != "continuous" or draw(st.booleans())):
+        if kind != "fixed":
             row["limit"] = _limit(draw, kind)
-        if draw(st.booleans()):
+        if kind != "fixed" or draw(st.booleans()):  # a moved link has a mass
             row["mass"] = draw(_mass)
             if materials and draw(st.booleans()):
                 row["material"] = draw(st.sampled_from(materials))
@@ -190,6 +189,10 @@ def valid_specs(draw, max_links: int = 5) -> dict[str, Any]:
     spec["links"] = {f"link_{i}": draw(_link(materials)) for i in range(count)}
     links = list(spec["links"])
     spec["joints"] = {f"joint_{i}": draw(_joint(links[draw(st.integers(0, i - 1))], links[i])) for i in range(1, count)}
+    for joint in spec["joints"].values():  # a moved link has a mass (and, without a shape, an inertia)
+        child = spec["links"][joint["child"]]
+        if joint["type"] != "fixed" and "mass" not in child:
+            child.update(mass=draw(_mass), inertia=draw(_physical_tensor()))
     moving = [n for n, j in spec["joints"].items() if j["type"] in ("revolute", "continuous", "prismatic")]
     if len(moving) >= 2 and draw(st.booleans()):
         follower, leader = moving[-1], moving[0]
@@ -281,3 +284,72 @@ def invalid_specs(draw, faults: tuple[str, ...] = FAULTS) -> tuple[dict[str, Any
     elif fault == "unknown_material":
         links[name] = {"shape": {"sphere": {"radius": 0.1}}, "mass": 1.0, "material": "no_such_colour"}
     return spec, fault
+
+
+# ------------------------------------------------------------------------------------------------ URDF-level faults
+URDF_FAULTS: dict[str, str] = {
+    # fault -> the check rule meant to catch it
+    "negative_mass": "I001",
+    "swapped_limits": "J002",
+    "dangling_parent": "S003",
+    "cycle": "S002",
+    "duplicate_name": "S004",
+    "zero_axis": "J006",
+    "not_positive_definite": "I002",
+    "triangle_violation": "I003",
+    "missing_gazebo_reference": "R001",
+}
+
+_FAULT_LINK = (
+    '<link name="fault_link"><visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual>'
+    '<inertial><mass value="{mass}"/><inertia ixx="{ixx}" ixy="{ixy}" ixz="0" iyy="1.0" iyz="0" izz="{izz}"/>'
+    "</inertial></link>"
+)
+_FAULT_JOINT = (
+    '<joint name="fault_joint" type="{kind}"><parent link="{parent}"/><child link="fault_link"/>'
+    '<axis xyz="{axis}"/>{limit}<dynamics damping="0.1" friction="0"/></joint>'
+)
+
+
+def inject_urdf_fault(urdf: str, fault: str, root_link: str) -> str:
+    """``urdf`` (a valid robot whose root is ``root_link``) with exactly one fault of kind ``fault``."""
+    from lxml import etree
+
+    robot = etree.fromstring(urdf.encode("utf-8"))
+    link = {"mass": 1.0, "ixx": 1.0, "ixy": 0.0, "izz": 1.0}
+    joint = {
+        "kind": "revolute",
+        "parent": root_link,
+        "axis": "0 0 1",
+        "limit": '<limit lower="-1" upper="1" effort="1" velocity="1"/>',
+    }
+    extra: list[str] = []
+    if fault == "negative_mass":
+        link["mass"] = -1.0
+    elif fault == "swapped_limits":
+        joint["limit"] = '<limit lower="1" upper="-1" effort="1" velocity="1"/>'
+    elif fault == "dangling_parent":
+        joint["parent"] = "no_such_link"
+    elif fault == "zero_axis":
+        joint.update(kind="continuous", axis="0 0 0", limit='<limit effort="1" velocity="1"/>')
+    elif fault == "not_positive_definite":
+        link["ixy"] = 1.5
+    elif fault == "triangle_violation":
+        link["izz"] = 2.5
+    elif fault == "cycle":
+        extra = [
+            '<link name="loop_a"/>',
+            '<link name="loop_b"/>',
+            '<joint name="loop_ab" type="fixed"><parent link="loop_a"/><child link="loop_b"/></joint>',
+            '<joint name="loop_ba" type="fixed"><parent link="loop_b"/><child link="loop_a"/></joint>',
+        ]
+    elif fault == "duplicate_name":
+        extra = [etree.tostring(robot.find("link")).decode()]
+    elif fault == "missing_gazebo_reference":
+        extra = ['<gazebo reference="no_such_link"><mu1>1.0</mu1></gazebo>']
+    else:
+        raise ValueError(f"unknown fault {fault!r}; one of {', '.join(URDF_FAULTS)}")
+    pieces = [_FAULT_LINK.format(**link), _FAULT_JOINT.format(**joint), *extra]
+    for piece in pieces:
+        robot.append(etree.fromstring(piece))
+    return etree.tostring(robot, encoding="unicode")

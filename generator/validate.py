@@ -431,6 +431,10 @@ def _limit_errors(raw: RawSpec, holder: dict[str, Any], path: PathKey, joint_typ
                     (*path, "safety_controller", "soft_upper_limit"),
                     f"soft upper limit {high!r} is above the hard upper limit {limit['upper']!r}",
                 )
+    elif joint_type == "continuous" and not isinstance(limit, dict):
+        yield raw.error(
+            path, "a continuous joint needs limit: {effort, velocity} (controllers and simulators read them)"
+        )
     elif isinstance(limit, dict) and ("lower" in limit or "upper" in limit):
         hint = "; make it revolute to limit its range" if joint_type == "continuous" else ""
         yield raw.error((*path, "limit"), f"a {joint_type} joint takes no lower/upper limits{hint}")
@@ -495,6 +499,13 @@ def _physics_errors(raw: RawSpec, data: dict[str, Any]) -> Iterator[SpecError]:
         yield from _shape_errors(raw, link, path)
         if isinstance(link.get("collision"), dict):
             yield from _shape_errors(raw, link["collision"], (*path, "collision"))
+        if "shape" in link and "mass" not in link:
+            yield raw.error(
+                path,
+                "a link with a shape needs a mass (kg): simulators drop bodies without one; "
+                "for a pure frame, leave the shape out",
+                key=True,
+            )
         if "mass" in link:
             yield from _mass_error(raw, link["mass"], (*path, "mass"))
             shape = link.get("shape", {})
@@ -512,6 +523,13 @@ def _physics_errors(raw: RawSpec, data: dict[str, Any]) -> Iterator[SpecError]:
     for name, joint in data.get("joints", {}).items():
         path = ("joints", name)
         yield from _limit_errors(raw, joint, path, joint["type"])
+        child = data.get("links", {}).get(joint["child"])
+        if joint["type"] != "fixed" and isinstance(child, dict) and "mass" not in child:
+            yield raw.error(
+                (*path, "child"),
+                f"link {joint['child']!r} is moved by this {joint['type']} joint but "
+                "has no mass; give it a mass (and a shape or an inertia)",
+            )
         axis = joint.get("axis")
         if axis is not None and not any(axis):
             yield raw.error((*path, "axis"), "axis must not be zero; e.g. [0, 0, 1] for the z axis")
@@ -523,6 +541,12 @@ def _physics_errors(raw: RawSpec, data: dict[str, Any]) -> Iterator[SpecError]:
             yield from _limit_errors(raw, row, path, row.get("type", "revolute"))
             if "mass" in row:
                 yield from _mass_error(raw, row["mass"], (*path, "mass"))
+            elif row.get("type", "revolute") != "fixed":
+                yield raw.error(
+                    path,
+                    f"row {row['name']!r} moves link {row['link']!r}, which has no mass; give the "
+                    "row a mass (kg) for its body",
+                )
             if "radius" in row and not row["radius"] > 0:
                 yield raw.error((*path, "radius"), f"radius must be > 0 m, got {row['radius']!r}")
     for name, wheel in data.get("wheels", {}).items():
@@ -532,6 +556,12 @@ def _physics_errors(raw: RawSpec, data: dict[str, Any]) -> Iterator[SpecError]:
         yield from _mass_error(raw, wheel["mass"], ("wheels", name, "mass"))
     for name, frame in data.get("frames", {}).items():
         yield from _shape_errors(raw, frame, ("frames", name))
+        if "shape" in frame and "mass" not in frame:
+            yield raw.error(
+                ("frames", name),
+                "a frame with a shape needs a mass (kg); for a bare frame, leave the shape out",
+                key=True,
+            )
         if "mass" in frame:
             yield from _mass_error(raw, frame["mass"], ("frames", name, "mass"))
             if "mesh" in frame.get("shape", {"mesh": None}):

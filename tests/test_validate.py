@@ -37,6 +37,7 @@ BASE = {
                     "a": 0.1,
                     "d": 0.1,
                     "alpha": "pi/2",
+                    "mass": 0.5,
                     "limit": {"lower": -1.0, "upper": 1.0, "effort": 5.0, "velocity": 1.0},
                 }
             ],
@@ -120,6 +121,20 @@ CASES = [
         "is an angle, expected a length",
     ),
     ("links.bad-name", {}, "$.links['bad-name']", "not a valid name"),
+    ("links.arm.mass", "DELETE", "$.links.arm", "a link with a shape needs a mass"),
+    ("arms.dh.joints.0.mass", "DELETE", "$.arms.dh.joints[0]", "moves link 'l1', which has no mass"),
+    (
+        "frames.camera_link.shape",
+        {"box": {"size": [0.1, 0.1, 0.1]}},
+        "$.frames.camera_link",
+        "a frame with a shape needs a mass",
+    ),
+    (
+        "joints.shoulder",
+        {"type": "continuous", "parent": "base_link", "child": "arm"},
+        "$.joints.shoulder",
+        "a continuous joint needs limit",
+    ),
     ("joints.shoulder.parent", "base_lnk", "$.joints.shoulder.parent", "did you mean 'base_link'"),
     ("joints.shoulder.child", "nothing", "$.joints.shoulder.child", "child 'nothing' is not in links"),
     ("joints.shoulder.type", "ball", "$.joints.shoulder.type", "is not one of"),

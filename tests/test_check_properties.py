@@ -1,0 +1,52 @@
+"""The end-to-end property suite: random valid robots check clean with every consumer accepting, and every single
+fault injected into one is caught by the rule meant for it."""
+
+from __future__ import annotations
+
+import yaml
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from xacrokit.check import RULES, check
+from xacrokit.pipeline import build_robot, expand_package
+from xacrokit.render import render_package
+from xacrokit.testing import URDF_FAULTS, inject_urdf_fault, valid_specs
+
+# a dangling parent leaves the injected link without a parent: a second root is a true finding too
+ALSO_EXPECTED = {"dangling_parent": {"S001"}}
+
+
+def urdf_of(spec, folder):
+    path = folder / "spec.yaml"
+    path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
+    robot = build_robot(path)
+    return robot, expand_package(robot, render_package(robot)).content, path
+
+
+@settings(max_examples=10, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+@given(spec=valid_specs())
+def test_valid_specs_check_clean_with_every_consumer_accepting(tmp_path_factory, spec):
+    folder = tmp_path_factory.mktemp("clean")
+    path = folder / "spec.yaml"
+    path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
+    report = check(path)
+    assert not report.errors, [str(f) for f in report.errors]
+    assert report.consumers and all(c.status == "accepted" for c in report.consumers), report.consumers
+
+
+@settings(suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+@given(spec=valid_specs(), fault=st.sampled_from(sorted(URDF_FAULTS)))
+def test_each_single_fault_is_caught_by_its_rule(tmp_path_factory, spec, fault):
+    folder = tmp_path_factory.mktemp("fault")
+    robot, urdf, _ = urdf_of(spec, folder)
+    clean = folder / "clean.urdf"
+    clean.write_text(urdf, encoding="utf-8")
+    assert not check(clean, consumers=[]).errors  # the fault below is the only problem
+    broken = folder / "broken.urdf"
+    broken.write_text(inject_urdf_fault(urdf, fault, robot.root), encoding="utf-8")
+    report = check(broken, consumers=[])
+    intended = URDF_FAULTS[fault]
+    fired = {f.rule for f in report.errors}
+    assert intended in fired, (fault, [str(f) for f in report.findings])
+    assert fired <= {intended} | ALSO_EXPECTED.get(fault, set()), (fault, fired)
+    assert RULES[intended][1] == "error" and report.exit_code() == 1
