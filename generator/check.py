@@ -379,6 +379,8 @@ def inertia_rules(doc: _Doc) -> Iterator[Finding]:
         if inertial is None or inertial.find("inertia") is None:
             continue
         tensor = _tensor(inertial.find("inertia"))
+        if mass == 0 and not tensor.any() and not (has_geometry or name in moved):
+            continue  # an explicit all-zero inertial on a bare frame: a massless frame, as many descriptions write
         if not np.all(np.isfinite(tensor)):
             yield doc.finding("I002", "link", name, "the inertia tensor has unreadable entries", link)
             continue

@@ -119,7 +119,16 @@ CASES = {
     ),
     "J011": (base(**{'type="revolute"': 'type="ball"'}), base()),
     "I001": (base(**{'<mass value="0.5"/>': '<mass value="-0.5"/>'}), base()),
-    "I002": (base(**{'ixx="0.00380" ixy="0"': 'ixx="0.00380" ixy="0.005"'}), base()),
+    "I002": (
+        base(**{'ixx="0.00380" ixy="0"': 'ixx="0.00380" ixy="0.005"'}),
+        # a bare frame may write an all-zero inertial to say "massless"
+        base(
+            **{
+                "</robot>": '<link name="tool0"><inertial><mass value="0"/><inertia ixx="0" ixy="0" ixz="0" iyy="0" iyz="0" izz="0"/></inertial></link>\n'
+                '<joint name="tool0_joint" type="fixed"><parent link="arm"/><child link="tool0"/></joint>\n</robot>'
+            }
+        ),
+    ),
     "I003": (base(**{'izz="0.0001"': 'izz="0.009"'}), base()),
     "I004": (
         base(
