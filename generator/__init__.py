@@ -3,6 +3,8 @@
 Public API:
     generate(spec, output=None, *, dry_run=False, force=False, macros="copy") -> GenerateResult
                                                                 the main job: spec -> ROS 2 description package
+    check(path, mappings=None, *, prefix=None, consumers=None, package_paths=None) -> CheckReport
+                                                                verify a URDF, xacro document or spec
     expand(path, mappings=None, *, package_paths=None) -> str   expand a xacro document to URDF text
     macros_dir() -> Path                                        where the shipped macro library is
     XacrokitError, SpecError, SpecErrors, ExpandError, ConflictError   the errors raised on bad input
@@ -25,9 +27,13 @@ _LAZY = {
     "GenerateResult": ("xacrokit.pipeline", "GenerateResult"),
     "expand": ("xacrokit.expansion", "expand_file"),
     "ConflictError": ("xacrokit.write", "ConflictError"),
+    "check": ("xacrokit.check", "check"),
+    "CheckReport": ("xacrokit.check", "CheckReport"),
 }
 
 __all__ = [
+    "CheckReport",
+    "check",
     "ConflictError",
     "ExpandError",
     "GenerateResult",

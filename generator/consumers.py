@@ -143,7 +143,8 @@ def main(argv: list[str] | None = None) -> int:
         seen = _load(name, path)
         print(json.dumps({"status": "accepted", "message": seen}))
     except Exception as exc:  # a consumer's own complaint is its verdict
-        print(json.dumps({"status": "rejected", "message": f"{type(exc).__name__}: {exc}"[:2000]}))
+        message = " ".join(f"{type(exc).__name__}: {exc}".split())  # one line
+        print(json.dumps({"status": "rejected", "message": message[:2000]}))
     return 0
 
 

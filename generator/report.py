@@ -35,3 +35,12 @@ def format_text(report: CheckReport, *, colour: bool = False, strict: bool = Fal
     summary = f"{len(report.errors)} error(s), {len(report.warnings)} warning(s)"
     lines.append(_paint(("FAILED: " if failed else "OK: ") + summary, "error" if failed else "ok", colour))
     return "\n".join(lines) + "\n"
+
+
+def rules_markdown() -> str:
+    """The rules table of the README (between the check-rules markers)."""
+    from .check import RULES
+
+    lines = ["| rule | name | severity | checks that |", "|---|---|---|---|"]
+    lines += [f"| {rule} | {name} | {severity} | {text} |" for rule, (name, severity, text) in RULES.items()]
+    return "\n".join(lines) + "\n"

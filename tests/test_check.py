@@ -180,3 +180,25 @@ def test_unreadable_specs_exit_2(tmp_path):
     bad.write_text(yaml.safe_dump({"robot": "r", "links": {"a": {"mass": -1}}}), encoding="utf-8")
     result = gen_robot("check", bad)
     assert result.returncode == 2 and "mass must be > 0" in result.stderr
+
+
+@pytest.mark.skipif(not __import__("importlib").util.find_spec("mujoco"), reason="MuJoCo is not installed")
+def test_mujoco_consumer_accepts_good_and_rejects_bad_inertia():
+    good = check(CORPUS / "I003_pass.urdf", consumers=["mujoco"])
+    assert [c.status for c in good.consumers] == ["accepted"]
+    bad = check(CORPUS / "I003_fail.urdf", consumers=["mujoco"])
+    (verdict,) = bad.consumers
+    assert verdict.status == "rejected" and "inertia" in verdict.message and "\n" not in verdict.message
+    assert {f.rule for f in bad.errors} == {"I003", "C001"}
+
+
+def test_benchmark_script_runs():
+    result = subprocess.run(
+        [sys.executable, str(REPO / "benchmarks" / "bench.py"), "check", "cli"],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert result.returncode == 0, result.stderr
+    for words in ("1000 links:", "ratio t(3000)/t(1000)", "rooted cycle reported (S002)", "gen-robot --help"):
+        assert words in result.stdout

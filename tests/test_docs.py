@@ -169,3 +169,11 @@ def test_readme_xml_sample_expands(tmp_path):
     (tmp_path / "my_robot.urdf.xacro").write_text(sample, encoding="utf-8")
     root = etree.fromstring(xacrokit.expand(tmp_path / "my_robot.urdf.xacro").encode())
     assert float(root.find("link/inertial/inertia").get("ixx")) == pytest.approx(8.0 * (0.35**2 + 0.12**2) / 12)
+
+
+def test_readme_check_rules_table_is_current():
+    from xacrokit.report import rules_markdown
+
+    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    block = readme.split("<!-- check-rules:start -->\n", 1)[1].split("<!-- check-rules:end -->", 1)[0]
+    assert block == rules_markdown()
