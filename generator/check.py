@@ -671,7 +671,7 @@ def check(
     if robot is not None and not structural and getattr(robot, "arms", ()):
         findings += kinematics_rules(doc, robot, text)
     names = [c for c in (CONSUMERS if consumers is None else consumers) if consumers is not None or available(c)]
-    results = _consumers(names, text, structural)
+    results = _consumers(names, text, structural, package_paths, path.parent)
     findings += [
         Finding("C001", "error", "consumer", r.name, f"{r.name} {r.status}: {r.message}".rstrip(": "), str(path))
         for r in results
@@ -680,7 +680,9 @@ def check(
     return CheckReport(str(path), kind, root.get("name"), tuple(findings), tuple(results))
 
 
-def _consumers(names: list[str], text: str, structural: bool) -> list[ConsumerResult]:
+def _consumers(
+    names: list[str], text: str, structural: bool, package_paths: Mapping[str, str | Path] | None, base_dir: Path
+) -> list[ConsumerResult]:
     unknown = [n for n in names if n not in CONSUMERS]
     if unknown:
         raise XacrokitError(f"unknown consumer(s) {', '.join(unknown)}; choose from {', '.join(CONSUMERS)}")
@@ -690,7 +692,13 @@ def _consumers(names: list[str], text: str, structural: bool) -> list[ConsumerRe
         return [
             ConsumerResult(n, "skipped", "not run: the structure errors above make the URDF unusable") for n in names
         ]
+    # relative mesh paths are relative to the checked file: make them absolute before the URDF moves to a scratch folder
+    root = etree.fromstring(text.encode("utf-8"))
+    for mesh in root.iter("mesh"):
+        filename = mesh.get("filename", "")
+        if filename and "://" not in filename and not Path(filename).is_absolute():
+            mesh.set("filename", str(base_dir.resolve() / filename))
     with tempfile.TemporaryDirectory(prefix="xacrokit-check-") as folder:
         urdf = Path(folder) / "robot.urdf"
-        urdf.write_text(text, encoding="utf-8")
-        return run_consumers(names, urdf)
+        urdf.write_text(etree.tostring(root, encoding="unicode"), encoding="utf-8")
+        return run_consumers(names, urdf, package_paths=package_paths)

@@ -13,6 +13,7 @@ import shutil
 import subprocess
 import sys
 import threading
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -81,7 +82,9 @@ def _tail(text: str, lines: int = 3) -> str:
     return " | ".join(kept[-lines:])
 
 
-def run_consumer(name: str, urdf_path: Path, timeout: float = TIMEOUT_S) -> ConsumerResult:
+def run_consumer(
+    name: str, urdf_path: Path, timeout: float = TIMEOUT_S, package_paths: Mapping[str, str | Path] | None = None
+) -> ConsumerResult:
     if not available(name):
         return ConsumerResult(
             name, "unavailable", "not installed" + (" (pip install xacrokit[mujoco])" if name == "mujoco" else "")
@@ -89,7 +92,8 @@ def run_consumer(name: str, urdf_path: Path, timeout: float = TIMEOUT_S) -> Cons
     if name == "check_urdf":
         command = [_check_urdf_binary() or "check_urdf", str(urdf_path)]
     else:
-        command = [sys.executable, "-m", "xacrokit.consumers", name, str(urdf_path)]
+        packages = json.dumps({k: str(v) for k, v in (package_paths or {}).items()})
+        command = [sys.executable, "-m", "xacrokit.consumers", name, str(urdf_path), packages]
     code, output, overflow = _run_capped(command, timeout)
     if overflow:
         return ConsumerResult(name, "rejected", f"printed more than {OUTPUT_CAP} bytes without ending; stopped")
@@ -106,12 +110,16 @@ def run_consumer(name: str, urdf_path: Path, timeout: float = TIMEOUT_S) -> Cons
     return ConsumerResult(name, verdict["status"], verdict.get("message", ""))
 
 
-def run_consumers(names: list[str], urdf_path: Path, timeout: float = TIMEOUT_S) -> list[ConsumerResult]:
+def run_consumers(
+    names: list[str], urdf_path: Path, timeout: float = TIMEOUT_S, package_paths: Mapping[str, str | Path] | None = None
+) -> list[ConsumerResult]:
     """Run the named consumers side by side; results in the order asked."""
     results: dict[str, ConsumerResult] = {}
-    threads = [
-        threading.Thread(target=lambda n=n: results.__setitem__(n, run_consumer(n, urdf_path, timeout))) for n in names
-    ]
+
+    def run(name: str) -> None:
+        results[name] = run_consumer(name, urdf_path, timeout, package_paths)
+
+    threads = [threading.Thread(target=run, args=(n,)) for n in names]
     for thread in threads:
         thread.start()
     for thread in threads:
@@ -119,7 +127,7 @@ def run_consumers(names: list[str], urdf_path: Path, timeout: float = TIMEOUT_S)
     return [results[n] for n in names]
 
 
-def _load(name: str, path: str) -> str:
+def _load(name: str, path: str, packages: Mapping[str, str] | None = None) -> str:
     """Load the URDF with one library; return a one-line description of what it saw."""
     if name == "pinocchio":
         import pinocchio
@@ -133,14 +141,36 @@ def _load(name: str, path: str) -> str:
         return f"{len(robot.link_map)} links, {len(robot.joint_map)} joints"
     import mujoco
 
-    model = mujoco.MjModel.from_xml_path(path)
+    # MuJoCo opens mesh files by plain path: hand it the files that package:// and file:// URIs name.
+    model = mujoco.MjModel.from_xml_string(_with_mesh_paths(path, packages or {}))
     return f"{model.nbody} bodies"
 
 
+def _with_mesh_paths(path: str, packages: Mapping[str, str]) -> str:
+    from lxml import etree
+
+    from .expansion import find_package
+
+    root = etree.parse(path).getroot()
+    for mesh in root.iter("mesh"):
+        filename = mesh.get("filename", "")
+        if filename.startswith("package://"):
+            package, _, rest = filename[len("package://") :].partition("/")
+            try:
+                mesh.set("filename", str(Path(find_package(package, packages)) / rest))
+            except LookupError:
+                pass  # left as written: MuJoCo's own complaint is the verdict
+        elif filename.startswith("file://"):
+            mesh.set("filename", filename[len("file://") :])
+    return etree.tostring(root, encoding="unicode")
+
+
 def main(argv: list[str] | None = None) -> int:
-    name, path = (argv if argv is not None else sys.argv[1:])[:2]
+    words = argv if argv is not None else sys.argv[1:]
+    name, path = words[:2]
+    packages = json.loads(words[2]) if len(words) > 2 else {}
     try:
-        seen = _load(name, path)
+        seen = _load(name, path, packages)
         print(json.dumps({"status": "accepted", "message": seen}))
     except Exception as exc:  # a consumer's own complaint is its verdict
         message = " ".join(f"{type(exc).__name__}: {exc}".split())  # one line

@@ -41,6 +41,8 @@ FAULTS = (
     "unknown_material",
 )
 
+# mesh file names the strategies use (package://some_pkg/meshes/NAME.stl): xacro must write them verbatim
+MESH_NAMES = ("part", "${not_evaluated}", "$(find nothing)", "a&b<c>", "$${x}")
 _size = st.floats(min_value=0.01, max_value=1.0, allow_nan=False)
 _mass = st.floats(min_value=0.01, max_value=20.0, allow_nan=False)
 _coord = st.floats(min_value=-1.0, max_value=1.0, allow_nan=False)
@@ -82,7 +84,7 @@ def _shape(draw, kind: str) -> dict[str, Any]:
         return {"cylinder": {"radius": draw(_length()), "length": draw(_length())}}
     if kind == "sphere":
         return {"sphere": {"radius": draw(_length())}}
-    weird = draw(st.sampled_from(["part", "${not_evaluated}", "$(find nothing)", "a&b<c>", "$${x}"]))
+    weird = draw(st.sampled_from(MESH_NAMES))
     return {"mesh": {"filename": f"package://some_pkg/meshes/{weird}.stl", "scale": [1.0, 1.0, 1.0]}}
 
 
