@@ -601,9 +601,15 @@ def _load_urdf(
 ) -> tuple[str, object | None, dict | None]:
     """URDF text, the spec's robot model (spec input only), and spec lines (spec input only)."""
     if kind == "spec":
+        from .load import load_file
         from .pipeline import expand_package
         from .render import render_package
+        from .scene import build_scene, expand_scene, is_scene, render_scene
 
+        raw = load_file(path)
+        if is_scene(raw):  # a scene: generated in memory as a whole
+            scene = build_scene(raw)
+            return expand_scene(scene, render_scene(scene, spec_name=path.name)).content, None, None
         lines, robot = _spec_lines(path)
         files = render_package(robot, spec_name=path.name)  # type: ignore[arg-type]
         return expand_package(robot, files).content, robot, lines  # type: ignore[arg-type]

@@ -39,9 +39,35 @@ def _cmd_generate(args: argparse.Namespace) -> int:
         note = f"  ({action.reason})" if action.reason else ""
         print(f"{action.action:<{width}}  {action.path}{note}")
     changed = sum(a.action != "identical" for a in result.actions)
+    package = result.scene.package if result.scene else result.robot.package  # type: ignore[union-attr]
     print(
-        f"{result.robot.package}: {verb} {changed} of {len(result.actions)} files in {result.output}"
+        f"{package}: {verb} {changed} of {len(result.actions)} files in {result.output}"
         + (" (dry run: nothing written)" if args.dry_run else "")
+    )
+    return 0
+
+
+def _cmd_fleet(args: argparse.Namespace) -> int:
+    from .pipeline import generate_scene
+    from .scene import fleet_scene
+
+    columns = None
+    if args.grid:
+        rows_text, sep, columns_text = args.grid.lower().partition("x")
+        if not (sep and rows_text.isdigit() and columns_text.isdigit()) or int(rows_text) * int(columns_text) < 1:
+            raise XacrokitError(f"--grid expects ROWSxCOLUMNS such as 2x5, got {args.grid!r}")
+        if int(rows_text) * int(columns_text) < args.count:
+            raise XacrokitError(
+                f"--grid {args.grid} has {int(rows_text) * int(columns_text)} places for {args.count} robots"
+            )
+        columns = int(columns_text)
+    scene = fleet_scene(args.spec, args.count, columns=columns, spacing=args.spacing)
+    result = generate_scene(scene, args.output, dry_run=args.dry_run, force=args.force, spec_name=Path(args.spec).name)
+    changed = sum(a.action != "identical" for a in result.actions)
+    verb = "would write" if args.dry_run else "wrote"
+    print(
+        f"{scene.package}: {len(scene.instances)} robots r0_ .. r{len(scene.instances) - 1}_; {verb} {changed} of "
+        f"{len(result.actions)} files in {result.output}"
     )
     return 0
 
@@ -146,6 +172,21 @@ def build_parser() -> argparse.ArgumentParser:
     )
     gen.set_defaults(handler=_cmd_generate)
 
+    fleet = commands.add_parser(
+        "fleet",
+        help="a scene of N copies of one robot, prefixed r0_ .. r{N-1}_, on a grid",
+        description="Generate the scene package NAME_fleet_description: --count copies of the robot of SPEC with "
+        "prefixes r0_, r1_, ... placed row by row on a grid in the world (x along a row, y across rows).",
+    )
+    fleet.add_argument("spec", help="the robot spec")
+    fleet.add_argument("--count", type=int, required=True, help="how many robots")
+    fleet.add_argument("--grid", help="ROWSxCOLUMNS, e.g. 2x5 (default: a square grid)")
+    fleet.add_argument("--spacing", type=float, default=2.0, help="distance between neighbours in m (default 2.0)")
+    fleet.add_argument("-o", "--output", help="package folder (default: ./NAME_fleet_description)")
+    fleet.add_argument("--dry-run", action="store_true", help="print what would be written; write nothing")
+    fleet.add_argument("--force", action="store_true", help="overwrite files edited since they were generated")
+    fleet.set_defaults(handler=_cmd_fleet)
+
     new = commands.add_parser(
         "new", help="write a commented starter spec", description="Write NAME.yaml, a commented starter spec."
     )
@@ -215,7 +256,7 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-COMMANDS = ("generate", "new", "check", "schema", "expand", "macros")
+COMMANDS = ("generate", "new", "check", "fleet", "schema", "expand", "macros")
 
 
 def main(argv: Sequence[str] | None = None) -> int:

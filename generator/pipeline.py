@@ -17,16 +17,20 @@ from .load import load_file
 from .model import Robot
 from .render import MacroMode, RenderedFile, render_package
 from .resolve import resolve
+from .scene import Scene, build_scene, expand_scene, is_scene, render_scene
 from .validate import validate
 from .write import FileAction, write
 
 
 @dataclass(frozen=True)
 class GenerateResult:
-    robot: Robot
+    """What ``generate`` did: the robot (or the scene, for a scene spec), where, and each file's action."""
+
+    robot: Robot | None
     output: Path
     actions: tuple[FileAction, ...]
     files: tuple[RenderedFile, ...]
+    scene: Scene | None = None
 
 
 def build_robot(spec_path: str | Path) -> Robot:
@@ -73,10 +77,30 @@ def generate(
         ExpandError: xacro could not expand the generated package (nothing written).
         ConflictError: a generated file was edited since (nothing written).
     """
-    robot = build_robot(spec_path)
+    raw = load_file(spec_path)
+    if is_scene(raw):
+        return generate_scene(build_scene(raw), output, dry_run=dry_run, force=force, spec_name=Path(spec_path).name)
+    robot = resolve(validate(raw))
     files = render_package(robot, macros=macros, spec_name=Path(spec_path).name)
     files.append(expand_package(robot, files))
     files.sort(key=lambda f: f.path)
     root = Path(output) if output is not None else Path.cwd() / robot.package
     actions = write(files, root, force=force, dry_run=dry_run)
     return GenerateResult(robot=robot, output=root, actions=tuple(actions), files=tuple(files))
+
+
+def generate_scene(
+    scene: Scene,
+    output: str | Path | None = None,
+    *,
+    dry_run: bool = False,
+    force: bool = False,
+    spec_name: str = "scene.yaml",
+) -> GenerateResult:
+    """Write the package of a resolved scene (see :func:`generate`); ``gen-robot fleet`` builds its scene in memory."""
+    files = render_scene(scene, spec_name=spec_name)
+    files.append(expand_scene(scene, files))
+    files.sort(key=lambda f: f.path)
+    root = Path(output) if output is not None else Path.cwd() / scene.package
+    actions = write(files, root, force=force, dry_run=dry_run)
+    return GenerateResult(robot=None, output=root, actions=tuple(actions), files=tuple(files), scene=scene)

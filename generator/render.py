@@ -152,6 +152,7 @@ def render_package(robot: Robot, *, macros: MacroMode = "copy", spec_name: str =
         "material_name": lambda name: material_name(robot, name),
         "has_control": robot.ros2_control is not None,
         "command_groups": _command_groups(robot),
+        "prefix": "",
     }
     name = robot.name
     plan = {

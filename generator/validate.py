@@ -107,7 +107,7 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
         kind = _ref_name(error)
         example = {"length": "150 mm", "angle": "90 deg", "quantity": "90 deg", "mass": "500 g"}[kind]
         if kind == "mass" and isinstance(error.instance, (int, float)) and not isinstance(error.instance, bool):
-            return path, f"mass must be > 0 kg, got {error.instance!r}", False
+            return path, f"mass must be > 0 kg, got {float(error.instance)!r}", False  # as the physics check says it
         return path, f"expected a number or a string such as {example!r}, got {error.instance!r}", False
     if keyword == "oneOf" and path and path[-1] == "collision":
         return path, "collision must be same, none, or a mapping with a shape (and an origin)", False
@@ -130,9 +130,10 @@ def _ref_name(error: jsonschema.ValidationError) -> str | None:
     return None
 
 
-def schema_errors(raw: RawSpec) -> list[SpecError]:
+def schema_errors(raw: RawSpec, validator: jsonschema.Draft202012Validator | None = None) -> list[SpecError]:
+    """Every schema error of ``raw`` (against the robot schema unless another validator is given), located."""
     errors = []
-    for error in _validator().iter_errors(raw.data):
+    for error in (validator or _validator()).iter_errors(raw.data):
         path, message, at_key = _schema_message(error)
         errors.append(raw.error(path, message, key=at_key))
     return errors

@@ -79,3 +79,28 @@ def expand(tmp_path_factory):
         return expand_text(doc, folder, **kwargs)
 
     return run
+
+
+def tetrahedron_stl() -> bytes:
+    """A closed tetrahedron as binary STL (MuJoCo reads only binary STL)."""
+    import struct
+
+    corners = [(0.0, 0.0, 0.0), (0.1, 0.0, 0.0), (0.0, 0.1, 0.0), (0.0, 0.0, 0.1)]
+    faces = ((0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3))
+    data = bytearray(b"xacrokit test tetrahedron".ljust(80, b" ")) + struct.pack("<I", len(faces))
+    for face in faces:
+        data += struct.pack("<3f", 0.0, 0.0, 0.0)
+        for index in face:
+            data += struct.pack("<3f", *corners[index])
+        data += struct.pack("<H", 0)
+    return bytes(data)
+
+
+def mesh_package_at(folder: Path) -> Path:
+    """A package folder holding a binary-STL mesh under every name xacrokit.testing's specs use."""
+    from xacrokit.testing import MESH_NAMES
+
+    (folder / "meshes").mkdir(parents=True, exist_ok=True)
+    for name in MESH_NAMES:
+        (folder / "meshes" / f"{name}.stl").write_bytes(tetrahedron_stl())
+    return folder

@@ -8,10 +8,11 @@ import yaml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from conftest import mesh_package_at
 from xacrokit.check import RULES, check
 from xacrokit.pipeline import build_robot, expand_package
 from xacrokit.render import render_package
-from xacrokit.testing import MESH_NAMES, URDF_FAULTS, inject_urdf_fault, valid_specs
+from xacrokit.testing import URDF_FAULTS, inject_urdf_fault, valid_specs
 
 # a dangling parent leaves the injected link without a parent: a second root is a true finding too
 ALSO_EXPECTED = {"dangling_parent": {"S001"}}
@@ -24,29 +25,10 @@ def urdf_of(spec, folder):
     return robot, expand_package(robot, render_package(robot)).content, path
 
 
-def tetrahedron_stl() -> bytes:
-    """A closed tetrahedron as binary STL (MuJoCo reads only binary STL)."""
-    import struct
-
-    corners = [(0.0, 0.0, 0.0), (0.1, 0.0, 0.0), (0.0, 0.1, 0.0), (0.0, 0.0, 0.1)]
-    faces = ((0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3))
-    data = bytearray(b"xacrokit test tetrahedron".ljust(80, b" ")) + struct.pack("<I", len(faces))
-    for face in faces:
-        data += struct.pack("<3f", 0.0, 0.0, 0.0)
-        for index in face:
-            data += struct.pack("<3f", *corners[index])
-        data += struct.pack("<H", 0)
-    return bytes(data)
-
-
 @pytest.fixture(scope="module")
 def mesh_package(tmp_path_factory):
     """The package the random specs' meshes live in (package://some_pkg/meshes/NAME.stl), names with $ { ( & < too."""
-    folder = tmp_path_factory.mktemp("some_pkg")
-    (folder / "meshes").mkdir()
-    for name in MESH_NAMES:
-        (folder / "meshes" / f"{name}.stl").write_bytes(tetrahedron_stl())
-    return folder
+    return mesh_package_at(tmp_path_factory.mktemp("some_pkg"))
 
 
 @settings(max_examples=10, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])

@@ -1,0 +1,407 @@
+"""Multi-robot scenes: several robots (our specs and third-party xacro macros) in one description.
+
+A scene spec is recognised by its top-level ``scene:`` key. It goes through the same stages as a robot spec: load ->
+validate (schema, units, every instance's own spec, parents, names) -> resolve (a frozen :class:`Scene` that knows
+every link and joint name of every instance before anything is written) -> render -> expand -> write. Any name two
+instances would share is an error listing the names and the instances, found before writing; a third-party macro's
+names are found by expanding it alone first.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import tempfile
+from dataclasses import dataclass, field
+from functools import cache
+from pathlib import Path
+from types import SimpleNamespace
+from typing import Any
+
+import jsonschema
+
+from . import __version__
+from .errors import ExpandError, SpecError, SpecErrors
+from .load import PathKey, RawSpec, load_file
+from .model import Origin, Robot
+from .render import RenderedFile, _environment, render_package, xacro_text
+from .resources import schemas_dir
+from .resolve import origin as resolve_origin
+from .resolve import resolve
+from .validate import _Quantities, schema_errors, validate
+
+ROBOT_FILES = ("urdf/", "config/")  # what a scene carries of each robot package (no nested package.xml)
+
+
+@dataclass(frozen=True)
+class ThirdPartyMacro:
+    """A macro with the prefix / parent / *origin interface, from a .xacro file the scene includes where it is."""
+
+    file: Path
+    macro: str
+    params: tuple[tuple[str, str], ...] = ()
+    prefix_param: str = "prefix"
+    parent_param: str = "parent"
+
+
+@dataclass(frozen=True)
+class Instance:
+    """One robot in the scene. ``links``/``joints`` are its full names in the scene (prefix included)."""
+
+    name: str
+    prefix: str
+    parent: str  # the full name of the link it is mounted on
+    origin: Origin
+    links: tuple[str, ...]
+    joints: tuple[str, ...]
+    robot: Robot | None = None
+    spec_file: Path | None = None
+    macro: ThirdPartyMacro | None = None
+    parent_instance: str | None = None
+
+
+@dataclass(frozen=True)
+class Scene:
+    name: str
+    world: str
+    instances: tuple[Instance, ...]
+    source: str = field(default="", compare=False)
+
+    @property
+    def package(self) -> str:
+        return f"{self.name}_description"
+
+    @property
+    def robots(self) -> tuple[Robot, ...]:
+        """The distinct robots of the spec instances, in first-use order."""
+        seen: dict[str, Robot] = {}
+        for instance in self.instances:
+            if instance.robot is not None:
+                seen.setdefault(instance.robot.name, instance.robot)
+        return tuple(seen.values())
+
+    @property
+    def link_names(self) -> tuple[str, ...]:
+        return (self.world, *(n for i in self.instances for n in i.links))
+
+    @property
+    def joint_names(self) -> tuple[str, ...]:
+        return tuple(n for i in self.instances for n in i.joints)
+
+
+def is_scene(raw: RawSpec) -> bool:
+    return isinstance(raw.data, dict) and "scene" in raw.data
+
+
+@cache
+def _validator() -> jsonschema.Draft202012Validator:
+    return jsonschema.Draft202012Validator(json.loads((schemas_dir() / "scene.schema.json").read_text("utf-8")))
+
+
+def build_scene(raw: RawSpec) -> Scene:
+    """Validate and resolve a scene spec. Raises SpecErrors with every located problem (its robots' included)."""
+    errors = schema_errors(raw, _validator())
+    if errors:
+        raise SpecErrors(errors)
+    quantities = _Quantities(raw)
+    for name, instance in quantities.data["instances"].items():
+        quantities.origin(instance, "origin", ("instances", name))
+    data, errors = quantities.data, quantities.errors
+    world = data.get("world", "world")
+    base = Path(raw.file).resolve().parent
+    partial: dict[str, dict[str, Any]] = {}
+    robots_by_name: dict[str, Path] = {}
+    for name, entry in data["instances"].items():
+        path: PathKey = ("instances", name)
+        prefix = entry.get("prefix", "")
+        if "spec" in entry:
+            robot, spec_file = _load_robot(raw, entry["spec"], base, path, errors)
+            if robot is None:
+                continue
+            other = robots_by_name.setdefault(robot.name, spec_file)
+            if other != spec_file:
+                errors.append(
+                    raw.error(
+                        (*path, "spec"),
+                        f"robot {robot.name!r} from {spec_file} differs from the robot "
+                        f"of that name from {other}; rename one (robot names name "
+                        "their xacro macros)",
+                    )
+                )
+                continue
+            links = tuple(prefix + n for n in robot.link_names)
+            joints = (*(prefix + n for n in robot.joint_names), f"{prefix}{robot.root}_mount_joint")
+            partial[name] = {
+                "prefix": prefix,
+                "robot": robot,
+                "spec_file": spec_file,
+                "links": links,
+                "joints": joints,
+                "root": prefix + robot.root,
+            }
+        else:
+            macro = _third_party(raw, entry["xacro"], base, path, errors)
+            if macro is not None:
+                partial[name] = {"prefix": prefix, "macro": macro}
+    if errors:
+        raise SpecErrors(errors)
+    parents = _resolve_parents(raw, data, world, partial, errors)
+    for name, info in partial.items():  # third-party names: expand each such instance alone, on its real parent
+        if "macro" in info and name in parents:
+            found = _probe_names(raw, name, info["macro"], info["prefix"], parents[name][0], errors)
+            if found is not None:
+                info["links"], info["joints"] = found
+    if errors:
+        raise SpecErrors(errors)
+    errors += _parent_link_errors(raw, data, partial, parents, world)
+    errors += _collision_errors(raw, partial, world)
+    if errors:
+        raise SpecErrors(errors)
+    instances = tuple(
+        Instance(
+            name=name,
+            prefix=info["prefix"],
+            parent=parents[name][0],
+            origin=resolve_origin(data["instances"][name].get("origin")),
+            links=info["links"],
+            joints=info["joints"],
+            robot=info.get("robot"),
+            spec_file=info.get("spec_file"),
+            macro=info.get("macro"),
+            parent_instance=parents[name][1],
+        )
+        for name, info in partial.items()
+    )
+    return Scene(name=data["scene"], world=world, instances=instances, source=raw.file)
+
+
+def _load_robot(raw: RawSpec, spec: str, base: Path, path: PathKey, errors: list[SpecError]):
+    spec_file = (base / spec).resolve()
+    try:
+        return resolve(validate(load_file(spec_file))), spec_file
+    except SpecErrors as problems:  # the robot's own problems, located in its own file
+        errors += problems.errors
+        if any("cannot read the spec" in e.message for e in problems.errors):
+            errors.append(raw.error((*path, "spec"), f"no robot spec at {spec_file}"))
+        return None, spec_file
+
+
+def _third_party(
+    raw: RawSpec, entry: dict[str, Any], base: Path, path: PathKey, errors: list[SpecError]
+) -> ThirdPartyMacro | None:
+    file = (base / entry["file"]).resolve()
+    if not file.is_file():
+        errors.append(raw.error((*path, "xacro", "file"), f"no xacro file at {file}"))
+        return None
+    params = tuple((k, _literal(v)) for k, v in entry.get("params", {}).items())
+    return ThirdPartyMacro(
+        file=file,
+        macro=entry["macro"],
+        params=params,
+        prefix_param=entry.get("prefix_param", "prefix"),
+        parent_param=entry.get("parent_param", "parent"),
+    )
+
+
+def _literal(value: object) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return repr(value) if isinstance(value, float) else str(value)
+
+
+def _resolve_parents(
+    raw: RawSpec, data: dict[str, Any], world: str, partial: dict[str, dict[str, Any]], errors: list[SpecError]
+) -> dict[str, tuple[str, str | None]]:
+    """instance -> (full parent link name, parent instance or None); checks references and instance cycles."""
+    parents: dict[str, tuple[str, str | None]] = {}
+    for name in partial:
+        parent = data["instances"][name]["parent"]
+        where: PathKey = ("instances", name, "parent")
+        if "/" not in parent:
+            if parent not in (world, "world"):
+                errors.append(raw.error(where, f"parent {parent!r} must be {world!r} or INSTANCE/LINK"))
+                continue
+            parents[name] = (world, None)
+            continue
+        other, link = parent.split("/", 1)
+        if other == name:
+            errors.append(raw.error(where, "an instance cannot be mounted on itself"))
+        elif other not in data["instances"]:
+            errors.append(
+                raw.error(where, f"instance {other!r} is not in this scene (instances: {', '.join(data['instances'])})")
+            )
+        elif other in partial:
+            parents[name] = (partial[other]["prefix"] + link, other)
+    for name in list(parents):  # instance cycles: following parents must reach the world
+        seen, current = {name}, parents[name][1]
+        while current is not None and current in parents:
+            if current in seen:
+                errors.append(
+                    raw.error(
+                        ("instances", name, "parent"),
+                        f"instances {', '.join(sorted(seen))} are mounted on each other in a loop",
+                    )
+                )
+                parents.pop(name)
+                break
+            seen.add(current)
+            current = parents[current][1]
+    return parents
+
+
+def _parent_link_errors(
+    raw: RawSpec,
+    data: dict[str, Any],
+    partial: dict[str, dict[str, Any]],
+    parents: dict[str, tuple[str, str | None]],
+    world: str,
+) -> list[SpecError]:
+    errors = []
+    for name, (link, other) in parents.items():
+        if other is not None and link not in partial[other].get("links", ()):
+            plain = data["instances"][name]["parent"].split("/", 1)[1]
+            known = [n.removeprefix(partial[other]["prefix"]) for n in partial[other].get("links", ())]
+            errors.append(
+                raw.error(
+                    ("instances", name, "parent"),
+                    f"{plain!r} is not a link of instance {other!r} (its links: {', '.join(known)})",
+                )
+            )
+    return errors
+
+
+def _collision_errors(raw: RawSpec, partial: dict[str, dict[str, Any]], world: str) -> list[SpecError]:
+    owners: dict[tuple[str, str], list[str]] = {("link", world): ["the world"]}
+    for name, info in partial.items():
+        for kind in ("link", "joint"):
+            for full in info.get(f"{kind}s", ()):
+                owners.setdefault((kind, full), []).append(name)
+    clashes: dict[tuple[str, ...], list[str]] = {}
+    for (kind, full), who in owners.items():
+        if len(who) > 1:
+            clashes.setdefault(tuple(who), []).append(f"{kind} {full}")
+    errors = []
+    for who, names in clashes.items():
+        shown = ", ".join(names[:8]) + (f" and {len(names) - 8} more" if len(names) > 8 else "")
+        instance = next(w for w in reversed(who) if w in partial)
+        errors.append(
+            raw.error(
+                ("instances", instance),
+                f"instances {' and '.join(who)} would both have {shown}; give them different prefixes",
+                key=True,
+            )
+        )
+    return errors
+
+
+def _probe_names(
+    raw: RawSpec, name: str, macro: ThirdPartyMacro, prefix: str, parent: str, errors: list[SpecError]
+) -> tuple[tuple[str, ...], tuple[str, ...]] | None:
+    """Expand one third-party instance alone (on a stand-in parent link) to learn its link and joint names."""
+    from lxml import etree
+
+    from .expansion import expand_file
+
+    stub = SimpleNamespace(name=name, prefix=prefix, parent=parent, origin=Origin(), macro=macro)
+    text = _environment().get_template("scene/probe.urdf.xacro.j2").render(instance=stub)
+    with tempfile.TemporaryDirectory(prefix="xacrokit-probe-") as folder:
+        probe = Path(folder) / "probe.urdf.xacro"
+        probe.write_text(text, encoding="utf-8")
+        try:
+            urdf = expand_file(probe)
+        except ExpandError as exc:
+            errors.append(
+                raw.error(
+                    ("instances", name, "xacro"), f"expanding {macro.macro} from {macro.file} failed: {exc.message}"
+                )
+            )
+            return None
+    root = etree.fromstring(urdf.encode())
+    links = tuple(e.get("name") for e in root.findall("link") if e.get("name") != parent)
+    joints = tuple(e.get("name") for e in root.findall("joint"))
+    return links, joints
+
+
+# ------------------------------------------------------------------------------------------------------------ render
+def render_scene(scene: Scene, *, spec_name: str = "scene.yaml") -> list[RenderedFile]:
+    """Every file of the scene package except the expanded URDF."""
+    env = _environment()
+    files: list[RenderedFile] = []
+    for robot in scene.robots:
+        for file in render_package(robot, spec_name=spec_name):
+            if file.path.startswith(ROBOT_FILES) and not file.path.endswith("_controllers.yaml"):
+                files.append(RenderedFile(f"robots/{robot.package}/{file.path}", file.content))
+    has_control = any(i.robot is not None and i.robot.ros2_control is not None for i in scene.instances)
+    context = {
+        "scene": scene,
+        "version": __version__,
+        "spec_name": spec_name,
+        "has_control": has_control,
+        "robot": SimpleNamespace(root=scene.world),
+        "xacro_text": xacro_text,
+    }
+    for path, template in (
+        ("package.xml", "scene/package.xml.j2"),
+        ("CMakeLists.txt", "scene/CMakeLists.txt.j2"),
+        ("README.md", "scene/README.md.j2"),
+        (f"urdf/{scene.name}.urdf.xacro", "scene/scene.urdf.xacro.j2"),
+        ("launch/display.launch.py", "scene/display.launch.py.j2"),
+        (f"rviz/{scene.name}.rviz", "package/rviz/robot.rviz.j2"),
+    ):
+        files.append(RenderedFile(path, env.get_template(template).render(context)))
+    controllers = env.get_template("package/config/controllers.yaml.j2")
+    for instance in scene.instances:
+        robot = instance.robot
+        if robot is not None and robot.ros2_control is not None:
+            groups: dict[str, list[str]] = {}
+            for joint in robot.ros2_control:
+                if joint.interfaces.command:
+                    groups.setdefault(joint.interfaces.command[0], []).append(instance.prefix + joint.name)
+            text = controllers.render(
+                robot=robot, version=__version__, spec_name=spec_name, command_groups=groups, prefix=instance.prefix
+            )
+            files.append(RenderedFile(f"config/{instance.name}_controllers.yaml", text))
+    return sorted(files, key=lambda f: f.path)
+
+
+def expand_scene(scene: Scene, files: list[RenderedFile]) -> RenderedFile:
+    from .expansion import expand_file
+    from .fileio import write_text_atomic
+
+    with tempfile.TemporaryDirectory(prefix="xacrokit-") as scratch:
+        root = Path(scratch) / scene.package
+        for file in files:
+            write_text_atomic(root / file.path, file.content)
+        urdf = expand_file(root / "urdf" / f"{scene.name}.urdf.xacro", xacro_banner=False)
+    header = (
+        f"<!-- Generated by xacrokit {__version__}: urdf/{scene.name}.urdf.xacro expanded with xacro "
+        "(default arguments). Do not edit: regenerate. -->\n"
+    )
+    declaration, _, body = urdf.partition("\n")
+    return RenderedFile(f"urdf/{scene.name}.urdf", f"{declaration}\n{header}{body}")
+
+
+def fleet_scene(spec_path: str | Path, count: int, *, columns: int | None = None, spacing: float = 2.0) -> Scene:
+    """``count`` copies of one robot with prefixes r0_ ... r{count-1}_, on a grid in the world (row-major)."""
+    if count < 1:
+        raise SpecErrors([SpecError("--count must be at least 1", file="<command line>")])
+    if not (spacing > 0 and math.isfinite(spacing)):
+        raise SpecErrors([SpecError("--spacing must be > 0 m", file="<command line>")])
+    columns = columns or math.ceil(math.sqrt(count))
+    lines = [f"scene: {_fleet_name(spec_path)}", "instances:"]
+    for index in range(count):
+        row, column = divmod(index, columns)
+        lines.append(
+            f"  r{index}: {{spec: {json.dumps(str(Path(spec_path).resolve()))}, prefix: r{index}_, parent: world, "
+            f"origin: {{xyz: [{column * spacing!r}, {row * spacing!r}, 0.0]}}}}"
+        )
+    from .load import load_text
+
+    raw = load_text("\n".join(lines) + "\n", file=f"<fleet of {spec_path}>")
+    return build_scene(raw)
+
+
+def _fleet_name(spec_path: str | Path) -> str:
+    raw = load_file(spec_path)
+    name = raw.data.get("robot") if isinstance(raw.data, dict) else None
+    return f"{name}_fleet" if isinstance(name, str) else "fleet"
