@@ -25,9 +25,9 @@ from .errors import ExpandError, SpecError, SpecErrors
 from .load import PathKey, RawSpec, load_file
 from .model import Origin, Robot
 from .render import RenderedFile, _environment, render_package, xacro_text
-from .resources import schemas_dir
 from .resolve import origin as resolve_origin
 from .resolve import resolve
+from .resources import schemas_dir
 from .validate import _Quantities, schema_errors, validate
 
 ROBOT_FILES = ("urdf/", "config/")  # what a scene carries of each robot package (no nested package.xml)

@@ -17,7 +17,7 @@ import xacrokit
 from conftest import REPO, mesh_package_at
 from xacrokit.check import check
 from xacrokit.kinematics import origin_transform
-from xacrokit.pipeline import build_robot, expand_package
+from xacrokit.pipeline import expand_package
 from xacrokit.render import render_package
 from xacrokit.testing import valid_specs
 
