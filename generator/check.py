@@ -45,6 +45,11 @@ RULES: dict[str, tuple[str, Severity, str]] = {
     "J009": ("dynamics-present", "warning", "moving joints have <dynamics> (damping, friction)"),
     "J010": ("safety-inside-limits", "error", "safety_controller soft limits lie inside the hard limits"),
     "J011": ("joint-type", "error", "a joint's type is one URDF knows"),
+    "J012": (
+        "floating-at-root",
+        "warning",
+        "a floating joint hangs from the root link (simulators reject deeper ones)",
+    ),
     "I001": ("mass-positive", "error", "links with geometry or on a moving joint have an inertial with mass > 0"),
     "I002": ("inertia-positive-definite", "error", "the inertia tensor is positive definite"),
     "I003": ("inertia-triangle", "error", "principal moments obey the triangle inequality"),
@@ -265,6 +270,7 @@ def _path_up(start: str, target: str, parent_of: Mapping[str, tuple[str, str]]) 
 
 def joint_rules(doc: _Doc) -> Iterator[Finding]:
     types = {j.get("name", ""): j.get("type", "") for j in doc.joints}
+    children = {j.find("child").get("link") for j in doc.joints if j.find("child") is not None}
     for joint in doc.joints:
         name, kind = joint.get("name", ""), joint.get("type", "")
 
@@ -306,6 +312,12 @@ def joint_rules(doc: _Doc) -> Iterator[Finding]:
                 yield found("J007", f"axis has length {norm:.6g}; consumers normalise it, write the unit vector")
         if kind in MOVING and joint.find("dynamics") is None and joint.find("mimic") is None:
             yield found("J009", "moving joint without <dynamics damping friction>; simulators then assume none")
+        if kind == "floating" and joint.find("parent") is not None and joint.find("parent").get("link") in children:
+            yield found(
+                "J012",
+                "floating joint below the root link; MuJoCo and most simulators accept a floating "
+                "joint only as the base: make it fixed, or the robot's root",
+            )
         mimic = joint.find("mimic")
         if mimic is not None:
             target = mimic.get("joint", "")

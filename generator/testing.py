@@ -191,6 +191,9 @@ def valid_specs(draw, max_links: int = 5) -> dict[str, Any]:
     spec["links"] = {f"link_{i}": draw(_link(materials)) for i in range(count)}
     links = list(spec["links"])
     spec["joints"] = {f"joint_{i}": draw(_joint(links[draw(st.integers(0, i - 1))], links[i])) for i in range(1, count)}
+    for joint in spec["joints"].values():  # a floating joint is a floating base: it hangs from the root
+        if joint["type"] == "floating":
+            joint["parent"] = links[0]
     for joint in spec["joints"].values():  # a moved link has a mass (and, without a shape, an inertia)
         child = spec["links"][joint["child"]]
         if joint["type"] != "fixed" and "mass" not in child:

@@ -521,9 +521,16 @@ def _physics_errors(raw: RawSpec, data: dict[str, Any]) -> Iterator[SpecError]:
             yield raw.error((*path, "inertia"), "inertia needs a mass")
         if "inertia" in link:
             yield from _inertia_errors(raw, link["inertia"], (*path, "inertia"))
+    children = {child for _, child, _ in _edges(data)}
     for name, joint in data.get("joints", {}).items():
         path = ("joints", name)
         yield from _limit_errors(raw, joint, path, joint["type"])
+        if joint["type"] == "floating" and joint["parent"] in children:
+            yield raw.error(
+                (*path, "type"),
+                "a floating joint may only hang from the root link (a floating base): "
+                "simulators such as MuJoCo reject deeper ones",
+            )
         child = data.get("links", {}).get(joint["child"])
         if joint["type"] != "fixed" and isinstance(child, dict) and "mass" not in child:
             yield raw.error(

@@ -31,7 +31,7 @@ def mesh_package(tmp_path_factory):
     return mesh_package_at(tmp_path_factory.mktemp("some_pkg"))
 
 
-@settings(max_examples=10, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+@settings(suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 @given(spec=valid_specs())
 def test_valid_specs_check_clean_with_every_consumer_accepting(tmp_path_factory, mesh_package, spec):
     folder = tmp_path_factory.mktemp("clean")

@@ -228,3 +228,14 @@ def test_the_line_points_at_the_offending_value():
     (error,) = caught.value.errors
     line = text.splitlines()[error.line - 1]
     assert line[error.column - 1 :].startswith("base_lnk")
+
+
+def test_a_floating_joint_must_hang_from_the_root():
+    data = mutated("joints.hover", {"type": "floating", "parent": "arm", "child": "hovering"})
+    data["links"]["hovering"] = {"shape": {"sphere": {"radius": 0.1}}, "mass": 1.0}
+    messages = [(e.path, e.message) for e in errors_of(data)]
+    assert (
+        "$.joints.hover.type",
+        "a floating joint may only hang from the root link (a floating base): simulators "
+        "such as MuJoCo reject deeper ones",
+    ) in messages

@@ -118,6 +118,10 @@ CASES = {
         ),
     ),
     "J011": (base(**{'type="revolute"': 'type="ball"'}), base()),
+    "J012": (
+        robot(MATERIAL, B, link("arm"), link("a2"), S, joint("j2", "arm", "a2", "floating")),
+        robot(MATERIAL, B, link("arm"), link("a2"), S, joint("j2", "base_link", "a2", "floating")),
+    ),
     "I001": (base(**{'<mass value="0.5"/>': '<mass value="-0.5"/>'}), base()),
     "I002": (
         base(**{'ixx="0.00380" ixy="0"': 'ixx="0.00380" ixy="0.005"'}),
