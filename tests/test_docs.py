@@ -158,7 +158,7 @@ def test_readme_command_examples_run_in_sequence(tmp_path):
 
 
 def test_readme_spec_sample_generates(tmp_path):
-    (sample,) = [b for b in readme_blocks("yaml") if b.startswith("# yaml-language-server")]
+    (sample,) = [b for b in readme_blocks("yaml") if b.startswith("# yaml-language-server: $schema=../schemas/robot")]
     (tmp_path / "spec.yaml").write_text(sample, encoding="utf-8")
     result = xacrokit.generate(tmp_path / "spec.yaml", tmp_path / "out")
     assert {"base_link", "upper_arm", "hand", "tool0", "camera_link"} <= set(result.robot.link_names)
@@ -177,3 +177,8 @@ def test_readme_check_rules_table_is_current():
     readme = (REPO / "README.md").read_text(encoding="utf-8")
     block = readme.split("<!-- check-rules:start -->\n", 1)[1].split("<!-- check-rules:end -->", 1)[0]
     assert block == rules_markdown()
+
+
+def test_readme_scene_sample_is_the_example():
+    (sample,) = [b for b in readme_blocks("yaml") if "scene.schema.json" in b]
+    assert sample + "\n" == (REPO / "examples" / "scenes" / "bin_sorting_cell.yaml").read_text(encoding="utf-8")
