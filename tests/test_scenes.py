@@ -338,3 +338,16 @@ def test_random_scenes_prefix_disjoint_fk_and_check(tmp_path_factory, case, seed
     report = check(path, consumers=["check_urdf", "pinocchio"], package_paths={"some_pkg": mesh_package_at(folder)})
     assert not report.errors, [str(f) for f in report.errors]
     assert all(c.status == "accepted" for c in report.consumers)
+
+
+@pytest.mark.parametrize(
+    "scene", sorted(p for p in SCENES.glob("*.yaml") if "scene:" in p.read_text("utf-8")), ids=lambda p: p.stem
+)
+def test_every_scene_example_generates_and_checks_clean(tmp_path, scene):
+    result = xacrokit.generate(scene, tmp_path / "pkg")
+    assert result.scene is not None and len(result.scene.instances) >= 2
+    report = check(tmp_path / "pkg" / "urdf" / f"{result.scene.name}.urdf")
+    assert not report.findings, [str(f) for f in report.findings]
+    assert report.consumers and all(c.status == "accepted" for c in report.consumers)
+    again = xacrokit.generate(scene, tmp_path / "pkg")
+    assert {a.action for a in again.actions} == {"identical"}
