@@ -169,33 +169,23 @@ def _vector(element: etree._Element | None, attribute: str, default: str = "0 0 
     return np.array(values if len(values) == 3 else [math.nan] * 3)
 
 
-def structure_rules(doc: _Doc) -> Iterator[Finding]:
+def _duplicate_names(doc: _Doc, elements: list[etree._Element], kind: str, rule: str) -> Iterator[Finding]:
     seen: dict[str, etree._Element] = {}
-    for link in doc.links:
-        name = link.get("name", "")
+    for element in elements:
+        name = element.get("name", "")
         if name in seen:
-            yield doc.finding(
-                "S004",
-                "link",
-                name,
-                f"link {name!r} is defined twice (also on line {seen[name].sourceline}); rename one",
-                link,
-            )
-        seen[name] = link
-    seen_joints: dict[str, etree._Element] = {}
+            message = f"{kind} {name!r} is defined twice (also on line {seen[name].sourceline}); rename one"
+            yield doc.finding(rule, kind, name, message, element)
+        seen[name] = element
+
+
+def structure_rules(doc: _Doc) -> Iterator[Finding]:
+    yield from _duplicate_names(doc, doc.links, "link", "S004")
+    yield from _duplicate_names(doc, doc.joints, "joint", "S005")
     parent_of: dict[str, tuple[str, str]] = {}  # child -> (parent, joint)
     children: dict[str, list[str]] = {}
     for joint in doc.joints:
         name = joint.get("name", "")
-        if name in seen_joints:
-            yield doc.finding(
-                "S005",
-                "joint",
-                name,
-                f"joint {name!r} is defined twice (also on line {seen_joints[name].sourceline}); rename one",
-                joint,
-            )
-        seen_joints[name] = joint
         parent = joint.find("parent").get("link", "") if joint.find("parent") is not None else ""
         child = joint.find("child").get("link", "") if joint.find("child") is not None else ""
         missing = [

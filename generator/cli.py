@@ -141,6 +141,12 @@ def _cmd_macros(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_write_options(parser: argparse.ArgumentParser, default_output: str) -> None:
+    parser.add_argument("-o", "--output", help=f"package folder (default: ./{default_output})")
+    parser.add_argument("--dry-run", action="store_true", help="print what would be written; write nothing")
+    parser.add_argument("--force", action="store_true", help="overwrite files edited since they were generated")
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="gen-robot",
@@ -160,9 +166,7 @@ def build_parser() -> argparse.ArgumentParser:
         "conflicts and stop the write unless --force.",
     )
     gen.add_argument("spec", help="the robot spec (YAML; see `gen-robot schema`)")
-    gen.add_argument("-o", "--output", help="package folder (default: ./NAME_description)")
-    gen.add_argument("--dry-run", action="store_true", help="print what would be written; write nothing")
-    gen.add_argument("--force", action="store_true", help="overwrite files edited since they were generated")
+    _add_write_options(gen, "NAME_description")
     gen.add_argument(
         "--macros",
         choices=("copy", "find"),
@@ -182,9 +186,7 @@ def build_parser() -> argparse.ArgumentParser:
     fleet.add_argument("--count", type=int, required=True, help="how many robots")
     fleet.add_argument("--grid", help="ROWSxCOLUMNS, e.g. 2x5 (default: a square grid)")
     fleet.add_argument("--spacing", type=float, default=2.0, help="distance between neighbours in m (default 2.0)")
-    fleet.add_argument("-o", "--output", help="package folder (default: ./NAME_fleet_description)")
-    fleet.add_argument("--dry-run", action="store_true", help="print what would be written; write nothing")
-    fleet.add_argument("--force", action="store_true", help="overwrite files edited since they were generated")
+    _add_write_options(fleet, "NAME_fleet_description")
     fleet.set_defaults(handler=_cmd_fleet)
 
     new = commands.add_parser(

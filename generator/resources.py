@@ -12,6 +12,19 @@ from pathlib import Path
 from .errors import ResourceError
 
 PUBLIC_MACRO_FILES = ("inertia.xacro", "links.xacro", "materials.xacro", "wheel.xacro", "dh.xacro")
+# the public macros those files define (a test checks this against the files' banners)
+PUBLIC_MACROS = (
+    "box_inertial",
+    "cylinder_inertial",
+    "sphere_inertial",
+    "hollow_cylinder_inertial",
+    "inertial",
+    "box_link",
+    "cylinder_link",
+    "sphere_link",
+    "wheel",
+    "dh_arm",
+)
 
 
 def _data_dir(package: str) -> Path:

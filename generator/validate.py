@@ -19,23 +19,14 @@ import numpy as np
 
 from .errors import SpecError, SpecErrors
 from .load import PathKey, RawSpec
-from .resources import schemas_dir
+from .resources import PUBLIC_MACROS, schemas_dir
 from .units import Kind, UnitError, parse_quantity
 
 MOVING = ("revolute", "continuous", "prismatic")
 # The robot name becomes a xacro macro name: it must not shadow a library macro or a xacro keyword.
 RESERVED_ROBOT_NAMES = frozenset(
     {
-        "box_inertial",
-        "cylinder_inertial",
-        "sphere_inertial",
-        "hollow_cylinder_inertial",
-        "inertial",
-        "box_link",
-        "cylinder_link",
-        "sphere_link",
-        "wheel",
-        "dh_arm",
+        *PUBLIC_MACROS,
         "call",
         "arg",
         "property",

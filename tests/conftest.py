@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import os
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -104,3 +106,9 @@ def mesh_package_at(folder: Path) -> Path:
     for name in MESH_NAMES:
         (folder / "meshes" / f"{name}.stl").write_bytes(tetrahedron_stl())
     return folder
+
+
+def gen_robot(*args, cwd=None) -> subprocess.CompletedProcess:
+    """Run the gen-robot command line with this interpreter; text output captured."""
+    command = [sys.executable, "-m", "xacrokit.cli", *map(str, args)]
+    return subprocess.run(command, capture_output=True, text=True, cwd=cwd, timeout=300)

@@ -12,7 +12,7 @@ import pytest
 import yaml
 
 import xacrokit
-from conftest import REPO
+from conftest import REPO, gen_robot
 from xacrokit.check import RULES, CheckReport, check
 from xacrokit.consumers import run_consumer
 
@@ -84,12 +84,6 @@ def test_consumer_that_hangs_is_stopped_and_reported(tmp_path, monkeypatch):
     sleeper.chmod(0o755)
     result = consumers.run_consumer("check_urdf", CORPUS / "J002_pass.urdf", timeout=0.5)
     assert result.status == "timeout" and result.failed
-
-
-def gen_robot(*args, cwd=None):
-    return subprocess.run(
-        [sys.executable, "-m", "xacrokit.cli", *map(str, args)], capture_output=True, text=True, cwd=cwd, timeout=300
-    )
 
 
 @pytest.mark.parametrize("fixture", ["I003_fail.urdf", "I003_pass.urdf", "C001_fail.urdf", "J009_fail.urdf"])

@@ -16,7 +16,7 @@ from lxml import etree
 import xacrokit
 from conftest import REPO
 from xacrokit.macrodoc import XACRO_NS, read_macro_docs, render_reference
-from xacrokit.resources import PUBLIC_MACRO_FILES
+from xacrokit.resources import PUBLIC_MACRO_FILES, PUBLIC_MACROS
 
 _PARAM = re.compile(r"""(\*{0,2}\w+)(?::=(?:'([^']*)'|"([^"]*)"|(\S+)))?""")
 
@@ -41,18 +41,7 @@ def test_every_public_macro_file_is_listed_and_has_a_header():
 
 def test_banners_document_exactly_the_real_parameters():
     docs = read_macro_docs()
-    assert {d.name for d in docs} == {
-        "box_inertial",
-        "cylinder_inertial",
-        "sphere_inertial",
-        "hollow_cylinder_inertial",
-        "inertial",
-        "box_link",
-        "cylinder_link",
-        "sphere_link",
-        "wheel",
-        "dh_arm",
-    }
+    assert {d.name for d in docs} == set(PUBLIC_MACROS)
     for doc in docs:
         documented = [(p.name, None if p.default is None else p.default.strip("'")) for p in doc.params]
         assert documented == declared_params(doc.declared_params), doc.name

@@ -2,14 +2,11 @@
 
 from __future__ import annotations
 
-import subprocess
-import sys
-
 import pytest
 from lxml import etree
 
 import xacrokit
-from conftest import XACRO_HEADER, xacro_doc
+from conftest import XACRO_HEADER, gen_robot, xacro_doc
 
 ARG_DOC = (
     XACRO_HEADER
@@ -94,16 +91,11 @@ def test_error_names_the_public_macro_stack(expand):
     assert "box_inertial: parameter mass must be > 0 (kg), got -1" in err.message
 
 
-def run_cli(*args: str, cwd=None) -> subprocess.CompletedProcess:
-    gen_robot = [sys.executable, "-m", "xacrokit.cli"]
-    return subprocess.run([*gen_robot, *args], capture_output=True, text=True, cwd=cwd, timeout=120)
-
-
 def test_cli_expand_writes_the_urdf(tmp_path):
     doc = tmp_path / "a.urdf.xacro"
     doc.write_text(ARG_DOC, encoding="utf-8")
     out = tmp_path / "out" / "a.urdf"
-    result = run_cli("expand", str(doc), "prefix:=x_", "-o", str(out))
+    result = gen_robot("expand", str(doc), "prefix:=x_", "-o", str(out))
     assert result.returncode == 0, result.stderr
     assert etree.parse(str(out)).getroot().find("link").get("name") == "x_base_link"
 
@@ -117,25 +109,25 @@ def test_cli_errors_exit_2_with_a_message_and_no_traceback(tmp_path):
         ["expand", str(tmp_path / "missing.xacro")],
         ["expand", str(doc), "--package", "nopath"],
     ):
-        result = run_cli(*args)
+        result = gen_robot(*args)
         assert result.returncode == 2, args
         assert result.stderr.startswith("gen-robot: error: ") and "Traceback" not in result.stderr, result.stderr
         assert not (tmp_path / "out").exists()
 
 
 def test_cli_usage_errors_exit_2():
-    assert run_cli().returncode == 2
-    assert run_cli("no-such-command").returncode == 2
+    assert gen_robot().returncode == 2
+    assert gen_robot("no-such-command").returncode == 2
 
 
 def test_cli_help_lists_the_commands():
-    result = run_cli("--help")
+    result = gen_robot("--help")
     assert result.returncode == 0
     assert "expand" in result.stdout and "macros" in result.stdout
 
 
 def test_cli_macros_prints_the_library_folder():
-    result = run_cli("macros", "-v")
+    result = gen_robot("macros", "-v")
     assert result.returncode == 0
     lines = result.stdout.splitlines()
     assert lines[0] == str(xacrokit.macros_dir())

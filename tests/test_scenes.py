@@ -2,9 +2,6 @@
 
 from __future__ import annotations
 
-import subprocess
-import sys
-
 import numpy as np
 import pinocchio as pin
 import pytest
@@ -14,7 +11,7 @@ from hypothesis import strategies as st
 from lxml import etree
 
 import xacrokit
-from conftest import REPO, mesh_package_at
+from conftest import REPO, gen_robot, mesh_package_at
 from xacrokit.check import check
 from xacrokit.kinematics import origin_transform
 from xacrokit.pipeline import expand_package
@@ -217,25 +214,9 @@ def test_errors_inside_an_instance_spec_point_into_that_spec(tmp_path):
 
 
 def test_fleet_of_ten_on_a_grid(tmp_path):
-    result = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "xacrokit.cli",
-            "fleet",
-            str(REPO / "examples" / "diff_drive.yaml"),
-            "--count",
-            "10",
-            "--grid",
-            "2x5",
-            "--spacing",
-            "1.5",
-            "-o",
-            str(tmp_path / "fleet"),
-        ],
-        capture_output=True,
-        text=True,
-        timeout=300,
+    diff_drive = REPO / "examples" / "diff_drive.yaml"
+    result = gen_robot(
+        "fleet", diff_drive, "--count", "10", "--grid", "2x5", "--spacing", "1.5", "-o", tmp_path / "fleet"
     )
     assert result.returncode == 0, result.stderr
     root = etree.parse(str(tmp_path / "fleet" / "urdf" / "diff_drive_fleet.urdf")).getroot()
@@ -245,22 +226,7 @@ def test_fleet_of_ten_on_a_grid(tmp_path):
         assert [float(v) for v in mount.find("origin").get("xyz").split()] == [column * 1.5, row * 1.5, 0.0]
     assert len(root.findall("link")) == 1 + 10 * 8
     assert not check(tmp_path / "fleet" / "urdf" / "diff_drive_fleet.urdf", consumers=["check_urdf"]).errors
-    bad = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "xacrokit.cli",
-            "fleet",
-            str(REPO / "examples" / "diff_drive.yaml"),
-            "--count",
-            "10",
-            "--grid",
-            "2x4",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
+    bad = gen_robot("fleet", diff_drive, "--count", "10", "--grid", "2x4")
     assert bad.returncode == 2 and "has 8 places for 10 robots" in bad.stderr
 
 

@@ -4,15 +4,13 @@ from __future__ import annotations
 
 import json
 import os
-import subprocess
-import sys
 
 import jsonschema
 import pytest
 import yaml
 
 import xacrokit
-from conftest import REPO
+from conftest import REPO, gen_robot
 from xacrokit.render import RenderedFile
 from xacrokit.write import MANIFEST, ConflictError, plan, write
 
@@ -23,12 +21,6 @@ def snapshot(root):
     return {
         p.relative_to(root).as_posix(): (p.read_bytes(), p.stat().st_mtime_ns) for p in root.rglob("*") if p.is_file()
     }
-
-
-def gen_robot(*args, cwd=None):
-    return subprocess.run(
-        [sys.executable, "-m", "xacrokit.cli", *map(str, args)], capture_output=True, text=True, cwd=cwd, timeout=300
-    )
 
 
 def test_first_run_creates_everything_and_a_second_changes_nothing(tmp_path):
