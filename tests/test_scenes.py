@@ -317,3 +317,18 @@ def test_every_scene_example_generates_and_checks_clean(tmp_path, scene):
     assert report.consumers and all(c.status == "accepted" for c in report.consumers)
     again = xacrokit.generate(scene, tmp_path / "pkg")
     assert {a.action for a in again.actions} == {"identical"}
+
+
+def test_fleet_command_and_the_fleet_scene_example_agree(tmp_path):
+    diff_drive = REPO / "examples" / "diff_drive.yaml"
+    assert (
+        gen_robot(
+            "fleet", diff_drive, "--count", "10", "--grid", "2x5", "--spacing", "1.5", "-o", tmp_path / "cli"
+        ).returncode
+        == 0
+    )
+    xacrokit.generate(SCENES / "diff_drive_fleet.yaml", tmp_path / "file")
+    urdf = "urdf/diff_drive_fleet.urdf"
+    assert (tmp_path / "cli" / urdf).read_text(encoding="utf-8") == (tmp_path / "file" / urdf).read_text(
+        encoding="utf-8"
+    )
