@@ -121,7 +121,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
 def _cmd_schema(args: argparse.Namespace) -> int:
     from .resources import schemas_dir
 
-    sys.stdout.write((schemas_dir() / "robot.schema.json").read_text(encoding="utf-8"))
+    sys.stdout.write((schemas_dir() / f"{args.kind}.schema.json").read_text(encoding="utf-8"))
     return 0
 
 
@@ -145,6 +145,17 @@ def _add_write_options(parser: argparse.ArgumentParser, default_output: str) -> 
     parser.add_argument("-o", "--output", help=f"package folder (default: ./{default_output})")
     parser.add_argument("--dry-run", action="store_true", help="print what would be written; write nothing")
     parser.add_argument("--force", action="store_true", help="overwrite files edited since they were generated")
+
+
+def _add_xacro_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("mappings", nargs="*", metavar="name:=value", help="values for the document's xacro:args")
+    parser.add_argument(
+        "--package",
+        action="append",
+        default=[],
+        metavar="NAME=PATH",
+        help="folder for $(find NAME) and package://NAME; repeatable",
+    )
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -206,7 +217,6 @@ def build_parser() -> argparse.ArgumentParser:
         "2 unreadable input or usage.",
     )
     chk.add_argument("path", help="a .urdf, .xacro or .yaml spec")
-    chk.add_argument("mappings", nargs="*", metavar="name:=value", help="xacro:arg values for a xacro document")
     chk.add_argument("--json", action="store_true", help="print the report as JSON (schemas/check-report.schema.json)")
     chk.add_argument("--strict", action="store_true", help="warnings fail the check too (exit code 1)")
     chk.add_argument(
@@ -218,18 +228,16 @@ def build_parser() -> argparse.ArgumentParser:
     chk.add_argument(
         "--prefix", help="require every link, joint, gazebo reference and ros2_control joint to start with this prefix"
     )
-    chk.add_argument(
-        "--package",
-        action="append",
-        default=[],
-        metavar="NAME=PATH",
-        help="folder for $(find NAME) and package://NAME; repeatable",
-    )
+    _add_xacro_options(chk)
     chk.set_defaults(handler=_cmd_check)
 
     schema = commands.add_parser(
-        "schema", help="print the spec's JSON Schema", description="Print the JSON Schema (2020-12) of robot specs."
+        "schema",
+        help="print a JSON Schema",
+        description="Print the JSON Schema (2020-12) of robot specs (default), "
+        "scene specs, or gen-robot check's JSON report.",
     )
+    schema.add_argument("--kind", choices=("robot", "scene", "check-report"), default="robot", help="which schema")
     schema.set_defaults(handler=_cmd_schema)
 
     expand = commands.add_parser(
@@ -240,11 +248,8 @@ def build_parser() -> argparse.ArgumentParser:
         "Every name:=value must be declared in the document with <xacro:arg>.",
     )
     expand.add_argument("file", help="the .xacro document")
-    expand.add_argument("mappings", nargs="*", metavar="name:=value", help="values for the document's xacro:args")
     expand.add_argument("-o", "--output", help="write the URDF here (atomically) instead of to standard output")
-    expand.add_argument(
-        "--package", action="append", default=[], metavar="NAME=PATH", help="folder for $(find NAME); repeatable"
-    )
+    _add_xacro_options(expand)
     expand.set_defaults(handler=_cmd_expand)
 
     macros = commands.add_parser(

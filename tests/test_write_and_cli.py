@@ -254,3 +254,11 @@ def test_robot_macro_mounts_on_a_parent_with_an_origin(diff_drive_package, tmp_p
     assert len(materials) == len(set(materials)) == 3  # one definition, however many instances
     links = [e.get("name") for e in root.findall("link")]
     assert len(links) == len(set(links)) == 1 + 2 * 8  # world + two robots of 8 links
+
+
+@pytest.mark.parametrize("kind", ["robot", "scene", "check-report"])
+def test_schema_command_prints_each_schema(kind):
+    result = gen_robot("schema", "--kind", kind)
+    schema = json.loads(result.stdout)
+    jsonschema.Draft202012Validator.check_schema(schema)
+    assert schema["$id"] == f"urn:xacrokit:schema:{kind}:v1"
