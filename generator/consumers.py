@@ -46,9 +46,10 @@ def _check_urdf_binary() -> str | None:
     return shutil.which("check_urdf", path=str(Path(sys.executable).parent)) or shutil.which("check_urdf")
 
 
-def _run_capped(command: list[str], timeout: float) -> tuple[int | None, str, bool]:
+def _run_capped(command: list[str], timeout: float, cwd: Path | None = None) -> tuple[int | None, str, bool]:
     """Run ``command``; return (exit code or None on timeout, first OUTPUT_CAP bytes of output, output overflowed)."""
-    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL)
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                               cwd=cwd)
     chunks: list[bytes] = []
     overflow = threading.Event()
 
@@ -90,11 +91,12 @@ def run_consumer(
             name, "unavailable", "not installed" + (" (pip install xacrokit[mujoco])" if name == "mujoco" else "")
         )
     if name == "check_urdf":
-        command = [_check_urdf_binary() or "check_urdf", str(urdf_path)]
+        command = [_check_urdf_binary() or "check_urdf", str(urdf_path.resolve())]
     else:
         packages = json.dumps({k: str(v) for k, v in (package_paths or {}).items()})
-        command = [sys.executable, "-m", "xacrokit.consumers", name, str(urdf_path), packages]
-    code, output, overflow = _run_capped(command, timeout)
+        command = [sys.executable, "-m", "xacrokit.consumers", name, str(urdf_path.resolve()), packages]
+    # in the URDF's own folder: consumers may leave files behind (MuJoCo writes MUJOCO_LOG.TXT where it runs)
+    code, output, overflow = _run_capped(command, timeout, cwd=urdf_path.resolve().parent)
     if overflow:
         return ConsumerResult(name, "rejected", f"printed more than {OUTPUT_CAP} bytes without ending; stopped")
     if code is None:

@@ -196,3 +196,9 @@ def test_benchmark_script_runs():
     assert result.returncode == 0, result.stderr
     for words in ("1000 links:", "ratio t(3000)/t(1000)", "rooted cycle reported (S002)", "gen-robot --help"):
         assert words in result.stdout
+
+
+def test_consumers_leave_nothing_in_the_working_folder(tmp_path):
+    result = gen_robot("check", CORPUS / "I003_fail.urdf", cwd=tmp_path)  # MuJoCo, when installed, rejects it
+    assert result.returncode == 1
+    assert list(tmp_path.iterdir()) == []
