@@ -32,7 +32,9 @@ def _cmd_expand(args: argparse.Namespace) -> int:
 def _cmd_generate(args: argparse.Namespace) -> int:
     from .pipeline import generate
 
-    result = generate(args.spec, args.output, dry_run=args.dry_run, force=args.force, macros=args.macros)
+    result = generate(
+        args.spec, args.output, dry_run=args.dry_run, force=args.force, macros=args.macros, via_xacro=args.via_xacro
+    )
     width = max(len(a.action) for a in result.actions)
     verb = "would write" if args.dry_run else "wrote"
     for action in result.actions:
@@ -62,7 +64,14 @@ def _cmd_fleet(args: argparse.Namespace) -> int:
             )
         columns = int(columns_text)
     scene = fleet_scene(args.spec, args.count, columns=columns, spacing=args.spacing)
-    result = generate_scene(scene, args.output, dry_run=args.dry_run, force=args.force, spec_name=Path(args.spec).name)
+    result = generate_scene(
+        scene,
+        args.output,
+        dry_run=args.dry_run,
+        force=args.force,
+        spec_name=Path(args.spec).name,
+        via_xacro=args.via_xacro,
+    )
     changed = sum(a.action != "identical" for a in result.actions)
     verb = "would write" if args.dry_run else "wrote"
     print(
@@ -145,6 +154,12 @@ def _add_write_options(parser: argparse.ArgumentParser, default_output: str) -> 
     parser.add_argument("-o", "--output", help=f"package folder (default: ./{default_output})")
     parser.add_argument("--dry-run", action="store_true", help="print what would be written; write nothing")
     parser.add_argument("--force", action="store_true", help="overwrite files edited since they were generated")
+    parser.add_argument(
+        "--via-xacro",
+        action="store_true",
+        help="write urdf/NAME.urdf by expanding the package "
+        "with xacro instead of emitting it directly (the same robot; slower)",
+    )
 
 
 def _add_xacro_options(parser: argparse.ArgumentParser) -> None:

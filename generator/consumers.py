@@ -48,8 +48,9 @@ def _check_urdf_binary() -> str | None:
 
 def _run_capped(command: list[str], timeout: float, cwd: Path | None = None) -> tuple[int | None, str, bool]:
     """Run ``command``; return (exit code or None on timeout, first OUTPUT_CAP bytes of output, output overflowed)."""
-    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-                               cwd=cwd)
+    process = subprocess.Popen(
+        command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, cwd=cwd
+    )
     chunks: list[bytes] = []
     overflow = threading.Event()
 

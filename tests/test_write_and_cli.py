@@ -128,12 +128,12 @@ def test_default_output_is_name_description_in_the_working_folder(tmp_path):
 
 def test_macros_find_includes_the_installed_library(tmp_path):
     out = tmp_path / "pkg"
-    result = xacrokit.generate(SPEC, out, macros="find")
+    result = xacrokit.generate(SPEC, out, macros="find", via_xacro=True)  # xacro must find the installed library
     macro = (out / "urdf" / "two_dof_arm_macro.xacro").read_text(encoding="utf-8")
     assert '<xacro:include filename="$(find xacrokit)/macros/inertia.xacro"/>' in macro
     assert not (out / "urdf" / "xacrokit").exists()
     assert "<exec_depend>xacrokit</exec_depend>" in (out / "package.xml").read_text(encoding="utf-8")
-    copy = xacrokit.generate(SPEC, tmp_path / "copy")
+    copy = xacrokit.generate(SPEC, tmp_path / "copy", via_xacro=True)
     urdf = {f.path: f.content for f in copy.files}["urdf/two_dof_arm.urdf"]
     assert {f.path: f.content for f in result.files}["urdf/two_dof_arm.urdf"] == urdf
 

@@ -1,0 +1,397 @@
+"""The direct URDF emitter: the resolved model to URDF with lxml, no xacro in the loop.
+
+It describes exactly the robot that expanding the generated package with xacro (default arguments) describes: the
+same elements, names and numbers. Every computed number follows the macro library's arithmetic operation for
+operation (same formulas, same order), so the two agree to the last bit in practice; ``urdf_differences`` is the
+tolerant comparison the differential tests use (numbers to 1e-12, attribute order and comments ignored).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+
+from lxml import etree
+
+from .model import Arm, Box, Cylinder, DHRow, Inertia, Joint, Link, Mesh, Origin, Robot, Shape, Sphere, Wheel
+from .render import material_name, num, vec
+
+AXIS_VECTORS = {"x": "1 0 0", "y": "0 1 0", "z": "0 0 1"}
+AXLE_GEOMETRY_RPY = {"x": "0 " + str(math.pi / 2) + " 0", "y": str(math.pi / 2) + " 0 0", "z": "0 0 0"}
+
+
+def _sub(parent: etree._Element, tag: str, **attributes: str) -> etree._Element:
+    return etree.SubElement(parent, tag, {k: v for k, v in attributes.items()})
+
+
+def _origin(parent: etree._Element, origin: Origin) -> None:
+    _sub(parent, "origin", xyz=vec(origin.xyz), rpy=vec(origin.rpy))
+
+
+def _geometry(parent: etree._Element, shape: Shape) -> None:
+    geometry = _sub(parent, "geometry")
+    if isinstance(shape, Box):
+        _sub(geometry, "box", size=vec(shape.size))
+    elif isinstance(shape, Cylinder):
+        _sub(geometry, "cylinder", radius=num(shape.radius), length=num(shape.length))
+    elif isinstance(shape, Sphere):
+        _sub(geometry, "sphere", radius=num(shape.radius))
+    else:
+        assert isinstance(shape, Mesh)
+        _sub(geometry, "mesh", filename=shape.filename, scale=vec(shape.scale))
+
+
+def _inertial(
+    parent: etree._Element,
+    xx: float,
+    xy: float,
+    xz: float,
+    yy: float,
+    yz: float,
+    zz: float,
+    mass: float,
+    xyz: str,
+    rpy: str,
+) -> None:
+    inertial = _sub(parent, "inertial")
+    _sub(inertial, "origin", xyz=xyz, rpy=rpy)
+    _sub(inertial, "mass", value=num(mass))
+    _sub(inertial, "inertia", ixx=num(xx), ixy=num(xy), ixz=num(xz), iyy=num(yy), iyz=num(yz), izz=num(zz))
+
+
+def _cylinder_moments(mass: float, radius: float, length: float) -> tuple[float, float]:
+    """(axial, transverse) as cylinder_inertial computes them."""
+    return mass * radius * radius / 2.0, mass * (3.0 * radius * radius + length * length) / 12.0
+
+
+def _shape_inertial(parent: etree._Element, inertia: Inertia, shape: Shape) -> None:
+    """The tensor as box/cylinder/sphere_inertial or inertial compute it (same formulas, same order)."""
+    m, xyz, rpy = inertia.mass, vec(inertia.origin.xyz), vec(inertia.origin.rpy)
+    if inertia.kind == "box" and isinstance(shape, Box):
+        x, y, z = shape.size
+        _inertial(
+            parent,
+            m / 12.0 * (y * y + z * z),
+            0.0,
+            0.0,
+            m / 12.0 * (x * x + z * z),
+            0.0,
+            m / 12.0 * (x * x + y * y),
+            m,
+            xyz,
+            rpy,
+        )
+    elif inertia.kind == "cylinder" and isinstance(shape, Cylinder):
+        axial, transverse = _cylinder_moments(m, shape.radius, shape.length)
+        _inertial(parent, transverse, 0.0, 0.0, transverse, 0.0, axial, m, xyz, rpy)
+    elif inertia.kind == "sphere" and isinstance(shape, Sphere):
+        moment = 2.0 * m * shape.radius * shape.radius / 5.0
+        _inertial(parent, moment, 0.0, 0.0, moment, 0.0, moment, m, xyz, rpy)
+    else:
+        _inertial(parent, inertia.ixx, inertia.ixy, inertia.ixz, inertia.iyy, inertia.iyz, inertia.izz, m, xyz, rpy)
+
+
+def _link(robot: Robot, prefix: str, link: Link) -> etree._Element:
+    element = etree.Element("link", name=prefix + link.name)
+    if link.visual is not None:
+        visual = _sub(element, "visual")
+        _origin(visual, link.visual.origin)
+        _geometry(visual, link.visual.shape)
+        if link.visual.material:
+            _sub(visual, "material", name=material_name(robot, link.visual.material))
+    if link.collision is not None:
+        collision = _sub(element, "collision")
+        _origin(collision, link.collision.origin)
+        _geometry(collision, link.collision.shape)
+    if link.inertial is not None:
+        shape = link.visual.shape if link.visual is not None else Box((0.0, 0.0, 0.0))
+        _shape_inertial(element, link.inertial, shape)
+    return element
+
+
+def _joint(prefix: str, joint: Joint) -> etree._Element:
+    element = etree.Element("joint", name=prefix + joint.name, type=joint.type)
+    _sub(element, "parent", link=prefix + joint.parent)
+    _sub(element, "child", link=prefix + joint.child)
+    _origin(element, joint.origin)
+    if joint.axis is not None:
+        _sub(element, "axis", xyz=vec(joint.axis))
+    if joint.limit is not None:
+        limit = {} if joint.limit.lower is None else {"lower": num(joint.limit.lower), "upper": num(joint.limit.upper)}
+        _sub(element, "limit", **limit, effort=num(joint.limit.effort), velocity=num(joint.limit.velocity))
+    if joint.dynamics is not None:
+        _sub(element, "dynamics", damping=num(joint.dynamics.damping), friction=num(joint.dynamics.friction))
+    if joint.mimic is not None:
+        _sub(
+            element,
+            "mimic",
+            joint=prefix + joint.mimic.joint,
+            multiplier=num(joint.mimic.multiplier),
+            offset=num(joint.mimic.offset),
+        )
+    if joint.safety_controller is not None:
+        s = joint.safety_controller
+        values = {
+            "k_velocity": s.k_velocity,
+            "k_position": s.k_position,
+            "soft_lower_limit": s.soft_lower_limit,
+            "soft_upper_limit": s.soft_upper_limit,
+        }
+        _sub(element, "safety_controller", **{k: num(v) for k, v in values.items() if v is not None})
+    return element
+
+
+def screw_origin(
+    a: float, alpha: float, x: float, y: float, z: float, roll: float, pitch: float, yaw: float
+) -> tuple[str, str]:
+    """(xyz, rpy) of Tx(a) Rx(alpha) T(x y z, roll pitch yaw), as the private xacro helper computes them."""
+    ca, sa = math.cos(alpha), math.sin(alpha)
+    cr, sr, cp, sp, cy, sy = (
+        math.cos(roll),
+        math.sin(roll),
+        math.cos(pitch),
+        math.sin(pitch),
+        math.cos(yaw),
+        math.sin(yaw),
+    )
+    b00, b01, b02 = cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr
+    b10, b11, b12 = sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr
+    b20, b21, b22 = -sp, cp * sr, cp * cr
+    r00, r01, r02 = b00, b01, b02
+    r10, r11, r12 = ca * b10 - sa * b20, ca * b11 - sa * b21, ca * b12 - sa * b22
+    r20 = sa * b10 + ca * b20
+    out_yaw = math.atan2(r10, r00)
+    out_pitch = math.atan2(-r20, math.hypot(r00, r10))
+    out_roll = math.atan2(
+        math.sin(out_yaw) * r02 - math.cos(out_yaw) * r12, math.cos(out_yaw) * r11 - math.sin(out_yaw) * r01
+    )
+    xyz = f"{a + x} {ca * y - sa * z} {sa * y + ca * z}"
+    return xyz, f"{out_roll} {out_pitch} {out_yaw}"
+
+
+def _dh_body(robot: Robot, link: etree._Element, row: DHRow, end: tuple[float, float, float]) -> None:
+    if row.mass is None:
+        return
+    end_x, end_y, end_z = end
+    length = math.sqrt(end_x * end_x + end_y * end_y + end_z * end_z)
+    xyz = f"{end_x / 2.0!r} {end_y / 2.0!r} {end_z / 2.0!r}"  # as the macro's '%r %r %r' writes it
+    rpy = f"0.0 {math.atan2(math.hypot(end_x, end_y), end_z)!r} {math.atan2(end_y, end_x)!r}"
+    segment = length >= 1e-6
+    shape: Shape = Cylinder(row.radius, length) if segment else Sphere(row.radius)
+    for tag in ("visual", "collision"):
+        part = _sub(link, tag)
+        _sub(part, "origin", xyz=xyz, rpy=rpy)
+        _geometry(part, shape)
+        if tag == "visual" and row.material:
+            _sub(part, "material", name=material_name(robot, row.material))
+    if segment:
+        axial, transverse = _cylinder_moments(row.mass, row.radius, length)
+        _inertial(link, transverse, 0.0, 0.0, transverse, 0.0, axial, row.mass, xyz, rpy)
+    else:
+        moment = 2.0 * row.mass * row.radius * row.radius / 5.0
+        _inertial(link, moment, 0.0, 0.0, moment, 0.0, moment, row.mass, xyz, "0 0 0")
+
+
+def _arm(robot: Robot, prefix: str, arm: Arm) -> Iterator[etree._Element]:
+    yield etree.Element("link", name=prefix + arm.base)
+    base_joint = etree.Element("joint", name=f"{prefix}{arm.base}_joint", type="fixed")
+    _sub(base_joint, "parent", link=prefix + arm.parent)
+    _sub(base_joint, "child", link=prefix + arm.base)
+    _origin(base_joint, arm.origin)
+    yield base_joint
+    rows = arm.rows
+    parent = prefix + arm.base
+    for index, row in enumerate(rows):
+        screw = row if arm.convention == "modified" else (rows[index - 1] if index > 0 else None)
+        joint = etree.Element("joint", name=prefix + row.name, type=row.type)
+        _sub(joint, "parent", link=parent)
+        _sub(joint, "child", link=prefix + row.link)
+        xyz, rpy = screw_origin(
+            screw.a if screw else 0.0, screw.alpha if screw else 0.0, 0.0, 0.0, row.d, 0.0, 0.0, row.theta
+        )
+        _sub(joint, "origin", xyz=xyz, rpy=rpy)
+        if row.type != "fixed":
+            _sub(joint, "axis", xyz="0 0 1")
+        if row.limit is not None and row.type != "fixed":
+            if row.type == "continuous":
+                _sub(joint, "limit", effort=num(row.limit.effort), velocity=num(row.limit.velocity))
+            else:
+                _sub(
+                    joint,
+                    "limit",
+                    lower=num(row.limit.lower),
+                    upper=num(row.limit.upper),  # type: ignore[arg-type]
+                    effort=num(row.limit.effort),
+                    velocity=num(row.limit.velocity),
+                )
+        if row.dynamics is not None and row.type != "fixed":
+            _sub(joint, "dynamics", damping=num(row.dynamics.damping), friction=num(row.dynamics.friction))
+        yield joint
+        following = rows[index + 1] if index + 1 < len(rows) else None
+        end_screw = row if arm.convention == "standard" else following
+        end_a = end_screw.a if end_screw is not None else 0.0
+        end_alpha = end_screw.alpha if end_screw is not None else 0.0
+        end_d = following.d if following is not None else 0.0
+        link = etree.Element("link", name=prefix + row.link)
+        _dh_body(robot, link, row, (end_a, -math.sin(end_alpha) * end_d, math.cos(end_alpha) * end_d))
+        yield link
+        parent = prefix + row.link
+    last = rows[-1]
+    yield etree.Element("link", name=prefix + arm.tool)
+    tool_joint = etree.Element("joint", name=f"{prefix}{arm.tool}_joint", type="fixed")
+    _sub(tool_joint, "parent", link=prefix + last.link)
+    _sub(tool_joint, "child", link=prefix + arm.tool)
+    standard = arm.convention == "standard"
+    xyz, rpy = screw_origin(
+        last.a if standard else 0.0, last.alpha if standard else 0.0, *arm.tool_origin.xyz, *arm.tool_origin.rpy
+    )
+    _sub(tool_joint, "origin", xyz=xyz, rpy=rpy)
+    yield tool_joint
+
+
+def _wheel(robot: Robot, prefix: str, wheel: Wheel) -> Iterator[etree._Element]:
+    joint = etree.Element("joint", name=f"{prefix}{wheel.name}_joint", type="continuous")
+    _sub(joint, "parent", link=prefix + wheel.parent)
+    _sub(joint, "child", link=prefix + wheel.name)
+    _origin(joint, wheel.origin)
+    _sub(joint, "axis", xyz=AXIS_VECTORS[wheel.axis])
+    _sub(joint, "limit", effort=num(wheel.effort), velocity=num(wheel.velocity))
+    _sub(joint, "dynamics", damping=num(wheel.damping), friction=num(wheel.friction))
+    yield joint
+    link = etree.Element("link", name=prefix + wheel.name)
+    shape = Cylinder(wheel.radius, wheel.width)
+    for tag in ("visual", "collision"):
+        part = _sub(link, tag)
+        _sub(part, "origin", xyz="0 0 0", rpy=AXLE_GEOMETRY_RPY[wheel.axis])
+        _geometry(part, shape)
+        if tag == "visual" and wheel.material:
+            _sub(part, "material", name=material_name(robot, wheel.material))
+    axial, transverse = _cylinder_moments(wheel.mass, wheel.radius, wheel.width)
+    moments = [axial if axis == wheel.axis else transverse for axis in "xyz"]
+    _inertial(link, moments[0], 0.0, 0.0, moments[1], 0.0, moments[2], wheel.mass, "0 0 0", "0 0 0")
+    yield link
+    gazebo = etree.Element("gazebo", reference=prefix + wheel.name)
+    _sub(gazebo, "mu1").text = num(wheel.mu1)
+    _sub(gazebo, "mu2").text = num(wheel.mu2)
+    yield gazebo
+
+
+def robot_elements(robot: Robot, *, prefix: str = "", ros2_control: str = "mock") -> list[etree._Element]:
+    """The robot's elements (without materials), as its macro writes them for ``prefix``."""
+    elements = [_link(robot, prefix, link) for link in robot.links]
+    elements += [_joint(prefix, joint) for joint in robot.joints]
+    for arm in robot.arms:
+        elements += _arm(robot, prefix, arm)
+    for wheel in robot.wheels:
+        elements += _wheel(robot, prefix, wheel)
+    for surface in robot.surfaces:
+        gazebo = etree.Element("gazebo", reference=prefix + surface.link)
+        for key in ("mu1", "mu2", "kp", "kd"):
+            if getattr(surface, key) is not None:
+                _sub(gazebo, key).text = num(getattr(surface, key))
+        elements.append(gazebo)
+    if robot.ros2_control is not None and ros2_control == "mock":
+        elements.append(_ros2_control(robot, prefix))
+    return elements
+
+
+def _ros2_control(robot: Robot, prefix: str) -> etree._Element:
+    block = etree.Element("ros2_control", name=prefix + robot.name, type="system")
+    _sub(_sub(block, "hardware"), "plugin").text = "mock_components/GenericSystem"
+    for controlled in robot.ros2_control or ():
+        joint = _sub(block, "joint", name=prefix + controlled.name)
+        for interface in controlled.interfaces.command:
+            _sub(joint, "command_interface", name=interface)
+        for interface in controlled.interfaces.state:
+            state = _sub(joint, "state_interface", name=interface)
+            if interface == "position":
+                _sub(state, "param", name="initial_value").text = num(controlled.initial_position)
+    return block
+
+
+def material_elements(robot: Robot) -> list[etree._Element]:
+    result = []
+    for name, rgba in robot.materials:
+        material = etree.Element("material", name=material_name(robot, name))
+        _sub(material, "color", rgba=vec(rgba))
+        result.append(material)
+    return result
+
+
+def emit_urdf(robot: Robot) -> str:
+    """The URDF of ``robot`` with the entry's default arguments (no prefix; ros2_control mock when the spec has it)."""
+    root = etree.Element("robot", name=robot.name)
+    for element in (*material_elements(robot), *robot_elements(robot)):
+        root.append(element)
+    etree.indent(root, space="  ")
+    return '<?xml version="1.0" ?>\n' + etree.tostring(root, encoding="unicode") + "\n"
+
+
+# ------------------------------------------------------------------------------------------------------ comparison
+def _numbers_equal(a: str, b: str, rel: float) -> bool:
+    left, right = a.split(), b.split()
+    if len(left) != len(right):
+        return False
+    for x, y in zip(left, right, strict=True):
+        if x == y:
+            continue
+        try:
+            fx, fy = float(x), float(y)
+        except ValueError:
+            return False
+        if not (abs(fx - fy) <= rel * max(1.0, abs(fx), abs(fy))):
+            return False
+    return True
+
+
+def _key(element: etree._Element) -> tuple[str, str]:
+    return element.tag, element.get("name") or element.get("reference") or element.get("link") or ""
+
+
+def _compare(a: etree._Element, b: etree._Element, where: str, rel: float, out: list[str]) -> None:
+    if a.tag != b.tag:
+        out.append(f"{where}: <{a.tag}> vs <{b.tag}>")
+        return
+    if set(a.attrib) != set(b.attrib):
+        out.append(f"{where}: attributes {sorted(a.attrib)} vs {sorted(b.attrib)}")
+    for name in set(a.attrib) & set(b.attrib):
+        if not _numbers_equal(a.get(name), b.get(name), rel):
+            out.append(f"{where}@{name}: {a.get(name)!r} vs {b.get(name)!r}")
+    text_a, text_b = (a.text or "").strip(), (b.text or "").strip()
+    if not _numbers_equal(text_a, text_b, rel):
+        out.append(f"{where}: text {text_a!r} vs {text_b!r}")
+    children_a = sorted((c for c in a if isinstance(c.tag, str)), key=_key)
+    children_b = sorted((c for c in b if isinstance(c.tag, str)), key=_key)
+    if [_key(c) for c in children_a] != [_key(c) for c in children_b]:
+        out.append(f"{where}: children {[_key(c) for c in children_a]} vs {[_key(c) for c in children_b]}")
+        return
+    for child_a, child_b in zip(children_a, children_b, strict=True):
+        _compare(child_a, child_b, f"{where}/{child_a.tag}[{_key(child_a)[1]}]", rel, out)
+
+
+def urdf_differences(a: str, b: str, *, rel: float = 1e-12) -> list[str]:
+    """Where two URDF texts describe different robots: element sets, names and numbers (to ``rel``); attribute
+    order, element order, whitespace and comments are ignored. An empty list means the same robot."""
+    out: list[str] = []
+    _compare(etree.fromstring(a.encode()), etree.fromstring(b.encode()), "robot", rel, out)
+    return out
+
+
+def emit_scene_urdf(scene) -> str:  # noqa: ANN001 - a Scene; imported lazily to keep the modules acyclic
+    """The URDF of a scene made only of our robots (third-party macros need xacro), default arguments."""
+    root = etree.Element("robot", name=scene.name)
+    for robot in scene.robots:  # each robot's palette once, however many instances
+        for element in material_elements(robot):
+            root.append(element)
+    root.append(etree.Element("link", name=scene.world))
+    control = "mock" if any(r.ros2_control is not None for r in scene.robots) else "none"
+    for instance in scene.instances:
+        robot = instance.robot
+        mount = etree.SubElement(root, "joint", name=f"{instance.prefix}{robot.root}_mount_joint", type="fixed")
+        _sub(mount, "parent", link=instance.parent)
+        _sub(mount, "child", link=instance.prefix + robot.root)
+        _origin(mount, instance.origin)
+        for element in robot_elements(robot, prefix=instance.prefix, ros2_control=control):
+            root.append(element)
+    etree.indent(root, space="  ")
+    return '<?xml version="1.0" ?>\n' + etree.tostring(root, encoding="unicode") + "\n"

@@ -1,0 +1,85 @@
+"""The direct URDF emitter describes exactly the robot that expanding the generated package with xacro describes."""
+
+from __future__ import annotations
+
+import yaml
+from hypothesis import HealthCheck, given, settings
+
+import xacrokit
+from conftest import REPO, gen_robot
+from xacrokit.emit import emit_scene_urdf, emit_urdf, urdf_differences
+from xacrokit.load import load_file
+from xacrokit.pipeline import build_robot, expand_package
+from xacrokit.render import render_package
+from xacrokit.scene import build_scene, expand_scene, render_scene
+from xacrokit.testing import valid_specs
+
+EXAMPLES = sorted(p for p in (REPO / "examples").glob("*.yaml") if "macros_demo" not in p.name)
+SCENES = sorted(p for p in (REPO / "examples" / "scenes").glob("*.yaml") if "scene:" in p.read_text("utf-8"))
+
+
+def via_xacro(robot):
+    return expand_package(robot, render_package(robot)).content
+
+
+def test_every_example_is_emitted_bit_for_bit_as_xacro_expands_it():
+    for spec in EXAMPLES:
+        robot = build_robot(spec)
+        assert urdf_differences(via_xacro(robot), emit_urdf(robot), rel=0.0) == [], spec.name
+
+
+def test_every_scene_example_too():
+    for path in SCENES:
+        scene = build_scene(load_file(path))
+        xacro_urdf = expand_scene(scene, render_scene(scene)).content
+        assert urdf_differences(xacro_urdf, emit_scene_urdf(scene), rel=0.0) == [], path.name
+
+
+@settings(suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+@given(spec=valid_specs())
+def test_random_specs_are_emitted_as_xacro_expands_them(tmp_path_factory, spec):
+    path = tmp_path_factory.mktemp("emit") / "spec.yaml"
+    path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
+    robot = build_robot(path)
+    assert urdf_differences(via_xacro(robot), emit_urdf(robot)) == []
+
+
+BASE = (
+    '<robot name="r"><link name="a"><inertial><mass value="1.0"/></inertial></link>'
+    '<joint name="j" type="fixed"/></robot>'
+)
+
+
+def test_the_comparator_ignores_order_whitespace_and_comments():
+    same = (
+        '<robot name="r">\n  <!-- note -->\n  <joint type="fixed" name="j"/>\n  <link name="a"><inertial>\n'
+        '<mass value="1"/></inertial></link>\n</robot>'
+    )
+    assert urdf_differences(BASE, same) == []
+    assert urdf_differences(BASE, BASE.replace('"1.0"', '"1.0000000000001"')) == []  # within 1e-12
+
+
+def test_the_comparator_reports_what_differs():
+    assert urdf_differences(BASE, BASE.replace('"1.0"', '"1.001"'))  # a number
+    assert urdf_differences(BASE, BASE.replace('<joint name="j" type="fixed"/>', ""))  # a missing element
+    assert urdf_differences(BASE, BASE.replace('name="a"', 'name="b"'))  # a name
+    assert urdf_differences(BASE, BASE.replace('type="fixed"', 'type="fixed" extra="1"'))  # an attribute
+    assert urdf_differences(BASE, BASE.replace('"1.0"', '"1.0000000000001"'), rel=0.0)
+
+
+def test_generate_emits_by_default_and_expands_with_via_xacro(tmp_path):
+    spec = REPO / "examples" / "industrial_arm_std_dh.yaml"
+    assert gen_robot(spec, "-o", tmp_path / "direct").returncode == 0
+    result = gen_robot(spec, "-o", tmp_path / "xacro", "--via-xacro")
+    assert result.returncode == 0, result.stderr
+    direct = (tmp_path / "direct" / "urdf" / "ur5.urdf").read_text(encoding="utf-8")
+    expanded = (tmp_path / "xacro" / "urdf" / "ur5.urdf").read_text(encoding="utf-8")
+    assert "emitted directly" in direct.splitlines()[1] and "expanded with xacro" in expanded.splitlines()[1]
+    assert urdf_differences(direct, expanded, rel=0.0) == []
+    scene = REPO / "examples" / "scenes" / "two_arm_cell.yaml"
+    first = xacrokit.generate(scene, tmp_path / "s1")
+    second = xacrokit.generate(scene, tmp_path / "s2", via_xacro=True)
+    urdf = "urdf/two_arm_cell.urdf"
+    emitted, expanded = ({f.path: f.content for f in r.files}[urdf] for r in (first, second))
+    assert "emitted directly" in emitted and "expanded with xacro" in expanded
+    assert urdf_differences(emitted, expanded, rel=0.0) == []
