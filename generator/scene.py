@@ -28,7 +28,7 @@ from .render import RenderedFile, _environment, render_package, xacro_text
 from .resolve import origin as resolve_origin
 from .resolve import resolve
 from .resources import schemas_dir
-from .validate import _Quantities, schema_errors, validate
+from .validate import _Quantities, inline_refs, schema_errors, validate
 
 ROBOT_FILES = ("urdf/", "config/")  # what a scene carries of each robot package (no nested package.xml)
 
@@ -95,7 +95,8 @@ def is_scene(raw: RawSpec) -> bool:
 
 @cache
 def _validator() -> jsonschema.Draft202012Validator:
-    return jsonschema.Draft202012Validator(json.loads((schemas_dir() / "scene.schema.json").read_text("utf-8")))
+    schema = json.loads((schemas_dir() / "scene.schema.json").read_text("utf-8"))
+    return jsonschema.Draft202012Validator(inline_refs(schema))
 
 
 def build_scene(raw: RawSpec) -> Scene:

@@ -55,9 +55,40 @@ def robot_schema() -> dict[str, Any]:
     return json.loads((schemas_dir() / "robot.schema.json").read_text(encoding="utf-8"))
 
 
+def inline_refs(schema: dict[str, Any]) -> dict[str, Any]:
+    """The schema with every local ``#/$defs/NAME`` reference replaced by the definition itself.
+
+    Our schemas are not recursive, so this terminates; validating against the inlined form is about twice as fast
+    (no reference resolution per value) and gives the same errors.
+    """
+    definitions = schema.get("$defs", {})
+
+    def inline(node: Any) -> Any:
+        if isinstance(node, dict):
+            if "$ref" in node:
+                target = inline(definitions[node["$ref"].rsplit("/", 1)[-1]])
+                rest = {k: inline(v) for k, v in node.items() if k != "$ref"}
+                return {**target, **rest} if rest else target
+            return {k: inline(v) for k, v in node.items()}
+        if isinstance(node, list):
+            return [inline(v) for v in node]
+        return node
+
+    return {key: inline(value) for key, value in schema.items() if key != "$defs"}
+
+
+@cache
+def _inlined_definitions() -> dict[str, Any]:
+    schema = robot_schema()
+    return {
+        name: _without_descriptions(inline_refs({**definition, "$defs": schema["$defs"]}))
+        for name, definition in schema["$defs"].items()
+    }
+
+
 @cache
 def _validator() -> jsonschema.Draft202012Validator:
-    return jsonschema.Draft202012Validator(robot_schema())
+    return jsonschema.Draft202012Validator(inline_refs(robot_schema()))
 
 
 # ---------------------------------------------------------------- schema errors
@@ -115,19 +146,33 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
 
 def _ref_name(error: jsonschema.ValidationError) -> str | None:
     """Which $defs entry an error's schema is (schemas are compared by identity with the loaded definitions)."""
-    for name, definition in robot_schema()["$defs"].items():
-        if definition is error.schema or definition == error.schema:
+    wanted = _without_descriptions(error.schema)
+    for name, definition in _inlined_definitions().items():
+        if definition == wanted:
             return name
     return None
 
 
+def _without_descriptions(node: Any) -> Any:
+    """A schema with its descriptions left out: a $ref that adds its own description is still the definition."""
+    if isinstance(node, dict):
+        return {k: _without_descriptions(v) for k, v in node.items() if k != "description"}
+    if isinstance(node, list):
+        return [_without_descriptions(v) for v in node]
+    return node
+
+
 def schema_errors(raw: RawSpec, validator: jsonschema.Draft202012Validator | None = None) -> list[SpecError]:
     """Every schema error of ``raw`` (against the robot schema unless another validator is given), located."""
-    errors = []
-    for error in (validator or _validator()).iter_errors(raw.data):
+    return _located(raw, list((validator or _validator()).iter_errors(raw.data)))
+
+
+def _located(raw: RawSpec, errors: list[jsonschema.ValidationError]) -> list[SpecError]:
+    located = []
+    for error in errors:
         path, message, at_key = _schema_message(error)
-        errors.append(raw.error(path, message, key=at_key))
-    return errors
+        located.append(raw.error(path, message, key=at_key))
+    return located
 
 
 # ---------------------------------------------------------------- quantities
@@ -624,9 +669,9 @@ def validate(raw: RawSpec) -> Spec:
     Raises:
         SpecErrors: every problem found, each with file, JSON path, line and column.
     """
-    structural = [e for e in _validator().iter_errors(raw.data) if not _value_only(e)]
-    errors = schema_errors(raw)
-    if structural:  # the later checks rely on the shapes the schema guarantees
+    found = list(_validator().iter_errors(raw.data))  # one pass over the document
+    errors = _located(raw, found)
+    if any(not _value_only(e) for e in found):  # the later checks rely on the shapes the schema guarantees
         raise SpecErrors(errors)
     data, unit_errors = _Quantities(raw).run()
     errors += unit_errors + semantic_errors(raw, data, physics=not unit_errors)
