@@ -4,6 +4,13 @@
     python benchmarks/bench.py check      # one section
 
 Sections:
+  stages  for chain robots of 10 / 100 / 1,000 / 3,000 links: the time of each stage (load, validate, resolve,
+          render, write, emit, xacro expansion of the generated package, check without consumers), full gen-robot
+          (all of them but xacro, the check included) and lxml parse+serialize of its URDF; then the ratios
+          full / xacro expansion, full / lxml, and t(3,000)/t(1,000) for every stage.
+  memory  peak resident memory of full gen-robot on the 3,000-link robot (a fresh process).
+  xacro   xacro expansion of our generated 6-axis arm package (UR5) against a hand-written equivalent in plain
+          <link>/<joint> XML.
   check   gen-robot check (our rules, no external consumers) on chains of 10 / 100 / 1,000 / 3,000 links, the
           t(3,000)/t(1,000) ratio, the time to report a cycle hanging off the root, and the time check_urdf would
           take to be stopped on it.
@@ -21,6 +28,25 @@ from collections.abc import Callable
 from pathlib import Path
 
 RUNS = 5
+SIZES = (10, 100, 1000, 3000)
+REPO = Path(__file__).resolve().parent.parent
+
+
+def runs_for(links: int) -> int:
+    return 5 if links <= 100 else 3 if links <= 1000 else 1
+
+
+def chain_spec(links: int) -> str:
+    """A robot spec: a chain of box links on revolute joints."""
+    lines = ["robot: chain", "materials: {gray: [0.5, 0.5, 0.5, 1.0]}", "links:"]
+    lines += [f"  link_{i}: {{shape: {{box: {{size: [0.1, 0.1, 0.1]}}}}, mass: 1.0, material: gray}}" for i in range(links)]
+    lines.append("joints:" if links > 1 else "joints: {}")
+    lines += [
+        f"  joint_{i}: {{type: revolute, parent: link_{i - 1}, child: link_{i}, origin: {{xyz: [0, 0, 0.1]}}, "
+        "axis: [0, 0, 1], limit: {lower: -1, upper: 1, effort: 1, velocity: 1}, dynamics: {damping: 0.1}}"
+        for i in range(1, links)
+    ]
+    return "\n".join(lines) + "\n"
 
 
 def median_time(action: Callable[[], object], runs: int = RUNS) -> float:
@@ -90,6 +116,99 @@ def bench_check(folder: Path) -> None:
     )
 
 
+def full_job(spec: Path, out: Path) -> None:
+    """What gen-robot SPEC does, plus the check without consumers."""
+    from xacrokit.check import check
+    from xacrokit.pipeline import generate
+
+    result = generate(spec, out, force=True)
+    check(out / "urdf" / f"{result.robot.name}.urdf", consumers=[])
+
+
+def bench_stages(folder: Path) -> None:
+    from lxml import etree
+
+    from xacrokit.check import check
+    from xacrokit.emit import emit_urdf
+    from xacrokit.load import load_file
+    from xacrokit.pipeline import emitted_urdf, expand_package
+    from xacrokit.render import render_package
+    from xacrokit.resolve import resolve
+    from xacrokit.validate import validate
+    from xacrokit.write import write
+
+    print("== stages (seconds; median of 5 runs up to 100 links, 3 at 1,000, 1 at 3,000)")
+    names = ("load", "validate", "resolve", "render", "write", "emit", "xacro", "check", "full", "lxml")
+    print("  " + f"{'links':>6}" + "".join(f"{n:>10}" for n in names))
+    table: dict[int, dict[str, float]] = {}
+    for links in SIZES:
+        spec = folder / f"chain_{links}.yaml"
+        spec.write_text(chain_spec(links), encoding="utf-8")
+        raw = load_file(spec)
+        robot = resolve(validate(raw))
+        files = render_package(robot)
+        urdf = emit_urdf(robot)
+        package = [*files, emitted_urdf(robot.name, urdf)]
+        urdf_path = folder / f"chain_{links}.urdf"
+        urdf_path.write_text(urdf, encoding="utf-8")
+        counter = iter(range(10**6))
+        runs = runs_for(links)
+        row = {
+            "load": median_time(lambda: load_file(spec), runs),
+            "validate": median_time(lambda: validate(raw), runs),
+            "resolve": median_time(lambda: resolve(validate(raw)), runs) - 0.0,
+            "render": median_time(lambda: render_package(robot), runs),
+            "write": median_time(lambda: write(package, folder / f"w{links}_{next(counter)}"), runs),
+            "emit": median_time(lambda: emit_urdf(robot), runs),
+            "xacro": median_time(lambda: expand_package(robot, files), 1 if links >= 1000 else runs),
+            "check": median_time(lambda: check(urdf_path, consumers=[]), runs),
+            "full": median_time(lambda: full_job(spec, folder / f"full{links}_{next(counter)}"), runs),
+            "lxml": median_time(lambda: etree.tostring(etree.fromstring(urdf.encode())), runs),
+        }
+        row["resolve"] = max(row["resolve"] - row["validate"], 0.0)  # resolve alone
+        table[links] = row
+        print("  " + f"{links:>6}" + "".join(f"{row[n]:>10.4f}" for n in names))
+    big, bigger = table[1000], table[3000]
+    print(f"  full gen-robot / xacro expansion at 1,000 links: {big['full'] / big['xacro']:.3f}   (target <= 0.5)")
+    print(f"  full gen-robot / lxml parse+serialize at 1,000 links: {big['full'] / big['lxml']:.1f}   (target <= 30)")
+    ratios = ", ".join(f"{n} {bigger[n] / big[n]:.2f}" for n in names if big[n] > 0)
+    print(f"  t(3,000)/t(1,000): {ratios}   (target <= 3.5 for our stages; xacro is not ours)")
+
+
+def bench_memory(folder: Path) -> None:
+    print("== memory")
+    spec = folder / "chain_3000_memory.yaml"
+    spec.write_text(chain_spec(3000), encoding="utf-8")
+    # VmHWM belongs to the new process image; ru_maxrss would also count the parent's pages from before exec
+    script = (
+        "import sys; sys.path.insert(0, sys.argv[3]); from bench import full_job; from pathlib import Path; "
+        "full_job(Path(sys.argv[1]), Path(sys.argv[2])); "
+        "print([l.split()[1] for l in open('/proc/self/status') if l.startswith('VmHWM')][0])"
+    )
+    out = subprocess.run([sys.executable, "-c", script, str(spec), str(folder / "memory_out"), str(REPO / "benchmarks")],
+                         capture_output=True, text=True, check=True)
+    peak_mb = int(out.stdout.split()[-1]) / 1024
+    print(f"  peak resident memory, full gen-robot at 3,000 links: {peak_mb:.0f} MB   (target <= 300 MB)")
+
+
+def bench_xacro_cost(folder: Path) -> None:
+    from xacrokit.emit import emit_urdf
+    from xacrokit.expansion import expand_file
+    from xacrokit.pipeline import build_robot, generate
+
+    print("== xacro cost of the generated package (6-axis arm, UR5)")
+    spec = REPO / "examples" / "industrial_arm_std_dh.yaml"
+    generate(spec, folder / "ur5_description", force=True)
+    plain = folder / "ur5_plain.urdf.xacro"  # the same robot written by hand as plain <link>/<joint> XML
+    urdf = emit_urdf(build_robot(spec)).replace('<robot name="ur5">',
+                                                '<robot name="ur5" xmlns:xacro="http://www.ros.org/wiki/xacro">')
+    plain.write_text(urdf, encoding="utf-8")
+    ours = median_time(lambda: expand_file(folder / "ur5_description" / "urdf" / "ur5.urdf.xacro"), 7)
+    hand = median_time(lambda: expand_file(plain), 7)
+    print(f"  generated package: {ours:.4f} s; hand-written plain XML: {hand:.4f} s; ratio {ours / hand:.2f}"
+          "   (target <= 1.5)")
+
+
 def bench_cli() -> None:
     print("== cli")
     command = [sys.executable, "-m", "xacrokit.cli", "--help"]
@@ -98,9 +217,15 @@ def bench_cli() -> None:
 
 
 def main(argv: list[str]) -> int:
-    sections = set(argv) or {"check", "cli"}
+    sections = set(argv) or {"stages", "memory", "xacro", "check", "cli"}
     print(f"python {sys.version.split()[0]} on {sys.platform}; {time.strftime('%Y-%m-%d %H:%M:%S')}")
     with tempfile.TemporaryDirectory(prefix="xacrokit-bench-") as folder:
+        if "stages" in sections:
+            bench_stages(Path(folder))
+        if "memory" in sections:
+            bench_memory(Path(folder))
+        if "xacro" in sections:
+            bench_xacro_cost(Path(folder))
         if "check" in sections:
             bench_check(Path(folder))
         if "cli" in sections:

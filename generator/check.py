@@ -20,6 +20,7 @@ from lxml import etree
 
 from .consumers import CONSUMERS, ConsumerResult, available, run_consumers
 from .errors import XacrokitError
+from .gcpause import collector_paused
 
 Severity = Literal["error", "warning"]
 MOVING = ("revolute", "continuous", "prismatic")
@@ -634,6 +635,7 @@ def input_kind(path: Path) -> str:
     return "urdf"
 
 
+@collector_paused()
 def check(
     path: str | Path,
     mappings: Mapping[str, str] | None = None,

@@ -13,6 +13,7 @@ from collections.abc import Iterator
 
 from lxml import etree
 
+from .gcpause import collector_paused
 from .model import Arm, Box, Cylinder, DHRow, Inertia, Joint, Link, Mesh, Origin, Robot, Shape, Sphere, Wheel
 from .render import material_name, num, vec
 
@@ -318,6 +319,7 @@ def material_elements(robot: Robot) -> list[etree._Element]:
     return result
 
 
+@collector_paused()
 def emit_urdf(robot: Robot) -> str:
     """The URDF of ``robot`` with the entry's default arguments (no prefix; ros2_control mock when the spec has it)."""
     root = etree.Element("robot", name=robot.name)
@@ -377,6 +379,7 @@ def urdf_differences(a: str, b: str, *, rel: float = 1e-12) -> list[str]:
     return out
 
 
+@collector_paused()
 def emit_scene_urdf(scene) -> str:  # noqa: ANN001 - a Scene; imported lazily to keep the modules acyclic
     """The URDF of a scene made only of our robots (third-party macros need xacro), default arguments."""
     root = etree.Element("robot", name=scene.name)

@@ -16,6 +16,7 @@ import yaml
 from yaml.constructor import SafeConstructor
 
 from .errors import SpecError, SpecErrors
+from .gcpause import collector_paused
 
 PathKey = tuple[str | int, ...]
 # libyaml's composer (same nodes, same line/column marks) is several times faster than PyYAML's pure-Python one
@@ -146,6 +147,11 @@ def _yaml_error(file: str, exc: yaml.YAMLError) -> SpecError:
 
 def load_text(text: str, file: str = "<spec>") -> RawSpec:
     """Read spec text (already decoded). Raises :class:`SpecErrors` on anything unreadable."""
+    with collector_paused():
+        return _load_text(text, file)
+
+
+def _load_text(text: str, file: str) -> RawSpec:
     try:
         node = yaml.compose(text, Loader=_COMPOSER)
     except yaml.YAMLError as exc:

@@ -17,6 +17,7 @@ import jinja2
 import yaml
 
 from . import __version__
+from .gcpause import collector_paused
 from .model import Box, Cylinder, Link, Mesh, Origin, Robot, Sphere
 from .resources import macros_dir, templates_dir
 
@@ -138,6 +139,7 @@ def dh_table_yaml(robot: Robot, arm_index: int) -> str:
     return header + yaml.safe_dump({"joints": rows}, sort_keys=False, default_flow_style=None, width=120)
 
 
+@collector_paused()
 def render_package(robot: Robot, *, macros: MacroMode = "copy", spec_name: str = "spec.yaml") -> list[RenderedFile]:
     """Every file of ``NAME_description/`` except the expanded URDF (the expand stage adds that)."""
     env = _environment()

@@ -18,6 +18,7 @@ import jsonschema
 import numpy as np
 
 from .errors import SpecError, SpecErrors
+from .gcpause import collector_paused
 from .load import PathKey, RawSpec
 from .resources import PUBLIC_MACROS, schemas_dir
 from .units import Kind, UnitError, parse_quantity
@@ -125,10 +126,10 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
             _bad_name(error.instance),
             False,
         )
-    if keyword == "oneOf" and _ref_name(error) in ("length", "angle", "quantity", "mass"):
-        kind = _ref_name(error)
+    kind = _ref_name(error) if keyword in ("type", "exclusiveMinimum", "minLength") else None
+    if kind in ("length", "angle", "quantity", "mass"):
         example = {"length": "150 mm", "angle": "90 deg", "quantity": "90 deg", "mass": "500 g"}[kind]
-        if kind == "mass" and isinstance(error.instance, (int, float)) and not isinstance(error.instance, bool):
+        if keyword == "exclusiveMinimum":  # only a mass has one
             return path, f"mass must be > 0 kg, got {float(error.instance)!r}", False  # as the physics check says it
         return path, f"expected a number or a string such as {example!r}, got {error.instance!r}", False
     if keyword == "oneOf" and path and path[-1] == "collision":
@@ -647,10 +648,7 @@ _VALUE_ONLY = {"exclusiveMinimum", "minimum", "maximum", "exclusiveMaximum", "pa
 
 
 def _value_only(error: jsonschema.ValidationError) -> bool:
-    if error.validator in _VALUE_ONLY:
-        return True
-    number = isinstance(error.instance, (int, float)) and not isinstance(error.instance, bool)
-    return error.validator == "oneOf" and number and _ref_name(error) == "mass"  # a mass <= 0
+    return error.validator in _VALUE_ONLY
 
 
 def _unique(errors: list[SpecError]) -> list[SpecError]:
@@ -663,6 +661,7 @@ def _unique(errors: list[SpecError]) -> list[SpecError]:
     return result
 
 
+@collector_paused()
 def validate(raw: RawSpec) -> Spec:
     """Check a loaded spec against the schema and the rules a robot must obey.
 
