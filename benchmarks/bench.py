@@ -33,13 +33,15 @@ REPO = Path(__file__).resolve().parent.parent
 
 
 def runs_for(links: int) -> int:
-    return 5 if links <= 100 else 3 if links <= 1000 else 1
+    return 5 if links <= 100 else 3  # xacro itself runs once from 1,000 links up: it takes seconds
 
 
 def chain_spec(links: int) -> str:
     """A robot spec: a chain of box links on revolute joints."""
     lines = ["robot: chain", "materials: {gray: [0.5, 0.5, 0.5, 1.0]}", "links:"]
-    lines += [f"  link_{i}: {{shape: {{box: {{size: [0.1, 0.1, 0.1]}}}}, mass: 1.0, material: gray}}" for i in range(links)]
+    lines += [
+        f"  link_{i}: {{shape: {{box: {{size: [0.1, 0.1, 0.1]}}}}, mass: 1.0, material: gray}}" for i in range(links)
+    ]
     lines.append("joints:" if links > 1 else "joints: {}")
     lines += [
         f"  joint_{i}: {{type: revolute, parent: link_{i - 1}, child: link_{i}, origin: {{xyz: [0, 0, 0.1]}}, "
@@ -125,7 +127,8 @@ def full_job(spec: Path, out: Path) -> None:
     check(out / "urdf" / f"{result.robot.name}.urdf", consumers=[])
 
 
-def bench_stages(folder: Path) -> None:
+def measure_size(links: int, folder: Path) -> dict[str, float]:
+    """Time every stage for a chain robot of ``links`` links."""
     from lxml import etree
 
     from xacrokit.check import check
@@ -137,35 +140,41 @@ def bench_stages(folder: Path) -> None:
     from xacrokit.validate import validate
     from xacrokit.write import write
 
-    print("== stages (seconds; median of 5 runs up to 100 links, 3 at 1,000, 1 at 3,000)")
+    spec = folder / f"chain_{links}.yaml"
+    spec.write_text(chain_spec(links), encoding="utf-8")
+    raw = load_file(spec)
+    valid = validate(raw)
+    robot = resolve(valid)
+    files = render_package(robot)
+    urdf = emit_urdf(robot)
+    package = [*files, emitted_urdf(robot.name, urdf)]
+    urdf_path = folder / f"chain_{links}.urdf"
+    urdf_path.write_text(urdf, encoding="utf-8")
+    counter = iter(range(10**6))
+    runs = runs_for(links)
+    row = {
+        "load": median_time(lambda: load_file(spec), runs),
+        "validate": median_time(lambda: validate(raw), runs),
+        "resolve": median_time(lambda: resolve(valid), runs),
+        "render": median_time(lambda: render_package(robot), runs),
+        "write": median_time(lambda: write(package, folder / f"w{links}_{next(counter)}"), runs),
+        "emit": median_time(lambda: emit_urdf(robot), runs),
+        "xacro": median_time(lambda: expand_package(robot, files), 1 if links >= 1000 else runs),
+        "check": median_time(lambda: check(urdf_path, consumers=[]), runs),
+        "full": median_time(lambda: full_job(spec, folder / f"full{links}_{next(counter)}"), runs),
+        "lxml": median_time(lambda: etree.tostring(etree.fromstring(urdf.encode())), runs),
+    }
+    return row
+
+
+def bench_stages(folder: Path) -> None:
+
+    print("== stages (seconds; median of 5 runs up to 100 links, of 3 above; xacro once from 1,000 links)")
     names = ("load", "validate", "resolve", "render", "write", "emit", "xacro", "check", "full", "lxml")
     print("  " + f"{'links':>6}" + "".join(f"{n:>10}" for n in names))
     table: dict[int, dict[str, float]] = {}
     for links in SIZES:
-        spec = folder / f"chain_{links}.yaml"
-        spec.write_text(chain_spec(links), encoding="utf-8")
-        raw = load_file(spec)
-        robot = resolve(validate(raw))
-        files = render_package(robot)
-        urdf = emit_urdf(robot)
-        package = [*files, emitted_urdf(robot.name, urdf)]
-        urdf_path = folder / f"chain_{links}.urdf"
-        urdf_path.write_text(urdf, encoding="utf-8")
-        counter = iter(range(10**6))
-        runs = runs_for(links)
-        row = {
-            "load": median_time(lambda: load_file(spec), runs),
-            "validate": median_time(lambda: validate(raw), runs),
-            "resolve": median_time(lambda: resolve(validate(raw)), runs) - 0.0,
-            "render": median_time(lambda: render_package(robot), runs),
-            "write": median_time(lambda: write(package, folder / f"w{links}_{next(counter)}"), runs),
-            "emit": median_time(lambda: emit_urdf(robot), runs),
-            "xacro": median_time(lambda: expand_package(robot, files), 1 if links >= 1000 else runs),
-            "check": median_time(lambda: check(urdf_path, consumers=[]), runs),
-            "full": median_time(lambda: full_job(spec, folder / f"full{links}_{next(counter)}"), runs),
-            "lxml": median_time(lambda: etree.tostring(etree.fromstring(urdf.encode())), runs),
-        }
-        row["resolve"] = max(row["resolve"] - row["validate"], 0.0)  # resolve alone
+        row = measure_size(links, folder)
         table[links] = row
         print("  " + f"{links:>6}" + "".join(f"{row[n]:>10.4f}" for n in names))
     big, bigger = table[1000], table[3000]
@@ -185,8 +194,12 @@ def bench_memory(folder: Path) -> None:
         "full_job(Path(sys.argv[1]), Path(sys.argv[2])); "
         "print([l.split()[1] for l in open('/proc/self/status') if l.startswith('VmHWM')][0])"
     )
-    out = subprocess.run([sys.executable, "-c", script, str(spec), str(folder / "memory_out"), str(REPO / "benchmarks")],
-                         capture_output=True, text=True, check=True)
+    out = subprocess.run(
+        [sys.executable, "-c", script, str(spec), str(folder / "memory_out"), str(REPO / "benchmarks")],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     peak_mb = int(out.stdout.split()[-1]) / 1024
     print(f"  peak resident memory, full gen-robot at 3,000 links: {peak_mb:.0f} MB   (target <= 300 MB)")
 
@@ -200,13 +213,16 @@ def bench_xacro_cost(folder: Path) -> None:
     spec = REPO / "examples" / "industrial_arm_std_dh.yaml"
     generate(spec, folder / "ur5_description", force=True)
     plain = folder / "ur5_plain.urdf.xacro"  # the same robot written by hand as plain <link>/<joint> XML
-    urdf = emit_urdf(build_robot(spec)).replace('<robot name="ur5">',
-                                                '<robot name="ur5" xmlns:xacro="http://www.ros.org/wiki/xacro">')
+    urdf = emit_urdf(build_robot(spec)).replace(
+        '<robot name="ur5">', '<robot name="ur5" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+    )
     plain.write_text(urdf, encoding="utf-8")
     ours = median_time(lambda: expand_file(folder / "ur5_description" / "urdf" / "ur5.urdf.xacro"), 7)
     hand = median_time(lambda: expand_file(plain), 7)
-    print(f"  generated package: {ours:.4f} s; hand-written plain XML: {hand:.4f} s; ratio {ours / hand:.2f}"
-          "   (target <= 1.5)")
+    print(
+        f"  generated package: {ours:.4f} s; hand-written plain XML: {hand:.4f} s; ratio {ours / hand:.2f}"
+        "   (target <= 1.5)"
+    )
 
 
 def bench_cli() -> None:

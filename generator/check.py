@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import re
 import tempfile
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Literal
@@ -643,6 +643,7 @@ def check(
     prefix: str | None = None,
     consumers: Sequence[str] | None = None,
     package_paths: Mapping[str, str | Path] | None = None,
+    progress: Callable[[str], None] | None = None,
 ) -> CheckReport:
     """Check a URDF, a xacro document (expanded with ``mappings``) or a spec (generated in memory, never written).
 
@@ -653,14 +654,17 @@ def check(
         consumers: which independent consumers to run (default: every installed one of check_urdf, pinocchio,
             yourdfpy, mujoco); ``[]`` for none.
         package_paths: folders for ``$(find PKG)`` and ``package://PKG`` of packages not otherwise found.
+        progress: called with a short message as each step starts (the CLI shows it on a terminal).
 
     Raises:
         XacrokitError: the input cannot be read (a spec with errors raises SpecErrors, a xacro ExpandError).
     """
     path = Path(path)
+    say = progress or (lambda message: None)
     kind = input_kind(path)
     if mappings and kind != "xacro":
         raise XacrokitError("name:=value arguments only apply to xacro input")
+    say(f"reading {path.name}")
     text, robot, lines = _load_urdf(path, kind, mappings, package_paths)
     try:
         root = etree.fromstring(text.encode("utf-8"))
@@ -670,6 +674,7 @@ def check(
     if root.tag != "robot":
         finding = Finding("U001", "error", "robot", "", f"the root element is <{root.tag}>, not <robot>", str(path), 1)
         return CheckReport(str(path), kind, None, (finding,))
+    say("running our rules")
     doc = _Doc(root, str(path), lines, source_lines=kind == "urdf")
     findings = list(structure_rules(doc))
     structural = any(f.rule.startswith("S") for f in findings)
@@ -681,6 +686,8 @@ def check(
     if robot is not None and not structural and getattr(robot, "arms", ()):
         findings += kinematics_rules(doc, robot, text)
     names = [c for c in (CONSUMERS if consumers is None else consumers) if consumers is not None or available(c)]
+    if names and not structural:
+        say(f"running {', '.join(names)}")
     results = _consumers(names, text, structural, package_paths, path.parent)
     findings += [
         Finding("C001", "error", "consumer", r.name, f"{r.name} {r.status}: {r.message}".rstrip(": "), str(path))

@@ -7,13 +7,15 @@ Imports stay light here: heavy libraries load inside the commands that use them.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 
 from . import __version__
 from .errors import XacrokitError
+from .progress import Progress
 
 
 def _cmd_expand(args: argparse.Namespace) -> int:
@@ -29,12 +31,29 @@ def _cmd_expand(args: argparse.Namespace) -> int:
     return 0
 
 
+@contextlib.contextmanager
+def _progress() -> Iterator[Progress]:
+    """A progress line on stderr while the work runs (on a terminal only), cleared before the command's output."""
+    progress = Progress()
+    try:
+        yield progress
+    finally:
+        progress.done()
+
+
 def _cmd_generate(args: argparse.Namespace) -> int:
     from .pipeline import generate
 
-    result = generate(
-        args.spec, args.output, dry_run=args.dry_run, force=args.force, macros=args.macros, via_xacro=args.via_xacro
-    )
+    with _progress() as progress:
+        result = generate(
+            args.spec,
+            args.output,
+            dry_run=args.dry_run,
+            force=args.force,
+            macros=args.macros,
+            via_xacro=args.via_xacro,
+            progress=progress,
+        )
     width = max(len(a.action) for a in result.actions)
     verb = "would write" if args.dry_run else "wrote"
     for action in result.actions:
@@ -63,15 +82,18 @@ def _cmd_fleet(args: argparse.Namespace) -> int:
                 f"--grid {args.grid} has {int(rows_text) * int(columns_text)} places for {args.count} robots"
             )
         columns = int(columns_text)
-    scene = fleet_scene(args.spec, args.count, columns=columns, spacing=args.spacing)
-    result = generate_scene(
-        scene,
-        args.output,
-        dry_run=args.dry_run,
-        force=args.force,
-        spec_name=Path(args.spec).name,
-        via_xacro=args.via_xacro,
-    )
+    with _progress() as progress:
+        progress(f"checking {args.count} copies of {Path(args.spec).name}")
+        scene = fleet_scene(args.spec, args.count, columns=columns, spacing=args.spacing)
+        result = generate_scene(
+            scene,
+            args.output,
+            dry_run=args.dry_run,
+            force=args.force,
+            spec_name=Path(args.spec).name,
+            via_xacro=args.via_xacro,
+            progress=progress,
+        )
     changed = sum(a.action != "identical" for a in result.actions)
     verb = "would write" if args.dry_run else "wrote"
     print(
@@ -112,13 +134,15 @@ def _cmd_check(args: argparse.Namespace) -> int:
         consumers = []
     else:
         consumers = [c.strip() for c in args.consumers.split(",") if c.strip()]
-    report = check(
-        args.path,
-        parse_mappings(args.mappings),
-        prefix=args.prefix,
-        consumers=consumers,
-        package_paths=_parse_packages(args.package),
-    )
+    with _progress() as progress:
+        report = check(
+            args.path,
+            parse_mappings(args.mappings),
+            prefix=args.prefix,
+            consumers=consumers,
+            package_paths=_parse_packages(args.package),
+            progress=progress,
+        )
     if args.json:
         sys.stdout.write(json.dumps(report.to_dict(), indent=2) + "\n")
     else:

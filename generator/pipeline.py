@@ -7,6 +7,7 @@ scratch folder first, so a spec that does not validate, or a package xacro canno
 from __future__ import annotations
 
 import tempfile
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -67,6 +68,10 @@ def expand_package(robot: Robot, files: list[RenderedFile]) -> RenderedFile:
     return RenderedFile(f"urdf/{robot.name}.urdf", f"{declaration}\n{header}{body}")
 
 
+def _quiet(message: str) -> None:
+    """The default progress callback: say nothing."""
+
+
 def generate(
     spec_path: str | Path,
     output: str | Path | None = None,
@@ -75,6 +80,7 @@ def generate(
     force: bool = False,
     macros: MacroMode = "copy",
     via_xacro: bool = False,
+    progress: Callable[[str], None] = _quiet,
 ) -> GenerateResult:
     """Generate the ROS 2 description package of a spec.
 
@@ -86,23 +92,31 @@ def generate(
         macros: ``copy`` the macro files into the package (self-contained) or include them with ``$(find xacrokit)``.
         via_xacro: write ``urdf/NAME.urdf`` by expanding the package with xacro instead of emitting it directly
             (the two describe the same robot; the direct path is much faster).
+        progress: called with a short message as each stage starts (the CLI shows it on a terminal).
 
     Raises:
         SpecErrors: the spec is invalid (nothing written).
         ExpandError: xacro could not expand the generated package (nothing written).
         ConflictError: a generated file was edited since (nothing written).
     """
+    progress(f"reading {Path(spec_path).name}")
     raw = load_file(spec_path)
     if is_scene(raw):
+        progress("checking the scene and its robots")
+        scene = build_scene(raw)
         name = Path(spec_path).name
         return generate_scene(
-            build_scene(raw), output, dry_run=dry_run, force=force, spec_name=name, via_xacro=via_xacro
+            scene, output, dry_run=dry_run, force=force, spec_name=name, via_xacro=via_xacro, progress=progress
         )
+    progress("validating")
     robot = resolve(validate(raw))
+    progress("rendering the package")
     files = render_package(robot, macros=macros, spec_name=Path(spec_path).name)
+    progress("expanding with xacro" if via_xacro else "emitting the URDF")
     files.append(expand_package(robot, files) if via_xacro else emitted_urdf(robot.name, emit_urdf(robot)))
     files.sort(key=lambda f: f.path)
     root = Path(output) if output is not None else Path.cwd() / robot.package
+    progress(f"writing {len(files)} files")
     actions = write(files, root, force=force, dry_run=dry_run)
     return GenerateResult(robot=robot, output=root, actions=tuple(actions), files=tuple(files))
 
@@ -115,14 +129,19 @@ def generate_scene(
     force: bool = False,
     spec_name: str = "scene.yaml",
     via_xacro: bool = False,
+    progress: Callable[[str], None] = _quiet,
 ) -> GenerateResult:
     """Write the package of a resolved scene (see :func:`generate`); ``gen-robot fleet`` builds its scene in memory."""
+    progress(f"rendering {len(scene.instances)} instances of {len(scene.robots)} robot(s)")
     files = render_scene(scene, spec_name=spec_name)
-    if via_xacro or any(instance.macro is not None for instance in scene.instances):  # third-party needs xacro
+    third_party = any(instance.macro is not None for instance in scene.instances)
+    progress("expanding with xacro" if via_xacro or third_party else "emitting the URDF")
+    if via_xacro or third_party:  # a third-party macro needs xacro
         files.append(expand_scene(scene, files))
     else:
         files.append(emitted_urdf(scene.name, emit_scene_urdf(scene)))
     files.sort(key=lambda f: f.path)
     root = Path(output) if output is not None else Path.cwd() / scene.package
+    progress(f"writing {len(files)} files")
     actions = write(files, root, force=force, dry_run=dry_run)
     return GenerateResult(robot=None, output=root, actions=tuple(actions), files=tuple(files), scene=scene)

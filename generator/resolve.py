@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from .gcpause import collector_paused
 from .model import (
     Arm,
     Box,
@@ -261,6 +262,7 @@ def _controlled(
     return tuple(result)
 
 
+@collector_paused()
 def resolve(spec: Spec) -> Robot:
     """Build the model of a validated spec."""
     data = spec.data

@@ -202,3 +202,12 @@ def test_consumers_leave_nothing_in_the_working_folder(tmp_path):
     result = gen_robot("check", CORPUS / "I003_fail.urdf", cwd=tmp_path)  # MuJoCo, when installed, rejects it
     assert result.returncode == 1
     assert list(tmp_path.iterdir()) == []
+
+
+def test_benchmark_stage_measurement_runs(tmp_path, monkeypatch):
+    monkeypatch.syspath_prepend(str(REPO / "benchmarks"))
+    from bench import measure_size
+
+    row = measure_size(10, tmp_path)
+    assert set(row) == {"load", "validate", "resolve", "render", "write", "emit", "xacro", "check", "full", "lxml"}
+    assert all(value > 0 for value in row.values())

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import subprocess
+import sys
+
 import numpy as np
 import pinocchio as pin
 import pytest
@@ -332,3 +335,46 @@ def test_fleet_command_and_the_fleet_scene_example_agree(tmp_path):
     assert (tmp_path / "cli" / urdf).read_text(encoding="utf-8") == (tmp_path / "file" / urdf).read_text(
         encoding="utf-8"
     )
+
+
+def run_with_tty_stderr(*args) -> tuple[int, str, str]:
+    """Run gen-robot with stderr on a pseudo-terminal; return (exit code, stdout, what the terminal received)."""
+    import os
+    import pty
+
+    leader, follower = pty.openpty()
+    process = subprocess.Popen(
+        [sys.executable, "-m", "xacrokit.cli", *map(str, args)], stdout=subprocess.PIPE, stderr=follower, text=True
+    )
+    os.close(follower)
+    received = b""
+    while True:
+        try:
+            chunk = os.read(leader, 4096)
+        except OSError:  # the terminal closed: the command has ended
+            break
+        if not chunk:
+            break
+        received += chunk
+    stdout = process.stdout.read()
+    code = process.wait(timeout=300)
+    os.close(leader)
+    return code, stdout, received.decode("utf-8", errors="replace")
+
+
+def test_progress_shows_on_a_terminal_only(tmp_path):
+    diff_drive = REPO / "examples" / "diff_drive.yaml"
+    code, stdout, terminal = run_with_tty_stderr("fleet", diff_drive, "--count", "4", "-o", tmp_path / "fleet")
+    assert code == 0 and "4 robots r0_ .. r3_" in stdout
+    for step in (
+        "checking 4 copies of diff_drive.yaml",
+        "rendering 4 instances of 1 robot(s)",
+        "emitting the URDF",
+        "writing",
+    ):
+        assert step in terminal, terminal
+    assert terminal.endswith("\r\x1b[K")  # the line is cleared when the work is done
+    code, stdout, terminal = run_with_tty_stderr("check", diff_drive, "--consumers", "check_urdf")
+    assert code == 0 and "running check_urdf" in terminal and "OK: 0 error(s)" in stdout
+    quiet = gen_robot("fleet", diff_drive, "--count", "2", "-o", tmp_path / "quiet")
+    assert quiet.returncode == 0 and quiet.stderr == ""  # not a terminal: nothing on stderr
