@@ -219,10 +219,11 @@ def build_parser() -> argparse.ArgumentParser:
     _add_write_options(gen, "NAME_description")
     gen.add_argument(
         "--macros",
-        choices=("copy", "find"),
+        choices=("copy", "find", "inline"),
         default="copy",
-        help="copy the xacrokit macros into the package (default; self-contained) or include them with "
-        "$(find xacrokit) (the package then depends on xacrokit)",
+        help="copy the xacrokit macros into the package (default; self-contained), include them with "
+        "$(find xacrokit) (the package then depends on xacrokit), or inline: write the robot macro as plain XML "
+        "computed by gen-robot (no library macros; many times cheaper for xacro to expand)",
     )
     gen.set_defaults(handler=_cmd_generate)
 

@@ -277,21 +277,26 @@ def _wheel(robot: Robot, prefix: str, wheel: Wheel) -> Iterator[etree._Element]:
     yield gazebo
 
 
-def robot_elements(robot: Robot, *, prefix: str = "", ros2_control: str = "mock") -> list[etree._Element]:
-    """The robot's elements (without materials), as its macro writes them for ``prefix``."""
+def robot_elements(
+    robot: Robot, *, prefix: str = "", ros2_control: str = "mock", extras: bool = True
+) -> list[etree._Element]:
+    """The robot's elements (without materials), as its macro writes them for ``prefix``.
+
+    ``extras=False`` leaves out the Gazebo surfaces and the ros2_control block (their own macros write them).
+    """
     elements = [_link(robot, prefix, link) for link in robot.links]
     elements += [_joint(prefix, joint) for joint in robot.joints]
     for arm in robot.arms:
         elements += _arm(robot, prefix, arm)
     for wheel in robot.wheels:
         elements += _wheel(robot, prefix, wheel)
-    for surface in robot.surfaces:
+    for surface in robot.surfaces if extras else ():
         gazebo = etree.Element("gazebo", reference=prefix + surface.link)
         for key in ("mu1", "mu2", "kp", "kd"):
             if getattr(surface, key) is not None:
                 _sub(gazebo, key).text = num(getattr(surface, key))
         elements.append(gazebo)
-    if robot.ros2_control is not None and ros2_control == "mock":
+    if extras and robot.ros2_control is not None and ros2_control == "mock":
         elements.append(_ros2_control(robot, prefix))
     return elements
 

@@ -15,13 +15,14 @@ from typing import Literal
 
 import jinja2
 import yaml
+from markupsafe import Markup
 
 from . import __version__
 from .gcpause import collector_paused
 from .model import Box, Cylinder, Link, Mesh, Origin, Robot, Sphere
 from .resources import macros_dir, templates_dir
 
-MacroMode = Literal["copy", "find"]
+MacroMode = Literal["copy", "find", "inline"]
 COPIED_MACROS_DIR = "urdf/xacrokit"
 
 
@@ -145,12 +146,15 @@ def render_package(robot: Robot, *, macros: MacroMode = "copy", spec_name: str =
     env = _environment()
     macro_files = used_macro_files(robot)
     include_prefix = "xacrokit/" if macros == "copy" else "$(find xacrokit)/macros/"
+    if macros == "inline":  # plain XML computed here: no library macros to include
+        macro_files = []
     context = {
         "robot": robot,
         "version": __version__,
         "spec_name": spec_name,
         "macros": macros,
         "macro_includes": [include_prefix + name for name in macro_files],
+        "inline_body": _inline_body(robot) if macros == "inline" else "",
         "material_name": lambda name: material_name(robot, name),
         "has_control": robot.ros2_control is not None,
         "command_groups": _command_groups(robot),
@@ -172,13 +176,33 @@ def render_package(robot: Robot, *, macros: MacroMode = "copy", spec_name: str =
     if robot.ros2_control is not None:
         plan[f"config/{name}_controllers.yaml"] = "package/config/controllers.yaml.j2"
     files = [RenderedFile(path, env.get_template(template).render(context)) for path, template in plan.items()]
-    files += [RenderedFile(f"config/{arm.name}.dh.yaml", dh_table_yaml(robot, i)) for i, arm in enumerate(robot.arms)]
+    if macros != "inline":  # inline arms are computed here, not read from their tables by dh_arm
+        files += [RenderedFile(f"config/{a.name}.dh.yaml", dh_table_yaml(robot, i)) for i, a in enumerate(robot.arms)]
     if macros == "copy":
         files += _copied_macros(macro_files)
     for file in files:  # generated paths come from validated names; keep it that way
         parts = PurePosixPath(file.path).parts
         assert not PurePosixPath(file.path).is_absolute() and ".." not in parts, file.path
     return sorted(files, key=lambda f: f.path)
+
+
+def _inline_body(robot: Robot) -> Markup:
+    """The robot's links, joints, arms and wheels as plain XML for the robot macro, names glued to ``${prefix}``.
+
+    Written by the direct emitter with the literal prefix ``${prefix}``, which xacro then fills in; a mesh filename
+    (the only free text) is escaped so that xacro copies it verbatim.
+    """
+    from lxml import etree
+
+    from .emit import robot_elements
+
+    lines = []
+    for element in robot_elements(robot, prefix="${prefix}", extras=False):
+        for mesh in element.iter("mesh"):
+            mesh.set("filename", xacro_text(mesh.get("filename", "")))
+        etree.indent(element, space="  ", level=2)
+        lines.append("    " + etree.tostring(element, encoding="unicode").strip())
+    return Markup("\n".join(lines) + "\n")
 
 
 def _command_groups(robot: Robot) -> dict[str, list[str]]:

@@ -83,3 +83,35 @@ def test_generate_emits_by_default_and_expands_with_via_xacro(tmp_path):
     emitted, expanded = ({f.path: f.content for f in r.files}[urdf] for r in (first, second))
     assert "emitted directly" in emitted and "expanded with xacro" in expanded
     assert urdf_differences(emitted, expanded, rel=0.0) == []
+
+
+def test_inline_packages_expand_to_the_emitted_urdf_on_every_example():
+    for spec in EXAMPLES:
+        robot = build_robot(spec)
+        files = render_package(robot, macros="inline")
+        assert not any(
+            f.path.startswith(("urdf/xacrokit/", "config/")) and f.path.endswith((".xacro", ".dh.yaml")) for f in files
+        ), spec.name
+        assert urdf_differences(expand_package(robot, files).content, emit_urdf(robot), rel=0.0) == [], spec.name
+
+
+@settings(suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+@given(spec=valid_specs())
+def test_random_specs_inline_expand_to_the_emitted_urdf(tmp_path_factory, spec):
+    path = tmp_path_factory.mktemp("inline") / "spec.yaml"
+    path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
+    robot = build_robot(path)
+    inline = expand_package(robot, render_package(robot, macros="inline")).content  # ${ in mesh names stays text
+    assert urdf_differences(inline, emit_urdf(robot)) == []
+
+
+def test_cli_inline_mode_with_a_prefix(tmp_path):
+    spec = REPO / "examples" / "diff_drive.yaml"
+    assert gen_robot(spec, "-o", tmp_path / "pkg", "--macros", "inline").returncode == 0
+    prefixed = xacrokit.expand(tmp_path / "pkg" / "urdf" / "diff_drive.urdf.xacro", {"prefix": "r3_"})
+    from lxml import etree
+
+    root = etree.fromstring(prefixed.encode())
+    names = [e.get("name") for e in root.iter("link", "joint") if e.getparent() is root]
+    assert names and all(n.startswith("r3_") for n in names)
+    assert [g.get("reference") for g in root.findall("gazebo") if g.get("reference")][0].startswith("r3_")
