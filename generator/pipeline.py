@@ -114,11 +114,24 @@ def generate(
     files = render_package(robot, macros=macros, spec_name=Path(spec_path).name)
     progress("expanding with xacro" if via_xacro else "emitting the URDF")
     files.append(expand_package(robot, files) if via_xacro else emitted_urdf(robot.name, emit_urdf(robot)))
+    root, actions = _write(files, output, robot.package, force=force, dry_run=dry_run, progress=progress)
+    return GenerateResult(robot=robot, output=root, actions=actions, files=tuple(files))
+
+
+def _write(
+    files: list[RenderedFile],
+    output: str | Path | None,
+    package: str,
+    *,
+    force: bool,
+    dry_run: bool,
+    progress: Callable[[str], None],
+) -> tuple[Path, tuple[FileAction, ...]]:
+    """The write stage for a package: files in path order, into OUTPUT or ./PACKAGE."""
     files.sort(key=lambda f: f.path)
-    root = Path(output) if output is not None else Path.cwd() / robot.package
+    root = Path(output) if output is not None else Path.cwd() / package
     progress(f"writing {len(files)} files")
-    actions = write(files, root, force=force, dry_run=dry_run)
-    return GenerateResult(robot=robot, output=root, actions=tuple(actions), files=tuple(files))
+    return root, tuple(write(files, root, force=force, dry_run=dry_run))
 
 
 def generate_scene(
@@ -140,8 +153,5 @@ def generate_scene(
         files.append(expand_scene(scene, files))
     else:
         files.append(emitted_urdf(scene.name, emit_scene_urdf(scene)))
-    files.sort(key=lambda f: f.path)
-    root = Path(output) if output is not None else Path.cwd() / scene.package
-    progress(f"writing {len(files)} files")
-    actions = write(files, root, force=force, dry_run=dry_run)
-    return GenerateResult(robot=None, output=root, actions=tuple(actions), files=tuple(files), scene=scene)
+    root, actions = _write(files, output, scene.package, force=force, dry_run=dry_run, progress=progress)
+    return GenerateResult(robot=None, output=root, actions=actions, files=tuple(files), scene=scene)

@@ -35,15 +35,6 @@ def test_every_scene_example_too():
         assert urdf_differences(xacro_urdf, emit_scene_urdf(scene), rel=0.0) == [], path.name
 
 
-@settings(suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
-@given(spec=valid_specs())
-def test_random_specs_are_emitted_as_xacro_expands_them(tmp_path_factory, spec):
-    path = tmp_path_factory.mktemp("emit") / "spec.yaml"
-    path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
-    robot = build_robot(path)
-    assert urdf_differences(via_xacro(robot), emit_urdf(robot)) == []
-
-
 BASE = (
     '<robot name="r"><link name="a"><inertial><mass value="1.0"/></inertial></link>'
     '<joint name="j" type="fixed"/></robot>'
@@ -97,12 +88,14 @@ def test_inline_packages_expand_to_the_emitted_urdf_on_every_example():
 
 @settings(suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 @given(spec=valid_specs())
-def test_random_specs_inline_expand_to_the_emitted_urdf(tmp_path_factory, spec):
-    path = tmp_path_factory.mktemp("inline") / "spec.yaml"
+def test_random_specs_expand_to_the_emitted_urdf_in_both_macro_modes(tmp_path_factory, spec):
+    path = tmp_path_factory.mktemp("emit") / "spec.yaml"
     path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
     robot = build_robot(path)
+    emitted = emit_urdf(robot)
+    assert urdf_differences(via_xacro(robot), emitted) == []  # the library macros
     inline = expand_package(robot, render_package(robot, macros="inline")).content  # ${ in mesh names stays text
-    assert urdf_differences(inline, emit_urdf(robot)) == []
+    assert urdf_differences(inline, emitted) == []
 
 
 def test_cli_inline_mode_with_a_prefix(tmp_path):
