@@ -21,6 +21,7 @@ from lxml import etree
 from .consumers import CONSUMERS, ConsumerResult, available, run_consumers
 from .errors import XacrokitError
 from .gcpause import collector_paused
+from .load import RawSpec
 
 Severity = Literal["error", "warning"]
 MOVING = ("revolute", "continuous", "prismatic")
@@ -533,13 +534,11 @@ def prefix_rules(doc: _Doc, prefix: str) -> Iterator[Finding]:
 
 
 # ------------------------------------------------------------------------------------------------------------ inputs
-def _spec_lines(spec_path: Path) -> tuple[dict[tuple[str, str], int], object]:
+def _spec_lines(raw: RawSpec) -> tuple[dict[tuple[str, str], int], object]:
     """For spec input: the robot and where each generated link and joint is written in the spec."""
-    from .load import load_file
     from .resolve import resolve
     from .validate import validate
 
-    raw = load_file(spec_path)
     robot = resolve(validate(raw))
     lines: dict[tuple[str, str], int] = {}
 
@@ -613,7 +612,7 @@ def _load_urdf(
         if is_scene(raw):  # a scene: generated in memory as a whole
             scene = build_scene(raw)
             return expand_scene(scene, render_scene(scene, spec_name=path.name)).content, None, None
-        lines, robot = _spec_lines(path)
+        lines, robot = _spec_lines(raw)  # the spec read above, not read again
         files = render_package(robot, spec_name=path.name)  # type: ignore[arg-type]
         return expand_package(robot, files).content, robot, lines  # type: ignore[arg-type]
     if kind == "xacro":

@@ -112,11 +112,12 @@ def build_scene(raw: RawSpec) -> Scene:
     base = Path(raw.file).resolve().parent
     partial: dict[str, dict[str, Any]] = {}
     robots_by_name: dict[str, Path] = {}
+    loaded: dict[Path, Robot | None] = {}
     for name, entry in data["instances"].items():
         path: PathKey = ("instances", name)
         prefix = entry.get("prefix", "")
         if "spec" in entry:
-            robot, spec_file = _load_robot(raw, entry["spec"], base, path, errors)
+            robot, spec_file = _load_robot(raw, entry["spec"], base, path, errors, loaded)
             if robot is None:
                 continue
             other = robots_by_name.setdefault(robot.name, spec_file)
@@ -176,10 +177,17 @@ def build_scene(raw: RawSpec) -> Scene:
     return Scene(name=data["scene"], world=world, instances=instances, source=raw.file)
 
 
-def _load_robot(raw: RawSpec, spec: str, base: Path, path: PathKey, errors: list[SpecError]):
+def _load_robot(
+    raw: RawSpec, spec: str, base: Path, path: PathKey, errors: list[SpecError], loaded: dict[Path, Robot | None]
+):
+    """The robot of an instance's spec; each spec file is read and validated once however many instances use it."""
     spec_file = (base / spec).resolve()
+    if spec_file in loaded:
+        return loaded[spec_file], spec_file
+    loaded[spec_file] = None  # a spec with problems reports them once
     try:
-        return resolve(validate(load_file(spec_file))), spec_file
+        loaded[spec_file] = resolve(validate(load_file(spec_file)))
+        return loaded[spec_file], spec_file
     except SpecErrors as problems:  # the robot's own problems, located in its own file
         errors += problems.errors
         if any("cannot read the spec" in e.message for e in problems.errors):
