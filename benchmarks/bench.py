@@ -8,6 +8,8 @@ Sections:
           render, write, emit, xacro expansion of the generated package, check without consumers), full gen-robot
           (all of them but xacro, the check included) and lxml parse+serialize of its URDF; then the ratios
           full / xacro expansion, full / lxml, and t(3,000)/t(1,000) for every stage.
+  fleet   the same for gen-robot fleet: 1 / 10 / 100 / 300 copies of a 10-link chain (10 to 3,000 links), the
+          stages being scene (load, validate, resolve the scene and its robot), render, write, emit, xacro, check.
   memory  peak resident memory of full gen-robot on the 3,000-link robot (a fresh process).
   xacro   xacro expansion of our generated 6-axis arm package (UR5) against a hand-written equivalent in plain
           <link>/<joint> XML.
@@ -167,21 +169,81 @@ def measure_size(links: int, folder: Path) -> dict[str, float]:
     return row
 
 
-def bench_stages(folder: Path) -> None:
+FLEET_ROBOT_LINKS = 10
 
-    print("== stages (seconds; median of 5 runs up to 100 links, of 3 above; xacro once from 1,000 links)")
-    names = ("load", "validate", "resolve", "render", "write", "emit", "xacro", "check", "full", "lxml")
+
+def fleet_job(spec: Path, count: int, out: Path) -> None:
+    """What gen-robot fleet SPEC --count COUNT does, plus the check without consumers."""
+    from xacrokit.check import check
+    from xacrokit.pipeline import generate_scene
+    from xacrokit.scene import fleet_scene
+
+    scene = fleet_scene(spec, count)
+    generate_scene(scene, out, force=True)
+    check(out / "urdf" / f"{scene.name}.urdf", consumers=[])
+
+
+def measure_fleet(links: int, folder: Path) -> dict[str, float]:
+    """Time every stage for a fleet of 10-link chain robots with ``links`` links in all."""
+    from lxml import etree
+
+    from xacrokit.check import check
+    from xacrokit.emit import emit_scene_urdf
+    from xacrokit.pipeline import emitted_urdf
+    from xacrokit.scene import expand_scene, fleet_scene, render_scene
+    from xacrokit.write import write
+
+    count = links // FLEET_ROBOT_LINKS
+    spec = folder / "fleet_robot.yaml"
+    spec.write_text(chain_spec(FLEET_ROBOT_LINKS), encoding="utf-8")
+    scene = fleet_scene(spec, count)
+    files = render_scene(scene)
+    urdf = emit_scene_urdf(scene)
+    package = [*files, emitted_urdf(scene.name, urdf)]
+    urdf_path = folder / f"fleet_{links}.urdf"
+    urdf_path.write_text(urdf, encoding="utf-8")
+    counter = iter(range(10**6))
+    runs = runs_for(links)
+    return {
+        "scene": median_time(lambda: fleet_scene(spec, count), runs),  # load, validate, resolve: scene and robot
+        "render": median_time(lambda: render_scene(scene), runs),
+        "write": median_time(lambda: write(package, folder / f"fw{links}_{next(counter)}"), runs),
+        "emit": median_time(lambda: emit_scene_urdf(scene), runs),
+        "xacro": median_time(lambda: expand_scene(scene, files), 1 if links >= 1000 else runs),
+        "check": median_time(lambda: check(urdf_path, consumers=[]), runs),
+        "full": median_time(lambda: fleet_job(spec, count, folder / f"ffull{links}_{next(counter)}"), runs),
+        "lxml": median_time(lambda: etree.tostring(etree.fromstring(urdf.encode())), runs),
+    }
+
+
+def print_table(title: str, names: tuple[str, ...], measure: Callable[[int, Path], dict[str, float]], folder: Path):
+    print(title)
     print("  " + f"{'links':>6}" + "".join(f"{n:>10}" for n in names))
     table: dict[int, dict[str, float]] = {}
     for links in SIZES:
-        row = measure_size(links, folder)
+        row = measure(links, folder)
         table[links] = row
         print("  " + f"{links:>6}" + "".join(f"{row[n]:>10.4f}" for n in names))
     big, bigger = table[1000], table[3000]
-    print(f"  full gen-robot / xacro expansion at 1,000 links: {big['full'] / big['xacro']:.3f}   (target <= 0.5)")
-    print(f"  full gen-robot / lxml parse+serialize at 1,000 links: {big['full'] / big['lxml']:.1f}   (target <= 30)")
+    print(f"  full / xacro expansion at 1,000 links: {big['full'] / big['xacro']:.3f}   (target <= 0.5)")
+    print(f"  full / lxml parse+serialize at 1,000 links: {big['full'] / big['lxml']:.1f}   (target <= 30)")
     ratios = ", ".join(f"{n} {bigger[n] / big[n]:.2f}" for n in names if big[n] > 0)
     print(f"  t(3,000)/t(1,000): {ratios}   (target <= 3.5 for our stages; xacro is not ours)")
+
+
+def bench_fleet(folder: Path) -> None:
+    names = ("scene", "render", "write", "emit", "xacro", "check", "full", "lxml")
+    title = (
+        f"== fleet stages: gen-robot fleet of {FLEET_ROBOT_LINKS}-link chains, the links in all "
+        "(seconds; median of 5 runs up to 100 links, of 3 above; xacro once from 1,000 links)"
+    )
+    print_table(title, names, measure_fleet, folder)
+
+
+def bench_stages(folder: Path) -> None:
+    names = ("load", "validate", "resolve", "render", "write", "emit", "xacro", "check", "full", "lxml")
+    title = "== stages: one chain robot (seconds; median of 5 runs up to 100 links, of 3 above; xacro once from 1,000)"
+    print_table(title, names, measure_size, folder)
 
 
 def bench_memory(folder: Path) -> None:
@@ -233,11 +295,13 @@ def bench_cli() -> None:
 
 
 def main(argv: list[str]) -> int:
-    sections = set(argv) or {"stages", "memory", "xacro", "check", "cli"}
+    sections = set(argv) or {"stages", "fleet", "memory", "xacro", "check", "cli"}
     print(f"python {sys.version.split()[0]} on {sys.platform}; {time.strftime('%Y-%m-%d %H:%M:%S')}")
     with tempfile.TemporaryDirectory(prefix="xacrokit-bench-") as folder:
         if "stages" in sections:
             bench_stages(Path(folder))
+        if "fleet" in sections:
+            bench_fleet(Path(folder))
         if "memory" in sections:
             bench_memory(Path(folder))
         if "xacro" in sections:

@@ -19,8 +19,8 @@ from .errors import SpecError, SpecErrors
 from .gcpause import collector_paused
 
 PathKey = tuple[str | int, ...]
-# libyaml's composer (same nodes, same line/column marks) is several times faster than PyYAML's pure-Python one
-_COMPOSER = yaml.CSafeLoader if getattr(yaml, "__with_libyaml__", False) else yaml.SafeLoader
+# libyaml's parser (same events, same line/column marks) is several times faster than PyYAML's pure-Python one
+_PARSER = yaml.CSafeLoader if getattr(yaml, "__with_libyaml__", False) else yaml.SafeLoader
 _PLAIN_TAGS = {
     f"tag:yaml.org,2002:{name}"
     for name in ("str", "int", "float", "bool", "null", "map", "seq", "timestamp", "binary", "merge")
@@ -66,76 +66,190 @@ def json_path(path: PathKey) -> str:
     return out
 
 
-def _mark(node: yaml.Node) -> tuple[int, int]:
-    return node.start_mark.line + 1, node.start_mark.column + 1
+_STR = "tag:yaml.org,2002:str"
+_INT = "tag:yaml.org,2002:int"
+_FLOAT = "tag:yaml.org,2002:float"
+_MERGE = "tag:yaml.org,2002:merge"
+_DECIMAL = re.compile(r"[-+]?(?:0|[1-9][0-9]*)")
+_RESOLVER = yaml.resolver.Resolver()
+
+
+def _at(event: yaml.Event) -> tuple[int, int]:
+    return event.start_mark.line + 1, event.start_mark.column + 1
 
 
 class _Builder:
-    def __init__(self, file: str) -> None:
+    """Builds plain data and positions straight from the parser's events (no node tree: half the time)."""
+
+    def __init__(self, file: str, loader: yaml.CSafeLoader | yaml.SafeLoader) -> None:
         self.file = file
+        self.next_event = loader.get_event
         self.positions: dict[PathKey, tuple[int, int]] = {}
         self.key_positions: dict[PathKey, tuple[int, int]] = {}
         self.errors: list[SpecError] = []
-        self.seen: set[int] = set()
-        self.scalars = SafeConstructor()
+        self.anchors: dict[str, int] = {}
+        self.plain: dict[str, Any] = {}  # plain scalar text -> its value
 
-    def fail(self, node: yaml.Node, path: PathKey, message: str) -> None:
-        line, column = _mark(node)
+    def fail(self, event: yaml.Event, path: PathKey, message: str) -> None:
+        line, column = _at(event)
         self.errors.append(SpecError(message, file=self.file, path=json_path(path), line=line, column=column))
 
-    def build(self, node: yaml.Node, path: PathKey) -> Any:
-        if id(node) in self.seen:
-            # PyYAML hands back the anchored node itself; point at the key that used the alias instead.
-            anchor_line, _ = _mark(node)
-            line, column = self.key_positions.get(path, _mark(node))
-            message = (
-                f"YAML aliases (*name) are not supported in specs; write the value out (anchored on line {anchor_line})"
-            )
-            self.errors.append(SpecError(message, file=self.file, path=json_path(path), line=line, column=column))
+    def build(self, event: yaml.Event, path: PathKey, record: bool = True) -> Any:
+        """The value that starts with ``event``; ``record=False`` consumes it without positions or errors."""
+        kind = type(event)
+        if kind is yaml.AliasEvent:
+            self.check_alias(event)
+            if record:
+                # point at the key that used the alias
+                line, column = self.key_positions.get(path, _at(event))
+                message = (
+                    "YAML aliases (*name) are not supported in specs; write the value out "
+                    f"(anchored on line {self.anchors[event.anchor]})"
+                )
+                self.errors.append(SpecError(message, file=self.file, path=json_path(path), line=line, column=column))
             return None
-        self.seen.add(id(node))
-        self.positions[path] = _mark(node)
-        if node.tag not in _PLAIN_TAGS:
-            shown = node.tag.replace("tag:yaml.org,2002:", "!!")
-            self.fail(node, path, f"YAML tag {shown} is not allowed in specs; write a plain value")
+        if event.anchor is not None:
+            self.anchor(event)
+        if record:
+            self.positions[path] = _at(event)
+        if kind is yaml.ScalarEvent:
+            return self.scalar(event, path, record)
+        tag = event.tag
+        if tag is not None and tag != "!" and tag not in _PLAIN_TAGS:
+            if record:
+                shown = tag.replace("tag:yaml.org,2002:", "!!")
+                self.fail(event, path, f"YAML tag {shown} is not allowed in specs; write a plain value")
+            self.skip_collection()
             return None
-        if isinstance(node, yaml.MappingNode):
-            return self.mapping(node, path)
-        if isinstance(node, yaml.SequenceNode):
-            return [self.build(item, (*path, index)) for index, item in enumerate(node.value)]
-        return self.scalar(node, path)
+        if kind is yaml.MappingStartEvent:
+            return self.mapping(path, record)
+        return self.sequence(path, record)
 
-    def mapping(self, node: yaml.MappingNode, path: PathKey) -> dict[str, Any]:
+    def anchor(self, event: yaml.Event) -> None:
+        """Remember an anchor (&name); like PyYAML, a name used twice is an error of the YAML itself."""
+        if event.anchor in self.anchors:
+            problem = f"found duplicate anchor {event.anchor!r} (first on line {self.anchors[event.anchor]})"
+            raise SpecErrors([_event_error(self.file, problem, event)])
+        self.anchors[event.anchor] = event.start_mark.line + 1
+
+    def check_alias(self, event: yaml.AliasEvent) -> None:
+        if event.anchor not in self.anchors:
+            raise SpecErrors([_event_error(self.file, f"found undefined alias {event.anchor!r}", event)])
+
+    def skip_collection(self) -> None:
+        depth = 1
+        while depth:
+            kind = type(self.next_event())
+            if kind is yaml.MappingStartEvent or kind is yaml.SequenceStartEvent:
+                depth += 1
+            elif kind is yaml.MappingEndEvent or kind is yaml.SequenceEndEvent:
+                depth -= 1
+
+    def sequence(self, path: PathKey, record: bool) -> list[Any]:
+        items: list[Any] = []
+        event = self.next_event()
+        while type(event) is not yaml.SequenceEndEvent:
+            items.append(self.build(event, (*path, len(items)), record))
+            event = self.next_event()
+        return items
+
+    def mapping(self, path: PathKey, record: bool) -> dict[str, Any]:
         result: dict[str, Any] = {}
-        first_seen: dict[str, yaml.Node] = {}
-        for key_node, value_node in node.value:
-            if key_node.tag == "tag:yaml.org,2002:merge":
-                self.fail(key_node, path, "YAML merge keys (<<) are not supported in specs; write the keys out")
-                continue
-            if not isinstance(key_node, yaml.ScalarNode):
-                self.fail(key_node, path, "mapping keys must be plain names, not lists or mappings")
-                continue
-            key = str(key_node.value)
-            if key in first_seen:
-                line, _ = _mark(first_seen[key])
-                self.fail(key_node, (*path, key), f"duplicate key {key!r} (first given on line {line})")
-                continue
-            first_seen[key] = key_node
-            self.key_positions[(*path, key)] = _mark(key_node)
-            result[key] = self.build(value_node, (*path, key))
+        first_lines: dict[str, int] = {}
+        event = self.next_event()
+        while type(event) is not yaml.MappingEndEvent:
+            key_event = event
+            key = self.key(key_event, path, record)
+            event = self.next_event()  # the value's first event
+            if key is None or key in first_lines:
+                if key is not None and record:
+                    message = f"duplicate key {key!r} (first given on line {first_lines[key]})"
+                    self.fail(key_event, (*path, key), message)
+                self.build(event, path, record=False)
+            else:
+                first_lines[key] = key_event.start_mark.line + 1
+                child = (*path, key)
+                if record:
+                    self.key_positions[child] = _at(key_event)
+                result[key] = self.build(event, child, record)
+            event = self.next_event()
         return result
 
-    def scalar(self, node: yaml.ScalarNode, path: PathKey) -> Any:
-        plain = not node.style  # PyYAML says None for a plain scalar, libyaml says ""
-        if node.tag == "tag:yaml.org,2002:str" and plain and _NUMBER.fullmatch(node.value):
-            return float(node.value)
-        if node.tag in ("tag:yaml.org,2002:timestamp", "tag:yaml.org,2002:binary"):
-            return node.value
-        try:
-            return self.scalars.construct_object(node)
-        except yaml.YAMLError as exc:
-            self.fail(node, path, f"cannot read this value: {exc}")
+    def key(self, event: yaml.Event, path: PathKey, record: bool) -> str | None:
+        """A mapping key as text, or None (with an error) for a merge key, a collection or an alias."""
+        if type(event) is yaml.AliasEvent:
+            self.check_alias(event)
+            if record:
+                anchored = self.anchors[event.anchor]
+                message = (
+                    f"YAML aliases (*name) are not supported in specs; write the key out (anchored on line {anchored})"
+                )
+                self.fail(event, path, message)
             return None
+        if event.anchor is not None:
+            self.anchor(event)
+        if type(event) is not yaml.ScalarEvent:
+            if record:
+                self.fail(event, path, "mapping keys must be plain names, not lists or mappings")
+            self.skip_collection()
+            return None
+        tag = event.tag
+        if tag is None or tag == "!":
+            tag = _MERGE if event.value == "<<" and event.implicit[0] else _STR  # YAML 1.1's only implicit key tag
+        if tag == _MERGE:
+            if record:
+                self.fail(event, path, "YAML merge keys (<<) are not supported in specs; write the keys out")
+            return None
+        return event.value
+
+    def scalar(self, event: yaml.ScalarEvent, path: PathKey, record: bool) -> Any:
+        try:
+            if event.tag is None and not event.style:  # a plain scalar: its value depends on its text alone
+                value = self.plain.get(event.value, _UNSEEN)
+                if value is _UNSEEN:
+                    value = self.plain[event.value] = _scalar_value(event)
+                return value
+            return _scalar_value(event)
+        except _Unreadable as exc:
+            if record:
+                self.fail(event, path, str(exc))
+            return None
+
+
+class _Unreadable(Exception):
+    """A scalar that cannot become a spec value (the message says why)."""
+
+
+_UNSEEN = object()
+
+
+def _scalar_value(event: yaml.ScalarEvent) -> Any:
+    value = event.value
+    tag = event.tag
+    if tag is None or tag == "!":
+        tag = _RESOLVER.resolve(yaml.ScalarNode, value, event.implicit)
+    if tag == _STR:
+        # an unquoted, untagged number that YAML 1.1 leaves a string (1e-3) reads as a number, as in JSON and YAML 1.2
+        return float(value) if event.tag is None and not event.style and _NUMBER.fullmatch(value) else value
+    if tag == _FLOAT and _NUMBER.fullmatch(value):
+        return float(value)
+    if tag == _INT and _DECIMAL.fullmatch(value):
+        return int(value)
+    if tag not in _PLAIN_TAGS:
+        shown = tag.replace("tag:yaml.org,2002:", "!!")
+        raise _Unreadable(f"YAML tag {shown} is not allowed in specs; write a plain value")
+    if tag in ("tag:yaml.org,2002:timestamp", "tag:yaml.org,2002:binary", _MERGE):  # (<< only merges as a key)
+        return value
+    try:
+        node = yaml.ScalarNode(tag, value, event.start_mark, event.end_mark, event.style)
+        return SafeConstructor().construct_object(node)  # a fresh one: it remembers every node it built
+    except yaml.YAMLError as exc:
+        raise _Unreadable(f"cannot read this value: {getattr(exc, 'problem', None) or exc}") from None
+
+
+def _event_error(file: str, problem: str, event: yaml.Event) -> SpecError:
+    line, column = _at(event)
+    return SpecError(f"not valid YAML: {problem}", file=file, line=line, column=column)
 
 
 def _yaml_error(file: str, exc: yaml.YAMLError) -> SpecError:
@@ -152,14 +266,23 @@ def load_text(text: str, file: str = "<spec>") -> RawSpec:
 
 
 def _load_text(text: str, file: str) -> RawSpec:
+    loader = _PARSER(text)
     try:
-        node = yaml.compose(text, Loader=_COMPOSER)
+        loader.get_event()  # the stream's start
+        event = loader.get_event()
+        if type(event) is yaml.StreamEndEvent:
+            message = "the spec is empty; start from `gen-robot new NAME`"
+            raise SpecErrors([SpecError(message, file=file, line=1, column=1)])
+        builder = _Builder(file, loader)
+        data = builder.build(loader.get_event(), ())
+        loader.get_event()  # the document's end
+        event = loader.get_event()
+        if type(event) is not yaml.StreamEndEvent:
+            raise SpecErrors([_event_error(file, "a spec is one YAML document, but another one starts here", event)])
     except yaml.YAMLError as exc:
         raise SpecErrors([_yaml_error(file, exc)]) from None
-    if node is None:
-        raise SpecErrors([SpecError("the spec is empty; start from `gen-robot new NAME`", file=file, line=1, column=1)])
-    builder = _Builder(file)
-    data = builder.build(node, ())
+    finally:
+        loader.dispose()
     if builder.errors:
         raise SpecErrors(builder.errors)
     return RawSpec(file=file, data=data, positions=builder.positions, key_positions=builder.key_positions)

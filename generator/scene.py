@@ -18,8 +18,6 @@ from pathlib import Path
 from types import SimpleNamespace
 from typing import Any
 
-import jsonschema
-
 from . import __version__
 from .errors import ExpandError, SpecError, SpecErrors
 from .load import PathKey, RawSpec, load_file
@@ -28,7 +26,7 @@ from .render import RenderedFile, _environment, render_package, xacro_text
 from .resolve import origin as resolve_origin
 from .resolve import resolve
 from .resources import schemas_dir
-from .validate import _Quantities, inline_refs, schema_errors, validate
+from .validate import SchemaValidator, _Quantities, inline_refs, schema_errors, validate
 
 ROBOT_FILES = ("urdf/", "config/")  # what a scene carries of each robot package (no nested package.xml)
 
@@ -94,14 +92,15 @@ def is_scene(raw: RawSpec) -> bool:
 
 
 @cache
-def _validator() -> jsonschema.Draft202012Validator:
+def scene_validator() -> SchemaValidator:
+    """The scene spec schema's validator (built once)."""
     schema = json.loads((schemas_dir() / "scene.schema.json").read_text("utf-8"))
-    return jsonschema.Draft202012Validator(inline_refs(schema))
+    return SchemaValidator(inline_refs(schema))
 
 
 def build_scene(raw: RawSpec) -> Scene:
     """Validate and resolve a scene spec. Raises SpecErrors with every located problem (its robots' included)."""
-    errors = schema_errors(raw, _validator())
+    errors = schema_errors(raw, scene_validator())
     if errors:
         raise SpecErrors(errors)
     quantities = _Quantities(raw)

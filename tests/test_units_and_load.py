@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import math
+import re
 
 import pytest
+import yaml
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -91,6 +93,10 @@ def test_load_keeps_positions_and_reads_exponents_as_numbers():
         ("a: !!python/object:os.system x\n", 1, "YAML tag !!python/object:os.system is not allowed"),
         ("a: !custom [1]\n", 1, "YAML tag !custom is not allowed"),
         ("? [1, 2]\n: x\n", 1, "plain names"),
+        ("a: &k b\n*k : 1\n", 2, "aliases (*name) are not supported in specs; write the key out (anchored on line 1)"),
+        ("a: &k 1\nb: &k 2\n", 2, "duplicate anchor 'k' (first on line 1)"),
+        ("a: [1, *nowhere]\n", 1, "undefined alias 'nowhere'"),
+        ("a: 1\n...\n---\nb: 2\n", 3, "one YAML document"),
     ],
 )
 def test_unreadable_yaml_gives_one_located_error(text, line, words):
@@ -98,6 +104,49 @@ def test_unreadable_yaml_gives_one_located_error(text, line, words):
         load_text(text, "s.yaml")
     (error,) = caught.value.errors
     assert error.file == "s.yaml" and error.line == line and words in error.message
+
+
+def test_explicit_tags_and_merge_text_as_values():
+    raw = load_text("a: !!str 3\nb: <<\nc: !!float 2\nd: 010\ne: yes\nf: ~\ng: '1e-3'\nh: 1e-3\n", "s.yaml")
+    assert raw.data == {"a": "3", "b": "<<", "c": 2.0, "d": 8, "e": True, "f": None, "g": "1e-3", "h": 1e-3}
+    assert [type(raw.data[key]) for key in "acd"] == [str, float, int]
+
+
+_NAMES = st.from_regex(r"[a-z_][a-z0-9_]{0,8}", fullmatch=True)
+_JSON_LIKE = st.recursive(
+    st.none()
+    | st.booleans()
+    | st.integers(-(10**6), 10**6)
+    | st.floats(allow_nan=False, allow_infinity=False, width=64)
+    | st.text(st.characters(codec="utf-8", exclude_categories=("Cs", "Cc")), max_size=12).filter(
+        lambda text: not re.fullmatch(r"\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*", text)
+    ),  # (text that reads as a number is a number: the documented rule)
+    lambda inner: st.lists(inner, max_size=4) | st.dictionaries(_NAMES, inner, max_size=4),
+    max_leaves=12,
+)
+
+
+def _paths(data, path=()):
+    yield path
+    if isinstance(data, dict):
+        for key, value in data.items():
+            yield from _paths(value, (*path, key))
+    elif isinstance(data, list):
+        for index, value in enumerate(data):
+            yield from _paths(value, (*path, index))
+
+
+@given(st.dictionaries(_NAMES, _JSON_LIKE, min_size=1, max_size=5), st.sampled_from([None, True, False]))
+def test_any_dumped_document_loads_back_with_every_position(data, flow):
+    text = yaml.safe_dump(data, default_flow_style=flow, allow_unicode=True, width=60, sort_keys=False)
+    raw = load_text(text, "s.yaml")
+    assert raw.data == data and repr(raw.data) == repr(data)  # same types too (1 is not 1.0, -0.0 keeps its sign)
+    lines = text.splitlines()
+    for path in _paths(data):
+        assert path in raw.positions, path
+        if path and isinstance(path[-1], str):
+            line, column = raw.key_positions[path]
+            assert lines[line - 1][column - 1 :].lstrip("'\"").startswith(path[-1]), (path, line, column)
 
 
 def test_alias_bomb_is_rejected_without_expanding(tmp_path):

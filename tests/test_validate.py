@@ -3,13 +3,20 @@
 from __future__ import annotations
 
 import copy
+from pathlib import Path
 
 import pytest
 import yaml
+from hypothesis import given
+from hypothesis import strategies as st
 
 from xacrokit.errors import SpecErrors
 from xacrokit.load import load_text
-from xacrokit.validate import validate
+from xacrokit.scene import scene_validator
+from xacrokit.testing import valid_specs
+from xacrokit.validate import robot_validator, validate
+
+EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 
 BASE = {
     "robot": "r",
@@ -239,3 +246,74 @@ def test_a_floating_joint_must_hang_from_the_root():
         "a floating joint may only hang from the root link (a floating base): simulators "
         "such as MuJoCo reject deeper ones",
     ) in messages
+
+
+def test_a_name_with_a_final_newline_is_not_a_name():
+    # Python's `$` matches before a final newline; JSON Schema's patterns are ECMA-262, where it does not
+    spec = copy.deepcopy(BASE)
+    spec["links"]["arm\n"] = spec["links"].pop("arm")
+    spec["joints"]["shoulder"]["child"] = "arm\n"
+    with pytest.raises(SpecErrors) as caught:
+        validate(load_text(yaml.safe_dump(spec, sort_keys=False), "spec.yaml"))
+    assert any("'arm\\n' is not a valid name" in error.message for error in caught.value.errors), caught.value.errors
+
+
+_ODD_VALUES = st.one_of(
+    st.none(),
+    st.booleans(),
+    st.integers(-(2**70), 2**70),
+    st.floats(),  # NaN and infinities too: jsonschema-rs cannot take them, so jsonschema decides
+    st.text(max_size=6),
+    st.sampled_from(["base\n", "", "1abc", "a b", "revolute", "150 mm", "pi/2", "a/b", "_x"]),
+    st.lists(st.floats(allow_nan=False), max_size=4),
+    st.dictionaries(st.sampled_from(["box", "size", "xyz", "mass", "x"]), st.integers(0, 3), max_size=2),
+)
+
+
+def _places(node: object, path: tuple = ()) -> list[tuple]:
+    found = [path]
+    if isinstance(node, dict):
+        for key, value in node.items():
+            found += _places(value, (*path, key))
+    elif isinstance(node, list):
+        for index, value in enumerate(node):
+            found += _places(value, (*path, index))
+    return found
+
+
+@st.composite
+def _perturbed(draw, documents: st.SearchStrategy[dict]) -> dict:
+    """A valid document with one place changed: a value replaced, a key renamed or added, or an entry removed."""
+    document = copy.deepcopy(draw(documents))
+    path = draw(st.sampled_from(_places(document)[1:]))
+    holder = document
+    for part in path[:-1]:
+        holder = holder[part]
+    how = draw(st.sampled_from(["replace", "rename", "add", "remove"]))
+    key = path[-1]
+    if how == "replace":
+        holder[key] = draw(_ODD_VALUES)
+    elif isinstance(holder, dict) and how == "rename":
+        holder[draw(st.sampled_from(["base\n", "x y", "extra", "9a", key + "_"]))] = holder.pop(key)
+    elif isinstance(holder, dict) and how == "add":
+        holder[draw(st.sampled_from(["extra", "mass", "origin", "type"]))] = draw(_ODD_VALUES)
+    else:
+        del holder[key]
+    return document
+
+
+def _scene_documents() -> list[dict]:
+    return [yaml.safe_load(path.read_text()) for path in sorted((EXAMPLES / "scenes").glob("*.yaml"))]
+
+
+@pytest.mark.parametrize("kind", ["robot", "scene"])
+@given(data=st.data())
+def test_the_fast_schema_check_accepts_only_what_jsonschema_accepts(kind, data):
+    validator = robot_validator() if kind == "robot" else scene_validator()
+    valid = valid_specs() if kind == "robot" else st.sampled_from(_scene_documents())
+    document = data.draw(valid)
+    if kind == "robot":  # a valid spec takes the fast path (or the speed is gone)
+        assert validator.accepts_quickly(document)
+    document = data.draw(st.one_of(_perturbed(valid), _perturbed(_perturbed(valid))))
+    if validator.accepts_quickly(document):
+        assert not list(validator.full.iter_errors(document)), document
