@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import re
 import tempfile
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Literal
@@ -162,13 +162,14 @@ def _float(element: etree._Element | None, attribute: str, default: float | None
         return math.nan
 
 
-def _vector(element: etree._Element | None, attribute: str, default: str = "0 0 0") -> np.ndarray:
+def _triple(element: etree._Element | None, attribute: str, default: str = "0 0 0") -> tuple[float, float, float]:
+    """Three numbers from an attribute such as xyz or size; NaNs when it does not hold exactly three."""
     text = default if element is None else element.get(attribute, default)
     try:
-        values = [float(v) for v in text.split()]
+        values = tuple(float(v) for v in text.split())
     except ValueError:
-        values = [math.nan] * 3
-    return np.array(values if len(values) == 3 else [math.nan] * 3)
+        values = ()
+    return values if len(values) == 3 else (math.nan, math.nan, math.nan)  # type: ignore[return-value]
 
 
 def _duplicate_names(doc: _Doc, elements: list[etree._Element], kind: str, rule: str) -> Iterator[Finding]:
@@ -292,9 +293,9 @@ def joint_rules(doc: _Doc) -> Iterator[Finding]:
                 elif value is None and kind != "continuous":
                     yield found(rule, f"limit has no {key}; give one > 0 ({unit})")
         if kind in MOVING or kind == "planar":
-            axis = _vector(joint.find("axis"), "xyz", "1 0 0")
-            norm = float(np.linalg.norm(axis))
-            if not np.all(np.isfinite(axis)) or norm == 0:
+            axis = _triple(joint.find("axis"), "xyz", "1 0 0")
+            norm = math.hypot(*axis)
+            if not math.isfinite(norm) or norm == 0:
                 yield found(
                     "J006",
                     f"axis {joint.find('axis').get('xyz') if joint.find('axis') is not None else ''!r}"
@@ -337,35 +338,35 @@ def joint_rules(doc: _Doc) -> Iterator[Finding]:
                 yield found("J010", f"soft_upper_limit {soft_upper} is above the hard upper limit {upper}")
 
 
-def _tensor(inertia: etree._Element) -> np.ndarray:
-    get = {k: _float(inertia, k, 0.0) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
-    return np.array(
-        [
-            [get["ixx"], get["ixy"], get["ixz"]],
-            [get["ixy"], get["iyy"], get["iyz"]],
-            [get["ixz"], get["iyz"], get["izz"]],
-        ],
-        dtype=float,
-    )
+_INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+_PLACEHOLDERS = (1.0, 0.1, 0.01, 1e-3, 1e-4, 1e-5, 1e-6)
 
 
-def _geometry_extent(geometry: etree._Element | None) -> np.ndarray | None:
+def _geometry_extent(geometry: etree._Element | None) -> tuple[float, float, float] | None:
     """Edge lengths of the geometry's own bounding box, or None when unknown (meshes)."""
     if geometry is None:
         return None
     if (box := geometry.find("box")) is not None:
-        return _vector(box, "size")
+        return _triple(box, "size")
     if (cylinder := geometry.find("cylinder")) is not None:
         r, length = _float(cylinder, "radius", math.nan), _float(cylinder, "length", math.nan)
-        return np.array([2 * r, 2 * r, length])
+        return (2 * r, 2 * r, length)  # type: ignore[operator]
     if (sphere := geometry.find("sphere")) is not None:
-        return np.full(3, 2 * (_float(sphere, "radius", math.nan) or math.nan))
+        diameter = 2 * (_float(sphere, "radius", math.nan) or math.nan)
+        return (diameter, diameter, diameter)
     return None
 
 
 def inertia_rules(doc: _Doc) -> Iterator[Finding]:
     moved = {j.find("child").get("link") for j in doc.joints if j.get("type") in MOVING and j.find("child") is not None}
-    for link in doc.links:
+    # (ixx, ixy, ixz, iyy, iyz, izz) of every link that has them; the principal moments of all the finite ones in one
+    # batched eigvalsh, consumed in link order below (per-link numpy calls cost ten times more)
+    entries = [_inertia_entries(link) for link in doc.links]
+    finite = [e for e in entries if e is not None and all(math.isfinite(v) for v in e)]
+    tensors = np.array(finite, dtype=float).reshape(-1, 6)[:, [0, 1, 2, 1, 3, 4, 2, 4, 5]].reshape(-1, 3, 3)
+    moments_in_order = iter(np.linalg.eigvalsh(tensors).tolist() if finite else ())
+    for link, entry in zip(doc.links, entries, strict=True):
+        moments = next(moments_in_order) if entry is not None and all(math.isfinite(v) for v in entry) else None
         name = link.get("name", "")
         inertial = link.find("inertial")
         has_geometry = link.find("visual") is not None or link.find("collision") is not None
@@ -380,17 +381,15 @@ def inertia_rules(doc: _Doc) -> Iterator[Finding]:
             if not mass > 0:
                 yield doc.finding("I001", "link", name, f"mass is {mass}; it must be > 0 kg", link)
                 continue
-        if inertial is None or inertial.find("inertia") is None:
+        if entry is None:
             continue
-        tensor = _tensor(inertial.find("inertia"))
-        if mass == 0 and not tensor.any() and not (has_geometry or name in moved):
+        if mass == 0 and not any(entry) and not (has_geometry or name in moved):
             continue  # an explicit all-zero inertial on a bare frame: a massless frame, as many descriptions write
-        if not np.all(np.isfinite(tensor)):
+        if moments is None:
             yield doc.finding("I002", "link", name, "the inertia tensor has unreadable entries", link)
             continue
-        moments = np.linalg.eigvalsh(tensor)
-        scale = max(float(np.abs(moments).max()), 1e-300)
-        if moments.min() <= TOLERANCE * scale:
+        scale = max(max(abs(m) for m in moments), 1e-300)
+        if min(moments) <= TOLERANCE * scale:
             yield doc.finding(
                 "I002",
                 "link",
@@ -400,7 +399,7 @@ def inertia_rules(doc: _Doc) -> Iterator[Finding]:
                 link,
             )
             continue
-        total = float(moments.sum())
+        total = sum(moments)
         if any(m > total - m + TOLERANCE * total for m in moments):
             yield doc.finding(
                 "I003",
@@ -411,18 +410,13 @@ def inertia_rules(doc: _Doc) -> Iterator[Finding]:
                 link,
             )
             continue
-        off_diagonal = tensor[np.triu_indices(3, 1)]
-        diagonal = np.diag(tensor)
-        if (
-            np.all(off_diagonal == 0)
-            and np.all(diagonal == diagonal[0])
-            and diagonal[0] in (1.0, 0.1, 0.01, 1e-3, 1e-4, 1e-5, 1e-6)
-        ):
+        ixx, ixy, ixz, iyy, iyz, izz = entry
+        if ixy == ixz == iyz == 0 and ixx == iyy == izz and ixx in _PLACEHOLDERS:
             yield doc.finding(
                 "I005",
                 "link",
                 name,
-                f"inertia is {diagonal[0]:g} * identity, a common placeholder; "
+                f"inertia is {ixx:g} * identity, a common placeholder; "
                 "compute it from the body (e.g. xacrokit's inertia macros)",
                 link,
             )
@@ -430,12 +424,18 @@ def inertia_rules(doc: _Doc) -> Iterator[Finding]:
             yield from _plausibility(doc, link, name, mass, total)
 
 
+def _inertia_entries(link: etree._Element) -> tuple[float, ...] | None:
+    inertial = link.find("inertial")
+    inertia = inertial.find("inertia") if inertial is not None else None
+    return None if inertia is None else tuple(_float(inertia, key, 0.0) for key in _INERTIA)  # type: ignore[misc]
+
+
 def _plausibility(doc: _Doc, link: etree._Element, name: str, mass: float, trace: float) -> Iterator[Finding]:
     """Compare trace(I) with a solid box filling the collision geometry's bounding box: m * diagonal^2 / 6."""
     extents = [_geometry_extent(c.find("geometry")) for c in link.findall("collision")]
-    if not extents or any(e is None or not np.all(np.isfinite(e)) for e in extents):
+    if not extents or any(e is None or not all(math.isfinite(v) for v in e) for e in extents):
         return
-    diagonal_sq = max(float(np.dot(e, e)) for e in extents)  # type: ignore[arg-type]
+    diagonal_sq = max(sum(v * v for v in e) for e in extents)  # type: ignore[union-attr]
     expected = mass * diagonal_sq / 6.0
     if expected > 0 and not 1e-2 <= trace / expected <= 1e2:
         yield doc.finding(
@@ -449,7 +449,7 @@ def _plausibility(doc: _Doc, link: etree._Element, name: str, mass: float, trace
         )
 
 
-def _fmt(values: np.ndarray) -> str:
+def _fmt(values: Iterable[float]) -> str:
     return ", ".join(f"{v:.6g}" for v in values)
 
 

@@ -22,7 +22,7 @@ AXLE_GEOMETRY_RPY = {"x": "0 " + str(math.pi / 2) + " 0", "y": str(math.pi / 2) 
 
 
 def _sub(parent: etree._Element, tag: str, **attributes: str) -> etree._Element:
-    return etree.SubElement(parent, tag, {k: v for k, v in attributes.items()})
+    return etree.SubElement(parent, tag, attributes)
 
 
 def _origin(parent: etree._Element, origin: Origin) -> None:

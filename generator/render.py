@@ -41,8 +41,17 @@ def xacro_text(value: object) -> str:
 
 def num(value: float) -> str:
     """A float written so that reading it back gives the same float."""
-    text = repr(float(value))
-    return "0.0" if text == "-0.0" else text
+    text = _NUMBER_TEXT.get(value)
+    if text is None:
+        text = repr(float(value))
+        if text == "-0.0":
+            text = "0.0"
+        if len(_NUMBER_TEXT) < 1 << 16:  # robots repeat their numbers (0.0, 0.1, pi/2): remember the text
+            _NUMBER_TEXT[value] = text
+    return text
+
+
+_NUMBER_TEXT: dict[float, str] = {}
 
 
 def vec(values: tuple[float, ...]) -> str:
