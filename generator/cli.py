@@ -222,8 +222,8 @@ def build_parser() -> argparse.ArgumentParser:
         choices=("copy", "find", "inline"),
         default="copy",
         help="copy the xacrokit macros into the package (default; self-contained), include them with "
-        "$(find xacrokit) (the package then depends on xacrokit), or inline: write the robot macro as plain XML "
-        "computed by gen-robot (no library macros; many times cheaper for xacro to expand)",
+        "$(find xacrokit) (the package then depends on xacrokit), or inline: write the robot as plain XML "
+        "computed by gen-robot (no library macros; xacro expands the entry about as fast as a plain URDF)",
     )
     gen.set_defaults(handler=_cmd_generate)
 

@@ -34,6 +34,12 @@ class RenderedFile:
     content: str
 
 
+def indent_block(text: str, width: int) -> Markup:
+    """Rendered template text with every non-empty line indented by ``width`` spaces (jinja's ``indent`` also
+    indents an empty block's first line)."""
+    return Markup(re.sub(r"(?m)^(?=.)", " " * width, str(text)))  # (already rendered, so already escaped)
+
+
 def xacro_text(value: object) -> str:
     """Text xacro must copy verbatim: every run of ``$`` before ``{`` or ``(`` gets one more ``$`` (xacro drops one)."""
     return re.sub(r"(\$+)(?=[{(])", r"$\1", str(value))
@@ -85,7 +91,7 @@ def _environment() -> jinja2.Environment:
         trim_blocks=True,
         lstrip_blocks=True,
     )
-    env.filters.update(num=num, vec=vec, xacro_text=xacro_text)
+    env.filters.update(num=num, vec=vec, xacro_text=xacro_text, indent_block=indent_block)
     env.globals.update(
         simple_shape_link=simple_shape_link,
         is_box=lambda s: isinstance(s, Box),
@@ -209,8 +215,7 @@ def _inline_body(robot: Robot) -> Markup:
     for element in robot_elements(robot, prefix="${prefix}", extras=False):
         for mesh in element.iter("mesh"):
             mesh.set("filename", xacro_text(mesh.get("filename", "")))
-        etree.indent(element, space="  ", level=2)
-        lines.append("    " + etree.tostring(element, encoding="unicode").strip())
+        lines.append(etree.tostring(element, encoding="unicode").strip())  # one line each: xacro skips less whitespace
     return Markup("\n".join(lines) + "\n")
 
 
