@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 from typing import Any
 
@@ -31,12 +32,33 @@ MAX_SPEC_BYTES = 16 * 1024 * 1024
 
 @dataclass(frozen=True)
 class RawSpec:
-    """A spec as read: plain data plus the 1-based (line, column) of every value and of every mapping key."""
+    """A spec as read: plain data, and the 1-based (line, column) of every value and of every mapping key.
+
+    The positions are read from ``text`` the first time they are asked for (to locate an error, say): a valid spec
+    on its way to a package never needs them, and recording them took half of the loading time.
+    """
 
     file: str
     data: Any
-    positions: dict[PathKey, tuple[int, int]] = field(default_factory=dict)
-    key_positions: dict[PathKey, tuple[int, int]] = field(default_factory=dict)
+    text: str | None = field(default=None, repr=False, compare=False)
+
+    @cached_property
+    def _position_tables(self) -> tuple[dict[PathKey, tuple[int, int]], dict[PathKey, tuple[int, int]]]:
+        if self.text is None:
+            return {}, {}
+        with collector_paused():
+            builder = _read(self.text, self.file, track=True)
+        return builder.positions, builder.key_positions
+
+    @property
+    def positions(self) -> dict[PathKey, tuple[int, int]]:
+        """Path of every value -> its (line, column)."""
+        return self._position_tables[0]
+
+    @property
+    def key_positions(self) -> dict[PathKey, tuple[int, int]]:
+        """Path of every mapping entry -> the (line, column) of its key."""
+        return self._position_tables[1]
 
     def locate(self, path: PathKey, *, key: bool = False) -> tuple[int | None, int | None]:
         """Position of ``path`` (its key when ``key``), or of the nearest enclosing value that has one."""
@@ -81,14 +103,16 @@ def _at(event: yaml.Event) -> tuple[int, int]:
 class _Builder:
     """Builds plain data and positions straight from the parser's events (no node tree: half the time)."""
 
-    def __init__(self, file: str, loader: yaml.CSafeLoader | yaml.SafeLoader) -> None:
+    def __init__(self, file: str, loader: yaml.CSafeLoader | yaml.SafeLoader, track: bool) -> None:
         self.file = file
+        self.track = track  # record positions (and paths): without, errors are only noticed, for a second pass
         self.next_event = loader.get_event
         self.positions: dict[PathKey, tuple[int, int]] = {}
         self.key_positions: dict[PathKey, tuple[int, int]] = {}
         self.errors: list[SpecError] = []
         self.anchors: dict[str, int] = {}
         self.plain: dict[str, Any] = {}  # plain scalar text -> its value
+        self.data: Any = None
 
     def fail(self, event: yaml.Event, path: PathKey, message: str) -> None:
         line, column = _at(event)
@@ -110,7 +134,7 @@ class _Builder:
             return None
         if event.anchor is not None:
             self.anchor(event)
-        if record:
+        if record and self.track:
             self.positions[path] = _at(event)
         if kind is yaml.ScalarEvent:
             return self.scalar(event, path, record)
@@ -149,7 +173,7 @@ class _Builder:
         items: list[Any] = []
         event = self.next_event()
         while type(event) is not yaml.SequenceEndEvent:
-            items.append(self.build(event, (*path, len(items)), record))
+            items.append(self.build(event, (*path, len(items)) if self.track else path, record))
             event = self.next_event()
         return items
 
@@ -168,8 +192,8 @@ class _Builder:
                 self.build(event, path, record=False)
             else:
                 first_lines[key] = key_event.start_mark.line + 1
-                child = (*path, key)
-                if record:
+                child = (*path, key) if self.track else path
+                if record and self.track:
                     self.key_positions[child] = _at(key_event)
                 result[key] = self.build(event, child, record)
             event = self.next_event()
@@ -266,6 +290,14 @@ def load_text(text: str, file: str = "<spec>") -> RawSpec:
 
 
 def _load_text(text: str, file: str) -> RawSpec:
+    builder = _read(text, file, track=False)
+    if builder.errors:  # read it again, recording where everything is, to say where the errors are
+        raise SpecErrors(_read(text, file, track=True).errors)
+    return RawSpec(file=file, data=builder.data, text=text)
+
+
+def _read(text: str, file: str, *, track: bool) -> _Builder:
+    """Parse ``text`` into a builder holding the data, the errors and (``track``) the positions."""
     loader = _PARSER(text)
     try:
         loader.get_event()  # the stream's start
@@ -273,8 +305,8 @@ def _load_text(text: str, file: str) -> RawSpec:
         if type(event) is yaml.StreamEndEvent:
             message = "the spec is empty; start from `gen-robot new NAME`"
             raise SpecErrors([SpecError(message, file=file, line=1, column=1)])
-        builder = _Builder(file, loader)
-        data = builder.build(loader.get_event(), ())
+        builder = _Builder(file, loader, track)
+        builder.data = builder.build(loader.get_event(), ())
         loader.get_event()  # the document's end
         event = loader.get_event()
         if type(event) is not yaml.StreamEndEvent:
@@ -283,9 +315,7 @@ def _load_text(text: str, file: str) -> RawSpec:
         raise SpecErrors([_yaml_error(file, exc)]) from None
     finally:
         loader.dispose()
-    if builder.errors:
-        raise SpecErrors(builder.errors)
-    return RawSpec(file=file, data=data, positions=builder.positions, key_positions=builder.key_positions)
+    return builder
 
 
 def load_file(path: str | Path) -> RawSpec:

@@ -10,6 +10,7 @@ import yaml
 from hypothesis import given
 from hypothesis import strategies as st
 
+from conftest import REPO
 from xacrokit.errors import SpecErrors
 from xacrokit.load import load_file, load_text
 from xacrokit.units import UnitError, parse_quantity
@@ -168,3 +169,16 @@ def test_non_utf8_and_missing_files_are_located(tmp_path):
     assert (error.line, error.column) == (2, 12) and "not UTF-8" in error.message
     with pytest.raises(SpecErrors, match="cannot read the spec"):
         load_file(tmp_path / "missing.yaml")
+
+
+def test_positions_are_read_only_when_something_needs_locating():
+    from xacrokit.resolve import resolve
+    from xacrokit.validate import validate
+
+    text = (REPO / "examples" / "two_dof_arm.yaml").read_text(encoding="utf-8")
+    raw = load_text(text, "two_dof_arm.yaml")
+    resolve(validate(raw))
+    assert "_position_tables" not in vars(raw)  # a valid spec never pays for recording where everything is
+    line = next(number for number, row in enumerate(text.splitlines(), 1) if row.startswith("robot:"))
+    assert raw.key_positions[("robot",)] == (line, 1)
+    assert raw.positions[("robot",)] == (line, text.splitlines()[line - 1].index("two_dof_arm") + 1)
