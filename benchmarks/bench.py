@@ -7,7 +7,8 @@ Sections:
   stages  for chain robots of 10 / 100 / 1,000 / 3,000 links: the time of each stage (load, validate, resolve,
           render, write, emit, xacro expansion of the generated package, check without consumers), full gen-robot
           (all of them but xacro, the check included) and lxml parse+serialize of its URDF; then the ratios
-          full / xacro expansion, full / lxml, and t(3,000)/t(1,000) for every stage.
+          full / xacro expansion, full / lxml, and t(3,000)/t(1,000) for every stage. Medians of 9 runs (xacro
+          once from 1,000 links); each size in a fresh process.
   fleet   the same for gen-robot fleet: 1 / 10 / 100 / 300 copies of a 10-link chain (10 to 3,000 links), the
           stages being scene (load, validate, resolve the scene and its robot), render, write, emit, xacro, check.
   memory  peak resident memory of full gen-robot on the 3,000-link robot (a fresh process).
@@ -22,6 +23,7 @@ Sections:
 from __future__ import annotations
 
 import gc
+import json
 import statistics
 import subprocess
 import sys
@@ -36,7 +38,7 @@ REPO = Path(__file__).resolve().parent.parent
 
 
 def runs_for(links: int) -> int:
-    return 7 if links <= 100 else 5  # xacro itself runs once from 1,000 links up: it takes seconds
+    return 9  # (xacro itself runs once from 1,000 links up: it takes seconds)
 
 
 def chain_spec(links: int) -> str:
@@ -222,12 +224,24 @@ def measure_fleet(links: int, folder: Path) -> dict[str, float]:
     }
 
 
-def print_table(title: str, names: tuple[str, ...], measure: Callable[[int, Path], dict[str, float]], folder: Path):
+def measured_apart(kind: str, links: int, folder: Path) -> dict[str, float]:
+    """One size's row, measured in a fresh interpreter: the heap an earlier size leaves behind (xacro's DOM trees run
+    to hundreds of MB) would otherwise slow the next size's stages and skew t(3,000)/t(1,000)."""
+    out = subprocess.run(
+        [sys.executable, str(Path(__file__).resolve()), "_row", kind, str(links), str(folder)],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    return json.loads(out.stdout.splitlines()[-1])
+
+
+def print_table(title: str, names: tuple[str, ...], kind: str, folder: Path) -> None:
     print(title)
     print("  " + f"{'links':>6}" + "".join(f"{n:>10}" for n in names))
     table: dict[int, dict[str, float]] = {}
     for links in SIZES:
-        row = measure(links, folder)
+        row = measured_apart(kind, links, folder)
         table[links] = row
         print("  " + f"{links:>6}" + "".join(f"{row[n]:>10.4f}" for n in names))
     big, bigger = table[1000], table[3000]
@@ -241,15 +255,15 @@ def bench_fleet(folder: Path) -> None:
     names = ("scene", "render", "write", "emit", "xacro", "check", "full", "lxml")
     title = (
         f"== fleet stages: gen-robot fleet of {FLEET_ROBOT_LINKS}-link chains, the links in all "
-        "(seconds; median of 7 runs up to 100 links, of 5 above; xacro once from 1,000 links)"
+        "(seconds; median of 9 runs; xacro once from 1,000 links)"
     )
-    print_table(title, names, measure_fleet, folder)
+    print_table(title, names, "fleet", folder)
 
 
 def bench_stages(folder: Path) -> None:
     names = ("load", "validate", "resolve", "render", "write", "emit", "xacro", "check", "full", "lxml")
-    title = "== stages: one chain robot (seconds; median of 7 runs up to 100 links, of 5 above; xacro once from 1,000)"
-    print_table(title, names, measure_size, folder)
+    title = "== stages: one chain robot (seconds; median of 9 runs; xacro once from 1,000)"
+    print_table(title, names, "stages", folder)
 
 
 def bench_memory(folder: Path) -> None:
@@ -301,6 +315,11 @@ def bench_cli() -> None:
 
 
 def main(argv: list[str]) -> int:
+    if argv[:1] == ["_row"]:  # (the child process of measured_apart)
+        kind, links, folder = argv[1], int(argv[2]), Path(argv[3])
+        measure = measure_size if kind == "stages" else measure_fleet
+        print(json.dumps(measure(links, folder)))
+        return 0
     sections = set(argv) or {"stages", "fleet", "memory", "xacro", "check", "cli"}
     print(f"python {sys.version.split()[0]} on {sys.platform}; {time.strftime('%Y-%m-%d %H:%M:%S')}")
     with tempfile.TemporaryDirectory(prefix="xacrokit-bench-") as folder:
