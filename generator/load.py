@@ -161,13 +161,21 @@ class _Builder:
             raise SpecErrors([_event_error(self.file, f"found undefined alias {event.anchor!r}", event)])
 
     def skip_collection(self) -> None:
+        """Read past a rejected collection, still learning its anchors (a later alias to one is not 'undefined')."""
         depth = 1
         while depth:
-            kind = type(self.next_event())
+            event = self.next_event()
+            kind = type(event)
+            if kind is yaml.AliasEvent:
+                self.check_alias(event)
+                continue
+            if kind is yaml.MappingEndEvent or kind is yaml.SequenceEndEvent:
+                depth -= 1
+                continue
+            if event.anchor is not None:
+                self.anchor(event)
             if kind is yaml.MappingStartEvent or kind is yaml.SequenceStartEvent:
                 depth += 1
-            elif kind is yaml.MappingEndEvent or kind is yaml.SequenceEndEvent:
-                depth -= 1
 
     def sequence(self, path: PathKey, record: bool) -> list[Any]:
         items: list[Any] = []
@@ -267,8 +275,10 @@ def _scalar_value(event: yaml.ScalarEvent) -> Any:
     try:
         node = yaml.ScalarNode(tag, value, event.start_mark, event.end_mark, event.style)
         return SafeConstructor().construct_object(node)  # a fresh one: it remembers every node it built
-    except yaml.YAMLError as exc:
-        raise _Unreadable(f"cannot read this value: {getattr(exc, 'problem', None) or exc}") from None
+    except (yaml.YAMLError, ValueError, KeyError) as exc:  # (!!int abc, !!bool foo, 0x_)
+        kind = tag.rsplit(":", 1)[-1]
+        problem = getattr(exc, "problem", None) or (f"{value!r} is not a {kind}" if isinstance(exc, KeyError) else exc)
+        raise _Unreadable(f"cannot read this value: {problem}") from None
 
 
 def _event_error(file: str, problem: str, event: yaml.Event) -> SpecError:
@@ -290,16 +300,20 @@ def load_text(text: str, file: str = "<spec>") -> RawSpec:
 
 
 def _load_text(text: str, file: str) -> RawSpec:
-    builder = _read(text, file, track=False)
-    if builder.errors:  # read it again, recording where everything is, to say where the errors are
-        raise SpecErrors(_read(text, file, track=True).errors)
+    try:
+        builder = _read(text, file, track=False)
+        if builder.errors:  # read it again, recording where everything is, to say where the errors are
+            raise SpecErrors(_read(text, file, track=True).errors)
+    except RecursionError:
+        raise SpecErrors([SpecError("the spec is nested too deeply to read", file=file)]) from None
     return RawSpec(file=file, data=builder.data, text=text)
 
 
 def _read(text: str, file: str, *, track: bool) -> _Builder:
     """Parse ``text`` into a builder holding the data, the errors and (``track``) the positions."""
-    loader = _PARSER(text)
+    loader = None
     try:
+        loader = _PARSER(text)  # (the pure-Python reader checks the characters here)
         loader.get_event()  # the stream's start
         event = loader.get_event()
         if type(event) is yaml.StreamEndEvent:
@@ -314,7 +328,8 @@ def _read(text: str, file: str, *, track: bool) -> _Builder:
     except yaml.YAMLError as exc:
         raise SpecErrors([_yaml_error(file, exc)]) from None
     finally:
-        loader.dispose()
+        if loader is not None:
+            loader.dispose()
     return builder
 
 

@@ -93,8 +93,8 @@ def _ecma_pattern(
     """The ``pattern`` keyword as JSON Schema defines it (ECMA-262 regular expressions).
 
     The one difference that matters for our patterns: ECMA's ``$`` is the end of the text, while Python's also matches
-    before a final newline, so plain jsonschema accepts ``"base\\n"`` as a name. (Our patterns have no ``$`` in a
-    character class.)
+    before a final newline, so plain jsonschema accepts ``"base\\n"`` as a name. (Our patterns use ``$`` only at their
+    end.)
     """
     if validator.is_type(instance, "string") and not _python_regex(pattern).search(instance):
         yield jsonschema.ValidationError(f"{instance!r} does not match {pattern!r}")
@@ -102,7 +102,8 @@ def _ecma_pattern(
 
 @cache
 def _python_regex(pattern: str) -> re.Pattern[str]:
-    return re.compile(re.sub(r"(?<!\\)\$", r"\\Z", pattern))
+    anchored = pattern.endswith("$") and not pattern.endswith("\\$")
+    return re.compile(pattern[:-1] + r"\Z" if anchored else pattern)
 
 
 _Draft2020 = jsonschema.validators.extend(jsonschema.Draft202012Validator, {"pattern": _ecma_pattern})

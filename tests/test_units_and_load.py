@@ -182,3 +182,32 @@ def test_positions_are_read_only_when_something_needs_locating():
     line = next(number for number, row in enumerate(text.splitlines(), 1) if row.startswith("robot:"))
     assert raw.key_positions[("robot",)] == (line, 1)
     assert raw.positions[("robot",)] == (line, text.splitlines()[line - 1].index("two_dof_arm") + 1)
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        # an anchor inside a rejected block is still an anchor: the alias is refused as an alias, not as "undefined"
+        ("robot: r\nlinks: !custom {base: &m {mass: 1}}\njoints: *m\n", [(2, "tag !custom"), (3, "aliases")]),
+        ("? [&x 1]\n: 2\nb: *x\n", [(1, "plain names"), (3, "aliases")]),
+        ("links:\n  base: {mass: !!int abc}\n", [(2, "cannot read this value: invalid literal for int()")]),
+        ("x: !!bool foo\n", [(1, "cannot read this value: 'foo' is not a bool")]),
+        ("x: 0x_\n", [(1, "cannot read this value")]),
+        ("[" * 600 + "]" * 600 + "\n", [(None, "nested too deeply")]),
+    ],
+)
+def test_odd_yaml_gives_located_errors_not_tracebacks(text, expected):
+    with pytest.raises(SpecErrors) as caught:
+        load_text(text, "s.yaml")
+    found = [(error.line, error.message) for error in caught.value.errors]
+    assert len(found) == len(expected), found
+    for (line, message), (want_line, words) in zip(found, expected, strict=True):
+        assert line == want_line and words in message, found
+
+
+def test_the_pure_python_parser_reports_bad_characters_too(monkeypatch):
+    import xacrokit.load
+
+    monkeypatch.setattr(xacrokit.load, "_PARSER", yaml.SafeLoader)  # (PyYAML without libyaml)
+    with pytest.raises(SpecErrors, match="unacceptable character"):
+        load_text("robot: r\nx: \x07\n", "s.yaml")
