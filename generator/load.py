@@ -286,7 +286,13 @@ def _event_error(file: str, problem: str, event: yaml.Event) -> SpecError:
     return SpecError(f"not valid YAML: {problem}", file=file, line=line, column=column)
 
 
-def _yaml_error(file: str, exc: yaml.YAMLError) -> SpecError:
+def _yaml_error(file: str, exc: yaml.YAMLError, text: str) -> SpecError:
+    if isinstance(exc, yaml.reader.ReaderError):  # a character YAML does not allow: it has an offset, not a mark
+        at = min(max(exc.position, 0), len(text))
+        line, column = text.count("\n", 0, at) + 1, at - (text.rfind("\n", 0, at) + 1) + 1
+        shown = f"U+{exc.character:04X}" if isinstance(exc.character, int) else repr(exc.character)
+        message = f"not valid YAML: character {shown} is not allowed in YAML text; remove it"
+        return SpecError(message, file=file, line=line, column=column)
     mark = getattr(exc, "problem_mark", None) or getattr(exc, "context_mark", None)
     problem = getattr(exc, "problem", None) or str(exc)
     line, column = (mark.line + 1, mark.column + 1) if mark else (None, None)
@@ -326,7 +332,7 @@ def _read(text: str, file: str, *, track: bool) -> _Builder:
         if type(event) is not yaml.StreamEndEvent:
             raise SpecErrors([_event_error(file, "a spec is one YAML document, but another one starts here", event)])
     except yaml.YAMLError as exc:
-        raise SpecErrors([_yaml_error(file, exc)]) from None
+        raise SpecErrors([_yaml_error(file, exc, text)]) from None
     finally:
         if loader is not None:
             loader.dispose()

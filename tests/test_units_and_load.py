@@ -205,9 +205,12 @@ def test_odd_yaml_gives_located_errors_not_tracebacks(text, expected):
         assert line == want_line and words in message, found
 
 
-def test_the_pure_python_parser_reports_bad_characters_too(monkeypatch):
+def test_a_character_yaml_forbids_is_located_with_either_parser(monkeypatch):  # (PyYAML with or without libyaml)
     import xacrokit.load
 
-    monkeypatch.setattr(xacrokit.load, "_PARSER", yaml.SafeLoader)  # (PyYAML without libyaml)
-    with pytest.raises(SpecErrors, match="unacceptable character"):
-        load_text("robot: r\nx: \x07\n", "s.yaml")
+    for parser in (yaml.SafeLoader, xacrokit.load._PARSER):
+        monkeypatch.setattr(xacrokit.load, "_PARSER", parser)
+        with pytest.raises(SpecErrors) as caught:
+            load_text("robot: r\nx: \x07\n", "s.yaml")
+        (error,) = caught.value.errors
+        assert (error.line, error.column) == (2, 4) and "character U+0007 is not allowed" in error.message
