@@ -37,8 +37,7 @@ SIZES = (10, 100, 1000, 3000)
 REPO = Path(__file__).resolve().parent.parent
 
 
-def runs_for(links: int) -> int:
-    return 9  # (xacro itself runs once from 1,000 links up: it takes seconds)
+STAGE_RUNS = 9  # for the stage tables (xacro itself runs once from 1,000 links up: it takes seconds)
 
 
 def chain_spec(links: int) -> str:
@@ -139,16 +138,12 @@ def full_job(spec: Path, out: Path) -> None:
 
 def measure_size(links: int, folder: Path) -> dict[str, float]:
     """Time every stage for a chain robot of ``links`` links."""
-    from lxml import etree
-
-    from xacrokit.check import check
     from xacrokit.emit import emit_urdf
     from xacrokit.load import load_file
     from xacrokit.pipeline import emitted_urdf, expand_package
     from xacrokit.render import render_package
     from xacrokit.resolve import resolve
     from xacrokit.validate import validate
-    from xacrokit.write import write
 
     spec = folder / f"chain_{links}.yaml"
     spec.write_text(chain_spec(links), encoding="utf-8")
@@ -157,24 +152,37 @@ def measure_size(links: int, folder: Path) -> dict[str, float]:
     robot = resolve(valid)
     files = render_package(robot)
     urdf = emit_urdf(robot)
-    package = [*files, emitted_urdf(robot.name, urdf)]
-    urdf_path = folder / f"chain_{links}.urdf"
-    urdf_path.write_text(urdf, encoding="utf-8")
-    counter = iter(range(10**6))
-    runs = runs_for(links)
-    row = {
+    runs = STAGE_RUNS
+    return {
         "load": median_time(lambda: load_file(spec), runs),
         "validate": median_time(lambda: validate(raw), runs),
         "resolve": median_time(lambda: resolve(valid), runs),
         "render": median_time(lambda: render_package(robot), runs),
-        "write": median_time(lambda: write(package, folder / f"w{links}_{next(counter)}"), runs),
         "emit": median_time(lambda: emit_urdf(robot), runs),
         "xacro": median_time(lambda: expand_package(robot, files), 1 if links >= 1000 else runs),
+        **output_rows(
+            f"chain_{links}", [*files, emitted_urdf(robot.name, urdf)], urdf, lambda out: full_job(spec, out), folder
+        ),
+    }
+
+
+def output_rows(tag: str, package: list, urdf: str, full: Callable[[Path], None], folder: Path) -> dict[str, float]:
+    """The rows every kind of benchmark robot shares: write, check, full (into a new folder each run) and lxml."""
+    from lxml import etree
+
+    from xacrokit.check import check
+    from xacrokit.write import write
+
+    urdf_path = folder / f"{tag}.urdf"
+    urdf_path.write_text(urdf, encoding="utf-8")
+    counter = iter(range(10**6))
+    runs = STAGE_RUNS
+    return {
+        "write": median_time(lambda: write(package, folder / f"{tag}_write_{next(counter)}"), runs),
         "check": median_time(lambda: check(urdf_path, consumers=[]), runs),
-        "full": median_time(lambda: full_job(spec, folder / f"full{links}_{next(counter)}"), runs),
+        "full": median_time(lambda: full(folder / f"{tag}_full_{next(counter)}"), runs),
         "lxml": median_time(lambda: etree.tostring(etree.fromstring(urdf.encode())), runs),
     }
-    return row
 
 
 FLEET_ROBOT_LINKS = 10
@@ -193,13 +201,10 @@ def fleet_job(spec: Path, count: int, out: Path) -> None:
 
 def measure_fleet(links: int, folder: Path) -> dict[str, float]:
     """Time every stage for a fleet of 10-link chain robots with ``links`` links in all."""
-    from lxml import etree
 
-    from xacrokit.check import check
     from xacrokit.emit import emit_scene_urdf
     from xacrokit.pipeline import emitted_urdf
     from xacrokit.scene import expand_scene, fleet_scene, render_scene
-    from xacrokit.write import write
 
     count = links // FLEET_ROBOT_LINKS
     spec = folder / "fleet_robot.yaml"
@@ -207,20 +212,19 @@ def measure_fleet(links: int, folder: Path) -> dict[str, float]:
     scene = fleet_scene(spec, count)
     files = render_scene(scene)
     urdf = emit_scene_urdf(scene)
-    package = [*files, emitted_urdf(scene.name, urdf)]
-    urdf_path = folder / f"fleet_{links}.urdf"
-    urdf_path.write_text(urdf, encoding="utf-8")
-    counter = iter(range(10**6))
-    runs = runs_for(links)
+    runs = STAGE_RUNS
     return {
         "scene": median_time(lambda: fleet_scene(spec, count), runs),  # load, validate, resolve: scene and robot
         "render": median_time(lambda: render_scene(scene), runs),
-        "write": median_time(lambda: write(package, folder / f"fw{links}_{next(counter)}"), runs),
         "emit": median_time(lambda: emit_scene_urdf(scene), runs),
         "xacro": median_time(lambda: expand_scene(scene, files), 1 if links >= 1000 else runs),
-        "check": median_time(lambda: check(urdf_path, consumers=[]), runs),
-        "full": median_time(lambda: fleet_job(spec, count, folder / f"ffull{links}_{next(counter)}"), runs),
-        "lxml": median_time(lambda: etree.tostring(etree.fromstring(urdf.encode())), runs),
+        **output_rows(
+            f"fleet_{links}",
+            [*files, emitted_urdf(scene.name, urdf)],
+            urdf,
+            lambda out: fleet_job(spec, count, out),
+            folder,
+        ),
     }
 
 
