@@ -8,12 +8,13 @@ Sections:
           render, write, emit, xacro expansion of the generated package, check without consumers), full gen-robot
           (all of them but xacro, the check included) and lxml parse+serialize of its URDF; then the ratios
           full / xacro expansion, full / lxml, and t(3,000)/t(1,000) for every stage. Medians of 9 runs (xacro
-          once from 1,000 links); each size in a fresh process.
+          once from 1,000 links); each size in a fresh process. The package is the default one (--macros inline);
+          at 1,000 links the --macros copy package is expanded too, for comparison.
   fleet   the same for gen-robot fleet: 1 / 10 / 100 / 300 copies of a 10-link chain (10 to 3,000 links), the
           stages being scene (load, validate, resolve the scene and its robot), render, write, emit, xacro, check.
   memory  peak resident memory of full gen-robot on the 3,000-link robot (a fresh process).
-  xacro   xacro expansion of our generated 6-axis arm package (UR5) against a hand-written equivalent in plain
-          <link>/<joint> XML.
+  xacro   xacro expansion of our generated 6-axis arm package (UR5), --macros inline (the default) and copy,
+          against a hand-written equivalent in plain <link>/<joint> XML.
   check   gen-robot check (our rules, no external consumers) on chains of 10 / 100 / 1,000 / 3,000 links, the
           t(3,000)/t(1,000) ratio, the time to report a cycle hanging off the root, and the time check_urdf would
           take to be stopped on it.
@@ -24,6 +25,7 @@ from __future__ import annotations
 
 import gc
 import json
+import shutil
 import statistics
 import subprocess
 import sys
@@ -55,12 +57,14 @@ def chain_spec(links: int) -> str:
     return "\n".join(lines) + "\n"
 
 
-def median_time(action: Callable[[], object], runs: int = RUNS) -> float:
+def median_time(action: Callable[[], object], runs: int = RUNS, before: Callable[[], None] | None = None) -> float:
     """Median wall time of ``action``. Its result is released after the clock stops: in the pipeline a stage's
     output lives on into the next stage, and a process frees it at exit. Garbage from earlier work is collected before
-    the clock starts."""
+    the clock starts, and ``before`` (if given) runs then too."""
     times = []
     for _ in range(runs):
+        if before is not None:
+            before()
         gc.collect()  # garbage left by earlier work (xacro's DOM trees are cyclic) is not this action's cost
         start = time.perf_counter()
         result = action()
@@ -153,7 +157,7 @@ def measure_size(links: int, folder: Path) -> dict[str, float]:
     files = render_package(robot)
     urdf = emit_urdf(robot)
     runs = STAGE_RUNS
-    return {
+    row = {
         "load": median_time(lambda: load_file(spec), runs),
         "validate": median_time(lambda: validate(raw), runs),
         "resolve": median_time(lambda: resolve(valid), runs),
@@ -164,6 +168,10 @@ def measure_size(links: int, folder: Path) -> dict[str, float]:
             f"chain_{links}", [*files, emitted_urdf(robot.name, urdf)], urdf, lambda out: full_job(spec, out), folder
         ),
     }
+    if links == 1000:  # the package written with --macros copy (library macro calls), for comparison
+        copy_files = render_package(robot, macros="copy")
+        row["xacro_copy"] = median_time(lambda: expand_package(robot, copy_files), 1)
+    return row
 
 
 def output_rows(tag: str, package: list, urdf: str, full: Callable[[Path], None], folder: Path) -> dict[str, float]:
@@ -175,14 +183,27 @@ def output_rows(tag: str, package: list, urdf: str, full: Callable[[Path], None]
 
     urdf_path = folder / f"{tag}.urdf"
     urdf_path.write_text(urdf, encoding="utf-8")
-    counter = iter(range(10**6))
     runs = STAGE_RUNS
     return {
-        "write": median_time(lambda: write(package, folder / f"{tag}_write_{next(counter)}"), runs),
+        "write": median_time(*into_new_folder(folder / f"{tag}_write", lambda out: write(package, out))),
         "check": median_time(lambda: check(urdf_path, consumers=[]), runs),
-        "full": median_time(lambda: full(folder / f"{tag}_full_{next(counter)}"), runs),
+        "full": median_time(*into_new_folder(folder / f"{tag}_full", full)),
         "lxml": median_time(lambda: etree.tostring(etree.fromstring(urdf.encode())), runs),
     }
+
+
+def into_new_folder(base: Path, job: Callable[[Path], object]) -> tuple[Callable[[], object], int, Callable[[], None]]:
+    """Arguments for :func:`median_time`: ``job`` into a new folder each run, the previous run's folder deleted
+    before the clock starts. A user generates one package; hundreds of MB of earlier runs' files in the page cache
+    slow the kernel's writes (at 3,000 links to three times what one write of the same files takes)."""
+    folders = (base.with_name(f"{base.name}_{n}") for n in range(10**6))
+    current = [next(folders)]
+
+    def clear() -> None:
+        shutil.rmtree(current[0], ignore_errors=True)
+        current[0] = next(folders)
+
+    return (lambda: job(current[0])), STAGE_RUNS, clear
 
 
 FLEET_ROBOT_LINKS = 10
@@ -213,7 +234,7 @@ def measure_fleet(links: int, folder: Path) -> dict[str, float]:
     files = render_scene(scene)
     urdf = emit_scene_urdf(scene)
     runs = STAGE_RUNS
-    return {
+    row = {
         "scene": median_time(lambda: fleet_scene(spec, count), runs),  # load, validate, resolve: scene and robot
         "render": median_time(lambda: render_scene(scene), runs),
         "emit": median_time(lambda: emit_scene_urdf(scene), runs),
@@ -226,6 +247,10 @@ def measure_fleet(links: int, folder: Path) -> dict[str, float]:
             folder,
         ),
     }
+    if links == 1000:  # the package written with --macros copy (library macro calls), for comparison
+        copy_files = render_scene(scene, macros="copy")
+        row["xacro_copy"] = median_time(lambda: expand_scene(scene, copy_files), 1)
+    return row
 
 
 def measured_apart(kind: str, links: int, folder: Path) -> dict[str, float]:
@@ -250,6 +275,10 @@ def print_table(title: str, names: tuple[str, ...], kind: str, folder: Path) -> 
         print("  " + f"{links:>6}" + "".join(f"{row[n]:>10.4f}" for n in names))
     big, bigger = table[1000], table[3000]
     print(f"  full / xacro expansion at 1,000 links: {big['full'] / big['xacro']:.3f}   (target <= 0.5)")
+    print(
+        f"  (xacro expansion of the --macros copy package at 1,000 links: {big['xacro_copy']:.2f} s; "
+        f"full / that: {big['full'] / big['xacro_copy']:.3f})"
+    )
     print(f"  full / lxml parse+serialize at 1,000 links: {big['full'] / big['lxml']:.1f}   (target <= 30)")
     ratios = ", ".join(f"{n} {bigger[n] / big[n]:.2f}" for n in names if big[n] > 0)
     print(f"  t(3,000)/t(1,000): {ratios}   (target <= 3.5 for our stages; xacro is not ours)")
@@ -304,7 +333,7 @@ def bench_xacro_cost(folder: Path) -> None:
     plain.write_text(urdf, encoding="utf-8")
     hand = median_time(lambda: expand_file(plain), 7)
     print(f"  hand-written plain XML: {hand:.4f} s")
-    for mode in ("copy", "inline"):
+    for mode in ("inline", "copy"):  # inline is the default
         generate(spec, folder / f"ur5_{mode}", force=True, macros=mode)
         entry = folder / f"ur5_{mode}" / "urdf" / "ur5.urdf.xacro"
         ours = median_time(lambda entry=entry: expand_file(entry), 7)

@@ -1,7 +1,7 @@
 """xacrokit: an Xacro macro library and code-generation toolkit for correct ROS 2 robot descriptions.
 
 Public API:
-    generate(spec, output=None, *, dry_run=False, force=False, macros="copy") -> GenerateResult
+    generate(spec, output=None, *, dry_run=False, force=False, macros="inline") -> GenerateResult
                                                                 the main job: spec -> ROS 2 description package
     check(path, mappings=None, *, prefix=None, consumers=None, package_paths=None) -> CheckReport
                                                                 verify a URDF, xacro document or spec

@@ -12,10 +12,14 @@ import os
 import sys
 from collections.abc import Iterator, Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from . import __version__
 from .errors import XacrokitError
 from .progress import Progress
+
+if TYPE_CHECKING:
+    from .pipeline import GenerateResult
 
 
 def _cmd_expand(args: argparse.Namespace) -> int:
@@ -55,17 +59,25 @@ def _cmd_generate(args: argparse.Namespace) -> int:
             progress=progress,
         )
     width = max(len(a.action) for a in result.actions)
-    verb = "would write" if args.dry_run else "wrote"
     for action in result.actions:
         note = f"  ({action.reason})" if action.reason else ""
         print(f"{action.action:<{width}}  {action.path}{note}")
-    changed = sum(a.action != "identical" for a in result.actions)
     package = result.scene.package if result.scene else result.robot.package  # type: ignore[union-attr]
-    print(
-        f"{package}: {verb} {changed} of {len(result.actions)} files in {result.output}"
-        + (" (dry run: nothing written)" if args.dry_run else "")
-    )
+    print(f"{package}: {_written(result, args.dry_run)}" + (" (dry run: nothing written)" if args.dry_run else ""))
     return 0
+
+
+def _written(result: GenerateResult, dry_run: bool) -> str:
+    """'wrote 3 of 12 files in DIR', and what was removed or kept of the files no longer generated."""
+    counts = {name: sum(a.action == name for a in result.actions) for name in ("remove", "keep")}
+    written = sum(a.action in ("create", "update", "overwrite") for a in result.actions)
+    generated = len(result.actions) - counts["remove"] - counts["keep"]
+    text = f"{'would write' if dry_run else 'wrote'} {written} of {generated} files in {result.output}"
+    if counts["remove"]:
+        text += f"; {'would remove' if dry_run else 'removed'} {counts['remove']} no longer generated"
+    if counts["keep"]:
+        text += f"; {'would keep' if dry_run else 'kept'} {counts['keep']} no longer generated but edited"
+    return text
 
 
 def _cmd_fleet(args: argparse.Namespace) -> int:
@@ -91,14 +103,13 @@ def _cmd_fleet(args: argparse.Namespace) -> int:
             dry_run=args.dry_run,
             force=args.force,
             spec_name=Path(args.spec).name,
+            macros=args.macros,
             via_xacro=args.via_xacro,
             progress=progress,
         )
-    changed = sum(a.action != "identical" for a in result.actions)
-    verb = "would write" if args.dry_run else "wrote"
     print(
-        f"{scene.package}: {len(scene.instances)} robots r0_ .. r{len(scene.instances) - 1}_; {verb} {changed} of "
-        f"{len(result.actions)} files in {result.output}"
+        f"{scene.package}: {len(scene.instances)} robots r0_ .. r{len(scene.instances) - 1}_; "
+        + _written(result, args.dry_run)
     )
     return 0
 
@@ -184,6 +195,15 @@ def _add_write_options(parser: argparse.ArgumentParser, default_output: str) -> 
         help="write urdf/NAME.urdf by expanding the package "
         "with xacro instead of emitting it directly (the same robot; slower)",
     )
+    parser.add_argument(
+        "--macros",
+        choices=("inline", "copy", "find"),
+        default="inline",
+        help="how the robot macro is written: inline (default) writes the links and joints as plain XML computed by "
+        "gen-robot, which xacro expands about as fast as a plain URDF; copy calls the xacrokit library macros "
+        "and copies them into the package; find calls them through $(find xacrokit) (the package then depends "
+        "on xacrokit). All three describe the same robot",
+    )
 
 
 def _add_xacro_options(parser: argparse.ArgumentParser) -> None:
@@ -217,14 +237,6 @@ def build_parser() -> argparse.ArgumentParser:
     )
     gen.add_argument("spec", help="the robot spec (YAML; see `gen-robot schema`)")
     _add_write_options(gen, "NAME_description")
-    gen.add_argument(
-        "--macros",
-        choices=("copy", "find", "inline"),
-        default="copy",
-        help="copy the xacrokit macros into the package (default; self-contained), include them with "
-        "$(find xacrokit) (the package then depends on xacrokit), or inline: write the robot as plain XML "
-        "computed by gen-robot (no library macros; xacro expands the entry about as fast as a plain URDF)",
-    )
     gen.set_defaults(handler=_cmd_generate)
 
     fleet = commands.add_parser(

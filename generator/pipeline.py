@@ -78,7 +78,7 @@ def generate(
     *,
     dry_run: bool = False,
     force: bool = False,
-    macros: MacroMode = "copy",
+    macros: MacroMode = "inline",
     via_xacro: bool = False,
     progress: Callable[[str], None] = _quiet,
 ) -> GenerateResult:
@@ -89,7 +89,9 @@ def generate(
         output: the package folder; default ``./NAME_description``.
         dry_run: plan only; write nothing.
         force: overwrite files edited since they were generated.
-        macros: ``copy`` the macro files into the package (self-contained) or include them with ``$(find xacrokit)``.
+        macros: how the robot macro is written: ``inline`` (plain XML computed here, cheap for xacro), ``copy``
+            (calls to the library macros, copied into the package) or ``find`` (calls through ``$(find xacrokit)``).
+            The three describe the same robot.
         via_xacro: write ``urdf/NAME.urdf`` by expanding the package with xacro instead of emitting it directly
             (the two describe the same robot; the direct path is much faster).
         progress: called with a short message as each stage starts (the CLI shows it on a terminal).
@@ -106,7 +108,14 @@ def generate(
         scene = build_scene(raw)
         name = Path(spec_path).name
         return generate_scene(
-            scene, output, dry_run=dry_run, force=force, spec_name=name, via_xacro=via_xacro, progress=progress
+            scene,
+            output,
+            dry_run=dry_run,
+            force=force,
+            spec_name=name,
+            macros=macros,
+            via_xacro=via_xacro,
+            progress=progress,
         )
     progress("validating")
     robot = resolve(validate(raw))
@@ -141,12 +150,13 @@ def generate_scene(
     dry_run: bool = False,
     force: bool = False,
     spec_name: str = "scene.yaml",
+    macros: MacroMode = "inline",
     via_xacro: bool = False,
     progress: Callable[[str], None] = _quiet,
 ) -> GenerateResult:
     """Write the package of a resolved scene (see :func:`generate`); ``gen-robot fleet`` builds its scene in memory."""
     progress(f"rendering {len(scene.instances)} instances of {len(scene.robots)} robot(s)")
-    files = render_scene(scene, spec_name=spec_name)
+    files = render_scene(scene, spec_name=spec_name, macros=macros)
     third_party = any(instance.macro is not None for instance in scene.instances)
     progress("expanding with xacro" if via_xacro or third_party else "emitting the URDF")
     if via_xacro or third_party:  # a third-party macro needs xacro

@@ -156,7 +156,7 @@ def dh_table_yaml(robot: Robot, arm_index: int) -> str:
 
 
 @collector_paused()
-def render_package(robot: Robot, *, macros: MacroMode = "copy", spec_name: str = "spec.yaml") -> list[RenderedFile]:
+def render_package(robot: Robot, *, macros: MacroMode = "inline", spec_name: str = "spec.yaml") -> list[RenderedFile]:
     """Every file of ``NAME_description/`` except the expanded URDF (the expand stage adds that)."""
     env = _environment()
     macro_files = used_macro_files(robot)

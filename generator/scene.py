@@ -22,7 +22,7 @@ from . import __version__
 from .errors import ExpandError, SpecError, SpecErrors
 from .load import PathKey, RawSpec, load_file
 from .model import Origin, Robot
-from .render import RenderedFile, _environment, render_package, xacro_text
+from .render import MacroMode, RenderedFile, _environment, render_package, xacro_text
 from .resolve import origin as resolve_origin
 from .resolve import resolve
 from .resources import schemas_dir
@@ -331,12 +331,12 @@ def _probe_names(
 
 
 # ------------------------------------------------------------------------------------------------------------ render
-def render_scene(scene: Scene, *, spec_name: str = "scene.yaml") -> list[RenderedFile]:
-    """Every file of the scene package except the expanded URDF."""
+def render_scene(scene: Scene, *, spec_name: str = "scene.yaml", macros: MacroMode = "inline") -> list[RenderedFile]:
+    """Every file of the scene package except the expanded URDF; ``macros`` is how each robot's macro is written."""
     env = _environment()
     files: list[RenderedFile] = []
     for robot in scene.robots:
-        for file in render_package(robot, spec_name=spec_name):
+        for file in render_package(robot, macros=macros, spec_name=spec_name):
             if file.path.startswith(ROBOT_FILES) and not file.path.endswith("_controllers.yaml"):
                 files.append(RenderedFile(f"robots/{robot.package}/{file.path}", file.content))
     has_control = any(i.robot is not None and i.robot.ros2_control is not None for i in scene.instances)
@@ -345,6 +345,7 @@ def render_scene(scene: Scene, *, spec_name: str = "scene.yaml") -> list[Rendere
         "version": __version__,
         "spec_name": spec_name,
         "has_control": has_control,
+        "macros": macros,
         "robot": SimpleNamespace(root=scene.world),
         "xacro_text": xacro_text,
     }

@@ -7,7 +7,10 @@ Per file (copier's way):
 * ``update``     it exists as we last generated it (its hash is in the manifest): replaced;
 * ``conflict``   it exists and differs from what we last generated (someone edited it), or we never generated it:
                  kept, and nothing at all is written unless ``force``;
-* ``overwrite``  a conflict replaced because ``force`` was given.
+* ``overwrite``  a conflict replaced because ``force`` was given;
+* ``remove``     we generated it last time, this run does not, and it is unchanged: deleted (with any folder
+                 that leaves empty), e.g. the copied macros after switching to ``--macros inline``;
+* ``keep``       the same, but someone edited it: left alone and dropped from the manifest.
 
 The manifest ``.xacrokit-manifest.json`` in the package root records the SHA-256 of each file as generated.
 Nothing is ever written outside the output folder.
@@ -27,7 +30,7 @@ from .fileio import write_text_atomic
 from .render import RenderedFile
 
 MANIFEST = ".xacrokit-manifest.json"
-Action = Literal["create", "identical", "update", "conflict", "overwrite"]
+Action = Literal["create", "identical", "update", "conflict", "overwrite", "remove", "keep"]
 
 
 @dataclass(frozen=True)
@@ -97,6 +100,24 @@ def plan(files: list[RenderedFile], root: Path, *, force: bool = False) -> list[
         else:
             reason = "edited since it was generated" if file.path in manifest else "not written by xacrokit"
             actions.append(FileAction(file.path, "overwrite" if force else "conflict", reason))
+    return actions + _stale(manifest, {f.path for f in files}, root)
+
+
+def _stale(manifest: dict[str, str], paths: set[str], root: Path) -> list[FileAction]:
+    """What happens to the files we generated last time that this run does not generate."""
+    actions = []
+    for path in sorted(manifest.keys() - paths):
+        try:
+            target = _inside(root, path)
+            current = target.read_text(encoding="utf-8") if target.is_file() else None
+        except (XacrokitError, OSError, UnicodeDecodeError):
+            continue  # outside the folder (a hand-made manifest), gone, or unreadable: not ours to touch
+        if current is None:
+            continue
+        if _digest(current) == manifest[path]:
+            actions.append(FileAction(path, "remove", "no longer generated"))
+        else:
+            actions.append(FileAction(path, "keep", "no longer generated, but edited since: kept"))
     return actions
 
 
@@ -116,9 +137,23 @@ def write(files: list[RenderedFile], root: Path, *, force: bool = False, dry_run
     for action in actions:
         if action.action in ("create", "update", "overwrite"):
             write_text_atomic(_inside(root, action.path), by_path[action.path].content)
+    for action in actions:
+        if action.action == "remove":
+            _remove(root, action.path)
     manifest = {"generator": f"xacrokit {__version__}", "files": {f.path: _digest(f.content) for f in files}}
     text = json.dumps(manifest, indent=2, sort_keys=True) + "\n"
     manifest_path = root / MANIFEST
     if not manifest_path.exists() or manifest_path.read_text(encoding="utf-8") != text:
         write_text_atomic(manifest_path, text)
     return actions
+
+
+def _remove(root: Path, relative: str) -> None:
+    """Delete a file we generated, then each folder above it (up to ``root``) that this leaves empty."""
+    target = _inside(root, relative)
+    target.unlink(missing_ok=True)
+    top = root.resolve()
+    folder = target.parent
+    while folder != top and folder.is_relative_to(top) and not any(folder.iterdir()):
+        folder.rmdir()
+        folder = folder.parent

@@ -16,6 +16,7 @@ from lxml import etree
 import xacrokit
 from conftest import REPO, gen_robot, mesh_package_at
 from xacrokit.check import check
+from xacrokit.emit import urdf_differences
 from xacrokit.kinematics import origin_transform
 from xacrokit.pipeline import expand_package
 from xacrokit.render import render_package
@@ -335,6 +336,24 @@ def test_fleet_command_and_the_fleet_scene_example_agree(tmp_path):
     assert (tmp_path / "cli" / urdf).read_text(encoding="utf-8") == (tmp_path / "file" / urdf).read_text(
         encoding="utf-8"
     )
+
+
+@pytest.mark.parametrize("mode", ["copy", "find"])
+def test_fleets_take_the_macro_mode_and_describe_the_same_robots(tmp_path, mode):
+    diff_drive = REPO / "examples" / "diff_drive.yaml"
+    for name, extra in (("default", ()), (mode, ("--macros", mode, "--via-xacro"))):
+        result = gen_robot("fleet", diff_drive, "--count", "3", "-o", tmp_path / name, *extra)
+        assert result.returncode == 0, result.stderr
+    urdf = "urdf/diff_drive_fleet.urdf"
+    texts = [(tmp_path / name / urdf).read_text(encoding="utf-8") for name in ("default", mode)]
+    assert urdf_differences(*texts, rel=0.0) == []
+    macro = (tmp_path / mode / "robots" / "diff_drive_description" / "urdf" / "diff_drive_macro.xacro").read_text(
+        encoding="utf-8"
+    )
+    assert "<xacro:wheel" in macro
+    assert (tmp_path / mode / "robots" / "diff_drive_description" / "urdf" / "xacrokit").is_dir() == (mode == "copy")
+    depends = "<exec_depend>xacrokit</exec_depend>" in (tmp_path / mode / "package.xml").read_text(encoding="utf-8")
+    assert depends == (mode == "find")
 
 
 def run_with_tty_stderr(*args) -> tuple[int, str, str]:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 
@@ -95,6 +96,58 @@ def test_manifest_records_what_was_generated(tmp_path):
     assert sorted(manifest["files"]) == sorted(f.path for f in result.files)
 
 
+def test_the_default_package_needs_no_macro_library(tmp_path):
+    # inline by default: plain links and joints, no copied macros, no DH tables for xacro to read
+    arm = REPO / "examples" / "industrial_arm_std_dh.yaml"
+    result = gen_robot(arm, "-o", tmp_path / "pkg")
+    assert result.returncode == 0, result.stderr
+    paths = {p.relative_to(tmp_path / "pkg").as_posix() for p in (tmp_path / "pkg").rglob("*") if p.is_file()}
+    assert not any(p.startswith("urdf/xacrokit/") or p.endswith(".dh.yaml") for p in paths), paths
+    macro = (tmp_path / "pkg" / "urdf" / "ur5_macro.xacro").read_text(encoding="utf-8")
+    assert "xacrokit/" not in macro and "<xacro:dh_arm" not in macro
+    assert '<link name="${prefix}shoulder_link">' in macro
+
+
+def test_switching_modes_removes_what_is_no_longer_generated_and_keeps_edits(tmp_path):
+    arm = REPO / "examples" / "industrial_arm_std_dh.yaml"
+    out = tmp_path / "pkg"
+    copied = {f.path for f in xacrokit.generate(arm, out, macros="copy").files}
+    stale = sorted(p for p in copied if p.startswith("urdf/xacrokit/") or p.endswith(".dh.yaml"))
+    assert "urdf/xacrokit/dh.xacro" in stale and "config/ur5.dh.yaml" in stale
+    edited = out / "urdf" / "xacrokit" / "links.xacro"
+    edited.write_text(edited.read_text(encoding="utf-8") + "<!-- mine -->\n", encoding="utf-8")
+    before = snapshot(out)
+    dry = gen_robot(arm, "-o", out, "--dry-run")
+    plan_lines = {" ".join(line.split()) for line in dry.stdout.splitlines()}
+    assert dry.returncode == 0 and "remove urdf/xacrokit/dh.xacro (no longer generated)" in plan_lines, dry.stdout
+    assert "would remove 4 no longer generated; would keep 1" in dry.stdout
+    assert snapshot(out) == before
+    result = gen_robot(arm, "-o", out)
+    assert result.returncode == 0, result.stderr
+    assert "removed 4 no longer generated; kept 1 no longer generated but edited" in result.stdout, result.stdout
+    assert "keep urdf/xacrokit/links.xacro (no longer generated, but edited since: kept)" in {
+        " ".join(line.split()) for line in result.stdout.splitlines()
+    }
+    left = {p.relative_to(out).as_posix() for p in out.rglob("*")}
+    assert [p for p in stale if p in left] == ["urdf/xacrokit/links.xacro"]
+    assert "urdf/xacrokit/_inc" not in left  # the folder it emptied went too
+    assert "urdf/xacrokit/links.xacro" not in json.loads((out / MANIFEST).read_text(encoding="utf-8"))["files"]
+    again = xacrokit.generate(arm, out)
+    assert {a.action for a in again.actions} == {"identical"}  # the kept file is no longer ours
+
+
+def test_a_manifest_naming_files_outside_the_folder_removes_nothing_there(tmp_path):
+    out = tmp_path / "pkg"
+    xacrokit.generate(SPEC, out)
+    victim = tmp_path / "victim.txt"
+    victim.write_text("x", encoding="utf-8")
+    manifest = json.loads((out / MANIFEST).read_text(encoding="utf-8"))
+    manifest["files"]["../victim.txt"] = hashlib.sha256(b"x").hexdigest()
+    (out / MANIFEST).write_text(json.dumps(manifest), encoding="utf-8")
+    result = xacrokit.generate(SPEC, out)
+    assert victim.exists() and {a.action for a in result.actions} == {"identical"}
+
+
 def test_invalid_spec_writes_nothing_and_exits_2(tmp_path):
     spec = tmp_path / "bad.yaml"
     spec.write_text(
@@ -133,7 +186,7 @@ def test_macros_find_includes_the_installed_library(tmp_path):
     assert '<xacro:include filename="$(find xacrokit)/macros/inertia.xacro"/>' in macro
     assert not (out / "urdf" / "xacrokit").exists()
     assert "<exec_depend>xacrokit</exec_depend>" in (out / "package.xml").read_text(encoding="utf-8")
-    copy = xacrokit.generate(SPEC, tmp_path / "copy", via_xacro=True)
+    copy = xacrokit.generate(SPEC, tmp_path / "copy", macros="copy", via_xacro=True)
     urdf = {f.path: f.content for f in copy.files}["urdf/two_dof_arm.urdf"]
     assert {f.path: f.content for f in result.files}["urdf/two_dof_arm.urdf"] == urdf
 
