@@ -333,6 +333,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     except XacrokitError as exc:
         print(f"gen-robot: error: {exc}", file=sys.stderr)
         return exc.exit_code
+    except OSError as exc:  # the file system refused (permissions, a full disk, a missing folder): say what and where
+        where = f"{exc.filename}: " if exc.filename else ""
+        print(f"gen-robot: error: {where}{exc.strerror or exc}", file=sys.stderr)
+        return 1
     except KeyboardInterrupt:
         return 130
 

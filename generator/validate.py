@@ -236,30 +236,41 @@ def _located(raw: RawSpec, errors: list[jsonschema.ValidationError]) -> list[Spe
 
 
 # ---------------------------------------------------------------- quantities
-def _copy_tree(node: Any) -> Any:
-    """A copy of loaded YAML data (mappings, lists and immutable scalars): what deepcopy does, five times faster."""
-    if isinstance(node, dict):
-        return {key: _copy_tree(value) for key, value in node.items()}
-    if isinstance(node, list):
-        return [_copy_tree(value) for value in node]
-    return node
-
-
 class _Quantities:
-    """Converts every quantity of a schema-valid spec to SI in place, collecting located errors."""
+    """Converts every quantity of a schema-valid spec to SI, collecting located errors.
+
+    The loaded data is only read: ``data`` is a copy in which the containers on the way to a converted value are new
+    and everything else is shared with ``raw.data`` (a spec written in SI floats throughout is not copied at all).
+    Nothing downstream changes the data.
+    """
 
     def __init__(self, raw: RawSpec) -> None:
         self.raw = raw
-        self.data: dict[str, Any] = _copy_tree(raw.data)
         self.errors: list[SpecError] = []
+        self._changes: dict[PathKey, dict[str | int, float]] = {}  # container path -> key -> SI value
+        self._count = 0
+        self._built: tuple[int, Any] = (0, raw.data)
+
+    @property
+    def data(self) -> Any:
+        """The spec with the quantities converted so far."""
+        if self._built[0] != self._count:
+            self._built = (self._count, _with_changes(self.raw.data, self._changes))
+        return self._built[1]
 
     def convert(self, container: Any, key: str | int, path: PathKey, kind: Kind) -> None:
         if isinstance(container, dict) and key not in container:
             return
+        value = container[key]
+        if type(value) is float and math.isfinite(value):
+            return  # already SI: what parse_quantity would return
         try:
-            container[key] = parse_quantity(container[key], kind)
+            converted = parse_quantity(value, kind)
         except UnitError as exc:
             self.errors.append(self.raw.error((*path, key), str(exc)))
+            return
+        self._changes.setdefault(path, {})[key] = converted
+        self._count += 1
 
     def origin(self, holder: dict[str, Any], key: str, path: PathKey) -> None:
         origin = holder.get(key)
@@ -295,7 +306,7 @@ class _Quantities:
                 self.convert(holder["safety_controller"], key, (*path, "safety_controller"), kind)
 
     def run(self) -> tuple[dict[str, Any], list[SpecError]]:
-        data = self.data
+        data = self.raw.data
         for name, link in data.get("links", {}).items():
             path = ("links", name)
             self.shape(link, path)
@@ -334,7 +345,25 @@ class _Quantities:
             self.origin(frame, "origin", ("frames", name))
             self.shape(frame, ("frames", name))
             self.convert(frame, "mass", ("frames", name), "mass")
-        return data, self.errors
+        return self.data, self.errors
+
+
+def _with_changes(root: Any, changes: dict[PathKey, dict[str | int, float]]) -> Any:
+    """``root`` with the values set in the containers at the given paths, copying only the containers on those paths
+    (``root`` itself is not changed)."""
+    if not changes:
+        return root
+    copies: dict[int, Any] = {id(root): root.copy()}
+    for path, values in changes.items():
+        original, copied = root, copies[id(root)]
+        for key in path:
+            child = original[key]
+            if id(child) not in copies:
+                copies[id(child)] = copied[key] = child.copy()
+            original, copied = child, copies[id(child)]
+        for key, value in values.items():
+            copied[key] = value
+    return copies[id(root)]
 
 
 # ---------------------------------------------------------------- semantic checks

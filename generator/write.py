@@ -134,17 +134,24 @@ def write(files: list[RenderedFile], root: Path, *, force: bool = False, dry_run
     if dry_run:
         return actions
     by_path = {f.path: f for f in files}
-    for action in actions:
-        if action.action in ("create", "update", "overwrite"):
-            write_text_atomic(_inside(root, action.path), by_path[action.path].content)
-    for action in actions:
-        if action.action == "remove":
-            _remove(root, action.path)
-    manifest = {"generator": f"xacrokit {__version__}", "files": {f.path: _digest(f.content) for f in files}}
-    text = json.dumps(manifest, indent=2, sort_keys=True) + "\n"
-    manifest_path = root / MANIFEST
-    if not manifest_path.exists() or manifest_path.read_text(encoding="utf-8") != text:
-        write_text_atomic(manifest_path, text)
+    done = 0
+    try:
+        for action in actions:
+            if action.action in ("create", "update", "overwrite"):
+                write_text_atomic(_inside(root, action.path), by_path[action.path].content)
+                done += 1
+        for action in actions:
+            if action.action == "remove":
+                _remove(root, action.path)
+        manifest = {"generator": f"xacrokit {__version__}", "files": {f.path: _digest(f.content) for f in files}}
+        text = json.dumps(manifest, indent=2, sort_keys=True) + "\n"
+        manifest_path = root / MANIFEST
+        if not manifest_path.exists() or manifest_path.read_text(encoding="utf-8") != text:
+            write_text_atomic(manifest_path, text)
+    except OSError as exc:
+        where = exc.filename or root
+        written = f"; {done} file(s) were written before it, each whole" if done else "; nothing was written"
+        raise XacrokitError(f"cannot write the package in {root}: {where}: {exc.strerror or exc}{written}") from exc
     return actions
 
 

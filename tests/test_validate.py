@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import copy
+import math
 from pathlib import Path
 
 import pytest
@@ -200,6 +201,20 @@ def test_each_mistake_is_located_and_explained(change, value, path, words):
     errors = errors_of(data)
     matching = [e for e in errors if e.path == path and words in e.message]
     assert matching, "\n".join(str(e) for e in errors)
+
+
+def test_quantities_are_converted_in_a_copy_and_the_loaded_spec_is_left_alone():
+    spec = mutated("joints.shoulder.limit.lower", "-90 deg")
+    spec["links"]["arm"]["origin"]["xyz"] = ["10 mm", 0, 0.15]
+    raw = load_text(yaml.safe_dump(spec, sort_keys=False), "spec.yaml")
+    before = copy.deepcopy(raw.data)
+    data = validate(raw).data
+    assert raw.data == before  # still the text the user wrote: errors and positions are about that
+    assert data["joints"]["shoulder"]["limit"]["lower"] == pytest.approx(-math.pi / 2, rel=1e-15)
+    assert data["links"]["arm"]["origin"]["xyz"] == [0.01, 0.0, 0.15]
+    assert all(type(v) is float for v in data["links"]["arm"]["origin"]["xyz"])  # ints become floats too
+    assert data["arms"]["dh"]["joints"][0]["alpha"] == pytest.approx(math.pi / 2, rel=1e-15)
+    assert data["links"]["base_link"] is raw.data["links"]["base_link"]  # nothing to convert there: shared
 
 
 def test_two_roots_are_reported():

@@ -148,6 +148,14 @@ def test_a_manifest_naming_files_outside_the_folder_removes_nothing_there(tmp_pa
     assert victim.exists() and {a.action for a in result.actions} == {"identical"}
 
 
+def test_a_folder_that_cannot_be_written_is_an_error_not_a_traceback(tmp_path):
+    blocker = tmp_path / "a_file"
+    blocker.write_text("x", encoding="utf-8")
+    result = gen_robot(SPEC, "-o", blocker / "pkg")
+    assert result.returncode != 0 and "Traceback" not in result.stderr
+    assert f"cannot write the package in {blocker / 'pkg'}" in result.stderr and "nothing was written" in result.stderr
+
+
 def test_invalid_spec_writes_nothing_and_exits_2(tmp_path):
     spec = tmp_path / "bad.yaml"
     spec.write_text(
