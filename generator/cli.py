@@ -231,9 +231,10 @@ def build_parser() -> argparse.ArgumentParser:
         "generate",
         help="turn a YAML robot spec into a ROS 2 description package (also: gen-robot SPEC.yaml)",
         description="Validate SPEC, render the package NAME_description (xacro macro, entry, materials, Gazebo, "
-        "ros2_control, launch, RViz), expand it with the real xacro into urdf/NAME.urdf, and write it. Invalid "
-        "specs are reported with file:line:column and write nothing; files edited since they were generated are "
-        "conflicts and stop the write unless --force.",
+        "ros2_control, launch, RViz), write urdf/NAME.urdf (the robot expanding the package with xacro gives, "
+        "emitted directly; --via-xacro runs the real xacro), and write it all. Invalid specs are reported with "
+        "file:line:column and write nothing; files edited since they were generated are conflicts and stop the "
+        "write unless --force; files the last run generated and this one does not are removed unless edited.",
     )
     gen.add_argument("spec", help="the robot spec (YAML; see `gen-robot schema`)")
     _add_write_options(gen, "NAME_description")
@@ -333,10 +334,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     except XacrokitError as exc:
         print(f"gen-robot: error: {exc}", file=sys.stderr)
         return exc.exit_code
+    except BrokenPipeError:  # the reader went away (gen-robot schema | head): stop quietly, as other tools do
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 141
     except OSError as exc:  # the file system refused (permissions, a full disk, a missing folder): say what and where
         where = f"{exc.filename}: " if exc.filename else ""
         print(f"gen-robot: error: {where}{exc.strerror or exc}", file=sys.stderr)
-        return 1
+        return 2
     except KeyboardInterrupt:
         return 130
 

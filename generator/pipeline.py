@@ -100,6 +100,7 @@ def generate(
         SpecErrors: the spec is invalid (nothing written).
         ExpandError: xacro could not expand the generated package (nothing written).
         ConflictError: a generated file was edited since (nothing written).
+        XacrokitError: the file system refused a write (the message says what was written before it).
     """
     progress(f"reading {Path(spec_path).name}")
     raw = load_file(spec_path)

@@ -358,9 +358,11 @@ def _with_changes(root: Any, changes: dict[PathKey, dict[str | int, float]]) -> 
         original, copied = root, copies[id(root)]
         for key in path:
             child = original[key]
-            if id(child) not in copies:
-                copies[id(child)] = copied[key] = child.copy()
-            original, copied = child, copies[id(child)]
+            copy = copies.get(id(child))
+            if copy is None:
+                copy = copies[id(child)] = child.copy()
+            copied[key] = copy  # (also when another parent reached it first)
+            original, copied = child, copy
         for key, value in values.items():
             copied[key] = value
     return copies[id(root)]

@@ -18,10 +18,11 @@ Nothing is ever written outside the output folder.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 from dataclasses import dataclass
-from pathlib import Path
+from pathlib import Path, PurePosixPath
 from typing import Literal
 
 from . import __version__
@@ -100,19 +101,26 @@ def plan(files: list[RenderedFile], root: Path, *, force: bool = False) -> list[
         else:
             reason = "edited since it was generated" if file.path in manifest else "not written by xacrokit"
             actions.append(FileAction(file.path, "overwrite" if force else "conflict", reason))
-    return actions + _stale(manifest, {f.path for f in files}, root)
+    return actions + _stale(manifest, files, root)
 
 
-def _stale(manifest: dict[str, str], paths: set[str], root: Path) -> list[FileAction]:
-    """What happens to the files we generated last time that this run does not generate."""
+def _stale(manifest: dict[str, str], files: list[RenderedFile], root: Path) -> list[FileAction]:
+    """What happens to the files we generated last time that this run does not generate.
+
+    Only plain files reached without a symbolic link, named in normal form inside the folder and not the same file as
+    one this run writes, are candidates: a manifest edited by hand or a linked folder never makes us delete anything
+    else.
+    """
+    generated = {f.path for f in files}
+    ours = {(root / f.path).resolve() for f in files}
     actions = []
-    for path in sorted(manifest.keys() - paths):
+    for path in sorted(manifest.keys() - generated):
+        target = _stale_target(root, path, ours)
+        if target is None:
+            continue
         try:
-            target = _inside(root, path)
-            current = target.read_text(encoding="utf-8") if target.is_file() else None
-        except (XacrokitError, OSError, UnicodeDecodeError):
-            continue  # outside the folder (a hand-made manifest), gone, or unreadable: not ours to touch
-        if current is None:
+            current = target.read_text(encoding="utf-8")
+        except (OSError, UnicodeDecodeError):
             continue
         if _digest(current) == manifest[path]:
             actions.append(FileAction(path, "remove", "no longer generated"))
@@ -121,12 +129,31 @@ def _stale(manifest: dict[str, str], paths: set[str], root: Path) -> list[FileAc
     return actions
 
 
+def _stale_target(root: Path, relative: str, ours: set[Path]) -> Path | None:
+    """``root / relative`` when it may be removed as a stale generated file, else None."""
+    pure = PurePosixPath(relative)
+    if pure.is_absolute() or pure.as_posix() != relative or any(part in ("..", ".") for part in pure.parts):
+        return None
+    try:
+        target = root.joinpath(*pure.parts)
+        steps = [root.joinpath(*pure.parts[:n]) for n in range(1, len(pure.parts) + 1)]
+        if any(step.is_symlink() for step in steps) or not target.is_file() or target.resolve() in ours:
+            return None
+    except (OSError, ValueError):  # (a NUL in a hand-edited manifest, an unreadable folder)
+        return None
+    return target
+
+
 def write(files: list[RenderedFile], root: Path, *, force: bool = False, dry_run: bool = False) -> list[FileAction]:
-    """Plan, then (unless ``dry_run``) write every created, updated or overwritten file atomically.
+    """Plan, then (unless ``dry_run``) write every created, updated or overwritten file atomically, record the
+    manifest, and remove the stale files planned for removal (a removal the file system refuses, or a file changed
+    since the plan, becomes ``keep``).
 
     Raises:
         ConflictError: some file was edited since it was generated (and ``force`` is off); nothing is written.
+        XacrokitError: the file system refused a write (the message names the file and what was written before it).
     """
+    previous = _read_manifest(root)
     actions = plan(files, root, force=force)
     conflicts = [a for a in actions if a.action == "conflict"]
     if conflicts:
@@ -140,9 +167,6 @@ def write(files: list[RenderedFile], root: Path, *, force: bool = False, dry_run
             if action.action in ("create", "update", "overwrite"):
                 write_text_atomic(_inside(root, action.path), by_path[action.path].content)
                 done += 1
-        for action in actions:
-            if action.action == "remove":
-                _remove(root, action.path)
         manifest = {"generator": f"xacrokit {__version__}", "files": {f.path: _digest(f.content) for f in files}}
         text = json.dumps(manifest, indent=2, sort_keys=True) + "\n"
         manifest_path = root / MANIFEST
@@ -152,15 +176,37 @@ def write(files: list[RenderedFile], root: Path, *, force: bool = False, dry_run
         where = exc.filename or root
         written = f"; {done} file(s) were written before it, each whole" if done else "; nothing was written"
         raise XacrokitError(f"cannot write the package in {root}: {where}: {exc.strerror or exc}{written}") from exc
-    return actions
+    if not any(a.action == "remove" for a in actions):
+        return actions
+    written = set()  # what this run wrote, by identity: on a case-blind disk a stale name may be one of these
+    for file in files:
+        with contextlib.suppress(OSError):
+            written.add(_identity(root / file.path))
+    return [_remove(root, a, previous.get(a.path, ""), written) if a.action == "remove" else a for a in actions]
 
 
-def _remove(root: Path, relative: str) -> None:
-    """Delete a file we generated, then each folder above it (up to ``root``) that this leaves empty."""
-    target = _inside(root, relative)
-    target.unlink(missing_ok=True)
-    top = root.resolve()
-    folder = target.parent
-    while folder != top and folder.is_relative_to(top) and not any(folder.iterdir()):
-        folder.rmdir()
-        folder = folder.parent
+def _identity(path: Path) -> tuple[int, int]:
+    status = path.stat()
+    return status.st_dev, status.st_ino
+
+
+def _remove(root: Path, action: FileAction, digest: str, written: set[tuple[int, int]]) -> FileAction:
+    """Delete a stale file if it is still as generated and is not a file this run wrote, then each folder above it
+    that this leaves empty."""
+    target = root.joinpath(*PurePosixPath(action.path).parts)
+    try:
+        if _identity(target) in written:
+            return FileAction(
+                action.path, "keep", "no longer generated under this name, but the same file as one that is"
+            )
+        if _digest(target.read_text(encoding="utf-8")) != digest:
+            return FileAction(action.path, "keep", "no longer generated, but changed while we ran: kept")
+        target.unlink()
+        folder = target.parent
+        while folder != root and not any(folder.iterdir()):
+            folder.rmdir()
+            folder = folder.parent
+    except (OSError, UnicodeDecodeError) as exc:
+        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        return FileAction(action.path, "keep", f"no longer generated; could not remove it: {reason}")
+    return action

@@ -158,13 +158,13 @@ def test_k001_catches_a_urdf_that_does_not_follow_its_dh_table(tmp_path):
 
     spec = REPO / "examples" / "industrial_arm_std_dh.yaml"
     robot = build_robot(spec)
-    good = expand_package(robot, render_package(robot)).content
+    good = expand_package(robot, render_package(robot, macros="copy")).content  # the library's dh_arm
     doc = _Doc(etree.fromstring(good.encode()), str(spec), {}, source_lines=False)
     assert list(kinematics_rules(doc, robot, good)) == []
     wrong_spec = tmp_path / "ur5.yaml"
     wrong_spec.write_text(spec.read_text(encoding="utf-8").replace("a: -0.39225", "a: -0.39"), encoding="utf-8")
     wrong = build_robot(wrong_spec)
-    wrong_urdf = expand_package(wrong, render_package(wrong)).content
+    wrong_urdf = expand_package(wrong, render_package(wrong, macros="copy")).content
     (finding,) = kinematics_rules(doc, robot, wrong_urdf)  # robot says one table, the URDF does another
     assert finding.rule == "K001" and "differ from the DH product by up to" in finding.message
 

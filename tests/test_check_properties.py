@@ -18,11 +18,11 @@ from xacrokit.testing import URDF_FAULTS, inject_urdf_fault, valid_specs
 ALSO_EXPECTED = {"dangling_parent": {"S001"}}
 
 
-def urdf_of(spec, folder):
+def urdf_of(spec, folder, macros="inline"):
     path = folder / "spec.yaml"
     path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
     robot = build_robot(path)
-    return robot, expand_package(robot, render_package(robot)).content, path
+    return robot, expand_package(robot, render_package(robot, macros=macros)).content, path
 
 
 @pytest.fixture(scope="module")
@@ -37,16 +37,20 @@ def test_valid_specs_check_clean_with_every_consumer_accepting(tmp_path_factory,
     folder = tmp_path_factory.mktemp("clean")
     path = folder / "spec.yaml"
     path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
-    report = check(path, package_paths={"some_pkg": mesh_package})
+    report = check(path, package_paths={"some_pkg": mesh_package})  # the default (inline) package
     assert not report.errors, [str(f) for f in report.errors]
     assert report.consumers and all(c.status == "accepted" for c in report.consumers), report.consumers
+    _, library_urdf, _ = urdf_of(spec, folder, macros="copy")  # and what the library macros give, our rules only
+    (folder / "library.urdf").write_text(library_urdf, encoding="utf-8")
+    library = check(folder / "library.urdf", consumers=[], package_paths={"some_pkg": mesh_package})
+    assert not library.errors, [str(f) for f in library.errors]
 
 
 @settings(suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
-@given(spec=valid_specs(), fault=st.sampled_from(sorted(URDF_FAULTS)))
-def test_each_single_fault_is_caught_by_its_rule(tmp_path_factory, spec, fault):
+@given(spec=valid_specs(), fault=st.sampled_from(sorted(URDF_FAULTS)), macros=st.sampled_from(["inline", "copy"]))
+def test_each_single_fault_is_caught_by_its_rule(tmp_path_factory, spec, fault, macros):
     folder = tmp_path_factory.mktemp("fault")
-    robot, urdf, _ = urdf_of(spec, folder)
+    robot, urdf, _ = urdf_of(spec, folder, macros)
     clean = folder / "clean.urdf"
     clean.write_text(urdf, encoding="utf-8")
     assert not check(clean, consumers=[]).errors  # the fault below is the only problem

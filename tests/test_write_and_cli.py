@@ -136,16 +136,60 @@ def test_switching_modes_removes_what_is_no_longer_generated_and_keeps_edits(tmp
     assert {a.action for a in again.actions} == {"identical"}  # the kept file is no longer ours
 
 
+def add_to_manifest(out, path, content: bytes):
+    manifest = json.loads((out / MANIFEST).read_text(encoding="utf-8"))
+    manifest["files"][path] = hashlib.sha256(content).hexdigest()
+    (out / MANIFEST).write_text(json.dumps(manifest), encoding="utf-8")
+
+
 def test_a_manifest_naming_files_outside_the_folder_removes_nothing_there(tmp_path):
     out = tmp_path / "pkg"
     xacrokit.generate(SPEC, out)
     victim = tmp_path / "victim.txt"
     victim.write_text("x", encoding="utf-8")
-    manifest = json.loads((out / MANIFEST).read_text(encoding="utf-8"))
-    manifest["files"]["../victim.txt"] = hashlib.sha256(b"x").hexdigest()
-    (out / MANIFEST).write_text(json.dumps(manifest), encoding="utf-8")
+    for name in ("../victim.txt", str(victim), "urdf/../../victim.txt", "./../victim.txt", "a\0b"):
+        add_to_manifest(out, name, b"x")
     result = xacrokit.generate(SPEC, out)
     assert victim.exists() and {a.action for a in result.actions} == {"identical"}
+
+
+def test_stale_files_behind_links_or_written_this_run_are_never_removed(tmp_path):
+    out = tmp_path / "pkg"
+    xacrokit.generate(SPEC, out)
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    (elsewhere / "old.xacro").write_text("x", encoding="utf-8")
+    (out / "linked").symlink_to(elsewhere)  # a folder link: the file behind it is not ours to delete
+    add_to_manifest(out, "linked/old.xacro", b"x")
+    (out / "urdf" / "alias.xacro").symlink_to(elsewhere / "old.xacro")  # a file link
+    add_to_manifest(out, "urdf/alias.xacro", b"x")
+    entry = out / "urdf" / "two_dof_arm.urdf.xacro"
+    os.link(entry, out / "urdf" / "OLD.urdf.xacro")  # another name for a file this run writes
+    add_to_manifest(out, "urdf/OLD.urdf.xacro", entry.read_bytes())
+    result = xacrokit.generate(SPEC, out)
+    assert (elsewhere / "old.xacro").exists() and (out / "urdf" / "alias.xacro").is_symlink()
+    assert entry.exists()
+    stale = {a.path: a for a in result.actions if a.action in ("remove", "keep")}
+    assert stale["urdf/OLD.urdf.xacro"].action == "keep" and set(stale) == {"urdf/OLD.urdf.xacro"}
+
+
+def test_a_removal_the_file_system_refuses_is_reported_as_kept(tmp_path, monkeypatch):
+    arm = REPO / "examples" / "industrial_arm_std_dh.yaml"
+    out = tmp_path / "pkg"
+    xacrokit.generate(arm, out, macros="copy")
+
+    def refuse(self, missing_ok=False):
+        raise PermissionError(13, "Permission denied", str(self))
+
+    monkeypatch.setattr(type(out), "unlink", refuse)
+    result = xacrokit.generate(arm, out)
+    kept = [a for a in result.actions if a.action == "keep"]
+    assert kept and all("could not remove it: Permission denied" in a.reason for a in kept)
+    assert not any(a.action == "remove" for a in result.actions)
+    monkeypatch.undo()
+    again = xacrokit.generate(arm, out)  # the manifest was written: the next run is not stuck on them
+    assert {a.action for a in again.actions} == {"identical"}
+    assert (out / "urdf" / "xacrokit" / "dh.xacro").exists()  # left for the user, no longer ours
 
 
 def test_a_folder_that_cannot_be_written_is_an_error_not_a_traceback(tmp_path):
