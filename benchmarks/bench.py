@@ -13,12 +13,12 @@ Sections:
           (--macros inline); at 1,000 links the --macros copy package is expanded too, for comparison.
   fleet   the same for gen-robot fleet: 1 / 10 / 100 / 300 copies of a 10-link chain (10 to 3,000 links), the
           stages being scene (load, validate, resolve the scene and its robot), render, write, emit, xacro, check.
-  memory  peak resident memory of full gen-robot on the 3,000-link robot (a fresh process).
+  memory  peak resident memory of full gen-robot and gen-robot fleet at each size (each in a fresh process).
   xacro   xacro expansion of our generated 6-axis arm package (UR5), --macros inline (the default) and copy,
           against a hand-written equivalent in plain <link>/<joint> XML.
   check   gen-robot check (our rules, no external consumers) on chains of 10 / 100 / 1,000 / 3,000 links, the
-          t(3,000)/t(1,000) ratio (median of back-to-back pairs), the time to report a cycle hanging off the root, and the time check_urdf would
-          take to be stopped on it.
+          t(3,000)/t(1,000) ratio (median of back-to-back pairs), the time to report a cycle hanging off the root,
+          and the time check_urdf would take to be stopped on it.
   cli     wall time of `gen-robot --help`.
 """
 
@@ -335,24 +335,37 @@ def bench_stages(folder: Path) -> None:
     print_table(title, names, "stages", folder)
 
 
-def bench_memory(folder: Path) -> None:
-    print("== memory")
-    spec = folder / "chain_3000_memory.yaml"
-    spec.write_text(chain_spec(3000), encoding="utf-8")
+def peak_memory_mb(call: str = "pass") -> float:
+    """Peak resident memory (MB) of a fresh interpreter that imports xacrokit and runs ``call`` (Python, with
+    ``bench`` and ``Path`` in scope)."""
     # VmHWM belongs to the new process image; ru_maxrss would also count the parent's pages from before exec
     script = (
-        "import sys; sys.path.insert(0, sys.argv[3]); from bench import full_job; from pathlib import Path; "
-        "full_job(Path(sys.argv[1]), Path(sys.argv[2])); "
+        "import sys; sys.path.insert(0, sys.argv[1]); import bench; from pathlib import Path; "
+        f"import xacrokit.pipeline, xacrokit.check; {call}; "
         "print([l.split()[1] for l in open('/proc/self/status') if l.startswith('VmHWM')][0])"
     )
     out = subprocess.run(
-        [sys.executable, "-c", script, str(spec), str(folder / "memory_out"), str(REPO / "benchmarks")],
-        capture_output=True,
-        text=True,
-        check=True,
+        [sys.executable, "-c", script, str(REPO / "benchmarks")], capture_output=True, text=True, check=True
     )
-    peak_mb = int(out.stdout.split()[-1]) / 1024
-    print(f"  peak resident memory, full gen-robot at 3,000 links: {peak_mb:.0f} MB   (target <= 300 MB)")
+    return int(out.stdout.split()[-1]) / 1024
+
+
+def bench_memory(folder: Path) -> None:
+    print("== memory: peak resident memory of full gen-robot / gen-robot fleet, each in a fresh process (MB)")
+    print(f"  the interpreter with xacrokit imported, no work: {peak_memory_mb():.0f}")
+    robot = folder / "fleet_robot_memory.yaml"
+    robot.write_text(chain_spec(FLEET_ROBOT_LINKS), encoding="utf-8")
+    print(f"  {'links':>6}{'robot':>8}{'fleet':>8}")
+    for links in SIZES:
+        spec = folder / f"chain_{links}_memory.yaml"
+        spec.write_text(chain_spec(links), encoding="utf-8")
+        one = peak_memory_mb(f"bench.full_job(Path({str(spec)!r}), Path({str(folder / f'mem_robot_{links}')!r}))")
+        many = peak_memory_mb(
+            f"bench.fleet_job(Path({str(robot)!r}), {links // FLEET_ROBOT_LINKS}, "
+            f"Path({str(folder / f'mem_fleet_{links}')!r}))"
+        )
+        print(f"  {links:>6}{one:>8.0f}{many:>8.0f}")
+    print("  target at 3,000 links: <= 300 MB")
 
 
 def bench_xacro_cost(folder: Path) -> None:
