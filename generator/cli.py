@@ -200,7 +200,7 @@ def _add_write_options(parser: argparse.ArgumentParser, default_output: str) -> 
         choices=("inline", "copy", "find"),
         default="inline",
         help="how the robot macro is written: inline (default) writes the links and joints as plain XML computed by "
-        "gen-robot, which xacro expands about as fast as a plain URDF; copy calls the xacrokit library macros "
+        "gen-robot, which xacro expands almost as fast as a plain URDF; copy calls the xacrokit library macros "
         "and copies them into the package; find calls them through $(find xacrokit) (the package then depends "
         "on xacrokit). All three describe the same robot",
     )
