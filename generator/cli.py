@@ -76,7 +76,9 @@ def _written(result: GenerateResult, dry_run: bool) -> str:
     if counts["remove"]:
         text += f"; {'would remove' if dry_run else 'removed'} {counts['remove']} no longer generated"
     if counts["keep"]:
-        text += f"; {'would keep' if dry_run else 'kept'} {counts['keep']} no longer generated but edited"
+        text += (
+            f"; {'would keep' if dry_run else 'kept'} {counts['keep']} no longer generated (edited, or not removable)"
+        )
     return text
 
 
