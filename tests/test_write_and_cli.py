@@ -5,10 +5,13 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+from pathlib import PurePosixPath
 
 import jsonschema
 import pytest
 import yaml
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 import xacrokit
 from conftest import REPO, gen_robot
@@ -369,3 +372,44 @@ def test_schema_command_prints_each_schema(kind):
     schema = json.loads(result.stdout)
     jsonschema.Draft202012Validator.check_schema(schema)
     assert schema["$id"] == f"urn:xacrokit:schema:{kind}:v1"
+
+
+PATHS = [f"{folder}{name}" for folder in ("", "x/", "x/y/", "z/") for name in ("a.txt", "b.txt")]
+
+
+@settings(suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(
+    old=st.dictionaries(st.sampled_from(PATHS), st.sampled_from(["1", "2"]), min_size=1),
+    new=st.dictionaries(st.sampled_from(PATHS), st.sampled_from(["1", "3"]), min_size=1),
+    edited=st.sets(st.sampled_from(PATHS)),
+    foreign=st.sets(st.sampled_from(["x/mine.txt", "z/y/mine.txt", "mine.txt"])),
+)
+def test_regenerating_touches_only_what_we_generated_and_nobody_edited(tmp_path_factory, old, new, edited, foreign):
+    out = tmp_path_factory.mktemp("regen") / "pkg"
+    write([RenderedFile(p, c) for p, c in old.items()], out)
+    edited = {p for p in edited if p in old}
+    for path in edited:
+        (out / path).write_text("edited", encoding="utf-8")
+    for path in foreign:
+        (out / path).parent.mkdir(parents=True, exist_ok=True)
+        (out / path).write_text("mine", encoding="utf-8")
+    files = [RenderedFile(p, c) for p, c in new.items()]
+    conflicts = {p for p in edited if p in new and new[p] != "edited"}
+    if conflicts:
+        with pytest.raises(ConflictError):
+            write(files, out)
+        return
+    actions = {a.path: a.action for a in write(files, out)}
+    on_disk = {p.relative_to(out).as_posix() for p in out.rglob("*") if p.is_file()} - {MANIFEST}
+    assert {p: (out / p).read_text(encoding="utf-8") for p in new} == new  # what we generate is there
+    assert all((out / p).read_text(encoding="utf-8") == "mine" for p in foreign)  # never ours: untouched
+    stale = set(old) - set(new)
+    assert {p for p in stale if p in edited} <= on_disk  # edited: kept
+    assert not ({p for p in stale if p not in edited} & on_disk)  # ours and unedited: removed
+    assert {p: a for p, a in actions.items() if p in stale} == {p: "keep" if p in edited else "remove" for p in stale}
+    assert on_disk == set(new) | set(foreign) | (stale & edited)
+    emptied = {str(PurePosixPath(p).parent) for p in stale - edited} - {"."}
+    for folder in emptied:  # a folder our removals emptied is gone; one with anything left stays
+        left = [q for q in on_disk if q.startswith(folder + "/")]
+        assert (out / folder).exists() == bool(left), folder
+    assert set(json.loads((out / MANIFEST).read_text(encoding="utf-8"))["files"]) == set(new)
