@@ -166,8 +166,8 @@ def screw_origin(
     out_roll = math.atan2(
         math.sin(out_yaw) * r02 - math.cos(out_yaw) * r12, math.cos(out_yaw) * r11 - math.sin(out_yaw) * r01
     )
-    xyz = f"{a + x} {ca * y - sa * z} {sa * y + ca * z}"
-    return xyz, f"{out_roll} {out_pitch} {out_yaw}"
+    xyz = f"{a + x + 0.0} {ca * y - sa * z + 0.0} {sa * y + ca * z + 0.0}"  # (+ 0.0: no -0.0, as the macro)
+    return xyz, f"{out_roll + 0.0} {out_pitch + 0.0} {out_yaw + 0.0}"
 
 
 def _dh_body(robot: Robot, link: etree._Element, row: DHRow, end: tuple[float, float, float]) -> None:
@@ -175,8 +175,8 @@ def _dh_body(robot: Robot, link: etree._Element, row: DHRow, end: tuple[float, f
         return
     end_x, end_y, end_z = end
     length = math.sqrt(end_x * end_x + end_y * end_y + end_z * end_z)
-    xyz = f"{end_x / 2.0!r} {end_y / 2.0!r} {end_z / 2.0!r}"  # as the macro's '%r %r %r' writes it
-    rpy = f"0.0 {math.atan2(math.hypot(end_x, end_y), end_z)!r} {math.atan2(end_y, end_x)!r}"
+    xyz = f"{end_x / 2.0 + 0.0!r} {end_y / 2.0 + 0.0!r} {end_z / 2.0 + 0.0!r}"  # as the macro's '%r %r %r' writes it
+    rpy = f"0.0 {math.atan2(math.hypot(end_x, end_y), end_z) + 0.0!r} {math.atan2(end_y, end_x) + 0.0!r}"
     segment = length >= 1e-6
     shape: Shape = Cylinder(row.radius, length) if segment else Sphere(row.radius)
     for tag in ("visual", "collision"):

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -30,10 +31,15 @@ def via_library(robot):
     return expand_package(robot, render_package(robot, macros="copy")).content
 
 
+NEGATIVE_ZERO = re.compile(r"(?<![\w.])-0\.0(?![\d])")  # -0.0 as a whole number (not -0.05, not 1e-0.0)
+
+
 def test_every_example_is_emitted_bit_for_bit_as_the_library_macros_expand_it():
     for spec in EXAMPLES:
         robot = build_robot(spec)
-        assert urdf_differences(via_library(robot), emit_urdf(robot), rel=0.0) == [], spec.name
+        library, emitted = via_library(robot), emit_urdf(robot)
+        assert urdf_differences(library, emitted, rel=0.0) == [], spec.name
+        assert not NEGATIVE_ZERO.search(library) and not NEGATIVE_ZERO.search(emitted), spec.name  # a -0.0 reads oddly
 
 
 @pytest.mark.parametrize("mode", ["inline", "copy"])
@@ -103,6 +109,7 @@ def test_random_specs_expand_to_the_emitted_urdf_in_both_macro_modes(tmp_path_fa
     robot = build_robot(path)
     emitted = emit_urdf(robot)
     assert urdf_differences(via_library(robot), emitted) == []
+    assert not NEGATIVE_ZERO.search(emitted)
     inline = expand_package(robot, render_package(robot, macros="inline")).content  # ${ in mesh names stays text
     assert urdf_differences(inline, emitted) == []
 
