@@ -19,8 +19,11 @@ Nothing is ever written outside the output folder.
 from __future__ import annotations
 
 import contextlib
+import errno
 import hashlib
 import json
+import os
+import stat
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 from typing import Literal
@@ -107,41 +110,87 @@ def plan(files: list[RenderedFile], root: Path, *, force: bool = False) -> list[
 def _stale(manifest: dict[str, str], files: list[RenderedFile], root: Path) -> list[FileAction]:
     """What happens to the files we generated last time that this run does not generate.
 
-    Only plain files reached without a symbolic link, named in normal form inside the folder and not the same file as
-    one this run writes, are candidates: a manifest edited by hand or a linked folder never makes us delete anything
-    else.
+    Only plain files reached without a symbolic link, named in normal form inside the folder, are candidates: a
+    manifest edited by hand or a linked folder never makes us delete anything else. A name that is not a path inside
+    the folder, or whose file is gone, is dropped silently; anything else we will not remove is reported as kept.
     """
-    generated = {f.path for f in files}
-    ours = {(root / f.path).resolve() for f in files}
+    generated = {f.path for f in files} | {MANIFEST}
     actions = []
     for path in sorted(manifest.keys() - generated):
-        target = _stale_target(root, path, ours)
-        if target is None:
+        if not _normal(path):
             continue
         try:
-            current = target.read_text(encoding="utf-8")
-        except (OSError, UnicodeDecodeError):
+            data, _ = _read_stale(root, path)
+        except FileNotFoundError:
             continue
-        if _digest(current) == manifest[path]:
+        except (OSError, ValueError) as exc:
+            actions.append(FileAction(path, "keep", f"no longer generated, but not removable: {_why(exc)}"))
+            continue
+        if hashlib.sha256(data).hexdigest() == manifest[path]:
             actions.append(FileAction(path, "remove", "no longer generated"))
         else:
             actions.append(FileAction(path, "keep", "no longer generated, but edited since: kept"))
     return actions
 
 
-def _stale_target(root: Path, relative: str, ours: set[Path]) -> Path | None:
-    """``root / relative`` when it may be removed as a stale generated file, else None."""
+def _normal(relative: str) -> bool:
+    """A relative POSIX path in normal form, inside the folder (no ``..``, ``.``, empty parts or NUL)."""
     pure = PurePosixPath(relative)
-    if pure.is_absolute() or pure.as_posix() != relative or any(part in ("..", ".") for part in pure.parts):
-        return None
+    return (
+        bool(relative)
+        and "\0" not in relative
+        and not pure.is_absolute()
+        and pure.as_posix() == relative
+        and not any(part in ("..", ".") for part in pure.parts)
+    )
+
+
+class _Linked(OSError):
+    """The path goes through a symbolic link, or does not end at a plain file."""
+
+
+def _why(exc: BaseException) -> str:
+    return exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+
+
+def _open_folders(root: Path, parts: tuple[str, ...]) -> list[int]:
+    """Descriptors of root and of each folder on the way to ``parts[-1]``, never following a symbolic link below
+    root. The caller closes them."""
+    fds = [os.open(root, os.O_RDONLY | os.O_DIRECTORY)]
     try:
-        target = root.joinpath(*pure.parts)
-        steps = [root.joinpath(*pure.parts[:n]) for n in range(1, len(pure.parts) + 1)]
-        if any(step.is_symlink() for step in steps) or not target.is_file() or target.resolve() in ours:
-            return None
-    except (OSError, ValueError):  # (a NUL in a hand-edited manifest, an unreadable folder)
-        return None
-    return target
+        for part in parts[:-1]:
+            try:
+                fds.append(os.open(part, os.O_RDONLY | os.O_DIRECTORY | os.O_NOFOLLOW, dir_fd=fds[-1]))
+            except OSError as exc:
+                if exc.errno in (errno.ELOOP, errno.ENOTDIR):
+                    raise _Linked(exc.errno, "it is reached through a symbolic link") from exc
+                raise
+    except BaseException:
+        for fd in fds:
+            os.close(fd)
+        raise
+    return fds
+
+
+def _read_stale(root: Path, relative: str) -> tuple[bytes, tuple[int, int]]:
+    """The bytes and (device, inode) of a stale file, read without following any symbolic link below root."""
+    parts = PurePosixPath(relative).parts
+    fds = _open_folders(root, parts)
+    try:
+        try:
+            fd = os.open(parts[-1], os.O_RDONLY | os.O_NOFOLLOW, dir_fd=fds[-1])
+        except OSError as exc:
+            if exc.errno == errno.ELOOP:
+                raise _Linked(exc.errno, "it is reached through a symbolic link") from exc
+            raise
+        with os.fdopen(fd, "rb") as handle:
+            status = os.fstat(handle.fileno())
+            if not stat.S_ISREG(status.st_mode):
+                raise _Linked(errno.EISDIR, "it is not a plain file")
+            return handle.read(), (status.st_dev, status.st_ino)
+    finally:
+        for fd in fds:
+            os.close(fd)
 
 
 def write(files: list[RenderedFile], root: Path, *, force: bool = False, dry_run: bool = False) -> list[FileAction]:
@@ -170,7 +219,7 @@ def write(files: list[RenderedFile], root: Path, *, force: bool = False, dry_run
         manifest = {"generator": f"xacrokit {__version__}", "files": {f.path: _digest(f.content) for f in files}}
         text = json.dumps(manifest, indent=2, sort_keys=True) + "\n"
         manifest_path = root / MANIFEST
-        if not manifest_path.exists() or manifest_path.read_text(encoding="utf-8") != text:
+        if not manifest_path.is_file() or manifest_path.read_bytes() != text.encode("utf-8"):
             write_text_atomic(manifest_path, text)
     except OSError as exc:
         where = exc.filename or root
@@ -181,32 +230,38 @@ def write(files: list[RenderedFile], root: Path, *, force: bool = False, dry_run
     written = set()  # what this run wrote, by identity: on a case-blind disk a stale name may be one of these
     for file in files:
         with contextlib.suppress(OSError):
-            written.add(_identity(root / file.path))
+            status = (root / file.path).stat()
+            written.add((status.st_dev, status.st_ino))
     return [_remove(root, a, previous.get(a.path, ""), written) if a.action == "remove" else a for a in actions]
-
-
-def _identity(path: Path) -> tuple[int, int]:
-    status = path.stat()
-    return status.st_dev, status.st_ino
 
 
 def _remove(root: Path, action: FileAction, digest: str, written: set[tuple[int, int]]) -> FileAction:
     """Delete a stale file if it is still as generated and is not a file this run wrote, then each folder above it
-    that this leaves empty."""
-    target = root.joinpath(*PurePosixPath(action.path).parts)
+    that this leaves empty. Every step goes through folder descriptors opened without following symbolic links, so
+    a folder swapped for a link while we ran cannot lead us outside the package."""
+    parts = PurePosixPath(action.path).parts
     try:
-        if _identity(target) in written:
+        data, identity = _read_stale(root, action.path)
+        if identity in written:
             return FileAction(
                 action.path, "keep", "no longer generated under this name, but the same file as one that is"
             )
-        if _digest(target.read_text(encoding="utf-8")) != digest:
+        if hashlib.sha256(data).hexdigest() != digest:
             return FileAction(action.path, "keep", "no longer generated, but changed while we ran: kept")
-        target.unlink()
-        folder = target.parent
-        while folder != root and not any(folder.iterdir()):
-            folder.rmdir()
-            folder = folder.parent
-    except (OSError, UnicodeDecodeError) as exc:
-        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
-        return FileAction(action.path, "keep", f"no longer generated; could not remove it: {reason}")
+        fds = _open_folders(root, parts)
+    except (OSError, ValueError) as exc:
+        return FileAction(action.path, "keep", f"no longer generated; could not remove it: {_why(exc)}")
+    try:
+        try:
+            os.unlink(parts[-1], dir_fd=fds[-1])
+        except OSError as exc:
+            return FileAction(action.path, "keep", f"no longer generated; could not remove it: {_why(exc)}")
+        for depth in range(len(fds) - 1, 0, -1):  # the folders it leaves empty, innermost first
+            try:
+                os.rmdir(parts[depth - 1], dir_fd=fds[depth - 1])
+            except OSError:  # not empty (or not ours to remove): the folders above are not empty either
+                break
+    finally:
+        for fd in fds:
+            os.close(fd)
     return action

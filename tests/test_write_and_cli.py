@@ -168,14 +168,21 @@ def test_stale_files_behind_links_or_written_this_run_are_never_removed(tmp_path
     add_to_manifest(out, "linked/old.xacro", b"x")
     (out / "urdf" / "alias.xacro").symlink_to(elsewhere / "old.xacro")  # a file link
     add_to_manifest(out, "urdf/alias.xacro", b"x")
+    (out / "real").mkdir()  # a link to a folder inside the package: the user's file behind it is not ours either
+    (out / "real" / "f.txt").write_text("x", encoding="utf-8")
+    (out / "inner").symlink_to(out / "real")
+    add_to_manifest(out, "inner/f.txt", b"x")
     entry = out / "urdf" / "two_dof_arm.urdf.xacro"
     os.link(entry, out / "urdf" / "OLD.urdf.xacro")  # another name for a file this run writes
     add_to_manifest(out, "urdf/OLD.urdf.xacro", entry.read_bytes())
     result = xacrokit.generate(SPEC, out)
     assert (elsewhere / "old.xacro").exists() and (out / "urdf" / "alias.xacro").is_symlink()
-    assert entry.exists()
+    assert (out / "real" / "f.txt").exists() and entry.exists()
     stale = {a.path: a for a in result.actions if a.action in ("remove", "keep")}
-    assert stale["urdf/OLD.urdf.xacro"].action == "keep" and set(stale) == {"urdf/OLD.urdf.xacro"}
+    assert {p: a.action for p, a in stale.items()} == dict.fromkeys(
+        ["inner/f.txt", "linked/old.xacro", "urdf/OLD.urdf.xacro", "urdf/alias.xacro"], "keep"
+    )
+    assert all("symbolic link" in stale[p].reason for p in ("inner/f.txt", "linked/old.xacro", "urdf/alias.xacro"))
 
 
 def test_a_removal_the_file_system_refuses_is_reported_as_kept(tmp_path, monkeypatch):
@@ -183,10 +190,10 @@ def test_a_removal_the_file_system_refuses_is_reported_as_kept(tmp_path, monkeyp
     out = tmp_path / "pkg"
     xacrokit.generate(arm, out, macros="copy")
 
-    def refuse(self, missing_ok=False):
-        raise PermissionError(13, "Permission denied", str(self))
+    def refuse(path, *, dir_fd=None):
+        raise PermissionError(13, "Permission denied", str(path))
 
-    monkeypatch.setattr(type(out), "unlink", refuse)
+    monkeypatch.setattr(os, "unlink", refuse)
     result = xacrokit.generate(arm, out)
     kept = [a for a in result.actions if a.action == "keep"]
     assert kept and all("could not remove it: Permission denied" in a.reason for a in kept)
@@ -413,3 +420,33 @@ def test_regenerating_touches_only_what_we_generated_and_nobody_edited(tmp_path_
         left = [q for q in on_disk if q.startswith(folder + "/")]
         assert (out / folder).exists() == bool(left), folder
     assert set(json.loads((out / MANIFEST).read_text(encoding="utf-8"))["files"]) == set(new)
+
+
+def test_a_folder_swapped_for_a_link_while_we_write_does_not_lead_removal_outside(tmp_path, monkeypatch):
+    import xacrokit.write as write_module
+
+    out, outside = tmp_path / "pkg", tmp_path / "outside"
+    write([RenderedFile("x/f.txt", "1"), RenderedFile("a.txt", "1")], out)
+    outside.mkdir()
+    (outside / "f.txt").write_text("1", encoding="utf-8")  # the same bytes as the stale file
+    original = write_module.write_text_atomic
+
+    def write_then_swap(path, text):
+        original(path, text)
+        if (out / "x").is_dir() and not (out / "x").is_symlink():
+            (out / "x").rename(tmp_path / "moved")
+            (out / "x").symlink_to(outside)
+
+    monkeypatch.setattr(write_module, "write_text_atomic", write_then_swap)
+    actions = {a.path: a for a in write([RenderedFile("a.txt", "2")], out)}
+    assert (outside / "f.txt").read_text(encoding="utf-8") == "1"
+    assert actions["x/f.txt"].action == "keep" and "symbolic link" in actions["x/f.txt"].reason
+
+
+def test_a_manifest_that_is_not_utf8_is_rewritten_without_a_traceback(tmp_path):
+    out = tmp_path / "pkg"
+    assert gen_robot(SPEC, "-o", out).returncode == 0
+    (out / MANIFEST).write_bytes(b"\xff\xfe not json")
+    again = gen_robot(SPEC, "-o", out)
+    assert again.returncode == 0 and "Traceback" not in again.stderr, again.stderr
+    assert json.loads((out / MANIFEST).read_text(encoding="utf-8"))["files"]
