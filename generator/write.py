@@ -10,10 +10,11 @@ Per file (copier's way):
 * ``overwrite``  a conflict replaced because ``force`` was given;
 * ``remove``     we generated it last time, this run does not, and it is unchanged: deleted (with any folder
                  that leaves empty), e.g. the copied macros after switching to ``--macros inline``;
-* ``keep``       the same, but someone edited it: left alone and dropped from the manifest.
+* ``keep``       the same, but someone edited it, or it is reached through a symbolic link, or the file system
+                 refuses: left alone and dropped from the manifest.
 
 The manifest ``.xacrokit-manifest.json`` in the package root records the SHA-256 of each file as generated.
-Nothing is ever written outside the output folder.
+Nothing is ever written or removed outside the output folder.
 """
 
 from __future__ import annotations
