@@ -262,10 +262,10 @@ class _Quantities:
         if isinstance(container, dict) and key not in container:
             return
         value = container[key]
-        if type(value) is float and math.isfinite(value):
+        if type(value) is float and math.isfinite(value) and (value != 0.0 or math.copysign(1.0, value) > 0):
             return  # already SI: what parse_quantity would return
         try:
-            converted = parse_quantity(value, kind)
+            converted = parse_quantity(value, kind) + 0.0  # (+ 0.0: a -0.0 in the spec is written 0.0)
         except UnitError as exc:
             self.errors.append(self.raw.error((*path, key), str(exc)))
             return

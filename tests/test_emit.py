@@ -115,6 +115,29 @@ def test_random_specs_expand_to_the_emitted_urdf_in_both_macro_modes(tmp_path_fa
     assert urdf_differences(inline, emitted) == []
 
 
+def test_a_negative_zero_in_the_spec_is_written_0_0_by_both_paths(tmp_path):
+    # found by hypothesis: a DH row limit of -0.0 came out as "-0.0" from the library and "0.0" from the emitter
+    spec = {
+        "robot": "bot",
+        "links": {"base": {"shape": {"box": {"size": [1.0, 1.0, 1.0]}}, "mass": 1.0}},
+        "arms": {
+            "arm": {
+                "parent": "base",
+                "joints": [
+                    {"name": "j0", "link": "l0", "a": 0.0, "d": -0.0, "alpha": "-0 deg", "mass": 1.0,
+                     "limit": {"lower": -0.0, "upper": 0.0, "effort": 1.0, "velocity": 1.0}}
+                ],
+            }
+        },
+    }  # fmt: skip
+    path = tmp_path / "spec.yaml"
+    path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
+    robot = build_robot(path)
+    for urdf in (via_library(robot), emit_urdf(robot)):
+        assert not NEGATIVE_ZERO.search(urdf)
+        assert 'lower="0.0"' in urdf
+
+
 def test_cli_inline_mode_with_a_prefix(tmp_path):
     spec = REPO / "examples" / "diff_drive.yaml"
     assert gen_robot(spec, "-o", tmp_path / "pkg", "--macros", "inline").returncode == 0
