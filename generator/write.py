@@ -59,8 +59,9 @@ class ConflictError(XacrokitError):
         super().__init__("\n".join(lines))
 
 
-def _digest(text: str) -> str:
-    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+def _digest(content: str | bytes) -> str:
+    """SHA-256 of a file's content (text as UTF-8), as the manifest records it."""
+    return hashlib.sha256(content.encode("utf-8") if isinstance(content, str) else content).hexdigest()
 
 
 def _read_manifest(root: Path) -> dict[str, str]:
@@ -79,11 +80,13 @@ def _inside(root: Path, relative: str) -> Path:
     return target
 
 
-def plan(files: list[RenderedFile], root: Path, *, force: bool = False) -> list[FileAction]:
-    """Decide the action for every file, touching nothing."""
+def plan(
+    files: list[RenderedFile], root: Path, *, force: bool = False, manifest: dict[str, str] | None = None
+) -> list[FileAction]:
+    """Decide the action for every file, touching nothing. ``manifest``: the folder's manifest, if already read."""
     if root.exists() and not root.is_dir():
         raise XacrokitError(f"the output {root} exists and is not a folder")
-    manifest = _read_manifest(root)
+    manifest = _read_manifest(root) if manifest is None else manifest
     actions = []
     for file in files:
         target = _inside(root, file.path)
@@ -127,7 +130,7 @@ def _stale(manifest: dict[str, str], files: list[RenderedFile], root: Path) -> l
         except (OSError, ValueError) as exc:
             actions.append(FileAction(path, "keep", f"no longer generated, but not removable: {_why(exc)}"))
             continue
-        if hashlib.sha256(data).hexdigest() == manifest[path]:
+        if _digest(data) == manifest[path]:
             actions.append(FileAction(path, "remove", "no longer generated"))
         else:
             actions.append(FileAction(path, "keep", "no longer generated, but edited since: kept"))
@@ -204,7 +207,7 @@ def write(files: list[RenderedFile], root: Path, *, force: bool = False, dry_run
         XacrokitError: the file system refused a write (the message names the file and what was written before it).
     """
     previous = _read_manifest(root)
-    actions = plan(files, root, force=force)
+    actions = plan(files, root, force=force, manifest=previous)
     conflicts = [a for a in actions if a.action == "conflict"]
     if conflicts:
         raise ConflictError(root, conflicts)
@@ -247,7 +250,7 @@ def _remove(root: Path, action: FileAction, digest: str, written: set[tuple[int,
             return FileAction(
                 action.path, "keep", "no longer generated under this name, but the same file as one that is"
             )
-        if hashlib.sha256(data).hexdigest() != digest:
+        if _digest(data) != digest:
             return FileAction(action.path, "keep", "no longer generated, but changed while we ran: kept")
         fds = _open_folders(root, parts)
     except (OSError, ValueError) as exc:
