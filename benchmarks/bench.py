@@ -8,9 +8,10 @@ Sections:
           render, write, emit, xacro expansion of the generated package, check without consumers), full gen-robot
           (all of them but xacro, the check included) and lxml parse+serialize of its URDF; then the ratios
           full / xacro expansion, full / lxml, and t(3,000)/t(1,000) for every stage. Medians of 9 runs (xacro
-          once from 1,000 links); each size in a fresh process; 1,000 and 3,000 links in 3 rounds, back to back
+          once from 1,000 links); each size in a fresh process; 1,000 and 3,000 links in 5 rounds, back to back
           (each round gives a ratio; the median and range are printed). The package is the default one
-          (--macros inline); at 1,000 links the --macros copy package is expanded too, for comparison.
+          (--macros inline); at 1,000 links the --macros copy package is expanded too, for comparison. For
+          reference, the ratio of a read-only walk over the loaded spec (no stage does less to the data).
   fleet   the same for gen-robot fleet: 1 / 10 / 100 / 300 copies of a 10-link chain (10 to 3,000 links), the
           stages being scene (load, validate, resolve the scene and its robot), render, write, emit, xacro, check.
   memory  peak resident memory of full gen-robot and gen-robot fleet at each size (each in a fresh process).
@@ -155,6 +156,15 @@ def full_job(spec: Path, out: Path) -> None:
     check(out / "urdf" / f"{result.robot.name}.urdf", consumers=[])
 
 
+def touch(node: object) -> int:
+    """Read every mapping and list of loaded spec data, building nothing: what merely touching the data costs."""
+    if type(node) is dict:
+        return sum(touch(value) for value in node.values()) + 1
+    if type(node) is list:
+        return sum(touch(value) for value in node) + 1
+    return 0
+
+
 def measure_size(links: int, folder: Path) -> dict[str, float]:
     """Time every stage for a chain robot of ``links`` links."""
     from xacrokit.emit import emit_urdf
@@ -175,6 +185,7 @@ def measure_size(links: int, folder: Path) -> dict[str, float]:
     row = {
         "load": median_time(lambda: load_file(spec), runs),
         "validate": median_time(lambda: validate(raw), runs),
+        "touch": median_time(lambda: touch(raw.data), runs),  # not a stage: the floor for a walk over the spec
         "resolve": median_time(lambda: resolve(valid), runs),
         "render": median_time(lambda: render_package(robot), runs),
         "emit": median_time(lambda: emit_urdf(robot), runs),
@@ -280,7 +291,7 @@ def measured_apart(kind: str, links: int, folder: Path) -> dict[str, float]:
     return json.loads(out.stdout.splitlines()[-1])
 
 
-ROUNDS = 3  # the two largest sizes are measured this many times, alternately (see print_table)
+ROUNDS = 5  # the two largest sizes are measured this many times, alternately (see print_table)
 
 
 def print_table(title: str, names: tuple[str, ...], kind: str, folder: Path) -> None:
@@ -315,6 +326,12 @@ def print_table(title: str, names: tuple[str, ...], kind: str, folder: Path) -> 
     for n in names:
         each = sorted(r[3000][n] / r[1000][n] for r in rounds)
         print(f"    {n:<9} {statistics.median(each):.2f}  ({each[0]:.2f}-{each[-1]:.2f})")
+    if "touch" in rounds[0][1000]:
+        each = sorted(r[3000]["touch"] / r[1000]["touch"] for r in rounds)
+        print(
+            f"    (not a stage: a read-only walk over the loaded spec, building nothing: {statistics.median(each):.2f} "
+            f"({each[0]:.2f}-{each[-1]:.2f}); what this machine's caches make of 3x the data)"
+        )
 
 
 def bench_fleet(folder: Path) -> None:

@@ -206,8 +206,10 @@ def test_consumers_leave_nothing_in_the_working_folder(tmp_path):
 
 def test_benchmark_stage_measurement_runs(tmp_path, monkeypatch):
     monkeypatch.syspath_prepend(str(REPO / "benchmarks"))
-    from bench import measure_size
+    from bench import measure_size, touch
 
     row = measure_size(10, tmp_path)
-    assert set(row) == {"load", "validate", "resolve", "render", "write", "emit", "xacro", "check", "full", "lxml"}
+    stages = {"load", "validate", "resolve", "render", "write", "emit", "xacro", "check", "full", "lxml"}
+    assert set(row) == stages | {"touch"}  # (touch: the reference walk, not a stage)
     assert all(value > 0 for value in row.values())
+    assert touch({"a": [1, {"b": 2.0}], "c": {}}) == 4  # it reaches every mapping and list
