@@ -8,22 +8,36 @@ Grammar (no ``eval``; nothing but these tokens is accepted)::
     factor   := ('+' | '-') factor | NUMBER | 'pi' | '(' expr ')'
 
 The unit must belong to the field's kind; a bare number is already in SI (m, rad, kg).
+
+Numbers and the metric and imperial factors are exact decimals, so the arithmetic is exact until ``pi`` or an angle
+unit enters: ``"9 mm"`` is the double nearest 0.009 (``9 * 1e-3`` in floats would be 0.009000000000000001), and
+``"1.5 in"`` the double nearest 0.0381.
 """
 
 from __future__ import annotations
 
 import math
 import re
+from fractions import Fraction
 from typing import Literal
 
 Kind = Literal["length", "angle", "mass", "number"]
+Value = Fraction | float  # exact while no pi is involved
 
-UNITS: dict[str, dict[str, float]] = {
-    "length": {"m": 1.0, "mm": 1e-3, "cm": 1e-2, "km": 1e3, "in": 0.0254, "ft": 0.3048},
-    "angle": {"rad": 1.0, "deg": math.pi / 180.0, "degree": math.pi / 180.0, "degrees": math.pi / 180.0},
-    "mass": {"kg": 1.0, "g": 1e-3},
+UNITS: dict[str, dict[str, Value]] = {
+    "length": {
+        "m": Fraction(1),
+        "mm": Fraction(1, 1000),
+        "cm": Fraction(1, 100),
+        "km": Fraction(1000),
+        "in": Fraction("0.0254"),
+        "ft": Fraction("0.3048"),
+    },
+    "angle": {"rad": Fraction(1), "deg": math.pi / 180.0, "degree": math.pi / 180.0, "degrees": math.pi / 180.0},
+    "mass": {"kg": Fraction(1), "g": Fraction(1, 1000)},
     "number": {},
 }
+_EXACT_EXPONENT = 400  # beyond 1e±400 a number is no double anyway: read it as a float (inf or 0), not as a huge int
 
 _TOKEN = re.compile(r"\s*(?:(?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)|(?P<word>[A-Za-z_]+)|(?P<op>[-+*/()]))")
 
@@ -60,29 +74,29 @@ class _Parser:
         self.at += 1
         return token
 
-    def expr(self) -> float:
+    def expr(self) -> Value:
         value = self.term()
         while (token := self.peek()) and token[1] in "+-" and token[0] == "op":
             self.take()
             value = value + self.term() if token[1] == "+" else value - self.term()
         return value
 
-    def term(self) -> float:
+    def term(self) -> Value:
         value = self.factor()
         while (token := self.peek()) and token[0] == "op" and token[1] in "*/":
             self.take()
             right = self.factor()
             if token[1] == "/" and right == 0:
                 raise UnitError(f"division by zero in {self.source!r}")
-            value = value * right if token[1] == "*" else value / right
+            value = _bounded(value * right if token[1] == "*" else value / right)
         return value
 
-    def factor(self) -> float:
+    def factor(self) -> Value:
         kind, text = self.take()
         if kind == "op" and text in "+-":
             return self.factor() if text == "+" else -self.factor()
         if kind == "number":
-            return float(text)
+            return _number(text)
         if kind == "word" and text == "pi":
             return math.pi
         if kind == "op" and text == "(":
@@ -91,6 +105,24 @@ class _Parser:
                 raise UnitError(f"missing ')' in {self.source!r}")
             return value
         raise UnitError(f"unexpected {text!r} in {self.source!r}")
+
+
+def _number(text: str) -> Value:
+    """A NUMBER token, exactly (a decimal is a fraction), unless its exponent puts it beyond any double."""
+    mantissa, _, exponent = text.lower().partition("e")
+    if exponent and abs(int(exponent)) > _EXACT_EXPONENT:
+        return float(text)
+    return Fraction(text)
+
+
+def _bounded(value: Value) -> Value:
+    """``value``, as a float once an exact fraction outgrows any double (so that ``1e400*1e400*...`` stays cheap)."""
+    if isinstance(value, Fraction) and max(value.numerator.bit_length(), value.denominator.bit_length()) > 4096:
+        try:
+            return float(value)
+        except OverflowError:
+            return math.copysign(math.inf, value)
+    return value
 
 
 def _unit_kind(word: str) -> str | None:
@@ -114,7 +146,7 @@ def parse_quantity(value: object, kind: Kind) -> float:
         tokens = _tokens(value)
         if not tokens:
             raise UnitError(f"expected a quantity such as {_example(kind)!r}, got an empty string")
-        scale = 1.0
+        scale: Value = Fraction(1)
         if len(tokens) > 1 and tokens[-1][0] == "word" and tokens[-1][1] != "pi":
             unit = tokens.pop()[1]
             unit_kind = _unit_kind(unit)
@@ -124,10 +156,13 @@ def parse_quantity(value: object, kind: Kind) -> float:
                 raise UnitError(f"{value!r} is {_article(unit_kind)} {unit_kind}, expected {_article(kind)} {kind}")
             scale = UNITS[kind][unit]
         parser = _Parser(tokens, value)
-        number = parser.expr()
-        if parser.peek() is not None:
-            raise UnitError(f"unexpected {parser.peek()[1]!r} in {value!r}")  # type: ignore[index]
-        number *= scale
+        try:
+            exact = parser.expr()
+            if parser.peek() is not None:
+                raise UnitError(f"unexpected {parser.peek()[1]!r} in {value!r}")  # type: ignore[index]
+            number = float(exact * scale)
+        except OverflowError:  # (a fraction beyond any double met a float, or became one)
+            raise UnitError(f"{value!r} is not a finite number") from None
     else:
         number = float(value)
     if not math.isfinite(number):

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import re
+from fractions import Fraction
 
 import pytest
 import yaml
@@ -70,7 +71,51 @@ def test_bad_quantities_say_what_is_wrong(text, kind, words):
 def test_numbers_pass_through_exactly_and_as_text(value):
     assert parse_quantity(value, "length") == value
     assert parse_quantity(repr(value), "length") == value
-    assert parse_quantity(f"{value!r} mm", "length") == pytest.approx(value / 1000, rel=1e-15, abs=1e-300)
+    assert parse_quantity(f"{value!r} mm", "length") == float(Fraction(repr(value)) / 1000)
+
+
+@given(
+    st.decimals(min_value=-(10**6), max_value=10**6, places=4, allow_nan=False, allow_infinity=False),
+    st.sampled_from(
+        [
+            ("mm", "length"),
+            ("cm", "length"),
+            ("km", "length"),
+            ("in", "length"),
+            ("ft", "length"),
+            ("g", "mass"),
+            ("m", "length"),
+            ("kg", "mass"),
+        ]
+    ),
+)
+def test_metric_and_imperial_units_give_the_nearest_double(number, unit):
+    """'9 mm' is 0.009, not 9 * 1e-3 = 0.009000000000000001: the number and the factor are exact decimals."""
+    name, kind = unit
+    factor = {"mm": "0.001", "cm": "0.01", "km": "1000", "in": "0.0254", "ft": "0.3048", "g": "0.001"}.get(name, "1")
+    assert parse_quantity(f"{number} {name}", kind) == float(Fraction(number) * Fraction(factor))
+
+
+@pytest.mark.parametrize(
+    ("text", "kind", "value"),
+    [
+        ("9 mm", "length", 0.009),
+        ("350 g", "mass", 0.35),
+        ("1.5 in", "length", 0.0381),
+        ("3 ft", "length", 0.9144),
+        ("0.1 + 0.2", "length", 0.3),
+        ("1/3", "length", 1 / 3),
+        ("1e-400 * 1e400", "length", 1.0),
+    ],
+)
+def test_exact_arithmetic_cases(text, kind, value):
+    assert parse_quantity(text, kind) == value  # exactly, not approximately
+
+
+def test_huge_exact_products_stay_cheap_and_are_not_finite():
+    with pytest.raises(UnitError, match="not a finite number"):
+        parse_quantity("*".join(["1e400"] * 5000), "length")
+    assert parse_quantity("*".join(["1e-400"] * 5000), "length") == 0.0
 
 
 def test_load_keeps_positions_and_reads_exponents_as_numbers():
