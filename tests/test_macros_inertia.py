@@ -7,12 +7,13 @@ import math
 import numpy as np
 import pinocchio as pin
 import pytest
-from hypothesis import given
+from hypothesis import example, given
 from hypothesis import strategies as st
 from lxml import etree
 
 import xacrokit
 from conftest import assert_physical_tensor, link_inertial, rpy_matrix, xacro_doc
+from xacrokit.validate import tensor_problem
 
 positive = st.floats(min_value=1e-3, max_value=1e3, allow_nan=False, allow_infinity=False)
 length = st.floats(min_value=1e-3, max_value=10.0, allow_nan=False, allow_infinity=False)
@@ -185,3 +186,121 @@ def test_good_arguments_expand(expand, macro):
     call = f"<xacro:{macro} " + " ".join(f'{k}="{v}"' for k, v in GOOD[macro].items()) + "/>"
     root = expand(xacro_doc(f'<link name="body">{call}</link>'))
     assert link_inertial(root, "body")[0] == 1.0
+
+
+# --- The explicit-tensor checks at the edges: the macro's tolerance is relative, and agrees with `gen-robot check`.
+# A flat body (principal moments a, b, a + b) sits exactly on the triangle inequality's boundary, so a rotated copy
+# written out to the last digit misses it by rounding in either direction; the macro must accept it, as
+# tensor_problem (rule I003, eigenvalues, 1e-9 relative) does. Bodies past the boundary by far more than rounding
+# must be rejected, also long thin ones whose second-moment matrix has two near-zero eigenvalues.
+
+ratio = st.floats(min_value=-6.0, max_value=0.0).map(lambda e: 10.0**e)  # log-uniform: long thin bodies too
+
+
+def _rotated(moments, angles) -> np.ndarray:
+    rot = rpy_matrix(*angles)
+    tensor = rot @ np.diag(moments) @ rot.T
+    return (tensor + tensor.T) / 2  # exactly symmetric, as a URDF tensor is
+
+
+def _macro_verdict(expand, tensor: np.ndarray) -> str | None:
+    """None when <xacro:inertial> accepts ``tensor`` (written with every digit), else the macro's message."""
+    t = [[float(v) for v in row] for row in tensor.tolist()]
+    call = (
+        f'<xacro:inertial mass="1.0" ixx="{t[0][0]!r}" ixy="{t[0][1]!r}" ixz="{t[0][2]!r}" '
+        f'iyy="{t[1][1]!r}" iyz="{t[1][2]!r}" izz="{t[2][2]!r}"/>'
+    )
+    try:
+        root = expand(xacro_doc(f'<link name="body">{call}</link>'))
+    except xacrokit.ExpandError as error:
+        return str(error)
+    np.testing.assert_array_equal(link_inertial(root, "body")[1], tensor)
+    return None
+
+
+@pytest.mark.parametrize("angles", [(0.3, 0.7, -0.4), (1.1, -0.2, 2.5), (-2.9, 1.4, 0.05), (0.0, math.pi / 2, 0.0)])
+def test_explicit_inertial_accepts_a_rotated_flat_plate(expand, angles):
+    """The reviewer's case: diag(0.02, 0.03, 0.05), 0.02 + 0.03 = 0.05, turned by rpy and written with repr."""
+    tensor = _rotated([0.02, 0.03, 0.05], angles)
+    assert tensor_problem(tensor) is None
+    assert _macro_verdict(expand, tensor) is None
+
+
+@given(
+    a=positive,
+    b_over_a=ratio,
+    shape=st.sampled_from(["flat", "ordinary"]),
+    where=st.floats(0.01, 0.99),
+    angles=st.tuples(angle, angle, angle),
+)
+@example(a=0.03, b_over_a=2 / 3, shape="flat", where=0.5, angles=(0.3, 0.7, -0.4))
+def test_explicit_inertial_accepts_rotated_flat_and_ordinary_tensors(expand, a, b_over_a, shape, where, angles):
+    b = a * b_over_a
+    c = a + b if shape == "flat" else (a - b) + where * 2 * b  # ordinary: strictly between a - b and a + b
+    tensor = _rotated([a, b, c], angles)
+    assert tensor_problem(tensor) is None
+    assert _macro_verdict(expand, tensor) is None
+
+
+@given(a=positive, b_over_a=ratio, angles=st.tuples(angle, angle, angle))
+def test_explicit_inertial_rejects_a_rotated_triangle_violation_of_1e_6(expand, a, b_over_a, angles):
+    b = a * b_over_a
+    excess = 1e-6  # (c - (a + b)) / trace: far above rounding, far below any visible error in a diagonal entry
+    c = (a + b) * (1 + excess) / (1 - excess)
+    tensor = _rotated([a, b, c], angles)
+    assert "triangle inequality" in tensor_problem(tensor)
+    message = _macro_verdict(expand, tensor)
+    assert message is not None and "inertial: parameters ixx..izz violate the triangle inequality" in message
+
+
+@given(
+    b=positive,
+    c_over_b=st.floats(0.5, 1.0),
+    negative_over_b=st.sampled_from([0.0, 1e-6, 1e-3, 0.2]),
+    angles=st.tuples(angle, angle, angle),
+)
+def test_explicit_inertial_rejects_rotated_singular_and_indefinite_tensors(
+    expand, b, c_over_b, negative_over_b, angles
+):
+    tensor = _rotated([-negative_over_b * b, b, b * c_over_b], angles)
+    assert "not positive definite" in tensor_problem(tensor)
+    message = _macro_verdict(expand, tensor)
+    assert message is not None
+    if np.diag(tensor).min() > 0:  # otherwise the moment's own check (> 0) speaks first
+        assert "inertial: parameters ixx..izz must form a positive definite tensor" in message
+    else:
+        assert "inertial: parameter" in message and "must be > 0" in message
+
+
+# Tensors 2x and 0.5x the tolerance away from each threshold: the macro must decide exactly as tensor_problem does.
+# Triangle: the largest moment may exceed the sum of the others by 1e-9 * trace. Positive definite: a rod
+# (smallest, 1, 1) needs smallest > 1e-9; its second-moment matrix has two eigenvalues near smallest / 2, and a long
+# strip (1, 1e-7, c) past the triangle boundary has one tiny negative and one tiny positive: cases where comparing the
+# principal minors with tolerances decides wrongly.
+
+
+def _past_flat(b: float, excess: float) -> tuple[float, float, float]:
+    """Moments (1, b, c) with c - (1 + b) = excess * trace."""
+    return (1.0, b, (1.0 + b) * (1 + excess) / (1 - excess))
+
+
+NEAR_THRESHOLD = [
+    pytest.param(_past_flat(0.6, -1e-6), True, id="plate-inside-by-1e-6"),
+    pytest.param(_past_flat(0.6, 0.5e-9), True, id="plate-past-by-0.5e-9"),
+    pytest.param(_past_flat(0.6, 2e-9), False, id="plate-past-by-2e-9"),
+    pytest.param(_past_flat(1e-7, 0.5e-9), True, id="strip-past-by-0.5e-9"),
+    pytest.param(_past_flat(1e-7, 2e-9), False, id="strip-past-by-2e-9"),
+    pytest.param(_past_flat(1e-7, 1e-6), False, id="strip-past-by-1e-6"),
+    pytest.param(_past_flat(1e-3, 1e-6), False, id="narrow-plate-past-by-1e-6"),
+    pytest.param((2e-9, 1.0, 1.0), True, id="rod-2e-9"),
+    pytest.param((0.5e-9, 1.0, 1.0), False, id="rod-0.5e-9"),
+    pytest.param((1e-7, 1.0, 1.0), True, id="rod-1e-7"),
+]
+
+
+@pytest.mark.parametrize(("moments", "accepted"), NEAR_THRESHOLD)
+@given(scale=positive, angles=st.tuples(angle, angle, angle))
+def test_explicit_inertial_agrees_with_check_near_the_thresholds(expand, moments, accepted, scale, angles):
+    tensor = _rotated([scale * m for m in moments], angles)
+    assert (tensor_problem(tensor) is None) == accepted
+    assert (_macro_verdict(expand, tensor) is None) == accepted
