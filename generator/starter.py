@@ -7,7 +7,6 @@ from pathlib import Path
 
 from .errors import XacrokitError
 from .render import _environment
-from .resources import schemas_dir
 
 KINDS = ("arm", "mobile", "humanoid")
 
@@ -18,8 +17,9 @@ def starter_text(name: str, kind: str = "arm") -> str:
         raise XacrokitError(f"robot name {name!r} must be letters, digits and _, not starting with a digit")
     if kind not in KINDS:
         raise XacrokitError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
-    schema = schemas_dir() / "robot.schema.json"  # the installed copy, so editors validate offline
-    return _environment().get_template(f"specs/{kind}.yaml.j2").render(name=name, schema_path=schema.as_posix())
+    # No schema modeline: the only schema file we could name is the installed copy, an absolute path of this machine
+    # that breaks once the spec is shared or the venv goes; the starter says how to get one next to the spec instead.
+    return _environment().get_template(f"specs/{kind}.yaml.j2").render(name=name)
 
 
 def write_starter(name: str, *, kind: str = "arm", output: str | Path | None = None) -> Path:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import ast
 import subprocess
 import sys
 
@@ -81,6 +82,25 @@ def test_bin_sorting_cell_checks_clean_with_every_consumer():
     report = check(SCENES / "bin_sorting_cell.yaml")
     assert not report.findings, [str(f) for f in report.findings]
     assert report.consumers and all(c.status == "accepted" for c in report.consumers)
+
+
+def test_scene_rviz_fixed_frame_is_the_unprefixed_world_link(cell):
+    """A scene's names are fixed when it is generated (its launch file has no prefix argument), so the .rviz file's
+    fixed frame, the scene's world link, is valid as written and rviz2 needs no -f."""
+    files = {f.path: f.content for f in cell.files}
+    launch = files["launch/display.launch.py"]
+    declared = [
+        node.args[0].value
+        for node in ast.walk(ast.parse(launch))
+        if isinstance(node, ast.Call) and getattr(node.func, "id", None) == "DeclareLaunchArgument"
+    ]
+    assert "ros2_control" in declared and "prefix" not in declared
+    root = urdf_root(cell)
+    children = {j.find("child").get("link") for j in root.findall("joint")}
+    (world,) = [e.get("name") for e in root.findall("link") if e.get("name") not in children]
+    assert world == cell.scene.world
+    rviz = yaml.safe_load(files[f"rviz/{cell.scene.name}.rviz"])
+    assert rviz["Visualization Manager"]["Global Options"]["Fixed Frame"] == world
 
 
 def test_per_instance_controller_configs_list_prefixed_joints(cell):
