@@ -19,7 +19,7 @@ import numpy as np
 from lxml import etree
 
 from .consumers import CONSUMERS, ConsumerResult, available, run_consumers
-from .errors import XacrokitError
+from .errors import SpecError, SpecErrors, XacrokitError
 from .gcpause import collector_paused
 from .load import RawSpec
 
@@ -52,7 +52,12 @@ RULES: dict[str, tuple[str, Severity, str]] = {
         "warning",
         "a floating joint hangs from the root link (simulators reject deeper ones)",
     ),
-    "I001": ("mass-positive", "error", "links with geometry or on a moving joint have an inertial with mass > 0"),
+    "I001": (
+        "mass-positive",
+        "error",
+        "links with geometry have an inertial with mass > 0; so does the body a moving joint moves (its child link or "
+        "a link fixed to it)",
+    ),
     "I002": ("inertia-positive-definite", "error", "the inertia tensor is positive definite"),
     "I003": ("inertia-triangle", "error", "principal moments obey the triangle inequality"),
     "I004": ("inertia-plausible", "warning", "inertia fits the collision geometry's size (within 100x)"),
@@ -62,6 +67,13 @@ RULES: dict[str, tuple[str, Severity, str]] = {
     "R003": ("mesh-resolves", "error", "mesh files resolve (package://, file:// or paths) and exist"),
     "P001": ("prefix", "error", "every link, joint, gazebo reference and ros2_control joint carries the prefix"),
     "K001": ("dh-kinematics", "error", "for a spec's DH arms, URDF forward kinematics equal the DH product"),
+    "V001": (
+        "spec-units",
+        "warning",
+        "a spec's plain-number angles stay within a turn (joint limits two), and a mass in a shape gives a density "
+        "between air's and osmium's (else: degrees, grams or millimetres written without their unit?)",
+    ),
+    "V002": ("spec-valid", "error", "a spec follows its schema and the rules gen-robot applies (as gen-robot SPEC)"),
     "C001": ("consumer-accepts", "error", "an independent consumer loads the URDF"),
 }
 TOLERANCE = 1e-9
@@ -71,7 +83,7 @@ TOLERANCE = 1e-9
 class Finding:
     rule: str
     severity: Severity
-    element_kind: str  # robot, link, joint, gazebo, material, mesh, ros2_control, consumer
+    element_kind: str  # robot, link, joint, gazebo, material, mesh, ros2_control, consumer, value (a spec's)
     element: str
     message: str
     file: str | None = None
@@ -357,8 +369,40 @@ def _geometry_extent(geometry: etree._Element | None) -> tuple[float, float, flo
     return None
 
 
+def _massive(link: etree._Element) -> bool:
+    inertial = link.find("inertial")
+    mass = _float(inertial.find("mass"), "value") if inertial is not None else None
+    return mass is not None and mass > 0
+
+
+def _bodies_with_mass(doc: _Doc) -> set[str]:
+    """Links whose rigid body has mass: the link itself, or a link hanging from it by fixed joints (consumers merge
+    fixed children into their parent, so a moving joint may move a massless link whose fixed child carries the mass).
+    """
+    fixed_children: dict[str, list[str]] = {}
+    for joint in doc.joints:
+        parent, child = joint.find("parent"), joint.find("child")
+        if joint.get("type") == "fixed" and parent is not None and child is not None:
+            fixed_children.setdefault(parent.get("link", ""), []).append(child.get("link", ""))
+    massive = {link.get("name", "") for link in doc.links if _massive(link)}
+    found: set[str] = set()
+    for start in fixed_children:
+        seen, stack = {start}, [start]
+        while stack:  # (a cycle of fixed joints is S002's; ``seen`` keeps this walk finite)
+            name = stack.pop()
+            if name in massive:
+                found.add(start)
+                break
+            for child in fixed_children.get(name, ()):
+                if child not in seen:
+                    seen.add(child)
+                    stack.append(child)
+    return massive | found
+
+
 def inertia_rules(doc: _Doc) -> Iterator[Finding]:
     moved = {j.find("child").get("link") for j in doc.joints if j.get("type") in MOVING and j.find("child") is not None}
+    with_mass = _bodies_with_mass(doc)
     # (ixx, ixy, ixz, iyy, iyz, izz) of every link that has them; the principal moments of all the finite ones in one
     # batched eigvalsh, consumed in link order below (per-link numpy calls cost ten times more)
     entries = [_inertia_entries(link) for link in doc.links]
@@ -374,8 +418,15 @@ def inertia_rules(doc: _Doc) -> Iterator[Finding]:
         if has_geometry or name in moved:
             why = "has geometry" if has_geometry else "is moved by a joint"
             if mass is None:
+                if not has_geometry and name in with_mass:
+                    continue  # a massless link whose fixed children carry the moved body's mass
+                where = "" if has_geometry else " (nor any link fixed to it)"
                 yield doc.finding(
-                    "I001", "link", name, f"link {why} but no <inertial> mass; give mass > 0 (kg) and its inertia", link
+                    "I001",
+                    "link",
+                    name,
+                    f"link {why} but no <inertial> mass{where}; give mass > 0 (kg) and its inertia",
+                    link,
                 )
                 continue
             if not mass > 0:
@@ -534,16 +585,19 @@ def prefix_rules(doc: _Doc, prefix: str) -> Iterator[Finding]:
 
 
 # ------------------------------------------------------------------------------------------------------------ inputs
-def _spec_lines(raw: RawSpec) -> tuple[dict[tuple[str, str], int], object]:
-    """For spec input: the robot and where each generated link and joint is written in the spec."""
+def _spec_lines(raw: RawSpec) -> tuple[dict[tuple[str, str], int], object, tuple[Finding, ...]]:
+    """For spec input: the robot, where each generated link and joint is written in the spec, and the spec's
+    warnings as V001 findings."""
     from .resolve import resolve
     from .validate import validate
 
-    robot = resolve(validate(raw))
+    spec = validate(raw)
+    robot = resolve(spec)
     lines: dict[tuple[str, str], int] = {}
 
     def at(path: tuple[str | int, ...]) -> int:
-        return raw.locate(path, key=True)[0] or 0
+        # a mapping entry by its key's line; a list item (a DH row) by its own, not by its list's
+        return raw.locate(path, key=isinstance(path[-1], str))[0] or 0
 
     for name in raw.data.get("links", {}):
         lines[("link", name)] = at(("links", name))
@@ -557,7 +611,12 @@ def _spec_lines(raw: RawSpec) -> tuple[dict[tuple[str, str], int], object]:
         lines[("link", arm.tool)] = lines[("joint", f"{arm.tool}_joint")] = at(("arms", arm.name))
         for index, row in enumerate(arm.rows):
             lines[("link", row.link)] = lines[("joint", row.name)] = at(("arms", arm.name, "joints", index))
-    return lines, robot
+    return lines, robot, _notes(spec.warnings)
+
+
+def _notes(warnings: Iterable[SpecError]) -> tuple[Finding, ...]:
+    """A spec's warnings (values that look like a units mistake) as V001 findings."""
+    return tuple(Finding("V001", "warning", "value", w.path, w.message, w.file, w.line) for w in warnings)
 
 
 def kinematics_rules(doc: _Doc, robot, urdf_text: str) -> Iterator[Finding]:
@@ -600,8 +659,8 @@ def kinematics_rules(doc: _Doc, robot, urdf_text: str) -> Iterator[Finding]:
 
 def _load_urdf(
     path: Path, kind: str, mappings: Mapping[str, str] | None, package_paths: Mapping[str, str | Path] | None
-) -> tuple[str, object | None, dict | None]:
-    """URDF text, the spec's robot model (spec input only), and spec lines (spec input only)."""
+) -> tuple[str, object | None, dict | None, tuple[Finding, ...]]:
+    """URDF text, and for spec input the robot model, the spec lines and the spec's warnings."""
     if kind == "spec":
         from .load import load_file
         from .pipeline import expand_package
@@ -611,27 +670,41 @@ def _load_urdf(
         raw = load_file(path)
         if is_scene(raw):  # a scene: generated in memory as a whole
             scene = build_scene(raw)
-            return expand_scene(scene, render_scene(scene, spec_name=path.name)).content, None, None
-        lines, robot = _spec_lines(raw)  # the spec read above, not read again
+            urdf = expand_scene(scene, render_scene(scene, spec_name=path.name)).content
+            return urdf, None, None, _notes(scene.warnings)
+        lines, robot, notes = _spec_lines(raw)  # the spec read above, not read again
         files = render_package(robot, spec_name=path.name)  # type: ignore[arg-type]
-        return expand_package(robot, files).content, robot, lines  # type: ignore[arg-type]
+        return expand_package(robot, files).content, robot, lines, notes  # type: ignore[arg-type]
     if kind == "xacro":
         from .expansion import expand_file
 
-        return expand_file(path, mappings, package_paths=package_paths), None, None
+        return expand_file(path, mappings, package_paths=package_paths), None, None, ()
     try:
-        return path.read_text(encoding="utf-8"), None, None
+        return path.read_text(encoding="utf-8"), None, None, ()
     except (OSError, UnicodeDecodeError) as exc:
-        raise XacrokitError(f"cannot read {path}: {exc}") from None
+        why = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        raise XacrokitError(f"cannot read {path}: {why}") from None
 
 
 def input_kind(path: Path) -> str:
+    """spec, xacro or urdf: by the file's suffix, or for another suffix by its first characters (XML starts with
+    '<'; a xacro document declares the xacro namespace)."""
     name = path.name.lower()
     if name.endswith((".yaml", ".yml")):
         return "spec"
     if name.endswith(".xacro"):
         return "xacro"
-    return "urdf"
+    if name.endswith((".urdf", ".xml")):
+        return "urdf"
+    try:
+        with path.open("rb") as file:
+            head = file.read(4096)
+    except OSError:
+        return "urdf"  # (reading it again says why it cannot be read)
+    text = head.decode("utf-8", "replace").lstrip("\ufeff \t\r\n")
+    if not text.startswith("<"):
+        return "spec"
+    return "xacro" if "www.ros.org/wiki/xacro" in text else "urdf"
 
 
 @collector_paused()
@@ -647,7 +720,10 @@ def check(
     """Check a URDF, a xacro document (expanded with ``mappings``) or a spec (generated in memory, never written).
 
     Args:
-        path: the file; ``.yaml``/``.yml`` is a spec, ``.xacro`` a xacro document, anything else URDF.
+        path: the file; ``.yaml``/``.yml`` is a spec, ``.xacro`` a xacro document, ``.urdf``/``.xml`` URDF; any
+            other name is told by its content (XML is URDF, or xacro when it declares the xacro namespace; else a
+            spec). A URDF or xacro file inside a ROS package finds that package and its siblings for ``package://``
+            and ``$(find)`` without ``package_paths``.
         mappings: ``xacro:arg`` values for a xacro document.
         prefix: when given, every link, joint, gazebo reference and ros2_control joint must start with it.
         consumers: which independent consumers to run (default: every installed one of check_urdf, pinocchio,
@@ -656,15 +732,28 @@ def check(
         progress: called with a short message as each step starts (the CLI shows it on a terminal).
 
     Raises:
-        XacrokitError: the input cannot be read (a spec with errors raises SpecErrors, a xacro ExpandError).
+        XacrokitError: the input cannot be read (a spec file that cannot be read raises SpecErrors, a xacro
+            ExpandError). A spec with located errors gives a report of V002 findings instead.
     """
+    from .expansion import with_nearby_packages
+
     path = Path(path)
     say = progress or (lambda message: None)
     kind = input_kind(path)
     if mappings and kind != "xacro":
         raise XacrokitError("name:=value arguments only apply to xacro input")
+    if consumers is not None:
+        _require_consumers(consumers)
+    if kind != "spec":  # a file inside a package finds that package (and its workspace siblings) by itself
+        package_paths = with_nearby_packages(path, package_paths)
     say(f"reading {path.name}")
-    text, robot, lines = _load_urdf(path, kind, mappings, package_paths)
+    try:
+        text, robot, lines, notes = _load_urdf(path, kind, mappings, package_paths)
+    except SpecErrors as exc:
+        if all(e.line is None for e in exc.errors):  # the file itself cannot be read: no report to give
+            raise
+        invalid = tuple(Finding("V002", "error", "value", e.path, e.message, e.file, e.line) for e in exc.errors)
+        return CheckReport(str(path), kind, None, invalid)
     try:
         root = etree.fromstring(text.encode("utf-8"))
     except etree.XMLSyntaxError as exc:
@@ -675,7 +764,7 @@ def check(
         return CheckReport(str(path), kind, None, (finding,))
     say("running our rules")
     doc = _Doc(root, str(path), lines, source_lines=kind == "urdf")
-    findings = list(structure_rules(doc))
+    findings = [*notes, *structure_rules(doc)]
     structural = any(f.rule.startswith("S") for f in findings)
     findings += joint_rules(doc)
     findings += inertia_rules(doc)
@@ -696,12 +785,23 @@ def check(
     return CheckReport(str(path), kind, root.get("name"), tuple(findings), tuple(results))
 
 
-def _consumers(
-    names: list[str], text: str, structural: bool, package_paths: Mapping[str, str | Path] | None, base_dir: Path
-) -> list[ConsumerResult]:
+def _require_consumers(names: Sequence[str]) -> None:
+    """Consumers asked for by name must exist and be installed: a verdict that was asked for is never left out."""
     unknown = [n for n in names if n not in CONSUMERS]
     if unknown:
         raise XacrokitError(f"unknown consumer(s) {', '.join(unknown)}; choose from {', '.join(CONSUMERS)}")
+    missing = [n for n in names if not available(n)]
+    if missing:
+        hint = " (pip install 'xacrokit[mujoco]')" if "mujoco" in missing else ""
+        raise XacrokitError(
+            f"consumer(s) {', '.join(missing)} asked for but not installed{hint}; install them, or leave them out "
+            "of --consumers"
+        )
+
+
+def _consumers(
+    names: list[str], text: str, structural: bool, package_paths: Mapping[str, str | Path] | None, base_dir: Path
+) -> list[ConsumerResult]:
     if not names:
         return []
     if structural:  # a tree that is not a tree hangs check_urdf and crashes others; our finding says it all

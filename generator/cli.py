@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import difflib
 import os
 import sys
 from collections.abc import Iterator, Sequence
@@ -58,13 +59,32 @@ def _cmd_generate(args: argparse.Namespace) -> int:
             via_xacro=args.via_xacro,
             progress=progress,
         )
+    _print_warnings(result)
     width = max(len(a.action) for a in result.actions)
     for action in result.actions:
         note = f"  ({action.reason})" if action.reason else ""
         print(f"{action.action:<{width}}  {action.path}{note}")
     package = result.scene.package if result.scene else result.robot.package  # type: ignore[union-attr]
     print(f"{package}: {_written(result, args.dry_run)}" + (" (dry run: nothing written)" if args.dry_run else ""))
-    return 0
+    return _conflicts_exit(result)
+
+
+def _print_warnings(result: GenerateResult) -> None:
+    """Valid values that look like a units mistake, located; before the plan, so that a long plan does not hide
+    them."""
+    for warning in result.warnings:
+        print(f"gen-robot: warning: {warning}", file=sys.stderr)
+
+
+def _conflicts_exit(result: GenerateResult) -> int:
+    """A dry run plans conflicts instead of stopping at them: say what the real run would refuse (exit code 1)."""
+    from .write import ConflictError
+
+    conflicts = [a for a in result.actions if a.action == "conflict"]
+    if not conflicts:
+        return 0
+    print(f"gen-robot: error: {ConflictError(result.output, conflicts, planned=True)}", file=sys.stderr)
+    return ConflictError.exit_code
 
 
 def _written(result: GenerateResult, dry_run: bool) -> str:
@@ -109,17 +129,23 @@ def _cmd_fleet(args: argparse.Namespace) -> int:
             via_xacro=args.via_xacro,
             progress=progress,
         )
+    _print_warnings(result)
     print(
         f"{scene.package}: {len(scene.instances)} robots r0_ .. r{len(scene.instances) - 1}_; "
         + _written(result, args.dry_run)
     )
-    return 0
+    return _conflicts_exit(result)
 
 
 def _cmd_new(args: argparse.Namespace) -> int:
     from .starter import write_starter
 
-    path = write_starter(args.name, kind=args.kind, output=args.output)
+    output = args.output
+    if output is not None and Path(output).is_dir():
+        output = Path(output) / f"{args.name}.yaml"  # a folder: the spec goes into it
+    elif output is not None:
+        Path(output).parent.mkdir(parents=True, exist_ok=True)
+    path = write_starter(args.name, kind=args.kind, output=output)
     print(f"wrote {path}; generate its package with: gen-robot {path}")
     return 0
 
@@ -219,6 +245,28 @@ def _add_xacro_options(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def _count(text: str) -> int:
+    try:
+        count = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
+    if count < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1, got {count}")
+    return count
+
+
+def _spacing(text: str) -> float:
+    from .units import UnitError, parse_quantity
+
+    try:
+        spacing = parse_quantity(text, "length")
+    except UnitError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+    if not spacing > 0:
+        raise argparse.ArgumentTypeError(f"must be > 0 m, got {text!r}")
+    return spacing
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="gen-robot",
@@ -249,9 +297,14 @@ def build_parser() -> argparse.ArgumentParser:
         "prefixes r0_, r1_, ... placed row by row on a grid in the world (x along a row, y across rows).",
     )
     fleet.add_argument("spec", help="the robot spec")
-    fleet.add_argument("--count", type=int, required=True, help="how many robots")
+    fleet.add_argument("--count", type=_count, required=True, help="how many robots (1 or more)")
     fleet.add_argument("--grid", help="ROWSxCOLUMNS, e.g. 2x5 (default: a square grid)")
-    fleet.add_argument("--spacing", type=float, default=2.0, help="distance between neighbours in m (default 2.0)")
+    fleet.add_argument(
+        "--spacing",
+        type=_spacing,
+        default=2.0,
+        help="distance between neighbours: metres, or with a unit such as '150 cm' (default 2.0)",
+    )
     _add_write_options(fleet, "NAME_fleet_description")
     fleet.set_defaults(handler=_cmd_fleet)
 
@@ -259,8 +312,15 @@ def build_parser() -> argparse.ArgumentParser:
         "new", help="write a commented starter spec", description="Write NAME.yaml, a commented starter spec."
     )
     new.add_argument("name", help="robot name (letters, digits, _)")
-    new.add_argument("--kind", choices=("arm", "mobile", "humanoid"), default="arm", help="what to start from")
-    new.add_argument("-o", "--output", help="where to write the spec (default: ./NAME.yaml); never overwritten")
+    new.add_argument(
+        "--kind", choices=("arm", "mobile", "humanoid"), default="arm", help="what to start from (default: arm)"
+    )
+    new.add_argument(
+        "-o",
+        "--output",
+        help="the spec file, or a folder for NAME.yaml (default: ./NAME.yaml); missing folders are made; an existing "
+        "file is never overwritten",
+    )
     new.set_defaults(handler=_cmd_new)
 
     chk = commands.add_parser(
@@ -321,12 +381,31 @@ def build_parser() -> argparse.ArgumentParser:
 COMMANDS = ("generate", "new", "check", "fleet", "schema", "expand", "macros")
 
 
+def _shorthand(words: list[str]) -> bool:
+    """Whether the words are `gen-robot [options] SPEC [options]`, without the word generate: no command comes first
+    and a spec is named (a file that exists, or a name ending in .yaml/.yml, so that a missing one is reported)."""
+    if not words or words[0] in COMMANDS or words[0] in ("-h", "--help", "--version"):
+        return False
+
+    def spec_like(word: str) -> bool:
+        return not word.startswith("-") and (word.lower().endswith((".yaml", ".yml")) or Path(word).is_file())
+
+    return spec_like(words[0]) if not words[0].startswith("-") else any(map(spec_like, words))
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run ``gen-robot`` with ``argv`` (default: the process arguments); returns the exit code."""
     parser = build_parser()
     words = list(sys.argv[1:] if argv is None else argv)
-    if words and not words[0].startswith("-") and words[0] not in COMMANDS:
-        words.insert(0, "generate")  # gen-robot SPEC.yaml ...
+    if _shorthand(words):
+        words.insert(0, "generate")  # gen-robot [options] SPEC.yaml [options]
+    elif words and not words[0].startswith("-") and words[0] not in COMMANDS:
+        close = difflib.get_close_matches(words[0], COMMANDS, n=1)
+        hint = f"did you mean {close[0]!r}? " if close else ""
+        parser.error(
+            f"{words[0]!r} is neither a command nor a spec file; {hint}commands: {', '.join(COMMANDS)}, or give a "
+            "spec: gen-robot SPEC.yaml"
+        )
     args = parser.parse_args(words)
     if not getattr(args, "handler", None):
         parser.print_help(sys.stderr)

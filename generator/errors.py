@@ -45,7 +45,8 @@ class ExpandError(XacrokitError):
 
 
 class SpecError(XacrokitError):
-    """One located problem in a spec file; prints as ``spec.yaml:12:7: $.joints.elbow.limit.lower: message``."""
+    """One located problem in a spec file; prints as ``spec.yaml:12:7: $.joints.elbow.limit.lower: message`` (a
+    problem of the whole document, path ``$``, without the path)."""
 
     def __init__(self, message: str, *, file: str, path: str = "$", line: int | None = None, column: int | None = None):
         self.file = file
@@ -59,7 +60,7 @@ class SpecError(XacrokitError):
         where = self.file
         if self.line is not None:
             where += f":{self.line}" + (f":{self.column}" if self.column is not None else "")
-        return f"{where}: {self.path}: {self.message}"
+        return f"{where}: {self.message}" if self.path == "$" else f"{where}: {self.path}: {self.message}"
 
     def to_dict(self) -> dict[str, object]:
         return {"file": self.file, "path": self.path, "line": self.line, "column": self.column, "message": self.message}
@@ -74,5 +75,7 @@ class SpecErrors(XacrokitError):
 
     def __str__(self) -> str:
         count = len(self.errors)
+        if count == 1 and self.errors[0].line is None:  # about the file as a whole (unreadable, missing): one line
+            return str(self.errors[0])
         head = f"{count} problem{'s' if count != 1 else ''} in the spec:"
         return "\n".join([head, *(f"  {e}" for e in self.errors)])

@@ -45,6 +45,49 @@ class _DeclaredArgs(dict):
         return super().__contains__(name)
 
 
+def _package_name(folder: Path) -> str | None:
+    """The <name> in ``folder``/package.xml, or None when there is none (or it is unreadable)."""
+    from lxml import etree
+
+    try:
+        name = etree.parse(str(folder / "package.xml")).getroot().findtext("name")
+    except (OSError, etree.XMLSyntaxError):
+        return None
+    return name.strip() if name and name.strip() else None
+
+
+def nearby_packages(path: str | os.PathLike[str]) -> dict[str, Path]:
+    """The ROS packages a file most likely refers to: the package it lies in (the nearest folder above it with a
+    package.xml) and that package's siblings, as in a workspace's ``src/``. Name -> folder."""
+    folder = Path(path).resolve().parent
+    own = next((f for f in (folder, *folder.parents) if (f / "package.xml").is_file()), None)
+    if own is None:
+        return {}
+    found: dict[str, Path] = {}
+    with contextlib.suppress(OSError):
+        siblings = sorted(own.parent.iterdir())[:1000]
+        for sibling in siblings:
+            if sibling != own and (sibling / "package.xml").is_file() and (name := _package_name(sibling)):
+                found.setdefault(name, sibling)
+    if name := _package_name(own):
+        found[name] = own  # its own package wins over a sibling of the same name
+    return found
+
+
+def with_nearby_packages(
+    path: str | os.PathLike[str], package_paths: Mapping[str, str | os.PathLike[str]] | None = None
+) -> dict[str, str | os.PathLike[str]]:
+    """``package_paths`` plus the :func:`nearby_packages` of ``path`` that :func:`find_package` finds nowhere else
+    (so a sourced workspace or an explicit folder still wins, as ``$(find)`` in :func:`expand_file` does)."""
+    extra: dict[str, str | os.PathLike[str]] = {}
+    for name, folder in nearby_packages(path).items():
+        try:
+            find_package(name, package_paths)
+        except LookupError:
+            extra[name] = folder
+    return {**extra, **(package_paths or {})}
+
+
 def find_package(name: str, package_paths: Mapping[str, str | os.PathLike[str]] | None = None) -> str:
     """Resolve ``$(find name)`` the way ROS would, without needing ROS.
 
@@ -81,13 +124,22 @@ def find_package(name: str, package_paths: Mapping[str, str | os.PathLike[str]] 
 
 
 @contextlib.contextmanager
-def _find_resolver(package_paths: Mapping[str, str | os.PathLike[str]] | None) -> Iterator[None]:
-    """Point xacro's ``$(find)`` at :func:`find_package` for the duration of one expansion."""
+def _find_resolver(package_paths: Mapping[str, str | os.PathLike[str]] | None, near: Path) -> Iterator[None]:
+    """Point xacro's ``$(find)`` at :func:`find_package` for the duration of one expansion; packages found nowhere
+    else are looked for around ``near`` (the document), once."""
     module = xacro.substitution_args
     saved_find, saved_eval = module._eval_find, module._eval_dict.get("find")
+    around: list[dict[str, Path]] = []
 
     def resolve(name: str) -> str:
-        return find_package(name, package_paths)
+        try:
+            return find_package(name, package_paths)
+        except LookupError:
+            if not around:
+                around.append(nearby_packages(near))
+            if name in around[0]:
+                return str(around[0][name])
+            raise
 
     module._eval_find = resolve
     module._eval_dict["find"] = resolve
@@ -131,7 +183,8 @@ def expand_file(
         path: the ``.xacro`` file.
         mappings: ``xacro:arg`` values, as on xacro's command line (``name:=value``). Every name must be declared by
             the document with ``<xacro:arg name=...>``.
-        package_paths: folders for ``$(find PKG)`` of packages other than xacrokit.
+        package_paths: folders for ``$(find PKG)`` of packages other than xacrokit. A package found neither there
+            nor in a ROS workspace is looked for around the document (:func:`nearby_packages`).
         xacro_banner: keep the comment xacro puts on top (it names the input path, so output that must not depend
             on where it was made leaves it out).
 
@@ -147,7 +200,7 @@ def expand_file(
     table = _DeclaredArgs({str(k): str(v) for k, v in (mappings or {}).items()})
     xacro.all_includes = []  # module-level list xacro only ever appends to
     try:
-        with _find_resolver(package_paths):
+        with _find_resolver(package_paths, source):
             document = xacro.process_file(str(source), mappings=table)
     except xacro.XacroException as exc:
         raise ExpandError(

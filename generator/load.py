@@ -295,6 +295,8 @@ def _yaml_error(file: str, exc: yaml.YAMLError, text: str) -> SpecError:
         return SpecError(message, file=file, line=line, column=column)
     mark = getattr(exc, "problem_mark", None) or getattr(exc, "context_mark", None)
     problem = getattr(exc, "problem", None) or str(exc)
+    if mark is not None and 0 <= mark.index < len(text) and text[mark.index] == "\t":
+        problem += " (a tab: YAML indents with spaces only)"
     line, column = (mark.line + 1, mark.column + 1) if mark else (None, None)
     return SpecError(f"not valid YAML: {problem}", file=file, line=line, column=column)
 

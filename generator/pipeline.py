@@ -13,6 +13,7 @@ from pathlib import Path
 
 from . import __version__
 from .emit import emit_scene_urdf, emit_urdf
+from .errors import SpecError
 from .expansion import expand_file
 from .fileio import write_text_atomic
 from .load import load_file
@@ -33,6 +34,7 @@ class GenerateResult:
     actions: tuple[FileAction, ...]
     files: tuple[RenderedFile, ...]
     scene: Scene | None = None
+    warnings: tuple[SpecError, ...] = ()  # valid values that look like a units mistake (see Spec.warnings)
 
 
 def build_robot(spec_path: str | Path) -> Robot:
@@ -87,7 +89,7 @@ def generate(
     Args:
         spec_path: the YAML spec.
         output: the package folder; default ``./NAME_description``.
-        dry_run: plan only; write nothing.
+        dry_run: plan only; write nothing (the plan's ``conflict`` actions say what a real run would refuse).
         force: overwrite files edited since they were generated.
         macros: how the robot macro is written: ``inline`` (plain XML computed here, cheap for xacro), ``copy``
             (calls to the library macros, copied into the package) or ``find`` (calls through ``$(find xacrokit)``).
@@ -99,7 +101,7 @@ def generate(
     Raises:
         SpecErrors: the spec is invalid (nothing written).
         ExpandError: xacro could not expand the generated package (nothing written).
-        ConflictError: a generated file was edited since (nothing written).
+        ConflictError: a generated file was edited since (nothing written); not raised by a dry run.
         XacrokitError: the file system refused a write (the message says what was written before it).
     """
     progress(f"reading {Path(spec_path).name}")
@@ -119,13 +121,14 @@ def generate(
             progress=progress,
         )
     progress("validating")
-    robot = resolve(validate(raw))
+    spec = validate(raw)
+    robot = resolve(spec)
     progress("rendering the package")
     files = render_package(robot, macros=macros, spec_name=Path(spec_path).name)
     progress("expanding with xacro" if via_xacro else "emitting the URDF")
     files.append(expand_package(robot, files) if via_xacro else emitted_urdf(robot.name, emit_urdf(robot)))
     root, actions = _write(files, output, robot.package, force=force, dry_run=dry_run, progress=progress)
-    return GenerateResult(robot=robot, output=root, actions=actions, files=tuple(files))
+    return GenerateResult(robot=robot, output=root, actions=actions, files=tuple(files), warnings=spec.warnings)
 
 
 def _write(
@@ -165,4 +168,6 @@ def generate_scene(
     else:
         files.append(emitted_urdf(scene.name, emit_scene_urdf(scene)))
     root, actions = _write(files, output, scene.package, force=force, dry_run=dry_run, progress=progress)
-    return GenerateResult(robot=None, output=root, actions=actions, files=tuple(files), scene=scene)
+    return GenerateResult(
+        robot=None, output=root, actions=actions, files=tuple(files), scene=scene, warnings=scene.warnings
+    )

@@ -64,6 +64,7 @@ class Scene:
     world: str
     instances: tuple[Instance, ...]
     source: str = field(default="", compare=False)
+    warnings: tuple[SpecError, ...] = field(default=(), compare=False)  # its robots' and its own (Spec.warnings)
 
     @property
     def package(self) -> str:
@@ -106,7 +107,7 @@ def build_scene(raw: RawSpec) -> Scene:
     quantities = _Quantities(raw)
     for name, instance in quantities.data["instances"].items():
         quantities.origin(instance, "origin", ("instances", name))
-    data, errors = quantities.data, quantities.errors
+    data, errors, warnings = quantities.data, quantities.errors, list(quantities.warnings)
     world = data.get("world", "world")
     base = Path(raw.file).resolve().parent
     partial: dict[str, dict[str, Any]] = {}
@@ -116,7 +117,7 @@ def build_scene(raw: RawSpec) -> Scene:
         path: PathKey = ("instances", name)
         prefix = entry.get("prefix", "")
         if "spec" in entry:
-            robot, spec_file = _load_robot(raw, entry["spec"], base, path, errors, loaded)
+            robot, spec_file = _load_robot(raw, entry["spec"], base, path, errors, warnings, loaded)
             if robot is None:
                 continue
             other = robots_by_name.setdefault(robot.name, spec_file)
@@ -173,11 +174,17 @@ def build_scene(raw: RawSpec) -> Scene:
         )
         for name, info in partial.items()
     )
-    return Scene(name=data["scene"], world=world, instances=instances, source=raw.file)
+    return Scene(name=data["scene"], world=world, instances=instances, source=raw.file, warnings=tuple(warnings))
 
 
 def _load_robot(
-    raw: RawSpec, spec: str, base: Path, path: PathKey, errors: list[SpecError], loaded: dict[Path, Robot | None]
+    raw: RawSpec,
+    spec: str,
+    base: Path,
+    path: PathKey,
+    errors: list[SpecError],
+    warnings: list[SpecError],
+    loaded: dict[Path, Robot | None],
 ):
     """The robot of an instance's spec; each spec file is read and validated once however many instances use it."""
     spec_file = (base / spec).resolve()
@@ -185,13 +192,17 @@ def _load_robot(
         return loaded[spec_file], spec_file
     loaded[spec_file] = None  # a spec with problems reports them once
     try:
-        loaded[spec_file] = resolve(validate(load_file(spec_file)))
-        return loaded[spec_file], spec_file
+        valid = validate(load_file(spec_file))
     except SpecErrors as problems:  # the robot's own problems, located in its own file
-        errors += problems.errors
-        if any("cannot read the spec" in e.message for e in problems.errors):
-            errors.append(raw.error((*path, "spec"), f"no robot spec at {spec_file}"))
+        unreadable = [e.message for e in problems.errors if e.message.startswith("cannot read the spec")]
+        if unreadable:  # said once, where the scene names the file
+            errors.append(raw.error((*path, "spec"), f"no robot spec at {spec_file}: {unreadable[0]}"))
+        else:
+            errors += problems.errors
         return None, spec_file
+    warnings += valid.warnings
+    loaded[spec_file] = resolve(valid)
+    return loaded[spec_file], spec_file
 
 
 def _third_party(

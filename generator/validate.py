@@ -45,10 +45,12 @@ LIMITED = ("revolute", "prismatic")
 
 @dataclass(frozen=True)
 class Spec:
-    """A valid spec: ``data`` has SI floats for every quantity; ``raw`` keeps the file positions."""
+    """A valid spec: ``data`` has SI floats for every quantity; ``raw`` keeps the file positions. ``warnings``: located
+    notes on values that are valid but look like a units mistake (degrees written as radians, grams as kilograms)."""
 
     raw: RawSpec
     data: dict[str, Any]
+    warnings: tuple[SpecError, ...] = ()
 
 
 @cache
@@ -236,6 +238,11 @@ def _located(raw: RawSpec, errors: list[jsonschema.ValidationError]) -> list[Spe
 
 
 # ---------------------------------------------------------------- quantities
+# A plain-number angle beyond this many turns is most likely degrees: one turn for an orientation, two for a joint's
+# range (multi-turn joints exist; a range beyond two turns written in radians is rarer than degrees left unmarked).
+_TURNS: dict[str | int, int] = {"lower": 2, "upper": 2, "soft_lower_limit": 2, "soft_upper_limit": 2}
+
+
 class _Quantities:
     """Converts every quantity of a schema-valid spec to SI, collecting located errors.
 
@@ -247,6 +254,7 @@ class _Quantities:
     def __init__(self, raw: RawSpec) -> None:
         self.raw = raw
         self.errors: list[SpecError] = []
+        self.warnings: list[SpecError] = []
         self._changes: dict[PathKey, dict[str | int, float]] = {}  # container path -> key -> SI value
         self._count = 0
         self._built: tuple[int, Any] = (0, raw.data)
@@ -262,6 +270,8 @@ class _Quantities:
         if isinstance(container, dict) and key not in container:
             return
         value = container[key]
+        if kind == "angle" and type(value) in (int, float) and abs(value) > _TURNS.get(key, 1) * math.tau:
+            self._turns(value, key, (*path, key))
         if type(value) is float and math.isfinite(value) and (value != 0.0 or math.copysign(1.0, value) > 0):
             return  # already SI: what parse_quantity would return
         try:
@@ -271,6 +281,16 @@ class _Quantities:
             return
         self._changes.setdefault(path, {})[key] = converted
         self._count += 1
+
+    def _turns(self, value: float, key: str | int, path: PathKey) -> None:
+        what = "limit" if key in _TURNS else "angle"
+        self.warnings.append(
+            self.raw.error(
+                path,
+                f"{what} {value:g} rad is {abs(value) / math.tau:.3g} turns; "
+                f"if you meant degrees, write '{value:g} deg'",
+            )
+        )
 
     def origin(self, holder: dict[str, Any], key: str, path: PathKey) -> None:
         origin = holder.get(key)
@@ -712,6 +732,46 @@ def _physics_errors(raw: RawSpec, data: dict[str, Any]) -> Iterator[SpecError]:
                 yield raw.error(("frames", name, "mass"), "a frame's mass needs a box, cylinder or sphere shape")
 
 
+DENSEST = 22_590.0  # kg/m^3: osmium, the densest element
+LIGHTEST = 1.0  # kg/m^3: less than air (1.2); no solid body in a robot is lighter
+
+
+def _shape_volume(shape: dict[str, Any]) -> tuple[str, float] | None:
+    if "box" in shape:
+        x, y, z = shape["box"]["size"]
+        return "box", x * y * z
+    if "cylinder" in shape:
+        return "cylinder", math.pi * shape["cylinder"]["radius"] ** 2 * shape["cylinder"]["length"]
+    if "sphere" in shape:
+        return "sphere", 4.0 / 3.0 * math.pi * shape["sphere"]["radius"] ** 3
+    return None
+
+
+def _density_warnings(raw: RawSpec, data: dict[str, Any]) -> Iterator[SpecError]:
+    """Masses that no solid filling their shape could have: grams written as kilograms, millimetres as metres."""
+    bodies = [(("links", n), link.get("shape", {}), link.get("mass")) for n, link in data.get("links", {}).items()]
+    bodies += [(("frames", n), f.get("shape", {}), f.get("mass")) for n, f in data.get("frames", {}).items()]
+    bodies += [
+        (("wheels", n), {"cylinder": {"radius": w["radius"], "length": w["width"]}}, w["mass"])
+        for n, w in data.get("wheels", {}).items()
+    ]
+    for path, shape, mass in bodies:
+        found = _shape_volume(shape) if isinstance(mass, float) and mass > 0 else None
+        if found is None or not found[1] > 0:
+            continue
+        name, volume = found
+        density = mass / volume
+        if density > DENSEST:
+            hint = "denser than osmium (22,590 kg/m^3); grams written as kilograms? e.g. '500 g'"
+        elif density < LIGHTEST:
+            hint = "lighter than air; a size in mm written as m? e.g. '150 mm'"
+        else:
+            continue
+        yield raw.error(
+            (*path, "mass"), f"mass {mass:g} kg in a {volume:.3g} m^3 {name} is {density:.3g} kg/m^3, {hint}"
+        )
+
+
 def _mass_error(raw: RawSpec, mass: float, path: PathKey) -> Iterator[SpecError]:
     if not (isinstance(mass, float) and mass > 0 and math.isfinite(mass)):
         yield raw.error(path, f"mass must be > 0 kg, got {mass!r}")
@@ -771,8 +831,10 @@ def validate(raw: RawSpec) -> Spec:
     errors = _located(raw, found)
     if any(not _value_only(e) for e in found):  # the later checks rely on the shapes the schema guarantees
         raise SpecErrors(errors)
-    data, unit_errors = _Quantities(raw).run()
+    quantities = _Quantities(raw)
+    data, unit_errors = quantities.run()
     errors += unit_errors + semantic_errors(raw, data, physics=not unit_errors)
     if errors:
         raise SpecErrors(_unique(errors))
-    return Spec(raw=raw, data=data)
+    warnings = quantities.warnings + list(_density_warnings(raw, data))
+    return Spec(raw=raw, data=data, warnings=tuple(sorted(warnings, key=lambda w: (w.line or 0, w.column or 0))))

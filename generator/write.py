@@ -50,10 +50,11 @@ class ConflictError(XacrokitError):
 
     exit_code = 1
 
-    def __init__(self, root: Path, conflicts: list[FileAction]):
+    def __init__(self, root: Path, conflicts: list[FileAction], *, planned: bool = False):
         self.root = root
         self.conflicts = conflicts
-        lines = [f"{len(conflicts)} file(s) in {root} changed since they were generated; nothing was written:"]
+        outcome = "a run would write nothing" if planned else "nothing was written"  # (planned: a dry run's plan)
+        lines = [f"{len(conflicts)} file(s) in {root} changed since they were generated; {outcome}:"]
         lines += [f"  {c.path}: {c.reason}" for c in conflicts]
         lines.append("Keep your edits by moving them into the spec, or run again with --force to overwrite.")
         super().__init__("\n".join(lines))
@@ -200,19 +201,20 @@ def _read_stale(root: Path, relative: str) -> tuple[bytes, tuple[int, int]]:
 def write(files: list[RenderedFile], root: Path, *, force: bool = False, dry_run: bool = False) -> list[FileAction]:
     """Plan, then (unless ``dry_run``) write every created, updated or overwritten file atomically, record the
     manifest, and remove the stale files planned for removal (a removal the file system refuses, or a file changed
-    since the plan, becomes ``keep``).
+    since the plan, becomes ``keep``). A dry run returns the plan, ``conflict`` actions included.
 
     Raises:
         ConflictError: some file was edited since it was generated (and ``force`` is off); nothing is written.
+            Not raised by a dry run.
         XacrokitError: the file system refused a write (the message names the file and what was written before it).
     """
     previous = _read_manifest(root)
     actions = plan(files, root, force=force, manifest=previous)
+    if dry_run:
+        return actions  # conflicts included: the plan shows them
     conflicts = [a for a in actions if a.action == "conflict"]
     if conflicts:
         raise ConflictError(root, conflicts)
-    if dry_run:
-        return actions
     by_path = {f.path: f for f in files}
     done = 0
     try:

@@ -20,6 +20,9 @@ CORPUS = REPO / "tests" / "check_corpus"
 SCHEMA = json.loads((REPO / "schemas" / "check-report.schema.json").read_text(encoding="utf-8"))
 
 
+SPEC_ONLY = ("K001", "V001", "V002")  # rules about a spec, which a URDF fixture cannot show
+
+
 def rules_of(report: CheckReport) -> set[str]:
     return {f.rule for f in report.findings}
 
@@ -32,12 +35,12 @@ def corpus_check(path: Path) -> CheckReport:
 def test_every_rule_has_a_failing_and_a_passing_fixture():
     fixtures = {p.name for p in CORPUS.glob("*.urdf")}
     for rule in RULES:
-        if rule == "K001":
-            continue  # needs a spec; see test_k001_*
+        if rule in SPEC_ONLY:
+            continue  # needs a spec; see test_k001_*, test_v001_* and test_invalid_specs_*
         assert {f"{rule}_fail.urdf", f"{rule}_pass.urdf"} <= fixtures, rule
 
 
-@pytest.mark.parametrize("rule", sorted(r for r in RULES if r != "K001"))
+@pytest.mark.parametrize("rule", sorted(r for r in RULES if r not in SPEC_ONLY))
 def test_rule_fires_on_its_failing_fixture_only(rule):
     failing = corpus_check(CORPUS / f"{rule}_fail.urdf")
     assert rule in rules_of(failing), [str(f) for f in failing.findings]
@@ -169,11 +172,19 @@ def test_k001_catches_a_urdf_that_does_not_follow_its_dh_table(tmp_path):
     assert finding.rule == "K001" and "differ from the DH product by up to" in finding.message
 
 
-def test_unreadable_specs_exit_2(tmp_path):
+def test_invalid_specs_are_findings_and_unreadable_ones_exit_2(tmp_path):
     bad = tmp_path / "bad.yaml"
     bad.write_text(yaml.safe_dump({"robot": "r", "links": {"a": {"mass": -1}}}), encoding="utf-8")
-    result = gen_robot("check", bad)
-    assert result.returncode == 2 and "mass must be > 0" in result.stderr
+    result = gen_robot("check", bad, "--json")  # located errors: a report, as for a URDF that is not XML (U001)
+    assert result.returncode == 1, result.stderr
+    report = json.loads(result.stdout)
+    jsonschema.validate(report, SCHEMA)
+    assert {(f["rule"], f["element"]["name"], f["line"]) for f in report["findings"]} >= {("V002", "$.links.a.mass", 3)}
+    assert any("mass must be > 0" in f["message"] for f in report["findings"])
+    text = gen_robot("check", bad)
+    assert text.returncode == 1 and "V002 spec-valid" in text.stdout and f"{bad}:3" in text.stdout
+    missing = gen_robot("check", tmp_path / "missing.yaml")  # nothing to report on
+    assert missing.returncode == 2 and "cannot read the spec" in missing.stderr and not missing.stdout
 
 
 @pytest.mark.skipif(not __import__("importlib").util.find_spec("mujoco"), reason="MuJoCo is not installed")
@@ -213,3 +224,153 @@ def test_benchmark_stage_measurement_runs(tmp_path, monkeypatch):
     assert set(row) == stages | {"touch"}  # (touch: the reference walk, not a stage)
     assert all(value > 0 for value in row.values())
     assert touch({"a": [1, {"b": 2.0}], "c": {}}) == 4  # it reaches every mapping and list
+
+
+MOVED_MASSLESS = """<robot name="r">
+  <link name="base_link"/>
+  <joint name="j1" type="revolute"><parent link="base_link"/><child link="l1"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/><dynamics damping="0.1"/></joint>
+  <link name="l1"/>
+  <joint name="f1" type="fixed"><parent link="l1"/><child link="flange"/></joint>
+  <link name="flange"/>
+  <joint name="f2" type="fixed"><parent link="flange"/><child link="body"/></joint>
+  <link name="body">BODY</link>
+</robot>"""
+BODY = (
+    '<inertial><mass value="1"/><inertia ixx="0.011" iyy="0.012" izz="0.013" ixy="0" ixz="0" iyz="0"/></inertial>'
+    '<visual><geometry><box size="0.1 0.2 0.3"/></geometry></visual>'
+)
+
+
+def test_a_moved_link_may_leave_its_mass_to_links_fixed_to_it(tmp_path):
+    """Consumers merge fixed children into their parent: the body j1 moves has mass through 'body', two fixed joints
+    down. Without that mass anywhere in the body, I001 names the moved link."""
+    good = tmp_path / "good.urdf"
+    good.write_text(MOVED_MASSLESS.replace("BODY", BODY), encoding="utf-8")
+    report = check(good)
+    assert "I001" not in rules_of(report), [str(f) for f in report.findings]
+    assert [c.status for c in report.consumers] == ["accepted"] * len(report.consumers)  # they agree
+    bad = tmp_path / "bad.urdf"
+    bad.write_text(MOVED_MASSLESS.replace("BODY", ""), encoding="utf-8")
+    (finding,) = [f for f in check(bad, consumers=[]).findings if f.rule == "I001"]
+    assert finding.element == "l1" and "nor any link fixed to it" in finding.message
+
+
+ROWS_SPEC = """robot: rows
+links:
+  base_link: {shape: {box: {size: [0.1, 0.1, 0.1]}}, mass: 1.0}
+arms:
+  arm:
+    parent: base_link
+    joints:
+      - {name: j1, link: l1, a: 0, d: 0.1, alpha: pi/2, mass: 1.0,
+         limit: {lower: -1, upper: 1, effort: 1, velocity: 1}}
+      - {name: j2, link: l2, a: 0.2, d: 0, alpha: 0, mass: 1.0, limit: {lower: -1, upper: 1, effort: 1, velocity: 1}}
+      - name: j3
+        link: l3
+        a: 0.2
+        d: 0
+        alpha: 0
+        mass: 1.0
+        limit: {lower: -1, upper: 1, effort: 1, velocity: 1}
+"""
+
+
+def test_dh_row_findings_point_at_their_own_row(tmp_path):
+    spec = tmp_path / "rows.yaml"
+    spec.write_text(ROWS_SPEC, encoding="utf-8")
+    lines = ROWS_SPEC.splitlines()
+    rows = {f.element: f.line for f in check(spec, consumers=[]).findings if f.rule == "J009"}  # no dynamics
+    assert set(rows) == {"j1", "j2", "j3"}
+    for joint, line in rows.items():
+        assert f"name: {joint}" in lines[line - 1], (joint, line)
+
+
+def test_consumers_asked_for_by_name_must_be_installed(monkeypatch, tmp_path):
+    import xacrokit.check as check_module
+
+    monkeypatch.setattr(check_module, "available", lambda name: name != "mujoco")
+    with pytest.raises(xacrokit.XacrokitError, match="mujoco asked for but not installed"):
+        check(CORPUS / "I001_pass.urdf", consumers=["check_urdf", "mujoco"])
+    with pytest.raises(xacrokit.XacrokitError, match="unknown consumer"):
+        check(CORPUS / "I001_pass.urdf", consumers=["nosuch"])
+    report = check(CORPUS / "I001_pass.urdf")  # 'all' means those installed: mujoco left out, not an error
+    assert "mujoco" not in {c.name for c in report.consumers} and not report.errors
+
+
+def test_input_kind_by_content_when_the_suffix_says_nothing(tmp_path):
+    from xacrokit.check import input_kind
+
+    urdf = tmp_path / "robot.txt"
+    urdf.write_text((CORPUS / "I001_pass.urdf").read_text(encoding="utf-8"), encoding="utf-8")
+    xacro_doc = tmp_path / "robot.in"
+    xacro_doc.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a"/></robot>')
+    spec = tmp_path / "robot.spec"
+    spec.write_text((REPO / "examples" / "two_dof_arm.yaml").read_text(encoding="utf-8"), encoding="utf-8")
+    assert [input_kind(p) for p in (urdf, xacro_doc, spec)] == ["urdf", "xacro", "spec"]
+    assert check(spec, consumers=[]).kind == "spec" and not check(spec, consumers=[]).findings
+
+
+def test_a_file_in_a_package_finds_its_package_and_siblings(tmp_path):
+    src = tmp_path / "ws" / "src"
+    for package in ("my_desc", "meshes_pkg"):
+        (src / package / "meshes").mkdir(parents=True)
+        (src / package / "package.xml").write_text(f'<package format="3"><name>{package}</name></package>')
+        (src / package / "meshes" / "m.stl").write_text("solid m\nendsolid m\n")
+    (src / "my_desc" / "urdf").mkdir()
+    urdf = src / "my_desc" / "urdf" / "r.urdf"
+    meshes = "".join(
+        f'<visual><geometry><mesh filename="package://{p}/meshes/{m}"/></geometry></visual>'
+        for p, m in (("my_desc", "m.stl"), ("meshes_pkg", "m.stl"), ("my_desc", "gone.stl"), ("elsewhere", "m.stl"))
+    )
+    urdf.write_text(f'<robot name="r"><link name="base_link">{meshes}</link></robot>', encoding="utf-8")
+    findings = [f for f in check(urdf, consumers=[]).findings if f.rule == "R003"]
+    assert sorted((f.severity, f.element) for f in findings) == [
+        ("error", "package://my_desc/meshes/gone.stl"),  # its own package found: the missing file is an error
+        ("warning", "package://elsewhere/meshes/m.stl"),  # a package nowhere near: cannot be checked
+    ]
+    document = src / "my_desc" / "urdf" / "r.urdf.xacro"  # $(find) in gen-robot expand uses the same search
+    document.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a"><visual><geometry>'
+        '<mesh filename="file://$(find meshes_pkg)/meshes/m.stl"/></geometry></visual></link></robot>'
+    )
+    result = gen_robot("expand", document)
+    assert result.returncode == 0, result.stderr
+    assert f"file://{(src / 'meshes_pkg').resolve()}/meshes/m.stl" in result.stdout
+
+
+UNITS_SPEC = """robot: units
+links:
+  base_link: {shape: {box: {size: [0.2, 0.2, 0.1]}}, mass: 2000, origin: {rpy: [0, 0, 90]}}
+  arm: {shape: {cylinder: {radius: 0.02, length: 0.3}}, mass: 0.5}
+  plate: {shape: {box: {size: [100, 100, 2]}}, mass: 1.5}
+joints:
+  shoulder: {type: revolute, parent: base_link, child: arm, axis: [0, 1, 0],
+             limit: {lower: -170, upper: "170 deg", effort: 10, velocity: 1}, dynamics: {damping: 0.1}}
+  mount: {type: fixed, parent: base_link, child: plate}
+"""
+
+
+def test_v001_names_values_that_look_like_units_left_out(tmp_path):
+    spec = tmp_path / "units.yaml"
+    spec.write_text(UNITS_SPEC, encoding="utf-8")
+    lines = UNITS_SPEC.splitlines()
+    notes = {f.element: f for f in check(spec, consumers=[]).findings if f.rule == "V001"}
+    assert set(notes) == {
+        "$.links.base_link.origin.rpy[2]",  # 90 rad: degrees without their unit
+        "$.links.base_link.mass",  # 2,000 kg in a 4-litre box: grams written as kilograms
+        "$.links.plate.mass",  # a 100 m plate of 1.5 kg: millimetres written as metres
+        "$.joints.shoulder.limit.lower",  # -170 rad (upper, '170 deg', says its unit)
+    }, sorted(notes)
+    assert "'-170 deg'" in notes["$.joints.shoulder.limit.lower"].message
+    assert "denser than osmium" in notes["$.links.base_link.mass"].message
+    assert "lighter than air" in notes["$.links.plate.mass"].message
+    for finding in notes.values():
+        assert finding.severity == "warning" and finding.file == str(spec)
+        key = finding.element.rsplit(".", 1)[-1].split("[")[0]
+        assert key in lines[finding.line - 1], (finding.element, finding.line)
+    result = gen_robot(spec, "-o", tmp_path / "pkg")  # generating says the same on stderr, and still generates
+    assert result.returncode == 0, result.stderr
+    assert result.stderr.count("gen-robot: warning:") == 4 and "$.links.plate.mass" in result.stderr
+    clean = check(REPO / "examples" / "two_dof_arm.yaml", consumers=[])
+    assert "V001" not in rules_of(clean)

@@ -18,6 +18,7 @@ import xacrokit
 from conftest import REPO, gen_robot, mesh_package_at
 from xacrokit.check import check
 from xacrokit.emit import urdf_differences
+from xacrokit.errors import SpecErrors
 from xacrokit.kinematics import origin_transform
 from xacrokit.pipeline import expand_package
 from xacrokit.render import render_package
@@ -417,3 +418,35 @@ def test_progress_shows_on_a_terminal_only(tmp_path):
     assert code == 0 and "running check_urdf" in terminal and "OK: 0 error(s)" in stdout
     quiet = gen_robot("fleet", diff_drive, "--count", "2", "-o", tmp_path / "quiet")
     assert quiet.returncode == 0 and quiet.stderr == ""  # not a terminal: nothing on stderr
+
+
+def test_a_scene_passes_on_its_robots_warnings(tmp_path):
+    robot = tmp_path / "heavy.yaml"
+    robot.write_text(
+        "robot: heavy\nlinks:\n  base_link: {shape: {box: {size: [0.1, 0.1, 0.1]}}, mass: 500}\n", encoding="utf-8"
+    )
+    scene = tmp_path / "cell.yaml"
+    scene.write_text(
+        "scene: cell\ninstances:\n  a: {spec: heavy.yaml, prefix: a_, parent: world, origin: {rpy: [0, 0, 45]}}\n"
+        "  b: {spec: heavy.yaml, prefix: b_, parent: world}\n",
+        encoding="utf-8",
+    )
+    result = xacrokit.generate(scene, tmp_path / "out")
+    assert [(w.file, w.path) for w in result.warnings] == [
+        (str(scene), "$.instances.a.origin.rpy[2]"),  # 45 rad: degrees without their unit
+        (str(robot), "$.links.base_link.mass"),  # 500 kg in a litre: once, however many instances use it
+    ]
+    notes = [f for f in check(scene, consumers=[]).findings if f.rule == "V001"]
+    assert sorted(f.element for f in notes) == ["$.instances.a.origin.rpy[2]", "$.links.base_link.mass"]
+    fleet = gen_robot("fleet", robot, "--count", 2, "-o", tmp_path / "fleet")
+    assert fleet.returncode == 0 and fleet.stderr.count("gen-robot: warning:") == 1, fleet.stderr
+
+
+def test_a_missing_robot_spec_is_reported_once_where_the_scene_names_it(tmp_path):
+    scene = tmp_path / "cell.yaml"
+    scene.write_text("scene: cell\ninstances:\n  a: {spec: griper.yaml, prefix: a_, parent: world}\n")
+    with pytest.raises(SpecErrors) as caught:
+        xacrokit.generate(scene, tmp_path / "out")
+    (error,) = caught.value.errors
+    assert (error.file, error.path, error.line) == (str(scene), "$.instances.a.spec", 3)
+    assert "no robot spec at" in error.message and "No such file or directory" in error.message

@@ -1,0 +1,88 @@
+"""The gen-robot command line: how it reads its words, and what it says when they are wrong."""
+
+from __future__ import annotations
+
+from lxml import etree
+
+from conftest import REPO, gen_robot
+
+SPEC = REPO / "examples" / "two_dof_arm.yaml"
+
+
+def snapshot(root):
+    return {p.relative_to(root).as_posix(): p.read_bytes() for p in root.rglob("*") if p.is_file()}
+
+
+def test_a_dry_run_shows_the_whole_plan_with_its_conflicts(tmp_path):
+    out = tmp_path / "pkg"
+    assert gen_robot(SPEC, "-o", out).returncode == 0
+    with (out / "README.md").open("a", encoding="utf-8") as readme:
+        readme.write("my notes\n")
+    before = snapshot(out)
+    dry = gen_robot(SPEC, "-o", out, "--dry-run")
+    assert dry.returncode == 1, dry.stderr
+    plan = dict(line.split(None, 1)[::-1] for line in dry.stdout.splitlines() if line.startswith(("identical", "con")))
+    assert plan["README.md  (edited since it was generated)"] == "conflict"
+    assert plan["urdf/two_dof_arm.urdf"] == "identical"  # every other file is listed too
+    assert "a run would write nothing" in dry.stderr and "--force" in dry.stderr
+    assert snapshot(out) == before
+    real = gen_robot(SPEC, "-o", out)  # the real run refuses, as the dry run said
+    assert real.returncode == 1 and "nothing was written" in real.stderr and snapshot(out) == before
+
+
+def test_options_may_come_before_the_spec(tmp_path):
+    result = gen_robot("--dry-run", SPEC, "-o", tmp_path / "pkg")
+    assert result.returncode == 0, result.stderr
+    assert "dry run: nothing written" in result.stdout and not (tmp_path / "pkg").exists()
+    assert gen_robot("-o", tmp_path / "pkg", SPEC).returncode == 0
+    assert (tmp_path / "pkg" / "urdf" / "two_dof_arm.urdf").is_file()
+
+
+def test_a_mistyped_command_is_named_with_a_suggestion(tmp_path):
+    for typo, meant in (("chek", "check"), ("generat", "generate"), ("flet", "fleet")):
+        result = gen_robot(typo, tmp_path / "robot.urdf")
+        assert result.returncode == 2
+        assert f"{typo!r} is neither a command nor a spec file; did you mean {meant!r}?" in result.stderr
+    missing = gen_robot(tmp_path / "missing.yaml")  # a spec's name: the missing file is what is reported
+    assert missing.returncode == 2
+    assert (
+        missing.stderr.strip()
+        == f"gen-robot: error: {tmp_path / 'missing.yaml'}: cannot read the spec: No such file or directory"
+    )
+
+
+def test_fleet_spacing_takes_units_and_count_must_be_positive(tmp_path):
+    metres = gen_robot("fleet", SPEC, "--count", 2, "--spacing", "1.5", "-o", tmp_path / "m")
+    centimetres = gen_robot("fleet", SPEC, "--count", 2, "--spacing", "150 cm", "-o", tmp_path / "cm")
+    assert metres.returncode == centimetres.returncode == 0, centimetres.stderr
+    urdfs = [(tmp_path / d / "urdf" / "two_dof_arm_fleet.urdf").read_bytes() for d in ("m", "cm")]
+    assert urdfs[0] == urdfs[1]
+    joints = {j.get("name"): j for j in etree.fromstring(urdfs[0]).iter("joint")}
+    assert joints["r1_base_link_mount_joint"].find("origin").get("xyz").split()[0] == "1.5"
+    for words, message in (
+        (("--count", 0), "argument --count: must be at least 1, got 0"),
+        (("--count", 2, "--spacing", "15 deg"), "argument --spacing: '15 deg' is an angle, expected a length"),
+        (("--count", 2, "--spacing", "-1"), "argument --spacing: must be > 0 m"),
+    ):
+        result = gen_robot("fleet", SPEC, *words, "-o", tmp_path / "x")
+        assert result.returncode == 2 and message in result.stderr, result.stderr
+    assert not (tmp_path / "x").exists()
+
+
+def test_new_writes_into_a_folder_and_makes_missing_ones(tmp_path):
+    (tmp_path / "specs").mkdir()
+    into = gen_robot("new", "foo", "-o", tmp_path / "specs")
+    assert into.returncode == 0 and (tmp_path / "specs" / "foo.yaml").is_file()
+    deep = gen_robot("new", "bar", "--kind", "mobile", "-o", tmp_path / "a" / "b" / "bar.yaml")
+    assert deep.returncode == 0 and (tmp_path / "a" / "b" / "bar.yaml").is_file()
+    again = gen_robot("new", "foo", "-o", tmp_path / "specs")  # never overwritten
+    assert again.returncode == 2 and "not overwritten" in again.stderr
+    assert "(default: arm)" in gen_robot("new", "--help").stdout
+
+
+def test_a_tab_in_the_indentation_is_named(tmp_path):
+    spec = tmp_path / "tab.yaml"
+    spec.write_text("robot: r\nlinks:\n\tbase_link: {}\n", encoding="utf-8")
+    result = gen_robot(spec)
+    assert result.returncode == 2
+    assert f"{spec}:3:1: not valid YAML:" in result.stderr and "a tab: YAML indents with spaces only" in result.stderr
