@@ -84,6 +84,13 @@ def _tail(text: str, lines: int = 3) -> str:
     return " | ".join(kept[-lines:])
 
 
+def _urdfdom_errors(text: str, most: int = 3) -> str:
+    """urdfdom's own error lines, first first (the first says what is wrong; the rest say where it gave up), without
+    the source locations of urdfdom's code that follow each."""
+    errors = [line.strip()[len("Error:") :].strip() for line in text.splitlines() if line.strip().startswith("Error:")]
+    return " | ".join(errors[:most])
+
+
 def run_consumer(
     name: str, urdf_path: Path, timeout: float = TIMEOUT_S, package_paths: Mapping[str, str | Path] | None = None
 ) -> ConsumerResult:
@@ -105,7 +112,7 @@ def run_consumer(
     if name == "check_urdf":
         if code == 0 and "Successfully Parsed XML" in output:
             return ConsumerResult(name, "accepted")
-        return ConsumerResult(name, "rejected", _tail(output) or f"exit code {code}")
+        return ConsumerResult(name, "rejected", _urdfdom_errors(output) or _tail(output) or f"exit code {code}")
     try:
         verdict = json.loads(output.strip().splitlines()[-1])
     except (ValueError, IndexError):

@@ -19,7 +19,7 @@ from types import SimpleNamespace
 from typing import Any
 
 from . import __version__
-from .errors import ExpandError, SpecError, SpecErrors
+from .errors import ExpandError, SpecError, SpecErrors, XacrokitError
 from .load import PathKey, RawSpec, load_file
 from .model import Origin, Robot
 from .render import MacroMode, RenderedFile, _environment, render_package, xacro_text
@@ -192,7 +192,13 @@ def _load_robot(
         return loaded[spec_file], spec_file
     loaded[spec_file] = None  # a spec with problems reports them once
     try:
-        valid = validate(load_file(spec_file))
+        robot_raw = load_file(spec_file)
+        if is_scene(robot_raw):
+            errors.append(
+                raw.error((*path, "spec"), f"{spec_file} is a scene spec, not a robot spec (scenes do not nest)")
+            )
+            return None, spec_file
+        valid = validate(robot_raw)
     except SpecErrors as problems:  # the robot's own problems, located in its own file
         unreadable = [e.message for e in problems.errors if e.message.startswith("cannot read the spec")]
         if unreadable:  # said once, where the scene names the file
@@ -404,9 +410,9 @@ def expand_scene(scene: Scene, files: list[RenderedFile]) -> RenderedFile:
 def fleet_scene(spec_path: str | Path, count: int, *, columns: int | None = None, spacing: float = 2.0) -> Scene:
     """``count`` copies of one robot with prefixes r0_ ... r{count-1}_, on a grid in the world (row-major)."""
     if count < 1:
-        raise SpecErrors([SpecError("--count must be at least 1", file="<command line>")])
+        raise XacrokitError(f"a fleet needs at least 1 robot, got count {count}")
     if not (spacing > 0 and math.isfinite(spacing)):
-        raise SpecErrors([SpecError("--spacing must be > 0 m", file="<command line>")])
+        raise XacrokitError(f"the spacing of a fleet must be > 0 m, got {spacing!r}")
     columns = columns or math.ceil(math.sqrt(count))
     lines = [f"scene: {_fleet_name(spec_path)}", "instances:"]
     for index in range(count):
@@ -423,5 +429,7 @@ def fleet_scene(spec_path: str | Path, count: int, *, columns: int | None = None
 
 def _fleet_name(spec_path: str | Path) -> str:
     raw = load_file(spec_path)
+    if is_scene(raw):
+        raise XacrokitError(f"{spec_path} is a scene spec; a fleet copies one robot spec (generate the scene itself)")
     name = raw.data.get("robot") if isinstance(raw.data, dict) else None
     return f"{name}_fleet" if isinstance(name, str) else "fleet"

@@ -201,6 +201,24 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
         return path, f"must be > {error.validator_value}, got {error.instance!r}", False
     if keyword == "minimum":
         return path, f"must be >= {error.validator_value}, got {error.instance!r}", False
+    if keyword == "maximum":
+        colour = " (colours are 0..1: divide 0-255 values by 255)" if path[:1] == ("materials",) else ""
+        return path, f"must be <= {error.validator_value}, got {error.instance!r}{colour}", False
+    if keyword == "type" and error.validator_value == "number" and isinstance(error.instance, str):
+        return (
+            path,
+            f"expected a plain number in SI units, got {error.instance!r} "
+            "(only lengths, angles and masses take unit strings)",
+            False,
+        )
+    if keyword == "type" and not path:
+        return path, f"a spec is a mapping (robot:, links:, ...), got {type(error.instance).__name__}", False
+    if keyword in ("minItems", "maxItems") and isinstance(error.instance, list):
+        low, high = error.schema.get("minItems"), error.schema.get("maxItems")
+        wanted = f"{low}" if low == high else f"{low} to {high}" if high is not None else f"at least {low}"
+        return path, f"expected {wanted} values, got {len(error.instance)}", False
+    if keyword == "minProperties" and error.instance == {}:
+        return path, "must not be empty", False
     if keyword == "required":
         return path, error.message.replace("is a required property", "is required here"), False
     return path, error.message, False
@@ -458,6 +476,8 @@ def _tree_errors(raw: RawSpec, data: dict[str, Any], link_names: set[str]) -> It
     children: dict[str, list[str]] = {}
     dangling: list[str] = []  # children of unknown parents: the bad reference is reported, not the tree again
     for parent, child, where in edges:
+        if parent == child and where[0] == "joints":
+            continue  # "a joint cannot connect a link to itself" says it; not a cycle to report again
         if parent not in link_names:
             dangling.append(child)
             parent_of.setdefault(child, (parent, where))
@@ -749,27 +769,30 @@ def _shape_volume(shape: dict[str, Any]) -> tuple[str, float] | None:
 
 def _density_warnings(raw: RawSpec, data: dict[str, Any]) -> Iterator[SpecError]:
     """Masses that no solid filling their shape could have: grams written as kilograms, millimetres as metres."""
-    bodies = [(("links", n), link.get("shape", {}), link.get("mass")) for n, link in data.get("links", {}).items()]
-    bodies += [(("frames", n), f.get("shape", {}), f.get("mass")) for n, f in data.get("frames", {}).items()]
-    bodies += [
-        (("wheels", n), {"cylinder": {"radius": w["radius"], "length": w["width"]}}, w["mass"])
-        for n, w in data.get("wheels", {}).items()
-    ]
-    for path, shape, mass in bodies:
-        found = _shape_volume(shape) if isinstance(mass, float) and mass > 0 else None
-        if found is None or not found[1] > 0:
-            continue
-        name, volume = found
-        density = mass / volume
-        if density > DENSEST:
-            hint = "denser than osmium (22,590 kg/m^3); grams written as kilograms? e.g. '500 g'"
-        elif density < LIGHTEST:
-            hint = "lighter than air; a size in mm written as m? e.g. '150 mm'"
-        else:
-            continue
-        yield raw.error(
-            (*path, "mass"), f"mass {mass:g} kg in a {volume:.3g} m^3 {name} is {density:.3g} kg/m^3, {hint}"
-        )
+    for section in ("links", "frames", "wheels"):
+        for name, body in data.get(section, {}).items():
+            mass = body.get("mass")
+            if mass is None:
+                continue
+            if section == "wheels":
+                found = "cylinder", math.pi * body["radius"] ** 2 * body["width"]
+            else:
+                shape = body.get("shape")
+                found = _shape_volume(shape) if shape else None
+            if found is None or not (found[1] > 0 and mass > 0):
+                continue
+            density = mass / found[1]
+            if LIGHTEST <= density <= DENSEST:
+                continue
+            hint = (
+                "denser than osmium (22,590 kg/m^3); grams written as kilograms? e.g. '500 g'"
+                if density > DENSEST
+                else "lighter than air; a size in mm written as m? e.g. '150 mm'"
+            )
+            yield raw.error(
+                (section, name, "mass"),
+                f"mass {mass:g} kg in a {found[1]:.3g} m^3 {found[0]} is {density:.3g} kg/m^3, {hint}",
+            )
 
 
 def _mass_error(raw: RawSpec, mass: float, path: PathKey) -> Iterator[SpecError]:
@@ -833,8 +856,10 @@ def validate(raw: RawSpec) -> Spec:
         raise SpecErrors(errors)
     quantities = _Quantities(raw)
     data, unit_errors = quantities.run()
+    notes = quantities.warnings
+    del quantities  # (its table of changes is garbage now: not kept through the checks below)
     errors += unit_errors + semantic_errors(raw, data, physics=not unit_errors)
     if errors:
         raise SpecErrors(_unique(errors))
-    warnings = quantities.warnings + list(_density_warnings(raw, data))
+    warnings = notes + list(_density_warnings(raw, data))
     return Spec(raw=raw, data=data, warnings=tuple(sorted(warnings, key=lambda w: (w.line or 0, w.column or 0))))

@@ -374,3 +374,15 @@ def test_v001_names_values_that_look_like_units_left_out(tmp_path):
     assert result.stderr.count("gen-robot: warning:") == 4 and "$.links.plate.mass" in result.stderr
     clean = check(REPO / "examples" / "two_dof_arm.yaml", consumers=[])
     assert "V001" not in rules_of(clean)
+
+
+def test_check_urdf_says_what_urdfdom_found_first(tmp_path):
+    """urdfdom prints the cause first and where it gave up after; the finding keeps the cause."""
+    urdf = tmp_path / "no_limit.urdf"
+    urdf.write_text(
+        MOVED_MASSLESS.replace("BODY", BODY).replace('<limit lower="-1" upper="1" effort="1" velocity="1"/>', "")
+    )
+    report = check(urdf, consumers=["check_urdf"])
+    (consumer,) = report.consumers
+    assert consumer.status == "rejected" and "does not specify limits" in consumer.message, consumer.message
+    assert "at line" not in consumer.message  # urdfdom's own source locations are left out

@@ -97,7 +97,19 @@ CASES = [
     ("links.base_link.colour", "red", "$.links.base_link.colour", "unknown key 'colour'"),
     ("links.base_link.material", "grey", "$.links.base_link.material", "material 'grey' is not in materials"),
     ("links.base_link.shape", {"box": {"size": [1, 1, 0]}}, "$.links.base_link.shape.box.size[2]", "must be > 0 m"),
-    ("links.base_link.shape", {"box": {"size": [1, 1]}}, "$.links.base_link.shape.box.size", "too short"),
+    (
+        "links.base_link.shape",
+        {"box": {"size": [1, 1]}},
+        "$.links.base_link.shape.box.size",
+        "expected 3 values, got 2",
+    ),
+    ("materials.gray", [128, 128, 128, 1], "$.materials.gray[0]", "must be <= 1, got 128 (colours are 0..1"),
+    (
+        "joints.shoulder.limit",
+        {"lower": -1.0, "upper": 1.0, "effort": "10 Nm", "velocity": 1.0},
+        "$.joints.shoulder.limit.effort",
+        "expected a plain number in SI units, got '10 Nm'",
+    ),
     (
         "links.base_link.shape",
         {"mesh": {"filename": "package://p/m.stl"}},
@@ -332,3 +344,17 @@ def test_the_fast_schema_check_accepts_only_what_jsonschema_accepts(kind, data):
     document = data.draw(st.one_of(_perturbed(valid), _perturbed(_perturbed(valid))))
     if validator.accepts_quickly(document):
         assert not list(validator.full.iter_errors(document)), document
+
+
+def test_a_joint_from_a_link_to_itself_is_one_error_not_also_a_cycle():
+    data = mutated("joints.shoulder", {"type": "fixed", "parent": "arm", "child": "arm"})
+    messages = [e.message for e in errors_of(data)]
+    assert any("a joint cannot connect a link to itself" in m for m in messages)
+    assert not any("cycle" in m for m in messages), messages
+
+
+def test_a_spec_that_is_not_a_mapping_says_so():
+    with pytest.raises(SpecErrors) as caught:
+        validate(load_text("- 1\n- 2\n", "spec.yaml"))
+    (error,) = caught.value.errors
+    assert error.message == "a spec is a mapping (robot:, links:, ...), got list"
