@@ -23,6 +23,7 @@ from .errors import ExpandError, SpecError, SpecErrors, XacrokitError
 from .load import PathKey, RawSpec, load_file
 from .model import Origin, Robot
 from .render import MacroMode, RenderedFile, _environment, render_package, xacro_text
+from .render import controllers as robot_controllers
 from .resolve import origin as resolve_origin
 from .resolve import resolve
 from .resources import schemas_dir
@@ -379,12 +380,12 @@ def render_scene(scene: Scene, *, spec_name: str = "scene.yaml", macros: MacroMo
     for instance in scene.instances:
         robot = instance.robot
         if robot is not None and robot.ros2_control is not None:
-            groups: dict[str, list[str]] = {}
-            for joint in robot.ros2_control:
-                if joint.interfaces.command:
-                    groups.setdefault(joint.interfaces.command[0], []).append(instance.prefix + joint.name)
             text = controllers.render(
-                robot=robot, version=__version__, spec_name=spec_name, command_groups=groups, prefix=instance.prefix
+                robot=robot,
+                version=__version__,
+                spec_name=spec_name,
+                prefix=instance.prefix,
+                **robot_controllers(robot, instance.prefix, mounted=True),
             )
             files.append(RenderedFile(f"config/{instance.name}_controllers.yaml", text))
     return sorted(files, key=lambda f: f.path)
