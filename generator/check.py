@@ -36,6 +36,12 @@ RULES: dict[str, tuple[str, Severity, str]] = {
     "S004": ("unique-link-names", "error", "no two links share a name"),
     "S005": ("unique-joint-names", "error", "no two joints share a name"),
     "S006": ("one-parent", "error", "no link is the child of two joints"),
+    "N001": (
+        "name-plain",
+        "warning",
+        "link and joint names are not empty, hold no whitespace or control characters and do not start with '/' "
+        "(tf2 refuses such frame ids; ROS tools split on spaces)",
+    ),
     "J001": ("limit-present", "error", "revolute and prismatic joints have <limit> with lower and upper"),
     "J002": ("limit-order", "error", "lower <= upper"),
     "J003": ("limit-effort", "error", "moving joints' effort limit is > 0"),
@@ -160,6 +166,11 @@ class _Doc:
         line = None
         if self.spec_lines is not None:
             line = self.spec_lines.get((kind, name))
+            owner = element
+            while line is None and owner is not None:  # a mesh, say: the line of the link or joint it belongs to
+                if owner.tag in ("link", "joint"):
+                    line = self.spec_lines.get((owner.tag, owner.get("name", "")))
+                owner = owner.getparent()
         elif element is not None and self.source_lines:
             line = element.sourceline  # (an expanded xacro's lines are not the xacro file's: leave them out)
         return Finding(rule, RULES[rule][1], kind, name, message, self.file, line)
@@ -257,6 +268,24 @@ def structure_rules(doc: _Doc) -> Iterator[Finding]:
             doc.root.get("name", ""),
             f"{what} have no parent; a robot has exactly one root: connect the trees with joints",
         )
+
+
+_UNPLAIN = re.compile(r"[\s\x00-\x1f\x7f]")
+
+
+def name_rules(doc: _Doc) -> Iterator[Finding]:
+    for kind, elements in (("link", doc.links), ("joint", doc.joints)):
+        for element in elements:
+            name = element.get("name", "")
+            if not name:
+                problem = "has no name"
+            elif _UNPLAIN.search(name):
+                problem = "has whitespace or a control character in its name"
+            elif name.startswith("/") and kind == "link":
+                problem = "has a name starting with '/', which tf2 refuses as a frame id"
+            else:
+                continue
+            yield doc.finding("N001", kind, name, f"{kind} {name!r} {problem}; use letters, digits and _", element)
 
 
 def _path_up(start: str, target: str, parent_of: Mapping[str, tuple[str, str]]) -> list[str]:
@@ -766,6 +795,7 @@ def check(
     doc = _Doc(root, str(path), lines, source_lines=kind == "urdf")
     findings = [*notes, *structure_rules(doc)]
     structural = any(f.rule.startswith("S") for f in findings)
+    findings += name_rules(doc)
     findings += joint_rules(doc)
     findings += inertia_rules(doc)
     findings += reference_rules(doc, package_paths, path.parent)
@@ -782,7 +812,8 @@ def check(
         for r in results
         if r.failed
     ]
-    return CheckReport(str(path), kind, root.get("name"), tuple(findings), tuple(results))
+    unique = tuple(dict.fromkeys(findings))  # (a spec's visual and collision share a mesh: one finding, not two)
+    return CheckReport(str(path), kind, root.get("name"), unique, tuple(results))
 
 
 def _require_consumers(names: Sequence[str]) -> None:

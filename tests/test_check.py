@@ -386,3 +386,15 @@ def test_check_urdf_says_what_urdfdom_found_first(tmp_path):
     (consumer,) = report.consumers
     assert consumer.status == "rejected" and "does not specify limits" in consumer.message, consumer.message
     assert "at line" not in consumer.message  # urdfdom's own source locations are left out
+
+
+def test_a_spec_mesh_finding_is_given_once_at_its_link(tmp_path):
+    spec = tmp_path / "meshy.yaml"
+    spec.write_text(
+        "robot: meshy\nlinks:\n  base_link:\n    shape: {mesh: {filename: package://nowhere_pkg/meshes/base.stl}}\n"
+        "    mass: 1.0\n    inertia: {ixx: 0.011, iyy: 0.012, izz: 0.013}\n",
+        encoding="utf-8",
+    )
+    findings = [f for f in check(spec, consumers=[]).findings if f.rule == "R003"]
+    assert len(findings) == 1, findings  # the visual's and the collision's mesh: one finding
+    assert findings[0].line == 3 and findings[0].file == str(spec)
