@@ -161,6 +161,8 @@ class _Doc:
         self.joints = [e for e in root if e.tag == "joint"]
         self.link_names = {e.get("name", "") for e in self.links}
         self.joint_by_name = {e.get("name", ""): e for e in self.joints}
+        self.fixed_children: dict[str, list[str]] | None = None  # (built when a rule first asks: _body_has_mass)
+        self.massive: set[str] = set()
 
     def finding(self, rule: str, kind: str, name: str, message: str, element: etree._Element | None = None) -> Finding:
         line = None
@@ -404,34 +406,31 @@ def _massive(link: etree._Element) -> bool:
     return mass is not None and mass > 0
 
 
-def _bodies_with_mass(doc: _Doc) -> set[str]:
-    """Links whose rigid body has mass: the link itself, or a link hanging from it by fixed joints (consumers merge
-    fixed children into their parent, so a moving joint may move a massless link whose fixed child carries the mass).
-    """
-    fixed_children: dict[str, list[str]] = {}
-    for joint in doc.joints:
-        parent, child = joint.find("parent"), joint.find("child")
-        if joint.get("type") == "fixed" and parent is not None and child is not None:
-            fixed_children.setdefault(parent.get("link", ""), []).append(child.get("link", ""))
-    massive = {link.get("name", "") for link in doc.links if _massive(link)}
-    found: set[str] = set()
-    for start in fixed_children:
-        seen, stack = {start}, [start]
-        while stack:  # (a cycle of fixed joints is S002's; ``seen`` keeps this walk finite)
-            name = stack.pop()
-            if name in massive:
-                found.add(start)
-                break
-            for child in fixed_children.get(name, ()):
-                if child not in seen:
-                    seen.add(child)
-                    stack.append(child)
-    return massive | found
+def _body_has_mass(doc: _Doc, name: str) -> bool:
+    """Whether the rigid body of link ``name`` has mass: a link hanging from it by fixed joints may carry it
+    (consumers merge fixed children into their parent, so a moving joint may move a massless link whose fixed child
+    carries the mass). Each fixed-joint component has one moved link at its top, so all calls together are linear."""
+    if doc.fixed_children is None:
+        doc.fixed_children = {}
+        for joint in doc.joints:
+            parent, child = joint.find("parent"), joint.find("child")
+            if joint.get("type") == "fixed" and parent is not None and child is not None:
+                doc.fixed_children.setdefault(parent.get("link", ""), []).append(child.get("link", ""))
+        doc.massive = {link.get("name", "") for link in doc.links if _massive(link)}
+    seen, stack = {name}, [name]
+    while stack:  # (a cycle of fixed joints is S002's; ``seen`` keeps this walk finite)
+        current = stack.pop()
+        if current in doc.massive:
+            return True
+        for child in doc.fixed_children.get(current, ()):
+            if child not in seen:
+                seen.add(child)
+                stack.append(child)
+    return False
 
 
 def inertia_rules(doc: _Doc) -> Iterator[Finding]:
     moved = {j.find("child").get("link") for j in doc.joints if j.get("type") in MOVING and j.find("child") is not None}
-    with_mass = _bodies_with_mass(doc)
     # (ixx, ixy, ixz, iyy, iyz, izz) of every link that has them; the principal moments of all the finite ones in one
     # batched eigvalsh, consumed in link order below (per-link numpy calls cost ten times more)
     entries = [_inertia_entries(link) for link in doc.links]
@@ -447,7 +446,7 @@ def inertia_rules(doc: _Doc) -> Iterator[Finding]:
         if has_geometry or name in moved:
             why = "has geometry" if has_geometry else "is moved by a joint"
             if mass is None:
-                if not has_geometry and name in with_mass:
+                if not has_geometry and _body_has_mass(doc, name):
                     continue  # a massless link whose fixed children carry the moved body's mass
                 where = "" if has_geometry else " (nor any link fixed to it)"
                 yield doc.finding(
@@ -716,8 +715,8 @@ def _load_urdf(
 
 
 def input_kind(path: Path) -> str:
-    """spec, xacro or urdf: by the file's suffix, or for another suffix by its first characters (XML starts with
-    '<'; a xacro document declares the xacro namespace)."""
+    """spec, xacro or urdf: by the file's suffix, or for another suffix by its first 4 KiB (XML starts with '<'; a
+    xacro document declares the xacro namespace or uses a xacro: element)."""
     name = path.name.lower()
     if name.endswith((".yaml", ".yml")):
         return "spec"
@@ -733,7 +732,7 @@ def input_kind(path: Path) -> str:
     text = head.decode("utf-8", "replace").lstrip("\ufeff \t\r\n")
     if not text.startswith("<"):
         return "spec"
-    return "xacro" if "www.ros.org/wiki/xacro" in text else "urdf"
+    return "xacro" if re.search(r"xmlns:xacro\s*=|<xacro:", text) else "urdf"
 
 
 @collector_paused()

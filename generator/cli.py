@@ -140,12 +140,7 @@ def _cmd_fleet(args: argparse.Namespace) -> int:
 def _cmd_new(args: argparse.Namespace) -> int:
     from .starter import write_starter
 
-    output = args.output
-    if output is not None and Path(output).is_dir():
-        output = Path(output) / f"{args.name}.yaml"  # a folder: the spec goes into it
-    elif output is not None:
-        Path(output).parent.mkdir(parents=True, exist_ok=True)
-    path = write_starter(args.name, kind=args.kind, output=output)
+    path = write_starter(args.name, kind=args.kind, output=args.output)
     print(f"wrote {path}; generate its package with: gen-robot {path}")
     return 0
 
@@ -318,8 +313,8 @@ def build_parser() -> argparse.ArgumentParser:
     new.add_argument(
         "-o",
         "--output",
-        help="the spec file, or a folder for NAME.yaml (default: ./NAME.yaml); missing folders are made; an existing "
-        "file is never overwritten",
+        help="the spec file (.yaml), or a folder for NAME.yaml (default: ./NAME.yaml); missing folders are made; an "
+        "existing file is never overwritten",
     )
     new.set_defaults(handler=_cmd_new)
 
@@ -399,6 +394,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     words = list(sys.argv[1:] if argv is None else argv)
     if _shorthand(words):
         words.insert(0, "generate")  # gen-robot [options] SPEC.yaml [options]
+    elif words and words[0].startswith("-") and words[0] not in ("-h", "--help", "--version"):
+        parser.error(f"no spec given for {words[0]}: gen-robot SPEC.yaml [options], or gen-robot COMMAND ...")
     elif words and not words[0].startswith("-") and words[0] not in COMMANDS:
         close = difflib.get_close_matches(words[0], COMMANDS, n=1)
         hint = f"did you mean {close[0]!r}? " if close else ""

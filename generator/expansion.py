@@ -13,6 +13,7 @@ its own are done here:
 from __future__ import annotations
 
 import contextlib
+import itertools
 import os
 import sys
 import xml.parsers.expat
@@ -49,8 +50,9 @@ def _package_name(folder: Path) -> str | None:
     """The <name> in ``folder``/package.xml, or None when there is none (or it is unreadable)."""
     from lxml import etree
 
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False)  # a file of someone else's
     try:
-        name = etree.parse(str(folder / "package.xml")).getroot().findtext("name")
+        name = etree.parse(str(folder / "package.xml"), parser).getroot().findtext("name")
     except (OSError, etree.XMLSyntaxError):
         return None
     return name.strip() if name and name.strip() else None
@@ -64,9 +66,11 @@ def nearby_packages(path: str | os.PathLike[str]) -> dict[str, Path]:
     if own is None:
         return {}
     found: dict[str, Path] = {}
+    siblings: list[Path] = []
     with contextlib.suppress(OSError):
-        siblings = sorted(own.parent.iterdir())[:1000]
-        for sibling in siblings:
+        siblings = sorted(itertools.islice(own.parent.iterdir(), 1000))  # (a workspace's src/, not a huge folder)
+    for sibling in siblings:
+        with contextlib.suppress(OSError):  # one unreadable folder does not hide the others
             if sibling != own and (sibling / "package.xml").is_file() and (name := _package_name(sibling)):
                 found.setdefault(name, sibling)
     if name := _package_name(own):

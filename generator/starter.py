@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import re
 from pathlib import Path
 
@@ -23,9 +24,22 @@ def starter_text(name: str, kind: str = "arm") -> str:
 
 
 def write_starter(name: str, *, kind: str = "arm", output: str | Path | None = None) -> Path:
-    """Write the starter spec (default ``./NAME.yaml``); an existing file is never overwritten."""
-    text = starter_text(name, kind)
+    """Write the starter spec; an existing file is never overwritten.
+
+    ``output``: the spec file (a name ending in .yaml or .yml), or a folder for ``NAME.yaml`` (an existing folder, a
+    name ending in a slash, or a name without such a suffix); missing folders are made. Default: ``./NAME.yaml``.
+    """
+    text = starter_text(name, kind)  # (the name is checked before any folder is made)
     path = Path(output) if output else Path.cwd() / f"{name}.yaml"
+    as_folder = str(output).endswith(("/", os.sep)) or path.is_dir() or path.suffix.lower() not in (".yaml", ".yml")
+    if output and as_folder:
+        path = path / f"{name}.yaml"
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise XacrokitError(
+            f"cannot make the folder {path.parent}: {exc.strerror or exc} (a file in the way?)"
+        ) from None
     try:
         with path.open("x", encoding="utf-8") as handle:
             handle.write(text)

@@ -110,9 +110,12 @@ class _Parser:
 def _number(text: str) -> Value:
     """A NUMBER token, exactly (a decimal is a fraction), unless its exponent puts it beyond any double."""
     mantissa, _, exponent = text.lower().partition("e")
-    if exponent and abs(int(exponent)) > _EXACT_EXPONENT:
+    try:
+        if exponent and abs(int(exponent)) > _EXACT_EXPONENT:
+            return float(text)
+        return Fraction(text)
+    except ValueError:  # thousands of digits (Python's limit on int conversion): a float reads any length
         return float(text)
-    return Fraction(text)
 
 
 def _bounded(value: Value) -> Value:

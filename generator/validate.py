@@ -6,6 +6,7 @@ Nothing here writes or prints; failure is one :class:`SpecErrors` holding the li
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 import re
@@ -216,7 +217,10 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
     if keyword in ("minItems", "maxItems") and isinstance(error.instance, list):
         low, high = error.schema.get("minItems"), error.schema.get("maxItems")
         wanted = f"{low}" if low == high else f"{low} to {high}" if high is not None else f"at least {low}"
-        return path, f"expected {wanted} values, got {len(error.instance)}", False
+        rows = error.schema.get("items", {}).get("type") == "object"
+        one = wanted in ("1", "at least 1")
+        what = ("entry" if one else "entries") if rows else ("value" if one else "values")
+        return path, f"expected {wanted} {what}, got {len(error.instance)}", False
     if keyword == "minProperties" and error.instance == {}:
         return path, "must not be empty", False
     if keyword == "required":
@@ -261,6 +265,17 @@ def _located(raw: RawSpec, errors: list[jsonschema.ValidationError]) -> list[Spe
 _TURNS: dict[str | int, int] = {"lower": 2, "upper": 2, "soft_lower_limit": 2, "soft_upper_limit": 2}
 
 
+_PLAIN_NUMBER = re.compile(r"\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*")
+
+
+def _plain_number(value: object) -> float | None:
+    """A string that is a bare number ('90'), as a float; None for anything else (a unit or pi says what it is)."""
+    if isinstance(value, str) and _PLAIN_NUMBER.fullmatch(value):
+        with contextlib.suppress(ValueError, OverflowError):
+            return float(value)
+    return None
+
+
 class _Quantities:
     """Converts every quantity of a schema-valid spec to SI, collecting located errors.
 
@@ -288,8 +303,10 @@ class _Quantities:
         if isinstance(container, dict) and key not in container:
             return
         value = container[key]
-        if kind == "angle" and type(value) in (int, float) and abs(value) > _TURNS.get(key, 1) * math.tau:
-            self._turns(value, key, (*path, key))
+        if kind == "angle":
+            plain = value if type(value) in (int, float) else _plain_number(value)
+            if plain is not None and abs(plain) > _TURNS.get(key, 1) * math.tau:
+                self._turns(plain, key, (*path, key))
         if type(value) is float and math.isfinite(value) and (value != 0.0 or math.copysign(1.0, value) > 0):
             return  # already SI: what parse_quantity would return
         try:

@@ -305,6 +305,11 @@ def test_input_kind_by_content_when_the_suffix_says_nothing(tmp_path):
     urdf.write_text((CORPUS / "I001_pass.urdf").read_text(encoding="utf-8"), encoding="utf-8")
     xacro_doc = tmp_path / "robot.in"
     xacro_doc.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a"/></robot>')
+    older = tmp_path / "robot.description"  # the older namespace address, still common
+    older.write_text(
+        '<robot name="r" xmlns:xacro="http://ros.org/wiki/xacro"><xacro:property name="w" value="1"/></robot>'
+    )
+    assert input_kind(older) == "xacro"
     spec = tmp_path / "robot.spec"
     spec.write_text((REPO / "examples" / "two_dof_arm.yaml").read_text(encoding="utf-8"), encoding="utf-8")
     assert [input_kind(p) for p in (urdf, xacro_doc, spec)] == ["urdf", "xacro", "spec"]
@@ -341,7 +346,7 @@ def test_a_file_in_a_package_finds_its_package_and_siblings(tmp_path):
 
 UNITS_SPEC = """robot: units
 links:
-  base_link: {shape: {box: {size: [0.2, 0.2, 0.1]}}, mass: 2000, origin: {rpy: [0, 0, 90]}}
+  base_link: {shape: {box: {size: [0.2, 0.2, 0.1]}}, mass: 2000, origin: {rpy: [0, "90", 90]}}
   arm: {shape: {cylinder: {radius: 0.02, length: 0.3}}, mass: 0.5}
   plate: {shape: {box: {size: [100, 100, 2]}}, mass: 1.5}
 joints:
@@ -357,6 +362,7 @@ def test_v001_names_values_that_look_like_units_left_out(tmp_path):
     lines = UNITS_SPEC.splitlines()
     notes = {f.element: f for f in check(spec, consumers=[]).findings if f.rule == "V001"}
     assert set(notes) == {
+        "$.links.base_link.origin.rpy[1]",  # '90' (quoted): the same
         "$.links.base_link.origin.rpy[2]",  # 90 rad: degrees without their unit
         "$.links.base_link.mass",  # 2,000 kg in a 4-litre box: grams written as kilograms
         "$.links.plate.mass",  # a 100 m plate of 1.5 kg: millimetres written as metres
@@ -371,7 +377,7 @@ def test_v001_names_values_that_look_like_units_left_out(tmp_path):
         assert key in lines[finding.line - 1], (finding.element, finding.line)
     result = gen_robot(spec, "-o", tmp_path / "pkg")  # generating says the same on stderr, and still generates
     assert result.returncode == 0, result.stderr
-    assert result.stderr.count("gen-robot: warning:") == 4 and "$.links.plate.mass" in result.stderr
+    assert result.stderr.count("gen-robot: warning:") == 5 and "$.links.plate.mass" in result.stderr
     clean = check(REPO / "examples" / "two_dof_arm.yaml", consumers=[])
     assert "V001" not in rules_of(clean)
 

@@ -86,3 +86,19 @@ def test_a_tab_in_the_indentation_is_named(tmp_path):
     result = gen_robot(spec)
     assert result.returncode == 2
     assert f"{spec}:3:1: not valid YAML:" in result.stderr and "a tab: YAML indents with spaces only" in result.stderr
+
+
+def test_new_takes_a_folder_by_its_slash_and_checks_the_name_first(tmp_path):
+    result = gen_robot("new", "bot", "-o", f"{tmp_path / 'specs'}/")
+    assert result.returncode == 0 and (tmp_path / "specs" / "bot.yaml").is_file()
+    bad = gen_robot("new", "1bad", "-o", tmp_path / "deep" / "er" / "x.yaml")
+    assert bad.returncode == 2 and "must be letters, digits and _" in bad.stderr
+    assert not (tmp_path / "deep").exists()  # nothing made for a name that is refused
+    (tmp_path / "afile").write_text("")
+    blocked = gen_robot("new", "x", "-o", tmp_path / "afile" / "x.yaml")
+    assert blocked.returncode == 2 and "cannot make the folder" in blocked.stderr
+
+
+def test_options_without_a_spec_say_so():
+    result = gen_robot("--dry-run")
+    assert result.returncode == 2 and "no spec given for --dry-run" in result.stderr

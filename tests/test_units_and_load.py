@@ -259,3 +259,11 @@ def test_a_character_yaml_forbids_is_located_with_either_parser(monkeypatch):  #
             load_text("robot: r\nx: \x07\n", "s.yaml")
         (error,) = caught.value.errors
         assert (error.line, error.column) == (2, 4) and "character U+0007 is not allowed" in error.message
+
+
+def test_numbers_of_thousands_of_digits_are_read_not_a_traceback():
+    """Python refuses to turn more than 4,300 digits into an int; such a number is read as a float instead."""
+    assert parse_quantity("0.0" + "0" * 4400 + "25 m", "length") == 0.0
+    assert parse_quantity("1" + "0" * 5000 + "e-5000", "length") == 1.0
+    with pytest.raises(UnitError, match="not a finite number"):
+        parse_quantity("1e" + "9" * 5000, "length")

@@ -103,6 +103,7 @@ CASES = [
         "$.links.base_link.shape.box.size",
         "expected 3 values, got 2",
     ),
+    ("arms.dh.joints", [], "$.arms.dh.joints", "expected at least 1 entry, got 0"),
     ("materials.gray", [128, 128, 128, 1], "$.materials.gray[0]", "must be <= 1, got 128 (colours are 0..1"),
     (
         "joints.shoulder.limit",
