@@ -303,7 +303,10 @@ def robot_elements(
 
 def _ros2_control(robot: Robot, prefix: str) -> etree._Element:
     block = etree.Element("ros2_control", name=prefix + robot.name, type="system")
-    _sub(_sub(block, "hardware"), "plugin").text = "mock_components/GenericSystem"
+    hardware = _sub(block, "hardware")
+    _sub(hardware, "plugin").text = "mock_components/GenericSystem"
+    if robot.mock_integrates:  # (velocity commands move the position state only so)
+        _sub(hardware, "param", name="calculate_dynamics").text = "true"
     for controlled in robot.ros2_control or ():
         joint = _sub(block, "joint", name=prefix + controlled.name)
         for interface in controlled.interfaces.command:

@@ -250,5 +250,11 @@ class Robot:
         return tuple(names)
 
     @property
+    def mock_integrates(self) -> bool:
+        """Whether mock hardware must integrate commands into states (a joint commanded by velocity or acceleration):
+        mock_components/GenericSystem otherwise only mirrors each command, and the position never moves."""
+        return any({"velocity", "acceleration"} & set(j.interfaces.command) for j in self.ros2_control or ())
+
+    @property
     def package(self) -> str:
         return f"{self.name}_description"

@@ -9,6 +9,7 @@ names are found by expanding it alone first.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import tempfile
@@ -66,6 +67,7 @@ class Scene:
     instances: tuple[Instance, ...]
     source: str = field(default="", compare=False)
     warnings: tuple[SpecError, ...] = field(default=(), compare=False)  # its robots' and its own (Spec.warnings)
+    command: str = field(default="", compare=False)  # what makes it again, when not `gen-robot SPEC` (a fleet)
 
     @property
     def package(self) -> str:
@@ -414,6 +416,7 @@ def fleet_scene(spec_path: str | Path, count: int, *, columns: int | None = None
         raise XacrokitError(f"a fleet needs at least 1 robot, got count {count}")
     if not (spacing > 0 and math.isfinite(spacing)):
         raise XacrokitError(f"the spacing of a fleet must be > 0 m, got {spacing!r}")
+    given_columns = columns
     columns = columns or math.ceil(math.sqrt(count))
     lines = [f"scene: {_fleet_name(spec_path)}", "instances:"]
     for index in range(count):
@@ -425,7 +428,12 @@ def fleet_scene(spec_path: str | Path, count: int, *, columns: int | None = None
     from .load import load_text
 
     raw = load_text("\n".join(lines) + "\n", file=f"<fleet of {spec_path}>")
-    return build_scene(raw)
+    command = f"gen-robot fleet {Path(spec_path).name} --count {count}"
+    if given_columns:
+        command += f" --grid {math.ceil(count / given_columns)}x{given_columns}"
+    if spacing != 2.0:
+        command += f" --spacing {spacing!r}"
+    return dataclasses.replace(build_scene(raw), command=command)
 
 
 def _fleet_name(spec_path: str | Path) -> str:

@@ -94,3 +94,37 @@ def test_an_arm_keeps_its_forward_command_controllers():
     assert "diff_drive_controller" not in config
     groups = controllers(robot)["command_groups"]
     assert groups and all(config[f"{kind}_controller"]["ros__parameters"]["joints"] == j for kind, j in groups.items())
+
+
+def test_mock_hardware_integrates_velocity_commands_only_where_there_are_some():
+    """mock_components/GenericSystem mirrors commands into states; a velocity command moves the position state only
+    with calculate_dynamics, and diff_drive_controller's odometry reads that position."""
+    from lxml import etree
+
+    from xacrokit.emit import emit_urdf
+
+    for example, integrates in (("diff_drive.yaml", True), ("two_dof_arm.yaml", False)):
+        robot = build_robot(REPO / "examples" / example)
+        hardware = etree.fromstring(emit_urdf(robot).encode()).find("ros2_control/hardware")
+        params = {p.get("name"): p.text for p in hardware.findall("param")}
+        assert params == ({"calculate_dynamics": "true"} if integrates else {}), example
+
+
+@pytest.mark.parametrize("macros", ["inline", "copy"])
+def test_gazebo_reads_the_controllers_file_it_is_given(tmp_path, macros):
+    from lxml import etree
+
+    xacrokit.generate(DIFF_DRIVE, tmp_path / "pkg", macros=macros)
+    entry = tmp_path / "pkg" / "urdf" / "diff_drive.urdf.xacro"
+    packages = {"diff_drive_description": tmp_path / "pkg"}
+
+    def parameters(**arguments):
+        root = etree.fromstring(xacrokit.expand(entry, arguments, package_paths=packages).encode())
+        return [e.text for e in root.iter("parameters")]
+
+    default = str((tmp_path / "pkg").resolve() / "config" / "diff_drive_controllers.yaml")
+    assert parameters(ros2_control="gazebo") == [default]
+    assert parameters(ros2_control="gazebo", prefix="r1_", controllers="/ws/r1_controllers.yaml") == [
+        "/ws/r1_controllers.yaml"
+    ]
+    assert parameters(ros2_control="mock") == []

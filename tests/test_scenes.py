@@ -450,3 +450,18 @@ def test_a_missing_robot_spec_is_reported_once_where_the_scene_names_it(tmp_path
     (error,) = caught.value.errors
     assert (error.file, error.path, error.line) == (str(scene), "$.instances.a.spec", 3)
     assert "no robot spec at" in error.message and "No such file or directory" in error.message
+
+
+def test_a_scene_refuses_gazebo_by_name(tmp_path):
+    xacrokit.generate(SCENES / "two_arm_cell.yaml", tmp_path / "pkg")
+    result = gen_robot("expand", tmp_path / "pkg" / "urdf" / "two_arm_cell.urdf.xacro", "ros2_control:=gazebo")
+    assert result.returncode == 2
+    assert "ros2_control must be mock or none in a scene, got 'gazebo'" in result.stderr
+
+
+def test_a_fleet_readme_says_how_to_make_it_again(tmp_path):
+    spec = REPO / "examples" / "diff_drive.yaml"
+    result = gen_robot("fleet", spec, "--count", 3, "--grid", "1x3", "--spacing", "150 cm", "-o", tmp_path / "f")
+    assert result.returncode == 0, result.stderr
+    readme = (tmp_path / "f" / "README.md").read_text(encoding="utf-8")
+    assert "run `gen-robot fleet diff_drive.yaml --count 3 --grid 1x3 --spacing 1.5` again" in readme
