@@ -267,3 +267,59 @@ def test_numbers_of_thousands_of_digits_are_read_not_a_traceback():
     assert parse_quantity("1" + "0" * 5000 + "e-5000", "length") == 1.0
     with pytest.raises(UnitError, match="not a finite number"):
         parse_quantity("1e" + "9" * 5000, "length")
+
+
+@given(
+    st.one_of(
+        st.decimals(allow_nan=False, allow_infinity=False).map(str),
+        st.from_regex(r"[-+]?(\d{1,30}\.?\d{0,30}|\.\d{1,30})([eE][-+]?\d{1,3})?", fullmatch=True),
+    ),
+    st.sampled_from(
+        [
+            ("", "length"),
+            ("mm", "length"),
+            ("cm", "length"),
+            ("km", "length"),
+            ("in", "length"),
+            ("ft", "length"),
+            ("m", "length"),
+            ("g", "mass"),
+            ("kg", "mass"),
+            ("deg", "angle"),
+            ("rad", "angle"),
+            ("degrees", "angle"),
+        ]
+    ),
+)
+def test_the_one_number_fast_path_reads_what_the_parser_reads(number, unit):
+    """'150 mm' skips the parser (decimal arithmetic instead of fractions): both must give the same double, or the
+    same refusal."""
+    from xacrokit.units import _parsed
+
+    name, kind = unit
+    text = f"{number} {name}".strip()
+    try:
+        expected = _parsed(text, kind)
+    except UnitError:
+        with pytest.raises(UnitError):
+            parse_quantity(text, kind)
+        return
+    if not math.isfinite(expected):
+        with pytest.raises(UnitError, match="not a finite number"):
+            parse_quantity(text, kind)
+    else:
+        assert parse_quantity(text, kind) == expected
+
+
+@pytest.mark.parametrize(
+    ("text", "kind", "words"),
+    [
+        ("2 pi", "angle", "unexpected 'pi'"),
+        ("1e999999999999999999999 mm", "length", "not a finite number"),
+        ("5 parsecs", "length", "unknown unit 'parsecs'"),
+        ("5 g", "length", "is a mass, expected a length"),
+    ],
+)
+def test_the_fast_path_leaves_refusals_to_the_parser(text, kind, words):
+    with pytest.raises(UnitError, match=re.escape(words)):
+        parse_quantity(text, kind)
