@@ -30,6 +30,12 @@ JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "plan
 # rule id -> (name, severity, what it checks). The ids are stable: scripts may filter on them.
 RULES: dict[str, tuple[str, Severity, str]] = {
     "U001": ("urdf-readable", "error", "the document is well-formed XML with a <robot> root"),
+    "U002": (
+        "numbers-readable",
+        "error",
+        "every number URDF reads (origins, axes, sizes, masses, tensors, limits, dynamics, colours) is finite, with as "
+        "many values as its attribute takes",
+    ),
     "S001": ("one-root", "error", "exactly one link has no parent"),
     "S002": ("no-cycle", "error", "no chain of joints leads back to where it started"),
     "S003": ("joint-links-exist", "error", "every joint's parent and child is a link of the document"),
@@ -273,6 +279,49 @@ def structure_rules(doc: _Doc) -> Iterator[Finding]:
 
 
 _UNPLAIN = re.compile(r"[\s\x00-\x1f\x7f]")
+
+
+# element -> attribute -> how many numbers it holds (URDF's numeric attributes; a missing one is another rule's)
+_NUMBERS: dict[str, dict[str, int]] = {
+    "origin": {"xyz": 3, "rpy": 3},
+    "axis": {"xyz": 3},
+    "box": {"size": 3},
+    "cylinder": {"radius": 1, "length": 1},
+    "sphere": {"radius": 1},
+    "mesh": {"scale": 3},
+    "mass": {"value": 1},
+    "inertia": {key: 1 for key in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")},
+    "limit": {key: 1 for key in ("lower", "upper", "effort", "velocity")},
+    "dynamics": {"damping": 1, "friction": 1},
+    "safety_controller": {key: 1 for key in ("soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity")},
+    "mimic": {"multiplier": 1, "offset": 1},
+    "color": {"rgba": 4},
+}
+
+
+def number_rules(doc: _Doc) -> Iterator[Finding]:
+    """U002: numbers that do not read (``rpy="0 0 pi/2"`` left by a macro, ``xyz="0 0"``). Consumers differ on them:
+    urdfdom prints an error and goes on, others refuse the file."""
+    for owner in (*doc.links, *doc.joints, *doc.root.findall("material")):
+        for element in owner.iter(*_NUMBERS):
+            for attribute, count in _NUMBERS[element.tag].items():
+                text = element.get(attribute)
+                if text is None:
+                    continue
+                try:
+                    values = [float(v) for v in text.split()]
+                except ValueError:
+                    values = []
+                if len(values) != count or not all(math.isfinite(v) for v in values):
+                    what = "a finite number" if count == 1 else f"{count} finite numbers"
+                    kind = owner.tag if owner.tag in ("link", "joint") else "material"
+                    yield doc.finding(
+                        "U002",
+                        kind,
+                        owner.get("name", ""),
+                        f'<{element.tag} {attribute}="{text}">: expected {what}',
+                        element,
+                    )
 
 
 def name_rules(doc: _Doc) -> Iterator[Finding]:
@@ -794,6 +843,7 @@ def check(
     doc = _Doc(root, str(path), lines, source_lines=kind == "urdf")
     findings = [*notes, *structure_rules(doc)]
     structural = any(f.rule.startswith("S") for f in findings)
+    findings += number_rules(doc)
     findings += name_rules(doc)
     findings += joint_rules(doc)
     findings += inertia_rules(doc)

@@ -110,8 +110,9 @@ def run_consumer(
     if code is None:
         return ConsumerResult(name, "timeout", f"no verdict within {timeout:g} s; stopped")
     if name == "check_urdf":
-        if code == 0 and "Successfully Parsed XML" in output:
-            return ConsumerResult(name, "accepted")
+        if code == 0 and "Successfully Parsed XML" in output and not _urdfdom_errors(output):
+            return ConsumerResult(name, "accepted")  # (urdfdom prints some errors, such as an unreadable rpy, and
+            # goes on to exit 0: an error line is a rejection all the same)
         return ConsumerResult(name, "rejected", _urdfdom_errors(output) or _tail(output) or f"exit code {code}")
     try:
         verdict = json.loads(output.strip().splitlines()[-1])

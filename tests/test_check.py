@@ -404,3 +404,11 @@ def test_a_spec_mesh_finding_is_given_once_at_its_link(tmp_path):
     findings = [f for f in check(spec, consumers=[]).findings if f.rule == "R003"]
     assert len(findings) == 1, findings  # the visual's and the collision's mesh: one finding
     assert findings[0].line == 3 and findings[0].file == str(spec)
+
+
+def test_check_urdf_printing_an_error_is_a_rejection_even_when_it_exits_0():
+    """urdfdom reports an unreadable rpy ("pi/2", left by a xacro macro) and carries on to exit 0."""
+    report = check(CORPUS / "U002_fail.urdf", consumers=["check_urdf"])
+    (consumer,) = report.consumers
+    assert consumer.status == "rejected" and "pi/2" in consumer.message, consumer
+    assert {f.rule for f in report.errors} == {"U002", "C001"}
