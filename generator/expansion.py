@@ -171,6 +171,8 @@ def _xacro_message(exc: BaseException) -> str:
         return _xacro_message(inner)
     if isinstance(exc, xacro.XacroException) and isinstance(inner, LookupError) and inner.args:
         return str(inner.args[0])
+    if isinstance(exc, xacro.XacroException) and isinstance(inner, OSError):  # (xacro says it twice otherwise)
+        return f"cannot read {inner.filename}: {inner.strerror or inner}" if inner.filename else str(inner)
     return str(exc).strip()
 
 

@@ -120,9 +120,32 @@ def _markdown(text: str) -> str:
     return "".join(out)
 
 
+def read_palette(folder: Path | None = None) -> list[tuple[str, str]]:
+    """The colours of materials.xacro, (name, rgba), from its banner's ``palette:`` lines."""
+    banner = etree.parse(str((folder or macros_dir()) / "materials.xacro")).getroot().getprevious()
+    lines = (banner.text or "").splitlines() if isinstance(banner, etree._Comment) else []
+    entries = [line.strip()[len("palette:") :].split(None, 1) for line in lines if line.strip().startswith("palette:")]
+    return [(name, rgba) for name, rgba in entries]
+
+
 def render_reference(docs: list[MacroDoc] | None = None) -> str:
     """The Markdown macro reference (the README section between the macro-reference markers)."""
-    docs = read_macro_docs() if docs is None else docs
+    reference = _render_macros(read_macro_docs() if docs is None else docs)
+    if docs is not None:
+        return reference
+    palette = read_palette()
+    rows = [
+        "### `macros/materials.xacro`\n",
+        "A colour palette of `<material>` elements, defined once however often the file is included: use "
+        '`<material name="xacrokit_blue"/>` in a visual, or `material="xacrokit_blue"` on the link and wheel macros.\n',
+        "| material | rgba |",
+        "|---|---|",
+        *(f"| `{name}` | {rgba} |" for name, rgba in palette),
+    ]
+    return reference + "\n" + "\n".join(rows) + "\n"
+
+
+def _render_macros(docs: list[MacroDoc]) -> str:
     out: list[str] = []
     current_file = None
     for doc in docs:

@@ -312,13 +312,15 @@ def _collision_errors(raw: RawSpec, partial: dict[str, dict[str, Any]], world: s
     for who, names in clashes.items():
         shown = ", ".join(names[:8]) + (f" and {len(names) - 8} more" if len(names) > 8 else "")
         instance = next(w for w in reversed(who) if w in partial)
-        errors.append(
-            raw.error(
-                ("instances", instance),
-                f"instances {' and '.join(who)} would both have {shown}; give them different prefixes",
-                key=True,
+        instances = [w for w in who if w in partial]
+        if len(instances) < len(who):  # the world's link is one of them
+            message = (
+                f"instance{'s' if len(instances) > 1 else ''} {' and '.join(instances)} would have {shown}, the "
+                "scene's world link; give a prefix, or name the world otherwise (world: ...)"
             )
-        )
+        else:
+            message = f"instances {' and '.join(who)} would both have {shown}; give them different prefixes"
+        errors.append(raw.error(("instances", instance), message, key=True))
     return errors
 
 
@@ -338,15 +340,42 @@ def _probe_names(
         try:
             urdf = expand_file(probe)
         except ExpandError as exc:
+            hint = ""
+            if "Invalid parameter" in exc.message:  # (a UR-style macro calls its prefix tf_prefix, say)
+                hint = (
+                    f" (the scene passes {macro.prefix_param!r} and {macro.parent_param!r}: set prefix_param and "
+                    "parent_param to the macro's own names for them; other parameters go in params)"
+                )
             errors.append(
                 raw.error(
-                    ("instances", name, "xacro"), f"expanding {macro.macro} from {macro.file} failed: {exc.message}"
+                    ("instances", name, "xacro"),
+                    f"expanding {macro.macro} from {macro.file} failed: {exc.message}{hint}",
                 )
             )
             return None
     root = etree.fromstring(urdf.encode())
-    links = tuple(e.get("name") for e in root.findall("link") if e.get("name") != parent)
-    joints = tuple(e.get("name") for e in root.findall("joint"))
+    every_link = [e.get("name", "") for e in root.findall("link")]
+    links = tuple(n for n in every_link if n != parent)
+    joints = tuple(e.get("name", "") for e in root.findall("joint"))
+    where: PathKey = ("instances", name, "xacro")
+    problems = []
+    if every_link.count(parent) > 1:
+        problems.append(f"it makes a link {parent!r} itself, the name of the link it is mounted on")
+    unprefixed = [n for n in (*links, *joints) if not n.startswith(prefix)]
+    if unprefixed:
+        shown = ", ".join(unprefixed[:6]) + (f" and {len(unprefixed) - 6} more" if len(unprefixed) > 6 else "")
+        problems.append(
+            f"its names {shown} do not start with the prefix {prefix!r} (if its prefix parameter is not called "
+            f"{macro.prefix_param!r}, set prefix_param)"
+        )
+    if not any(j.find("parent") is not None and j.find("parent").get("link") == parent for j in root.findall("joint")):
+        problems.append(
+            f"no joint of it hangs from the link it is mounted on, {parent!r} (if its parent parameter is not called "
+            f"{macro.parent_param!r}, set parent_param)"
+        )
+    if problems:
+        errors.append(raw.error(where, f"macro {macro.macro} from {macro.file}: " + "; ".join(problems)))
+        return None
     return links, joints
 
 

@@ -194,6 +194,14 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
         if keyword == "exclusiveMinimum":  # only a mass has one
             return path, f"mass must be > 0 kg, got {float(error.instance)!r}", False  # as the physics check says it
         return path, f"expected a number or a string such as {example!r}, got {error.instance!r}", False
+    if keyword in ("oneOf", "anyOf") and len(path) == 2 and path[0] == "instances":
+        given = [k for k in ("spec", "xacro") if isinstance(error.instance, dict) and k in error.instance]
+        said = f"both {' and '.join(given)}" if len(given) == 2 else (given[0] if given else "neither")
+        return (
+            path,
+            f"an instance takes exactly one of spec (a robot spec) or xacro (a third-party macro); got {said}",
+            False,
+        )
     if keyword == "oneOf" and path and path[-1] == "collision":
         return path, "collision must be same, none, or a mapping with a shape (and an origin)", False
     if keyword in ("minProperties", "maxProperties") and "box" in error.schema.get("properties", {}):

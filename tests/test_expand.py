@@ -75,8 +75,9 @@ def test_bad_documents_raise_expand_error(expand, doc, words):
 
 
 def test_missing_file_is_an_expand_error(tmp_path):
-    with pytest.raises(xacrokit.ExpandError, match="No such file"):
+    with pytest.raises(xacrokit.ExpandError) as caught:
         xacrokit.expand(tmp_path / "missing.xacro")
+    assert caught.value.message == f"cannot read {tmp_path / 'missing.xacro'}: No such file or directory"  # once
 
 
 def test_error_names_the_public_macro_stack(expand):

@@ -186,6 +186,10 @@ BAD_ROWS = [
     ({"limit": {"lower": -1.0, "upper": 1.0, "effort": 0.0, "velocity": 1.0}}, "table[0].limit.effort must be > 0"),
     ({"name": None}, "table[0] needs text keys name"),
     ({"mass": -1.0}, "table[0].mass must be > 0"),
+    ({"mas": 1.0, "offset": 0.5}, "table[0] has unknown key(s) mas, offset; a row takes name, link, a, d"),
+    ({"dynamics": {"damping": -5.0}}, "table[0].dynamics.damping must be >= 0"),
+    ({"dynamics": {"friction": "abc"}}, "table[0].dynamics.friction must be a finite number"),
+    ({"dynamics": {"damp": 0.1}}, "table[0].dynamics must be a mapping with damping and/or friction"),
 ]
 
 

@@ -212,7 +212,12 @@ def test_a_clash_between_our_robots(tmp_path):
         ({"a": {"spec": "ARM", "prefix": "bad prefix", "parent": "world"}}, "$.instances.a.prefix", "not a valid name"),
         ({"a": {"spec": "missing.yaml", "prefix": "a_", "parent": "world"}}, "$.instances.a.spec", "no robot spec"),
         ({"a": {"spec": "ARM", "prefix": "a_", "parent": "moon"}}, "$.instances.a.parent", "must be 'world'"),
-        ({"a": {"prefix": "a_", "parent": "world"}}, "$.instances.a", "is not valid under any"),
+        ({"a": {"prefix": "a_", "parent": "world"}}, "$.instances.a", "exactly one of spec (a robot spec) or xacro"),
+        (
+            {"a": {"spec": "ARM", "xacro": {"file": "x.xacro", "macro": "m"}, "prefix": "a_", "parent": "world"}},
+            "$.instances.a",
+            "got both spec and xacro",
+        ),
     ],
 )
 def test_scene_mistakes_are_located(tmp_path, instances, path, words):
@@ -465,3 +470,73 @@ def test_a_fleet_readme_says_how_to_make_it_again(tmp_path):
     assert result.returncode == 0, result.stderr
     readme = (tmp_path / "f" / "README.md").read_text(encoding="utf-8")
     assert "run `gen-robot fleet diff_drive.yaml --count 3 --grid 1x3 --spacing 1.5` again" in readme
+
+
+THIRD_PARTY_FAULTS = {
+    "makes_world": '<link name="world"/><link name="${prefix}base"/>'
+    '<joint name="${prefix}j" type="fixed"><parent link="world"/><child link="${prefix}base"/></joint>',
+    "ignores_prefix": '<link name="plate"/>'
+    '<joint name="plate_joint" type="fixed"><parent link="${parent}"/><child link="plate"/></joint>',
+    "ignores_parent": '<link name="${prefix}base"/>',
+}
+
+
+@pytest.mark.parametrize(
+    ("macro", "words"),
+    [
+        ("makes_world", "it makes a link 'world' itself"),
+        ("ignores_prefix", "its names plate, plate_joint do not start with the prefix 'p_'"),
+        ("ignores_parent", "no joint of it hangs from the link it is mounted on, 'world'"),
+    ],
+)
+def test_a_third_party_macro_that_breaks_the_scene_is_refused_before_writing(tmp_path, macro, words):
+    (tmp_path / "parts.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        + "".join(
+            f'<xacro:macro name="{name}" params="prefix parent *origin">{body}</xacro:macro>'
+            for name, body in THIRD_PARTY_FAULTS.items()
+        )
+        + "</robot>",
+        encoding="utf-8",
+    )
+    scene = tmp_path / "cell.yaml"
+    scene.write_text(
+        f"scene: cell\ninstances:\n  p: {{xacro: {{file: parts.xacro, macro: {macro}}}, prefix: p_, parent: world}}\n",
+        encoding="utf-8",
+    )
+    with pytest.raises(SpecErrors) as caught:
+        xacrokit.generate(scene, tmp_path / "out")
+    (error,) = caught.value.errors
+    assert error.path == "$.instances.p.xacro" and words in error.message, error.message
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_name_taken_by_the_world_link_is_said_so(tmp_path):
+    robot = tmp_path / "r.yaml"
+    robot.write_text("robot: r\nlinks:\n  world: {}\n", encoding="utf-8")
+    scene = tmp_path / "cell.yaml"
+    scene.write_text("scene: cell\ninstances:\n  a: {spec: r.yaml, prefix: '', parent: world}\n", encoding="utf-8")
+    with pytest.raises(SpecErrors) as caught:
+        xacrokit.generate(scene, tmp_path / "out")
+    messages = [e.message for e in caught.value.errors]
+    assert any("instance a would have link world, the scene's world link" in m for m in messages), messages
+
+
+def test_a_macro_with_other_parameter_names_gets_a_hint(tmp_path):
+    (tmp_path / "ur.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:macro name="arm" params="tf_prefix parent *origin">'
+        '<link name="${tf_prefix}base"/><joint name="${tf_prefix}mount" type="fixed"><parent link="${parent}"/>'
+        '<child link="${tf_prefix}base"/></joint></xacro:macro></robot>',
+        encoding="utf-8",
+    )
+    scene = tmp_path / "cell.yaml"
+    scene.write_text("scene: cell\ninstances:\n  a: {xacro: {file: ur.xacro, macro: arm}, prefix: a_, parent: world}\n")
+    with pytest.raises(SpecErrors) as caught:
+        xacrokit.generate(scene, tmp_path / "out")
+    assert "set prefix_param and parent_param" in caught.value.errors[0].message
+    scene.write_text(
+        "scene: cell\ninstances:\n"
+        "  a: {xacro: {file: ur.xacro, macro: arm, prefix_param: tf_prefix}, prefix: a_, parent: world}\n"
+    )
+    result = xacrokit.generate(scene, tmp_path / "out")  # with the hint followed
+    assert {"world", "a_base"} == {e.get("name") for e in urdf_root(result).iter("link")}
