@@ -171,6 +171,11 @@ def _xacro_message(exc: BaseException) -> str:
         return _xacro_message(inner)
     if isinstance(exc, xacro.XacroException) and isinstance(inner, LookupError) and inner.args:
         return str(inner.args[0])
+    if str(exc).strip() == "Not enough blocks":
+        return (
+            "Not enough blocks: the macro takes a block parameter (*origin, say) that the call does not give; put "
+            'the block inside the call, e.g. <origin xyz="0 0 0" rpy="0 0 0"/>'
+        )
     if isinstance(exc, xacro.XacroException) and isinstance(inner, OSError):  # (xacro says it twice otherwise)
         return f"cannot read {inner.filename}: {inner.strerror or inner}" if inner.filename else str(inner)
     return str(exc).strip()

@@ -9,7 +9,9 @@ names are found by expanding it alone first.
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
+import io
 import json
 import math
 import tempfile
@@ -338,7 +340,8 @@ def _probe_names(
         probe = Path(folder) / "probe.urdf.xacro"
         probe.write_text(text, encoding="utf-8")
         try:
-            urdf = expand_file(probe)
+            with contextlib.redirect_stderr(io.StringIO()):  # (xacro's warnings come once, from the real expansion)
+                urdf = expand_file(probe)
         except ExpandError as exc:
             hint = ""
             if "Invalid parameter" in exc.message:  # (a UR-style macro calls its prefix tf_prefix, say)

@@ -133,3 +133,16 @@ def test_cli_macros_prints_the_library_folder():
     lines = result.stdout.splitlines()
     assert lines[0] == str(xacrokit.macros_dir())
     assert any(line.strip().startswith("$(find xacrokit)/macros/dh.xacro") for line in lines)
+
+
+def test_a_missing_block_says_which_kind_of_thing_is_missing(tmp_path):
+    document = tmp_path / "w.xacro"
+    document.write_text(
+        '<robot name="w" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:include filename="$(find xacrokit)/macros/wheel.xacro"/><link name="base"/>'
+        '<xacro:wheel prefix="" name="left_wheel" parent="base" radius="0.1" width="0.05" mass="1"/></robot>',
+        encoding="utf-8",
+    )
+    with pytest.raises(xacrokit.ExpandError) as caught:
+        xacrokit.expand(document)
+    assert "block parameter (*origin, say)" in caught.value.message and caught.value.macro_stack == ("wheel",)

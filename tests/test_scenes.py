@@ -540,3 +540,19 @@ def test_a_macro_with_other_parameter_names_gets_a_hint(tmp_path):
     )
     result = xacrokit.generate(scene, tmp_path / "out")  # with the hint followed
     assert {"world", "a_base"} == {e.get("name") for e in urdf_root(result).iter("link")}
+
+
+def test_xacro_warnings_about_a_third_party_macro_come_once(tmp_path, capfd):
+    (tmp_path / "lidar.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:macro name="lidar" params="prefix parent *origin '
+        'range:=10"><link name="${prefix}lidar"/><joint name="${prefix}lidar_joint" type="fixed">'
+        '<parent link="${parent}"/><child link="${prefix}lidar"/></joint></xacro:macro></robot>',
+        encoding="utf-8",
+    )
+    scene = tmp_path / "cell.yaml"
+    scene.write_text(
+        "scene: cell\ninstances:\n  l: {xacro: {file: lidar.xacro, macro: lidar}, prefix: l_, parent: world}\n"
+    )
+    xacrokit.generate(scene, tmp_path / "out")
+    warned = capfd.readouterr().err.count("redefining global symbol: range")
+    assert warned == 1  # from the real expansion; the probe that learns the names keeps quiet
