@@ -299,29 +299,45 @@ _NUMBERS: dict[str, dict[str, int]] = {
 }
 
 
+_URDF_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?", re.ASCII)  # what urdfdom reads
+
+
+def _number_problem(text: str, count: int, colour: bool) -> str | None:
+    # urdfdom splits a vector on spaces (a tab is no separator) and reads a single value whole (a trailing space fails)
+    values = [v for v in text.split(" ") if v] if count > 1 else [text.lstrip(" ")]
+    if len(values) != count or not all(_URDF_NUMBER.fullmatch(v) for v in values):
+        return f"expected {'a finite number' if count == 1 else f'{count} finite numbers'}"
+    numbers = [float(v) for v in values]
+    if not all(math.isfinite(v) for v in numbers):
+        return f"expected {'a finite number' if count == 1 else f'{count} finite numbers'}"
+    if colour and not all(0.0 <= v <= 1.0 for v in numbers):
+        return "expected 4 numbers from 0 to 1"
+    return None
+
+
 def number_rules(doc: _Doc) -> Iterator[Finding]:
-    """U002: numbers that do not read (``rpy="0 0 pi/2"`` left by a macro, ``xyz="0 0"``). Consumers differ on them:
-    urdfdom prints an error and goes on, others refuse the file."""
-    for owner in (*doc.links, *doc.joints, *doc.root.findall("material")):
-        for element in owner.iter(*_NUMBERS):
-            for attribute, count in _NUMBERS[element.tag].items():
-                text = element.get(attribute)
-                if text is None:
-                    continue
-                try:
-                    values = [float(v) for v in text.split()]
-                except ValueError:
-                    values = []
-                if len(values) != count or not all(math.isfinite(v) for v in values):
-                    what = "a finite number" if count == 1 else f"{count} finite numbers"
-                    kind = owner.tag if owner.tag in ("link", "joint") else "material"
-                    yield doc.finding(
-                        "U002",
-                        kind,
-                        owner.get("name", ""),
-                        f'<{element.tag} {attribute}="{text}">: expected {what}',
-                        element,
-                    )
+    """U002: numbers that do not read as urdfdom reads them (``rpy="0 0 pi/2"`` left by a macro, ``xyz="0 0"``,
+    ``1_0``, a tab between values) and colours outside 0..1. Consumers differ on them: urdfdom prints an error and
+    goes on, others refuse the file. Robots repeat their numbers, so each text is judged once."""
+    judged: dict[tuple[str, str, str], str | None] = {}
+    for element in doc.root.iter(*_NUMBERS):
+        counts = _NUMBERS[element.tag]
+        for attribute, text in element.items():
+            count = counts.get(attribute)
+            if count is None:
+                continue
+            key = (element.tag, attribute, text)
+            if key not in judged:
+                judged[key] = _number_problem(text, count, element.tag == "color")
+            problem = judged[key]
+            if problem is None:
+                continue
+            owner = element
+            while owner.getparent() is not None and owner.getparent() is not doc.root:
+                owner = owner.getparent()
+            if owner.tag in ("link", "joint", "material"):  # (not a <gazebo> or <ros2_control> block's own)
+                message = f'<{element.tag} {attribute}="{text}">: {problem}'
+                yield doc.finding("U002", owner.tag, owner.get("name", ""), message, element)
 
 
 def name_rules(doc: _Doc) -> Iterator[Finding]:

@@ -14,6 +14,7 @@ import dataclasses
 import io
 import json
 import math
+import re
 import tempfile
 from dataclasses import dataclass, field
 from functools import cache
@@ -344,11 +345,14 @@ def _probe_names(
                 urdf = expand_file(probe)
         except ExpandError as exc:
             hint = ""
-            if "Invalid parameter" in exc.message:  # (a UR-style macro calls its prefix tf_prefix, say)
+            invalid = re.search(r'Invalid parameter "([^"]*)"', exc.message)
+            if invalid and invalid[1] in (macro.prefix_param, macro.parent_param):  # (UR's macro says tf_prefix)
                 hint = (
                     f" (the scene passes {macro.prefix_param!r} and {macro.parent_param!r}: set prefix_param and "
-                    "parent_param to the macro's own names for them; other parameters go in params)"
+                    "parent_param to the macro's own names for them)"
                 )
+            elif invalid:
+                hint = f" (the macro has no parameter {invalid[1]!r}: check the names under params)"
             errors.append(
                 raw.error(
                     ("instances", name, "xacro"),
@@ -364,11 +368,11 @@ def _probe_names(
     problems = []
     if every_link.count(parent) > 1:
         problems.append(f"it makes a link {parent!r} itself, the name of the link it is mounted on")
-    unprefixed = [n for n in (*links, *joints) if not n.startswith(prefix)]
+    unprefixed = [n for n in (*links, *joints) if prefix not in n]  # (world_to_${prefix}base carries it too)
     if unprefixed:
         shown = ", ".join(unprefixed[:6]) + (f" and {len(unprefixed) - 6} more" if len(unprefixed) > 6 else "")
         problems.append(
-            f"its names {shown} do not start with the prefix {prefix!r} (if its prefix parameter is not called "
+            f"its names {shown} do not hold the prefix {prefix!r} (if its prefix parameter is not called "
             f"{macro.prefix_param!r}, set prefix_param)"
         )
     if not any(j.find("parent") is not None and j.find("parent").get("link") == parent for j in root.findall("joint")):

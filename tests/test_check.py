@@ -412,3 +412,34 @@ def test_check_urdf_printing_an_error_is_a_rejection_even_when_it_exits_0():
     (consumer,) = report.consumers
     assert consumer.status == "rejected" and "pi/2" in consumer.message, consumer
     assert {f.rule for f in report.errors} == {"U002", "C001"}
+
+
+@pytest.mark.parametrize(
+    ("element", "bad"),
+    [
+        ('<inertia ixx="1_0" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/>', 'ixx="1_0"'),  # Python reads it; urdfdom not
+        ('<inertia ixx="\uff11" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/>', 'ixx="\uff11"'),  # a full-width digit
+        ('<origin xyz="0&#9;0 0"/>', 'xyz="0\t0 0"'),  # a tab between values (written as a reference: XML turns a
+        # literal tab in an attribute into a space)
+        ('<mass value="1.0 "/>', 'value="1.0 "'),  # urdfdom: "mass [1.0 ] is not a float"
+        ('<origin rpy="0 0 nan"/>', 'rpy="0 0 nan"'),
+    ],
+)
+def test_u002_reads_numbers_the_way_urdfdom_does(tmp_path, element, bad):
+    urdf = tmp_path / "r.urdf"
+    urdf.write_text(f'<robot name="r"><link name="a"><inertial>{element}</inertial></link></robot>', encoding="utf-8")
+    messages = [f.message for f in check(urdf, consumers=[]).findings if f.rule == "U002"]
+    assert len(messages) == 1 and bad in messages[0], messages
+
+
+def test_u002_accepts_what_urdf_allows_and_refuses_colours_beyond_1(tmp_path):
+    urdf = tmp_path / "r.urdf"
+    urdf.write_text(
+        '<robot name="r"><material name="m"><color rgba="2 0 0 1"/></material><link name="a"><visual><origin/>'
+        '<geometry><mesh filename="m.stl" scale=" 1e-3  +.5 -0. "/></geometry></visual>'
+        '<inertial><origin xyz="+1E-2 .01 -0." rpy="  0 0 0 "/><mass value=" 1"/>'
+        '<inertia ixx="0.011" iyy="0.012" izz="0.013" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>',
+        encoding="utf-8",
+    )
+    messages = [f.message for f in check(urdf, consumers=[]).findings if f.rule == "U002"]
+    assert messages == ['<color rgba="2 0 0 1">: expected 4 numbers from 0 to 1']

@@ -190,6 +190,10 @@ BAD_ROWS = [
     ({"dynamics": {"damping": -5.0}}, "table[0].dynamics.damping must be >= 0"),
     ({"dynamics": {"friction": "abc"}}, "table[0].dynamics.friction must be a finite number"),
     ({"dynamics": {"damp": 0.1}}, "table[0].dynamics must be a mapping with damping and/or friction"),
+    (
+        {"limit": {"lower": -1.0, "upper": 1.0, "effort": 1.0, "velocity": 1.0, "lowr": 3.0}},
+        "table[0].limit has unknown key(s) lowr; a limit takes lower, upper, effort, velocity",
+    ),
 ]
 
 

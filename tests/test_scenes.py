@@ -478,6 +478,9 @@ THIRD_PARTY_FAULTS = {
     "ignores_prefix": '<link name="plate"/>'
     '<joint name="plate_joint" type="fixed"><parent link="${parent}"/><child link="plate"/></joint>',
     "ignores_parent": '<link name="${prefix}base"/>',
+    "prefix_inside": '<link name="${prefix}base"/>'  # valid: the prefix is inside the joint's name
+    '<joint name="${parent}_to_${prefix}base" type="fixed"><parent link="${parent}"/><child link="${prefix}base"/>'
+    "</joint>",
 }
 
 
@@ -485,7 +488,7 @@ THIRD_PARTY_FAULTS = {
     ("macro", "words"),
     [
         ("makes_world", "it makes a link 'world' itself"),
-        ("ignores_prefix", "its names plate, plate_joint do not start with the prefix 'p_'"),
+        ("ignores_prefix", "its names plate, plate_joint do not hold the prefix 'p_'"),
         ("ignores_parent", "no joint of it hangs from the link it is mounted on, 'world'"),
     ],
 )
@@ -556,3 +559,24 @@ def test_xacro_warnings_about_a_third_party_macro_come_once(tmp_path, capfd):
     xacrokit.generate(scene, tmp_path / "out")
     warned = capfd.readouterr().err.count("redefining global symbol: range")
     assert warned == 1  # from the real expansion; the probe that learns the names keeps quiet
+
+
+def test_a_third_party_macro_may_put_its_prefix_inside_a_name_and_a_misspelt_param_is_named(tmp_path):
+    (tmp_path / "parts.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:macro name="prefix_inside" params="prefix parent '
+        '*origin">' + THIRD_PARTY_FAULTS["prefix_inside"] + "</xacro:macro></robot>",
+        encoding="utf-8",
+    )
+    scene = tmp_path / "cell.yaml"
+    scene.write_text(
+        "scene: cell\ninstances:\n  p: {xacro: {file: parts.xacro, macro: prefix_inside}, prefix: p_, parent: world}\n"
+    )
+    assert {"world_to_p_base"} <= {e.get("name") for e in urdf_root(xacrokit.generate(scene, tmp_path / "a")).iter()}
+    scene.write_text(
+        "scene: cell\ninstances:\n"
+        "  p: {xacro: {file: parts.xacro, macro: prefix_inside, params: {lenght: 0.5}}, prefix: p_, parent: world}\n"
+    )
+    with pytest.raises(SpecErrors) as caught:
+        xacrokit.generate(scene, tmp_path / "b")
+    message = caught.value.errors[0].message
+    assert "the macro has no parameter 'lenght'" in message and "prefix_param" not in message
