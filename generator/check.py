@@ -22,6 +22,7 @@ from .consumers import CONSUMERS, ConsumerResult, available, run_consumers
 from .errors import SpecError, SpecErrors, XacrokitError
 from .gcpause import collector_paused
 from .load import RawSpec
+from .units import NUMBER
 
 Severity = Literal["error", "warning"]
 MOVING = ("revolute", "continuous", "prismatic")
@@ -299,7 +300,7 @@ _NUMBERS: dict[str, dict[str, int]] = {
 }
 
 
-_URDF_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?", re.ASCII)  # what urdfdom reads
+_URDF_NUMBER = re.compile(NUMBER, re.ASCII)  # what urdfdom reads: ASCII digits only
 
 
 def _number_problem(text: str, count: int, colour: bool) -> str | None:
@@ -707,9 +708,9 @@ def _spec_lines(raw: RawSpec) -> tuple[dict[tuple[str, str], int], object, tuple
     return lines, robot, _notes(spec.warnings)
 
 
-def _notes(warnings: Iterable[SpecError]) -> tuple[Finding, ...]:
-    """A spec's warnings (values that look like a units mistake) as V001 findings."""
-    return tuple(Finding("V001", "warning", "value", w.path, w.message, w.file, w.line) for w in warnings)
+def _notes(problems: Iterable[SpecError], rule: str = "V001") -> tuple[Finding, ...]:
+    """A spec's warnings (values that look like a units mistake; V001) or errors (V002) as findings."""
+    return tuple(Finding(rule, RULES[rule][1], "value", e.path, e.message, e.file, e.line) for e in problems)
 
 
 def kinematics_rules(doc: _Doc, robot, urdf_text: str) -> Iterator[Finding]:
@@ -845,8 +846,7 @@ def check(
     except SpecErrors as exc:
         if all(e.line is None for e in exc.errors):  # the file itself cannot be read: no report to give
             raise
-        invalid = tuple(Finding("V002", "error", "value", e.path, e.message, e.file, e.line) for e in exc.errors)
-        return CheckReport(str(path), kind, None, invalid)
+        return CheckReport(str(path), kind, None, _notes(exc.errors, "V002"))
     try:
         root = etree.fromstring(text.encode("utf-8"))
     except etree.XMLSyntaxError as exc:

@@ -18,6 +18,7 @@ from yaml.constructor import SafeConstructor
 
 from .errors import SpecError, SpecErrors
 from .gcpause import collector_paused
+from .units import NUMBER
 
 PathKey = tuple[str | int, ...]
 # libyaml's parser (same events, same line/column marks) is several times faster than PyYAML's pure-Python one
@@ -26,7 +27,7 @@ _PLAIN_TAGS = {
     f"tag:yaml.org,2002:{name}"
     for name in ("str", "int", "float", "bool", "null", "map", "seq", "timestamp", "binary", "merge")
 }
-_NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?")
+_NUMBER = re.compile(NUMBER)
 MAX_SPEC_BYTES = 16 * 1024 * 1024
 
 

@@ -25,6 +25,9 @@ from typing import Literal
 Kind = Literal["length", "angle", "mass", "number"]
 Value = Fraction | float  # exact while no pi is involved
 
+# A decimal literal as specs (JSON, YAML 1.2) and URDF files write one: sign, digits, point, exponent.
+NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+
 UNITS: dict[str, dict[str, Value]] = {
     "length": {
         "m": Fraction(1),
@@ -135,7 +138,7 @@ def _unit_kind(word: str) -> str | None:
 
 # The common case, one number and maybe a unit ("150 mm", "0.3", "90 deg"), without the parser; decimal arithmetic
 # (exact for these products) gives the same doubles as the parser's fractions, faster.
-_SIMPLE = re.compile(r"\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([A-Za-z_]*)\s*")
+_SIMPLE = re.compile(rf"\s*({NUMBER})\s*([A-Za-z_]*)\s*")
 _DECIMAL_FACTORS = {
     kind: {unit: Decimal(factor.numerator) / Decimal(factor.denominator) for unit, factor in table.items()}
     for kind, table in UNITS.items()
@@ -144,6 +147,12 @@ _DECIMAL_FACTORS = {
 _EXACT = Context(
     prec=60, Emax=MAX_EMAX, Emin=MIN_EMIN
 )  # more digits than any spec number times a factor has: the product is exact
+
+
+def plain_number(text: str) -> float | None:
+    """``text`` as a float when it is a bare number (``'90'``), else None (a unit or ``pi`` says what it is)."""
+    simple = _SIMPLE.fullmatch(text)
+    return float(simple[1]) if simple and not simple[2] else None
 
 
 def _simple(number: str, unit: str, kind: Kind, value: str) -> float:

@@ -6,7 +6,6 @@ Nothing here writes or prints; failure is one :class:`SpecErrors` holding the li
 
 from __future__ import annotations
 
-import contextlib
 import json
 import math
 import re
@@ -22,7 +21,7 @@ from .errors import SpecError, SpecErrors
 from .gcpause import collector_paused
 from .load import PathKey, RawSpec
 from .resources import PUBLIC_MACROS, schemas_dir
-from .units import Kind, UnitError, parse_quantity
+from .units import Kind, UnitError, parse_quantity, plain_number
 
 MOVING = ("revolute", "continuous", "prismatic")
 # The robot name becomes a xacro macro name: it must not shadow a library macro or a xacro keyword.
@@ -273,17 +272,6 @@ def _located(raw: RawSpec, errors: list[jsonschema.ValidationError]) -> list[Spe
 _TURNS: dict[str | int, int] = {"lower": 2, "upper": 2, "soft_lower_limit": 2, "soft_upper_limit": 2}
 
 
-_PLAIN_NUMBER = re.compile(r"\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*")
-
-
-def _plain_number(value: object) -> float | None:
-    """A string that is a bare number ('90'), as a float; None for anything else (a unit or pi says what it is)."""
-    if isinstance(value, str) and _PLAIN_NUMBER.fullmatch(value):
-        with contextlib.suppress(ValueError, OverflowError):
-            return float(value)
-    return None
-
-
 class _Quantities:
     """Converts every quantity of a schema-valid spec to SI, collecting located errors.
 
@@ -312,7 +300,7 @@ class _Quantities:
             return
         value = container[key]
         if kind == "angle":
-            plain = value if type(value) in (int, float) else _plain_number(value)
+            plain = value if type(value) in (int, float) else plain_number(value) if isinstance(value, str) else None
             if plain is not None and abs(plain) > _TURNS.get(key, 1) * math.tau:
                 self._turns(plain, key, (*path, key))
         if type(value) is float and math.isfinite(value) and (value != 0.0 or math.copysign(1.0, value) > 0):
