@@ -21,12 +21,12 @@ from lxml import etree
 from .consumers import CONSUMERS, ConsumerResult, available, run_consumers
 from .errors import SpecError, SpecErrors, XacrokitError
 from .gcpause import collector_paused
-from .load import RawSpec
+from .model import JOINT_TYPES, MOVING
+from .physics import TOLERANCE, format_moments, moments_problem, principal_moments
+from .tree import Tree
 from .units import NUMBER
 
 Severity = Literal["error", "warning"]
-MOVING = ("revolute", "continuous", "prismatic")
-JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 
 # rule id -> (name, severity, what it checks). The ids are stable: scripts may filter on them.
 RULES: dict[str, tuple[str, Severity, str]] = {
@@ -89,7 +89,6 @@ RULES: dict[str, tuple[str, Severity, str]] = {
     "V002": ("spec-valid", "error", "a spec follows its schema and the rules gen-robot applies (as gen-robot SPEC)"),
     "C001": ("consumer-accepts", "error", "an independent consumer loads the URDF"),
 }
-TOLERANCE = 1e-9
 
 
 @dataclass(frozen=True)
@@ -217,8 +216,7 @@ def _duplicate_names(doc: _Doc, elements: list[etree._Element], kind: str, rule:
 def structure_rules(doc: _Doc) -> Iterator[Finding]:
     yield from _duplicate_names(doc, doc.links, "link", "S004")
     yield from _duplicate_names(doc, doc.joints, "joint", "S005")
-    parent_of: dict[str, tuple[str, str]] = {}  # child -> (parent, joint)
-    children: dict[str, list[str]] = {}
+    tree: Tree[str] = Tree()  # child -> (parent, joint)
     for joint in doc.joints:
         name = joint.get("name", "")
         parent = joint.find("parent").get("link", "") if joint.find("parent") is not None else ""
@@ -229,8 +227,9 @@ def structure_rules(doc: _Doc) -> Iterator[Finding]:
         if missing:
             yield doc.finding("S003", "joint", name, f"{' and '.join(missing)} not a link of this robot", joint)
             continue
-        if child in parent_of:
-            loop = _path_up(parent, child, parent_of)
+        first = tree.add(parent, child, name)
+        if first is not None:
+            loop = tree.path_up(parent, child)
             if loop:  # following this joint leads back to the child: a cycle hanging off the tree
                 yield doc.finding(
                     "S002",
@@ -240,7 +239,7 @@ def structure_rules(doc: _Doc) -> Iterator[Finding]:
                     joint,
                 )
             else:
-                first_parent, first_joint = parent_of[child]
+                first_parent, first_joint = first
                 yield doc.finding(
                     "S006",
                     "link",
@@ -250,18 +249,8 @@ def structure_rules(doc: _Doc) -> Iterator[Finding]:
                     "a tree: remove one of the joints",
                     joint,
                 )
-            continue
-        parent_of[child] = (parent, name)
-        children.setdefault(parent, []).append(child)
-    roots = sorted(n for n in doc.link_names if n not in parent_of)
-    reachable: set[str] = set()
-    stack = list(roots)
-    while stack:
-        current = stack.pop()
-        if current not in reachable:
-            reachable.add(current)
-            stack += children.get(current, [])
-    in_cycles = sorted(doc.link_names - reachable)
+    roots = tree.roots(doc.link_names)
+    in_cycles = sorted(doc.link_names - tree.reachable(roots))
     if in_cycles:
         yield doc.finding(
             "S002",
@@ -354,20 +343,6 @@ def name_rules(doc: _Doc) -> Iterator[Finding]:
             else:
                 continue
             yield doc.finding("N001", kind, name, f"{kind} {name!r} {problem}; use letters, digits and _", element)
-
-
-def _path_up(start: str, target: str, parent_of: Mapping[str, tuple[str, str]]) -> list[str]:
-    """Links from ``start`` up through its ancestors to ``target`` (inclusive), or [] when target is not above."""
-    path, current, seen = [start], start, {start}
-    while current != target:
-        if current not in parent_of:
-            return []
-        current = parent_of[current][0]
-        if current in seen:
-            return []
-        seen.add(current)
-        path.append(current)
-    return path
 
 
 def joint_rules(doc: _Doc) -> Iterator[Finding]:
@@ -500,9 +475,9 @@ def inertia_rules(doc: _Doc) -> Iterator[Finding]:
     # (ixx, ixy, ixz, iyy, iyz, izz) of every link that has them; the principal moments of all the finite ones in one
     # batched eigvalsh, consumed in link order below (per-link numpy calls cost ten times more)
     entries = [_inertia_entries(link) for link in doc.links]
-    finite = [e for e in entries if e is not None and all(math.isfinite(v) for v in e)]
-    tensors = np.array(finite, dtype=float).reshape(-1, 6)[:, [0, 1, 2, 1, 3, 4, 2, 4, 5]].reshape(-1, 3, 3)
-    moments_in_order = iter(np.linalg.eigvalsh(tensors).tolist() if finite else ())
+    moments_in_order = iter(
+        principal_moments([e for e in entries if e is not None and all(math.isfinite(v) for v in e)])
+    )
     for link, entry in zip(doc.links, entries, strict=True):
         moments = next(moments_in_order) if entry is not None and all(math.isfinite(v) for v in entry) else None
         name = link.get("name", "")
@@ -533,24 +508,24 @@ def inertia_rules(doc: _Doc) -> Iterator[Finding]:
         if moments is None:
             yield doc.finding("I002", "link", name, "the inertia tensor has unreadable entries", link)
             continue
-        scale = max(max(abs(m) for m in moments), 1e-300)
-        if min(moments) <= TOLERANCE * scale:
+        problem = moments_problem(moments)
+        if problem == "not-positive-definite":
             yield doc.finding(
                 "I002",
                 "link",
                 name,
                 f"inertia is not positive definite (principal moments "
-                f"{_fmt(moments)}); every principal moment must be > 0",
+                f"{format_moments(moments)}); every principal moment must be > 0",
                 link,
             )
             continue
         total = sum(moments)
-        if any(m > total - m + TOLERANCE * total for m in moments):
+        if problem == "triangle-inequality":
             yield doc.finding(
                 "I003",
                 "link",
                 name,
-                f"principal moments {_fmt(moments)} violate the triangle "
+                f"principal moments {format_moments(moments)} violate the triangle "
                 "inequality: each must be at most the sum of the other two",
                 link,
             )
@@ -592,10 +567,6 @@ def _plausibility(doc: _Doc, link: etree._Element, name: str, mass: float, trace
             "a units mistake (mm for m, g for kg)?",
             link,
         )
-
-
-def _fmt(values: Iterable[float]) -> str:
-    return ", ".join(f"{v:.6g}" for v in values)
 
 
 def reference_rules(
@@ -679,35 +650,6 @@ def prefix_rules(doc: _Doc, prefix: str) -> Iterator[Finding]:
 
 
 # ------------------------------------------------------------------------------------------------------------ inputs
-def _spec_lines(raw: RawSpec) -> tuple[dict[tuple[str, str], int], object, tuple[Finding, ...]]:
-    """For spec input: the robot, where each generated link and joint is written in the spec, and the spec's
-    warnings as V001 findings."""
-    from .resolve import resolve
-    from .validate import validate
-
-    spec = validate(raw)
-    robot = resolve(spec)
-    lines: dict[tuple[str, str], int] = {}
-
-    def at(path: tuple[str | int, ...]) -> int:
-        # a mapping entry by its key's line; a list item (a DH row) by its own, not by its list's
-        return raw.locate(path, key=isinstance(path[-1], str))[0] or 0
-
-    for name in raw.data.get("links", {}):
-        lines[("link", name)] = at(("links", name))
-    for name in raw.data.get("joints", {}):
-        lines[("joint", name)] = at(("joints", name))
-    for section in ("wheels", "frames"):
-        for name in raw.data.get(section, {}):
-            lines[("link", name)] = lines[("joint", f"{name}_joint")] = at((section, name))
-    for arm in robot.arms:
-        lines[("link", arm.base)] = lines[("joint", f"{arm.base}_joint")] = at(("arms", arm.name))
-        lines[("link", arm.tool)] = lines[("joint", f"{arm.tool}_joint")] = at(("arms", arm.name))
-        for index, row in enumerate(arm.rows):
-            lines[("link", row.link)] = lines[("joint", row.name)] = at(("arms", arm.name, "joints", index))
-    return lines, robot, _notes(spec.warnings)
-
-
 def _notes(problems: Iterable[SpecError], rule: str = "V001") -> tuple[Finding, ...]:
     """A spec's warnings (values that look like a units mistake; V001) or errors (V002) as findings."""
     return tuple(Finding(rule, RULES[rule][1], "value", e.path, e.message, e.file, e.line) for e in problems)
@@ -756,19 +698,10 @@ def _load_urdf(
 ) -> tuple[str, object | None, dict | None, tuple[Finding, ...]]:
     """URDF text, and for spec input the robot model, the spec lines and the spec's warnings."""
     if kind == "spec":
-        from .load import load_file
-        from .pipeline import expand_package
-        from .render import render_package
-        from .scene import build_scene, expand_scene, is_scene, render_scene
+        from .pipeline import spec_urdf
 
-        raw = load_file(path)
-        if is_scene(raw):  # a scene: generated in memory as a whole
-            scene = build_scene(raw)
-            urdf = expand_scene(scene, render_scene(scene, spec_name=path.name)).content
-            return urdf, None, None, _notes(scene.warnings)
-        lines, robot, notes = _spec_lines(raw)  # the spec read above, not read again
-        files = render_package(robot, spec_name=path.name)  # type: ignore[arg-type]
-        return expand_package(robot, files).content, robot, lines, notes  # type: ignore[arg-type]
+        described = spec_urdf(path)
+        return described.urdf, described.robot, described.lines, _notes(described.warnings)
     if kind == "xacro":
         from .expansion import expand_file
 

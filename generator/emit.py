@@ -14,8 +14,25 @@ from collections.abc import Iterator
 from lxml import etree
 
 from .gcpause import collector_paused
-from .model import Arm, Box, Cylinder, DHRow, Inertia, Joint, Link, Mesh, Origin, Robot, Shape, Sphere, Wheel
-from .render import material_name, num, vec
+from .model import (
+    Arm,
+    Box,
+    Cylinder,
+    DHRow,
+    Inertia,
+    Joint,
+    Link,
+    Mesh,
+    Origin,
+    Robot,
+    Shape,
+    Sphere,
+    Wheel,
+    attach_joint_name,
+    mount_joint_name,
+)
+from .physics import cylinder_moments, sphere_moment
+from .text import material_name, num, vec
 
 AXIS_VECTORS = {"x": "1 0 0", "y": "0 1 0", "z": "0 0 1"}
 AXLE_GEOMETRY_RPY = {"x": "0 " + str(math.pi / 2) + " 0", "y": str(math.pi / 2) + " 0 0", "z": "0 0 0"}
@@ -60,36 +77,11 @@ def _inertial(
     _sub(inertial, "inertia", ixx=num(xx), ixy=num(xy), ixz=num(xz), iyy=num(yy), iyz=num(yz), izz=num(zz))
 
 
-def _cylinder_moments(mass: float, radius: float, length: float) -> tuple[float, float]:
-    """(axial, transverse) as cylinder_inertial computes them."""
-    return mass * radius * radius / 2.0, mass * (3.0 * radius * radius + length * length) / 12.0
-
-
-def _shape_inertial(parent: etree._Element, inertia: Inertia, shape: Shape) -> None:
-    """The tensor as box/cylinder/sphere_inertial or inertial compute it (same formulas, same order)."""
-    m, xyz, rpy = inertia.mass, vec(inertia.origin.xyz), vec(inertia.origin.rpy)
-    if inertia.kind == "box" and isinstance(shape, Box):
-        x, y, z = shape.size
-        _inertial(
-            parent,
-            m / 12.0 * (y * y + z * z),
-            0.0,
-            0.0,
-            m / 12.0 * (x * x + z * z),
-            0.0,
-            m / 12.0 * (x * x + y * y),
-            m,
-            xyz,
-            rpy,
-        )
-    elif inertia.kind == "cylinder" and isinstance(shape, Cylinder):
-        axial, transverse = _cylinder_moments(m, shape.radius, shape.length)
-        _inertial(parent, transverse, 0.0, 0.0, transverse, 0.0, axial, m, xyz, rpy)
-    elif inertia.kind == "sphere" and isinstance(shape, Sphere):
-        moment = 2.0 * m * shape.radius * shape.radius / 5.0
-        _inertial(parent, moment, 0.0, 0.0, moment, 0.0, moment, m, xyz, rpy)
-    else:
-        _inertial(parent, inertia.ixx, inertia.ixy, inertia.ixz, inertia.iyy, inertia.iyz, inertia.izz, m, xyz, rpy)
+def _stored_inertial(parent: etree._Element, inertia: Inertia) -> None:
+    """The model's tensor: resolve computed a shape's with the formulas the library's *_inertial macros use."""
+    xyz, rpy = vec(inertia.origin.xyz), vec(inertia.origin.rpy)
+    i = inertia
+    _inertial(parent, i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz, i.mass, xyz, rpy)
 
 
 def _link(robot: Robot, prefix: str, link: Link) -> etree._Element:
@@ -105,8 +97,7 @@ def _link(robot: Robot, prefix: str, link: Link) -> etree._Element:
         _origin(collision, link.collision.origin)
         _geometry(collision, link.collision.shape)
     if link.inertial is not None:
-        shape = link.visual.shape if link.visual is not None else Box((0.0, 0.0, 0.0))
-        _shape_inertial(element, link.inertial, shape)
+        _stored_inertial(element, link.inertial)
     return element
 
 
@@ -186,16 +177,16 @@ def _dh_body(robot: Robot, link: etree._Element, row: DHRow, end: tuple[float, f
         if tag == "visual" and row.material:
             _sub(part, "material", name=material_name(robot, row.material))
     if segment:
-        axial, transverse = _cylinder_moments(row.mass, row.radius, length)
+        axial, transverse = cylinder_moments(row.mass, row.radius, length)
         _inertial(link, transverse, 0.0, 0.0, transverse, 0.0, axial, row.mass, xyz, rpy)
     else:
-        moment = 2.0 * row.mass * row.radius * row.radius / 5.0
+        moment = sphere_moment(row.mass, row.radius)
         _inertial(link, moment, 0.0, 0.0, moment, 0.0, moment, row.mass, xyz, "0 0 0")
 
 
 def _arm(robot: Robot, prefix: str, arm: Arm) -> Iterator[etree._Element]:
     yield etree.Element("link", name=prefix + arm.base)
-    base_joint = etree.Element("joint", name=f"{prefix}{arm.base}_joint", type="fixed")
+    base_joint = etree.Element("joint", name=prefix + attach_joint_name(arm.base), type="fixed")
     _sub(base_joint, "parent", link=prefix + arm.parent)
     _sub(base_joint, "child", link=prefix + arm.base)
     _origin(base_joint, arm.origin)
@@ -239,7 +230,7 @@ def _arm(robot: Robot, prefix: str, arm: Arm) -> Iterator[etree._Element]:
         parent = prefix + row.link
     last = rows[-1]
     yield etree.Element("link", name=prefix + arm.tool)
-    tool_joint = etree.Element("joint", name=f"{prefix}{arm.tool}_joint", type="fixed")
+    tool_joint = etree.Element("joint", name=prefix + attach_joint_name(arm.tool), type="fixed")
     _sub(tool_joint, "parent", link=prefix + last.link)
     _sub(tool_joint, "child", link=prefix + arm.tool)
     standard = arm.convention == "standard"
@@ -251,7 +242,7 @@ def _arm(robot: Robot, prefix: str, arm: Arm) -> Iterator[etree._Element]:
 
 
 def _wheel(robot: Robot, prefix: str, wheel: Wheel) -> Iterator[etree._Element]:
-    joint = etree.Element("joint", name=f"{prefix}{wheel.name}_joint", type="continuous")
+    joint = etree.Element("joint", name=prefix + wheel.joint_name, type="continuous")
     _sub(joint, "parent", link=prefix + wheel.parent)
     _sub(joint, "child", link=prefix + wheel.name)
     _origin(joint, wheel.origin)
@@ -267,7 +258,7 @@ def _wheel(robot: Robot, prefix: str, wheel: Wheel) -> Iterator[etree._Element]:
         _geometry(part, shape)
         if tag == "visual" and wheel.material:
             _sub(part, "material", name=material_name(robot, wheel.material))
-    axial, transverse = _cylinder_moments(wheel.mass, wheel.radius, wheel.width)
+    axial, transverse = cylinder_moments(wheel.mass, wheel.radius, wheel.width)
     moments = [axial if axis == wheel.axis else transverse for axis in "xyz"]
     _inertial(link, moments[0], 0.0, 0.0, moments[1], 0.0, moments[2], wheel.mass, "0 0 0", "0 0 0")
     yield link
@@ -398,7 +389,7 @@ def emit_scene_urdf(scene) -> str:  # noqa: ANN001 - a Scene; imported lazily to
     control = "mock" if any(r.ros2_control is not None for r in scene.robots) else "none"
     for instance in scene.instances:
         robot = instance.robot
-        mount = etree.SubElement(root, "joint", name=f"{instance.prefix}{robot.root}_mount_joint", type="fixed")
+        mount = etree.SubElement(root, "joint", name=instance.prefix + mount_joint_name(robot.root), type="fixed")
         _sub(mount, "parent", link=instance.parent)
         _sub(mount, "child", link=instance.prefix + robot.root)
         _origin(mount, instance.origin)

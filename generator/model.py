@@ -1,14 +1,43 @@
 """The resolved robot: plain frozen dataclasses in SI units, the single source of truth after validation.
 
-Everything downstream (templates, checks, the direct URDF emitter) reads this model and nothing else.
+What a package says about the robot (its templates and the direct URDF emitter) comes from this model. Also here, as
+the one place for them: the joint types and the names of the links and joints xacrokit makes for a spec's arms,
+wheels, frames and scene mounts (validate, resolve, emit and check all ask these functions).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Literal
 
 Vec3 = tuple[float, float, float]
 ZERO: Vec3 = (0.0, 0.0, 0.0)
+
+JointType = Literal["revolute", "continuous", "prismatic", "fixed", "floating", "planar"]
+JOINT_TYPES: tuple[JointType, ...] = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
+MOVING: tuple[JointType, ...] = ("revolute", "continuous", "prismatic")  # one degree of freedom, driven by a motor
+LIMITED: tuple[JointType, ...] = ("revolute", "prismatic")  # need lower and upper limits
+DHRowType = Literal["revolute", "continuous", "prismatic", "fixed"]
+Convention = Literal["standard", "modified"]
+InertiaKind = Literal["box", "cylinder", "sphere", "explicit"]
+Axle = Literal["x", "y", "z"]
+DEFAULT_TOOL = "tool0"  # an arm's tool frame when the spec names none (ROS-Industrial's name)
+
+
+# ------------------------------------------------------------------------------------- names of generated elements
+def attach_joint_name(link: str) -> str:
+    """The fixed or continuous joint that attaches a generated link (arm base and tool, wheel, frame) to its parent."""
+    return f"{link}_joint"
+
+
+def arm_base_name(arm: str) -> str:
+    """The link of an arm's DH frame 0."""
+    return f"{arm}_base"
+
+
+def mount_joint_name(root: str) -> str:
+    """The fixed joint that mounts a robot's root link on its parent (a scene instance, a macro call with parent)."""
+    return f"{root}_mount_joint"
 
 
 @dataclass(frozen=True)
@@ -62,7 +91,7 @@ class Inertia:
     iyz: float
     izz: float
     origin: Origin = Origin()
-    kind: str = "explicit"
+    kind: InertiaKind = "explicit"
 
 
 @dataclass(frozen=True)
@@ -120,7 +149,7 @@ class SafetyController:
 @dataclass(frozen=True)
 class Joint:
     name: str
-    type: str
+    type: JointType
     parent: str
     child: str
     origin: Origin = Origin()
@@ -141,7 +170,7 @@ class DHRow:
     d: float
     alpha: float
     theta: float = 0.0
-    type: str = "revolute"
+    type: DHRowType = "revolute"
     limit: Limit | None = None
     dynamics: Dynamics | None = None
     mass: float | None = None
@@ -156,7 +185,7 @@ class Arm:
     name: str
     parent: str
     origin: Origin
-    convention: str
+    convention: Convention
     rows: tuple[DHRow, ...]
     base: str
     tool: str
@@ -168,7 +197,7 @@ class Arm:
 
     @property
     def joint_names(self) -> tuple[str, ...]:
-        return (f"{self.base}_joint", *(row.name for row in self.rows), f"{self.tool}_joint")
+        return (attach_joint_name(self.base), *(row.name for row in self.rows), attach_joint_name(self.tool))
 
 
 @dataclass(frozen=True)
@@ -181,7 +210,7 @@ class Wheel:
     radius: float
     width: float
     mass: float
-    axis: str = "y"
+    axis: Axle = "y"
     material: str | None = None
     effort: float = 10.0
     velocity: float = 10.0
@@ -192,7 +221,7 @@ class Wheel:
 
     @property
     def joint_name(self) -> str:
-        return f"{self.name}_joint"
+        return attach_joint_name(self.name)
 
 
 @dataclass(frozen=True)

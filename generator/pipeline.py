@@ -16,8 +16,8 @@ from .emit import emit_scene_urdf, emit_urdf
 from .errors import SpecError
 from .expansion import expand_file
 from .fileio import write_text_atomic
-from .load import load_file
-from .model import Robot
+from .load import RawSpec, load_file
+from .model import Robot, attach_joint_name
 from .render import MacroMode, RenderedFile, render_package
 from .resolve import resolve
 from .scene import Scene, build_scene, expand_scene, is_scene, render_scene
@@ -68,6 +68,60 @@ def expand_package(robot: Robot, files: list[RenderedFile]) -> RenderedFile:
     )
     declaration, _, body = urdf.partition("\n")
     return RenderedFile(f"urdf/{robot.name}.urdf", f"{declaration}\n{header}{body}")
+
+
+@dataclass(frozen=True)
+class SpecURDF:
+    """A spec's URDF made in memory (nothing written), for ``gen-robot check``: the robot (None for a scene), where
+    each generated link and joint is written in the spec (``(kind, name) -> line``; empty for a scene), and the
+    spec's warnings (see Spec.warnings)."""
+
+    urdf: str
+    robot: Robot | None
+    lines: dict[tuple[str, str], int]
+    warnings: tuple[SpecError, ...]
+
+
+def spec_urdf(spec_path: str | Path) -> SpecURDF:
+    """The URDF that expanding a spec's package with xacro gives (the one :func:`generate` writes with via_xacro).
+
+    Raises:
+        SpecErrors: the spec (or a robot of a scene) is invalid.
+        ExpandError: xacro could not expand the generated package.
+    """
+    path = Path(spec_path)
+    raw = load_file(path)
+    if is_scene(raw):  # generated in memory as a whole
+        scene = build_scene(raw)
+        return SpecURDF(expand_scene(scene, render_scene(scene, spec_name=path.name)).content, None, {}, scene.warnings)
+    spec = validate(raw)
+    robot = resolve(spec)
+    urdf = expand_package(robot, render_package(robot, spec_name=path.name)).content
+    return SpecURDF(urdf, robot, _spec_lines(raw, robot), spec.warnings)
+
+
+def _spec_lines(raw: RawSpec, robot: Robot) -> dict[tuple[str, str], int]:
+    """Where each link and joint of ``robot`` is written in its spec: a named entry's key, an arm's generated base
+    and tool at the arm, a DH row's link and joint at the row."""
+    lines: dict[tuple[str, str], int] = {}
+
+    def at(path: tuple[str | int, ...]) -> int:
+        # a mapping entry by its key's line; a list item (a DH row) by its own, not by its list's
+        return raw.locate(path, key=isinstance(path[-1], str))[0] or 0
+
+    for name in raw.data.get("links", {}):
+        lines[("link", name)] = at(("links", name))
+    for name in raw.data.get("joints", {}):
+        lines[("joint", name)] = at(("joints", name))
+    for section in ("wheels", "frames"):
+        for name in raw.data.get(section, {}):
+            lines[("link", name)] = lines[("joint", attach_joint_name(name))] = at((section, name))
+    for arm in robot.arms:
+        lines[("link", arm.base)] = lines[("joint", attach_joint_name(arm.base))] = at(("arms", arm.name))
+        lines[("link", arm.tool)] = lines[("joint", attach_joint_name(arm.tool))] = at(("arms", arm.name))
+        for index, row in enumerate(arm.rows):
+            lines[("link", row.link)] = lines[("joint", row.name)] = at(("arms", arm.name, "joints", index))
+    return lines
 
 
 def _quiet(message: str) -> None:

@@ -15,12 +15,15 @@ from typing import Any, Literal
 
 import jinja2
 import yaml
+from lxml import etree
 from markupsafe import Markup
 
 from . import __version__
+from .emit import robot_elements
 from .gcpause import collector_paused
 from .model import Box, Cylinder, Link, Mesh, Origin, Robot, Sphere
 from .resources import macros_dir, templates_dir
+from .text import material_name, num, vec, xacro_text
 
 MacroMode = Literal["copy", "find", "inline"]
 COPIED_MACROS_DIR = "urdf/xacrokit"
@@ -40,35 +43,6 @@ def indent_block(text: str, width: int) -> Markup:
     return Markup(re.sub(r"(?m)^(?=.)", " " * width, str(text)))  # (already rendered, so already escaped)
 
 
-def xacro_text(value: object) -> str:
-    """Text xacro must copy verbatim: every run of ``$`` before ``{`` or ``(`` gets one more ``$`` (xacro drops one)."""
-    return re.sub(r"(\$+)(?=[{(])", r"$\1", str(value))
-
-
-def num(value: float) -> str:
-    """A float written so that reading it back gives the same float."""
-    text = _NUMBER_TEXT.get(value)
-    if text is None:
-        text = repr(float(value))
-        if text == "-0.0":
-            text = "0.0"
-        if len(_NUMBER_TEXT) < 1 << 16:  # robots repeat their numbers (0.0, 0.1, pi/2): remember the text
-            _NUMBER_TEXT[value] = text
-    return text
-
-
-_NUMBER_TEXT: dict[float, str] = {}
-
-
-def vec(values: tuple[float, ...]) -> str:
-    return " ".join(num(v) for v in values)
-
-
-def material_name(robot: Robot, name: str | None) -> str:
-    """Materials are namespaced by robot so several robots (and instances) in one scene never clash."""
-    return f"{robot.name}/{name}" if name else ""
-
-
 def simple_shape_link(link: Link) -> str | None:
     """The links.xacro macro that makes exactly this link (visual, same collision, shape inertia), if there is one."""
     visual, collision, inertial = link.visual, link.collision, link.inertial
@@ -82,7 +56,7 @@ def simple_shape_link(link: Link) -> str | None:
 
 
 @cache
-def _environment() -> jinja2.Environment:
+def environment() -> jinja2.Environment:
     env = jinja2.Environment(
         loader=jinja2.FileSystemLoader(str(templates_dir())),
         undefined=jinja2.StrictUndefined,
@@ -158,7 +132,7 @@ def dh_table_yaml(robot: Robot, arm_index: int) -> str:
 @collector_paused()
 def render_package(robot: Robot, *, macros: MacroMode = "inline", spec_name: str = "spec.yaml") -> list[RenderedFile]:
     """Every file of ``NAME_description/`` except the expanded URDF (the expand stage adds that)."""
-    env = _environment()
+    env = environment()
     macro_files = used_macro_files(robot)
     include_prefix = "xacrokit/" if macros == "copy" else "$(find xacrokit)/macros/"
     if macros == "inline":  # plain XML computed here: no library macros to include
@@ -209,10 +183,6 @@ def _inline_body(robot: Robot) -> Markup:
     indented further: readable in a diff, and about a fifth cheaper for xacro than full indentation (less whitespace
     to copy).
     """
-    from lxml import etree
-
-    from .emit import robot_elements
-
     lines = []
     for element in robot_elements(robot, prefix="${prefix}", extras=False):
         for mesh in element.iter("mesh"):

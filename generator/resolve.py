@@ -10,6 +10,8 @@ from typing import Any
 
 from .gcpause import collector_paused
 from .model import (
+    DEFAULT_TOOL,
+    MOVING,
     Arm,
     Box,
     Collision,
@@ -18,6 +20,7 @@ from .model import (
     DHRow,
     Dynamics,
     Inertia,
+    InertiaKind,
     Interfaces,
     Joint,
     Limit,
@@ -33,8 +36,11 @@ from .model import (
     Vec3,
     Visual,
     Wheel,
+    arm_base_name,
+    attach_joint_name,
 )
-from .validate import MOVING, Spec
+from .physics import box_moments, cylinder_moments, sphere_moment
+from .validate import Spec
 
 DEFAULT_INTERFACES = Interfaces(command=("position",), state=("position", "velocity"))
 WHEEL_INTERFACES = Interfaces(command=("velocity",), state=("position", "velocity"))
@@ -65,17 +71,16 @@ def shape(data: dict[str, Any]) -> Shape:
 
 def shape_inertia(body: Shape, mass: float, frame: Origin) -> Inertia:
     """The closed-form tensor of a solid primitive about its centre, in the primitive's own axes."""
+    kind: InertiaKind
     if isinstance(body, Box):
-        x, y, z = body.size
-        xx, yy, zz = mass / 12.0 * (y * y + z * z), mass / 12.0 * (x * x + z * z), mass / 12.0 * (x * x + y * y)
+        xx, yy, zz = box_moments(mass, *body.size)
         kind = "box"
     elif isinstance(body, Cylinder):
-        r, h = body.radius, body.length
-        xx = yy = mass * (3.0 * r * r + h * h) / 12.0
-        zz = mass * r * r / 2.0
+        zz, xx = cylinder_moments(mass, body.radius, body.length)
+        yy = xx
         kind = "cylinder"
     elif isinstance(body, Sphere):
-        xx = yy = zz = 2.0 * mass * body.radius * body.radius / 5.0
+        xx = yy = zz = sphere_moment(mass, body.radius)
         kind = "sphere"
     else:  # validation guarantees meshes come with an explicit tensor
         raise TypeError(f"no closed-form inertia for {body!r}")
@@ -205,8 +210,8 @@ def _arm(name: str, data: dict[str, Any]) -> Arm:
         origin=origin(data.get("origin")),
         convention=data.get("convention", "standard"),
         rows=tuple(rows),
-        base=f"{name}_base",
-        tool=tool.get("name", "tool0"),
+        base=arm_base_name(name),
+        tool=tool.get("name", DEFAULT_TOOL),
         tool_origin=origin(tool.get("origin")),
     )
 
@@ -234,7 +239,7 @@ def _wheel(name: str, data: dict[str, Any]) -> Wheel:
 def _frame(name: str, data: dict[str, Any]) -> tuple[Link, Joint]:
     body = {k: data[k] for k in ("shape", "mass", "material") if k in data}
     joint = Joint(
-        name=f"{name}_joint", type="fixed", parent=data["parent"], child=name, origin=origin(data.get("origin"))
+        name=attach_joint_name(name), type="fixed", parent=data["parent"], child=name, origin=origin(data.get("origin"))
     )
     return _link(name, body), joint
 

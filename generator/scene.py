@@ -25,13 +25,14 @@ from typing import Any
 from . import __version__
 from .errors import ExpandError, SpecError, SpecErrors, XacrokitError
 from .load import PathKey, RawSpec, load_file
-from .model import Origin, Robot
-from .render import MacroMode, RenderedFile, _environment, render_package, xacro_text
+from .model import Origin, Robot, mount_joint_name
+from .render import MacroMode, RenderedFile, environment, render_package
 from .render import controllers as robot_controllers
 from .resolve import origin as resolve_origin
 from .resolve import resolve
 from .resources import schemas_dir
-from .validate import SchemaValidator, _Quantities, inline_refs, schema_errors, validate
+from .text import xacro_text
+from .validate import Quantities, SchemaValidator, inline_refs, schema_errors, validate
 
 ROBOT_FILES = ("urdf/", "config/")  # what a scene carries of each robot package (no nested package.xml)
 
@@ -110,7 +111,7 @@ def build_scene(raw: RawSpec) -> Scene:
     errors = schema_errors(raw, scene_validator())
     if errors:
         raise SpecErrors(errors)
-    quantities = _Quantities(raw)
+    quantities = Quantities(raw)
     for name, instance in quantities.data["instances"].items():
         quantities.origin(instance, "origin", ("instances", name))
     data, errors, warnings = quantities.data, quantities.errors, list(quantities.warnings)
@@ -138,7 +139,7 @@ def build_scene(raw: RawSpec) -> Scene:
                 )
                 continue
             links = tuple(prefix + n for n in robot.link_names)
-            joints = (*(prefix + n for n in robot.joint_names), f"{prefix}{robot.root}_mount_joint")
+            joints = (*(prefix + n for n in robot.joint_names), prefix + mount_joint_name(robot.root))
             partial[name] = {
                 "prefix": prefix,
                 "robot": robot,
@@ -336,7 +337,7 @@ def _probe_names(
     from .expansion import expand_file
 
     stub = SimpleNamespace(name=name, prefix=prefix, parent=parent, origin=Origin(), macro=macro)
-    text = _environment().get_template("scene/probe.urdf.xacro.j2").render(instance=stub)
+    text = environment().get_template("scene/probe.urdf.xacro.j2").render(instance=stub)
     with tempfile.TemporaryDirectory(prefix="xacrokit-probe-") as folder:
         probe = Path(folder) / "probe.urdf.xacro"
         probe.write_text(text, encoding="utf-8")
@@ -389,7 +390,7 @@ def _probe_names(
 # ------------------------------------------------------------------------------------------------------------ render
 def render_scene(scene: Scene, *, spec_name: str = "scene.yaml", macros: MacroMode = "inline") -> list[RenderedFile]:
     """Every file of the scene package except the expanded URDF; ``macros`` is how each robot's macro is written."""
-    env = _environment()
+    env = environment()
     files: list[RenderedFile] = []
     for robot in scene.robots:
         for file in render_package(robot, macros=macros, spec_name=spec_name):

@@ -7,7 +7,7 @@ import re
 from pathlib import Path
 
 from .errors import XacrokitError
-from .render import _environment
+from .render import environment
 
 KINDS = ("arm", "mobile", "humanoid")
 
@@ -20,7 +20,7 @@ def starter_text(name: str, kind: str = "arm") -> str:
         raise XacrokitError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
     # No schema modeline: the only schema file we could name is the installed copy, an absolute path of this machine
     # that breaks once the spec is shared or the venv goes; the starter says how to get one next to the spec instead.
-    return _environment().get_template(f"specs/{kind}.yaml.j2").render(name=name)
+    return environment().get_template(f"specs/{kind}.yaml.j2").render(name=name)
 
 
 def write_starter(name: str, *, kind: str = "arm", output: str | Path | None = None) -> Path:

@@ -23,8 +23,9 @@ from typing import Any
 
 from hypothesis import strategies as st
 
+from .model import JOINT_TYPES
+
 SHAPES = ("box", "cylinder", "sphere", "mesh", "none")
-JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 FAULTS = (
     "negative_mass",
     "swapped_limits",

@@ -15,15 +15,16 @@ from functools import cache, cached_property
 from typing import Any
 
 import jsonschema
-import numpy as np
 
 from .errors import SpecError, SpecErrors
 from .gcpause import collector_paused
 from .load import PathKey, RawSpec
+from .model import DEFAULT_TOOL, LIMITED, MOVING, arm_base_name, attach_joint_name
+from .physics import tensor, tensor_problem
 from .resources import PUBLIC_MACROS, schemas_dir
+from .tree import Tree
 from .units import Kind, UnitError, parse_quantity, plain_number
 
-MOVING = ("revolute", "continuous", "prismatic")
 # The robot name becomes a xacro macro name: it must not shadow a library macro or a xacro keyword.
 RESERVED_ROBOT_NAMES = frozenset(
     {
@@ -40,7 +41,6 @@ RESERVED_ROBOT_NAMES = frozenset(
         "insert_block",
     }
 )
-LIMITED = ("revolute", "prismatic")
 
 
 @dataclass(frozen=True)
@@ -272,7 +272,7 @@ def _located(raw: RawSpec, errors: list[jsonschema.ValidationError]) -> list[Spe
 _TURNS: dict[str | int, int] = {"lower": 2, "upper": 2, "soft_lower_limit": 2, "soft_upper_limit": 2}
 
 
-class _Quantities:
+class Quantities:
     """Converts every quantity of a schema-valid spec to SI, collecting located errors.
 
     The loaded data is only read: ``data`` is a copy in which the containers on the way to a converted value are new
@@ -432,20 +432,20 @@ def _link_and_joint_names(data: dict[str, Any]) -> tuple[list[_Named], list[_Nam
     links = [_Named(n, ("links", n), True) for n in data.get("links", {})]
     joints = [_Named(n, ("joints", n), True) for n in data.get("joints", {})]
     for arm_name, arm in data.get("arms", {}).items():
-        base = f"{arm_name}_base"
+        base = arm_base_name(arm_name)
         links.append(_Named(base, ("arms", arm_name), True))
-        joints.append(_Named(f"{base}_joint", ("arms", arm_name), True))
+        joints.append(_Named(attach_joint_name(base), ("arms", arm_name), True))
         for index, row in enumerate(arm["joints"]):
             links.append(_Named(row["link"], ("arms", arm_name, "joints", index, "link"), False))
             joints.append(_Named(row["name"], ("arms", arm_name, "joints", index, "name"), False))
-        tool = arm.get("tool", {}).get("name", "tool0")
+        tool = arm.get("tool", {}).get("name", DEFAULT_TOOL)
         tool_path = ("arms", arm_name, "tool", "name") if "name" in arm.get("tool", {}) else ("arms", arm_name)
         links.append(_Named(tool, tool_path, "name" not in arm.get("tool", {})))
-        joints.append(_Named(f"{tool}_joint", tool_path, "name" not in arm.get("tool", {})))
+        joints.append(_Named(attach_joint_name(tool), tool_path, "name" not in arm.get("tool", {})))
     for section in ("wheels", "frames"):
         for name in data.get(section, {}):
             links.append(_Named(name, (section, name), True))
-            joints.append(_Named(f"{name}_joint", (section, name), True))
+            joints.append(_Named(attach_joint_name(name), (section, name), True))
     return links, joints
 
 
@@ -475,7 +475,11 @@ def _edges(data: dict[str, Any]) -> list[tuple[str, str, PathKey]]:
     """(parent, child, where) for every parent-child relation the spec creates."""
     edges = [(j["parent"], j["child"], ("joints", n)) for n, j in data.get("joints", {}).items()]
     for arm_name, arm in data.get("arms", {}).items():
-        chain = [f"{arm_name}_base", *(row["link"] for row in arm["joints"]), arm.get("tool", {}).get("name", "tool0")]
+        chain = [
+            arm_base_name(arm_name),
+            *(row["link"] for row in arm["joints"]),
+            arm.get("tool", {}).get("name", DEFAULT_TOOL),
+        ]
         edges.append((arm["parent"], chain[0], ("arms", arm_name, "parent")))
         edges += [(a, b, ("arms", arm_name)) for a, b in zip(chain, chain[1:], strict=False)]
     for section in ("wheels", "frames"):
@@ -484,37 +488,25 @@ def _edges(data: dict[str, Any]) -> list[tuple[str, str, PathKey]]:
 
 
 def _tree_errors(raw: RawSpec, data: dict[str, Any], link_names: set[str]) -> Iterator[SpecError]:
-    edges = _edges(data)
-    parent_of: dict[str, tuple[str, PathKey]] = {}
-    children: dict[str, list[str]] = {}
+    tree: Tree[PathKey] = Tree()
     dangling: list[str] = []  # children of unknown parents: the bad reference is reported, not the tree again
-    for parent, child, where in edges:
+    for parent, child, where in _edges(data):
         if parent == child and where[0] == "joints":
             continue  # "a joint cannot connect a link to itself" says it; not a cycle to report again
         if parent not in link_names:
             dangling.append(child)
-            parent_of.setdefault(child, (parent, where))
+            tree.parent_of.setdefault(child, (parent, where))
             continue
-        if child in parent_of:
+        first = tree.add(parent, child, where)
+        if first is not None:
             yield raw.error(
                 where,
-                f"link {child!r} already has parent {parent_of[child][0]!r}; "
-                "a link can hang from one joint only (URDF is a tree)",
+                f"link {child!r} already has parent {first[0]!r}; a link can hang from one joint only (URDF is a tree)",
             )
-            continue
-        parent_of[child] = (parent, where)
-        children.setdefault(parent, []).append(child)
-    roots = sorted(name for name in link_names if name not in parent_of)
-    reachable: set[str] = set()
-    stack = list(roots) + dangling
-    while stack:
-        name = stack.pop()
-        if name not in reachable:
-            reachable.add(name)
-            stack += children.get(name, [])
-    stranded = sorted(link_names - reachable)
+    roots = tree.roots(link_names)
+    stranded = sorted(link_names - tree.reachable([*roots, *dangling]))
     if stranded:
-        where = parent_of[stranded[0]][1]
+        where = tree.parent_of[stranded[0]][1]
         yield raw.error(where, f"links {', '.join(stranded)} form a cycle (each hangs from another in the loop)")
     if len(roots) > 1:
         listed = ", ".join(roots)
@@ -646,41 +638,17 @@ def _shape_errors(raw: RawSpec, holder: dict[str, Any], path: PathKey) -> Iterat
 
 
 def _inertia_errors(raw: RawSpec, inertia: dict[str, Any], path: PathKey) -> Iterator[SpecError]:
-    tensor = np.array(
-        [
-            [inertia["ixx"], inertia.get("ixy", 0.0), inertia.get("ixz", 0.0)],
-            [inertia.get("ixy", 0.0), inertia["iyy"], inertia.get("iyz", 0.0)],
-            [inertia.get("ixz", 0.0), inertia.get("iyz", 0.0), inertia["izz"]],
-        ],
-        dtype=float,
+    matrix = tensor(
+        inertia["ixx"],
+        inertia.get("ixy", 0.0),
+        inertia.get("ixz", 0.0),
+        inertia["iyy"],
+        inertia.get("iyz", 0.0),
+        inertia["izz"],
     )
-    problem = tensor_problem(tensor)
+    problem = tensor_problem(matrix)
     if problem:
         yield raw.error(path, problem)
-
-
-def tensor_problem(tensor: np.ndarray, rel: float = 1e-9) -> str | None:
-    """Why ``tensor`` cannot be a rigid body's inertia about its centre of mass, or None when it can."""
-    if not np.all(np.isfinite(tensor)):
-        return "the inertia tensor has entries that are not finite"
-    moments = np.linalg.eigvalsh(tensor)
-    scale = max(float(np.abs(moments).max()), 1e-300)
-    if moments.min() <= rel * scale:
-        return (
-            f"the inertia tensor is not positive definite (principal moments {_fmt(moments)}); "
-            "every principal moment must be > 0"
-        )
-    total = float(moments.sum())
-    if any(m > total - m + rel * total for m in moments):
-        return (
-            f"the inertia tensor violates the triangle inequality (principal moments {_fmt(moments)}); "
-            "each must be at most the sum of the other two"
-        )
-    return None
-
-
-def _fmt(values: np.ndarray) -> str:
-    return ", ".join(f"{v:.6g}" for v in values)
 
 
 def _physics_errors(raw: RawSpec, data: dict[str, Any]) -> Iterator[SpecError]:
@@ -829,8 +797,8 @@ def semantic_errors(raw: RawSpec, data: dict[str, Any], *, physics: bool = True)
     joint_types = {n: j["type"] for n, j in data.get("joints", {}).items()}
     for arm in data.get("arms", {}).values():
         joint_types.update({row["name"]: row.get("type", "revolute") for row in arm["joints"]})
-    joint_types.update({f"{n}_joint": "continuous" for n in data.get("wheels", {})})
-    joint_types.update({f"{n}_joint": "fixed" for n in data.get("frames", {})})
+    joint_types.update({attach_joint_name(n): "continuous" for n in data.get("wheels", {})})
+    joint_types.update({attach_joint_name(n): "fixed" for n in data.get("frames", {})})
     errors += _reference_errors(raw, data, link_names, joint_types)
     errors += _tree_errors(raw, data, link_names)
     if physics:
@@ -867,7 +835,7 @@ def validate(raw: RawSpec) -> Spec:
     errors = _located(raw, found)
     if any(not _value_only(e) for e in found):  # the later checks rely on the shapes the schema guarantees
         raise SpecErrors(errors)
-    quantities = _Quantities(raw)
+    quantities = Quantities(raw)
     data, unit_errors = quantities.run()
     notes = quantities.warnings
     del quantities  # (its table of changes is garbage now: not kept through the checks below)

@@ -1,0 +1,84 @@
+"""Rigid-body facts used by several stages, written once: the inertia of solid primitives and what makes a tensor
+physical.
+
+The xacro macro library mirrors the formulas (``macros/inertia.xacro``: box_inertial, cylinder_inertial,
+sphere_inertial; ``macros/_inc/checks.xacro``: the tensor checks) operation for operation, so that the direct emitter
+and xacro write the same bits; a change here is a change there.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from typing import Literal
+
+import numpy as np
+
+TOLERANCE = 1e-9  # relative: a principal moment <= this * the largest is zero; the triangle inequality's slack
+
+TensorProblem = Literal["not-positive-definite", "triangle-inequality"]
+
+
+def box_moments(mass: float, x: float, y: float, z: float) -> tuple[float, float, float]:
+    """(Ixx, Iyy, Izz) of a solid box of edges x, y, z about its centre: m/12 (b^2 + c^2)."""
+    return mass / 12.0 * (y * y + z * z), mass / 12.0 * (x * x + z * z), mass / 12.0 * (x * x + y * y)
+
+
+def cylinder_moments(mass: float, radius: float, length: float) -> tuple[float, float]:
+    """(axial, transverse) moments of a solid cylinder about its centre: m r^2 / 2 and m (3 r^2 + l^2) / 12."""
+    return mass * radius * radius / 2.0, mass * (3.0 * radius * radius + length * length) / 12.0
+
+
+def sphere_moment(mass: float, radius: float) -> float:
+    """The moment of a solid sphere about any axis through its centre: 2 m r^2 / 5."""
+    return 2.0 * mass * radius * radius / 5.0
+
+
+def tensor(ixx: float, ixy: float, ixz: float, iyy: float, iyz: float, izz: float) -> np.ndarray:
+    """The symmetric 3x3 matrix of six inertia entries."""
+    return np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]], dtype=float)
+
+
+def principal_moments(entries: Sequence[Sequence[float]]) -> list[list[float]]:
+    """The principal moments (ascending) of many tensors given as (ixx, ixy, ixz, iyy, iyz, izz), in one batched
+    eigvalsh (per-tensor numpy calls cost ten times more on robots with many links). Entries must be finite."""
+    if not entries:
+        return []
+    batch = np.array(entries, dtype=float).reshape(-1, 6)[:, [0, 1, 2, 1, 3, 4, 2, 4, 5]].reshape(-1, 3, 3)
+    return np.linalg.eigvalsh(batch).tolist()  # type: ignore[no-any-return]
+
+
+def moments_problem(moments: Iterable[float], rel: float = TOLERANCE) -> TensorProblem | None:
+    """Why principal moments cannot be a rigid body's about its centre of mass: a moment not above ``rel`` times the
+    largest (not positive definite), or one above the sum of the other two beyond ``rel`` of the trace (the triangle
+    inequality); None when they can."""
+    values = list(moments)
+    scale = max(max(abs(m) for m in values), 1e-300)
+    if min(values) <= rel * scale:
+        return "not-positive-definite"
+    total = sum(values)
+    if any(m > total - m + rel * total for m in values):
+        return "triangle-inequality"
+    return None
+
+
+def format_moments(values: Iterable[float]) -> str:
+    return ", ".join(f"{v:.6g}" for v in values)
+
+
+def tensor_problem(matrix: np.ndarray, rel: float = TOLERANCE) -> str | None:
+    """Why ``matrix`` cannot be a rigid body's inertia about its centre of mass (a sentence), or None when it can."""
+    if not np.all(np.isfinite(matrix)):
+        return "the inertia tensor has entries that are not finite"
+    moments = np.linalg.eigvalsh(matrix).tolist()
+    problem = moments_problem(moments, rel)
+    if problem == "not-positive-definite":
+        return (
+            f"the inertia tensor is not positive definite (principal moments {format_moments(moments)}); "
+            "every principal moment must be > 0"
+        )
+    if problem == "triangle-inequality":
+        return (
+            f"the inertia tensor violates the triangle inequality (principal moments {format_moments(moments)}); "
+            "each must be at most the sum of the other two"
+        )
+    return None

@@ -1,0 +1,41 @@
+"""How values are written into generated files: numbers, vectors, material names and text xacro must copy verbatim.
+
+One place for these rules, shared by the direct emitter (``emit``), the templates (``render``) and scenes. Numbers
+are written with ``repr`` (round-trip exact) and never as ``-0.0``.
+"""
+
+from __future__ import annotations
+
+import re
+
+from .model import Robot
+
+
+def num(value: float) -> str:
+    """A float written so that reading it back gives the same float."""
+    text = _NUMBER_TEXT.get(value)
+    if text is None:
+        text = repr(float(value))
+        if text == "-0.0":
+            text = "0.0"
+        if len(_NUMBER_TEXT) < 1 << 16:  # robots repeat their numbers (0.0, 0.1, pi/2): remember the text
+            _NUMBER_TEXT[value] = text
+    return text
+
+
+_NUMBER_TEXT: dict[float, str] = {}
+
+
+def vec(values: tuple[float, ...]) -> str:
+    """Numbers separated by single spaces, each as :func:`num` writes it."""
+    return " ".join(num(v) for v in values)
+
+
+def material_name(robot: Robot, name: str | None) -> str:
+    """Materials are namespaced by robot so several robots (and instances) in one scene never clash."""
+    return f"{robot.name}/{name}" if name else ""
+
+
+def xacro_text(value: object) -> str:
+    """Text xacro must copy verbatim: every run of ``$`` before ``{`` or ``(`` gets one more ``$`` (xacro drops one)."""
+    return re.sub(r"(\$+)(?=[{(])", r"$\1", str(value))

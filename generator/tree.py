@@ -1,0 +1,54 @@
+"""The kinematic tree walk, written once for the spec's validation and for ``gen-robot check``: who hangs from whom,
+which links are roots, which a walk from the roots never reaches (they sit in a cycle), and the way up from a link."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from typing import Generic, TypeVar
+
+Key = TypeVar("Key")  # what an edge is known by: a spec path, a joint name
+
+
+class Tree(Generic[Key]):
+    """Parent-child edges added one by one; the first parent of a link wins (a second one is reported by the caller)."""
+
+    def __init__(self) -> None:
+        self.parent_of: dict[str, tuple[str, Key]] = {}
+        self.children: dict[str, list[str]] = {}
+
+    def add(self, parent: str, child: str, key: Key) -> tuple[str, Key] | None:
+        """Hang ``child`` from ``parent``; when the child has a parent already, add nothing and return that one."""
+        if child in self.parent_of:
+            return self.parent_of[child]
+        self.parent_of[child] = (parent, key)
+        self.children.setdefault(parent, []).append(child)
+        return None
+
+    def roots(self, links: Iterable[str]) -> list[str]:
+        """The links without a parent, sorted."""
+        return sorted(name for name in links if name not in self.parent_of)
+
+    def reachable(self, starts: Iterable[str]) -> set[str]:
+        """Every link at or below ``starts``."""
+        seen: set[str] = set()
+        stack = list(starts)
+        while stack:
+            current = stack.pop()
+            if current not in seen:
+                seen.add(current)
+                stack += self.children.get(current, [])
+        return seen
+
+    def path_up(self, start: str, target: str) -> list[str]:
+        """Links from ``start`` up through its ancestors to ``target`` (both included), or [] when target is not
+        above it."""
+        path, current, seen = [start], start, {start}
+        while current != target:
+            if current not in self.parent_of:
+                return []
+            current = self.parent_of[current][0]
+            if current in seen:
+                return []
+            seen.add(current)
+            path.append(current)
+        return path
