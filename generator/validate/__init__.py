@@ -1,0 +1,121 @@
+"""The validate stage: JSON Schema first, then units and semantic checks; every problem located, all reported at once.
+
+``validate(raw) -> Spec`` where ``Spec.data`` is the spec with every length, angle and mass converted to an SI float.
+Nothing here writes or prints; failure is one :class:`SpecErrors` holding the list. One module per pass, in the order
+they run: :mod:`.schema` (the JSON Schema and the wording of its errors), :mod:`.quantities` (units to SI),
+:mod:`.names` (names, references, the tree) and :mod:`.physics` (sizes, masses, inertia, limits, axes, densities);
+:mod:`.bodies` walks a spec's links, arm rows, wheels and frames for all of them.
+
+Units are converted here rather than in resolve (where the stage list of the style notes puts them) because a value
+that does not parse must be reported at its line and column, and the physics checks compare SI numbers while they
+still have the spec's positions beside them; resolve takes SI floats and never sees a unit.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from ..errors import SpecError, SpecErrors
+from ..gcpause import collector_paused
+from ..load import RawSpec
+from .bodies import Body, bodies
+from .names import (
+    RESERVED_ROBOT_NAMES,
+    duplicate_errors,
+    edges,
+    joint_types,
+    link_and_joint_names,
+    reference_errors,
+    robot_name_errors,
+    tree_errors,
+)
+from .physics import density_warnings, physics_errors
+from .quantities import Quantities
+from .schema import (
+    SchemaValidator,
+    inline_refs,
+    located,
+    robot_schema,
+    robot_validator,
+    schema_errors,
+    structure_intact,
+)
+
+__all__ = [
+    "RESERVED_ROBOT_NAMES",
+    "Quantities",
+    "SchemaValidator",
+    "Spec",
+    "inline_refs",
+    "robot_schema",
+    "robot_validator",
+    "schema_errors",
+    "semantic_errors",
+    "validate",
+]
+
+
+@dataclass(frozen=True)
+class Spec:
+    """A valid spec: ``data`` has SI floats for every quantity; ``raw`` keeps the file positions. ``warnings``: located
+    notes on values that are valid but look like a units mistake (degrees written as radians, grams as kilograms)."""
+
+    raw: RawSpec
+    data: dict[str, Any]
+    warnings: tuple[SpecError, ...] = ()
+
+
+def semantic_errors(
+    raw: RawSpec, data: dict[str, Any], *, physics: bool = True, walked: Sequence[Body] | None = None
+) -> list[SpecError]:
+    """Names, references and the tree always; physics only when every quantity parsed (it compares numbers).
+
+    ``walked``: ``list(bodies(data))`` when the caller has it already (every pass reads it; walking the spec once is
+    measurably faster on big robots).
+    """
+    every = list(bodies(data)) if walked is None else walked
+    link_named, joint_named = link_and_joint_names(data, every)
+    errors = list(duplicate_errors(raw, link_named, "link")) + list(duplicate_errors(raw, joint_named, "joint"))
+    errors += robot_name_errors(raw, data)
+    link_names = {item.name for item in link_named}
+    errors += reference_errors(raw, data, every, link_names, joint_types(data, every))
+    relations = edges(data, every)
+    errors += tree_errors(raw, relations, link_names)
+    if physics:
+        errors += physics_errors(raw, data, every, {child for _, child, _ in relations})
+    return errors
+
+
+def _unique(errors: list[SpecError]) -> list[SpecError]:
+    seen: set[tuple[str, str]] = set()
+    result = []
+    for error in errors:
+        if (error.path, error.message) not in seen:
+            seen.add((error.path, error.message))
+            result.append(error)
+    return result
+
+
+@collector_paused()
+def validate(raw: RawSpec) -> Spec:
+    """Check a loaded spec against the schema and the rules a robot must obey.
+
+    Raises:
+        SpecErrors: every problem found, each with file, JSON path, line and column.
+    """
+    found = list(robot_validator().iter_errors(raw.data))  # one pass over the document
+    errors = located(raw, found)
+    if not structure_intact(found):  # the later checks rely on the shapes the schema guarantees
+        raise SpecErrors(errors)
+    quantities = Quantities(raw)
+    data, unit_errors = quantities.run()
+    notes = quantities.warnings
+    del quantities  # (its table of changes is garbage now: not kept through the checks below)
+    every = list(bodies(data))
+    errors += unit_errors + semantic_errors(raw, data, physics=not unit_errors, walked=every)
+    if errors:
+        raise SpecErrors(_unique(errors))
+    warnings = notes + list(density_warnings(raw, every))
+    return Spec(raw=raw, data=data, warnings=tuple(sorted(warnings, key=lambda w: (w.line or 0, w.column or 0))))

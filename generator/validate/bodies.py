@@ -1,0 +1,44 @@
+"""The bodies of a spec, in one walk that every pass reads instead of looping over each section itself: each link,
+arm, arm row, arm tool, wheel and frame that makes a link of the robot, with where its mapping is.
+
+The order is the spec's sections in a fixed order (links, arms, wheels, frames) and, within an arm, the arm itself
+(its base link), its rows, then its tool: the order of the links along the arm. The name checks rely on it (the first
+of two equal names is the one the second is said to clash with), and so does the tree (the first parent of a link
+wins).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from typing import Any, Literal
+
+from ..load import PathKey
+from ..model import DEFAULT_TOOL, arm_base_name
+
+BodyKind = Literal["link", "arm", "row", "tool", "wheel", "frame"]
+
+# One body of a spec: (kind, name, path, mapping). A plain tuple, and validate lists the bodies once for all the passes
+# after the units: an object per body, or a walk per pass, made validation measurably slower on big robots.
+#   kind: link (an entry of links), arm (an arm, whose body is its base link), row (a row of an arm's joints), tool
+#         (an arm's tool frame), wheel or frame.
+#   name: the name of the link the body makes (NAME_base for an arm, tool0 for a tool named nowhere).
+#   path: where the body's mapping is in the spec (path[0] is its section; an arm's tool: arms.NAME.tool, also when
+#         the spec gives none).
+#   mapping: the body's mapping in the spec (an arm's tool not given: an empty one).
+Body = tuple[BodyKind, str, PathKey, dict[str, Any]]
+
+
+def bodies(data: dict[str, Any]) -> Iterator[Body]:
+    """Every body of a spec whose sections have the shapes the schema guarantees, in the order described above."""
+    for name, link in data.get("links", {}).items():
+        yield ("link", name, ("links", name), link)
+    for name, arm in data.get("arms", {}).items():
+        yield ("arm", arm_base_name(name), ("arms", name), arm)
+        for index, row in enumerate(arm["joints"]):
+            yield ("row", row["link"], ("arms", name, "joints", index), row)
+        tool = arm.get("tool", {})
+        yield ("tool", tool.get("name", DEFAULT_TOOL), ("arms", name, "tool"), tool)
+    for name, wheel in data.get("wheels", {}).items():
+        yield ("wheel", name, ("wheels", name), wheel)
+    for name, frame in data.get("frames", {}).items():
+        yield ("frame", name, ("frames", name), frame)

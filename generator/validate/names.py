@@ -1,0 +1,221 @@
+"""The names pass: the link and joint names a spec creates (with where each comes from) are unique and not reserved,
+every reference (parents, children, materials, mimic joints, Gazebo and ros2_control entries) names something that
+exists, and the links form one tree."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from ..errors import SpecError
+from ..load import PathKey, RawSpec, json_path
+from ..model import MOVING, attach_joint_name
+from ..resources import PUBLIC_MACROS
+from ..tree import Tree
+from .bodies import Body
+
+# The robot name becomes a xacro macro name: it must not shadow a library macro or a xacro keyword.
+RESERVED_ROBOT_NAMES = frozenset(
+    {
+        *PUBLIC_MACROS,
+        "call",
+        "arg",
+        "property",
+        "include",
+        "if",
+        "unless",
+        "macro",
+        "element",
+        "attribute",
+        "insert_block",
+    }
+)
+
+
+@dataclass(frozen=True)
+class Named:
+    """A link or joint name the spec creates; ``path`` (its key when ``at_key``) is where the spec gives it."""
+
+    name: str
+    path: PathKey
+    at_key: bool
+
+
+def link_and_joint_names(data: dict[str, Any], bodies: Sequence[Body]) -> tuple[list[Named], list[Named]]:
+    """Every link and joint name the spec will create, with where each comes from, in the spec's order."""
+    links: list[Named] = []
+    joints = [Named(n, ("joints", n), True) for n in data.get("joints", {})]
+    for kind, name, path, item in bodies:
+        if kind == "link":
+            links.append(Named(name, path, True))
+        elif kind == "row":
+            links.append(Named(name, (*path, "link"), False))
+            joints.append(Named(item["name"], (*path, "name"), False))
+        elif kind == "tool":  # named in the spec, or tool0 made for the arm
+            named = "name" in item
+            where = (*path, "name") if named else path[:2]
+            links.append(Named(name, where, not named))
+            joints.append(Named(attach_joint_name(name), where, not named))
+        else:  # an arm's base, a wheel, a frame: a link and the joint that attaches it
+            links.append(Named(name, path, True))
+            joints.append(Named(attach_joint_name(name), path, True))
+    return links, joints
+
+
+def joint_types(data: dict[str, Any], bodies: Sequence[Body]) -> dict[str, str]:
+    """The type of every joint a reference may name: the spec's joints, arm rows, wheels' and frames' joints. (An
+    arm's base and tool joints are not among them.)"""
+    types = {n: j["type"] for n, j in data.get("joints", {}).items()}
+    for kind, name, _, item in bodies:
+        if kind == "row":
+            types[item["name"]] = item.get("type", "revolute")
+        elif kind == "wheel":
+            types[attach_joint_name(name)] = "continuous"
+        elif kind == "frame":
+            types[attach_joint_name(name)] = "fixed"
+    return types
+
+
+def duplicate_errors(raw: RawSpec, named: list[Named], what: str) -> Iterator[SpecError]:
+    """A name given again after its first use, pointing at both."""
+    first: dict[str, Named] = {}
+    for item in named:
+        if item.name in first:
+            other = first[item.name]
+            line, _ = raw.locate(other.path, key=other.at_key)
+            yield raw.error(
+                item.path,
+                f"{what} name {item.name!r} is already used by {json_path(other.path)} "
+                f"(line {line}); names must be unique",
+                key=item.at_key,
+            )
+        else:
+            first[item.name] = item
+
+
+def robot_name_errors(raw: RawSpec, data: dict[str, Any]) -> Iterator[SpecError]:
+    if data["robot"] in RESERVED_ROBOT_NAMES or data["robot"].startswith("_xacrokit"):
+        yield raw.error(
+            ("robot",),
+            f"robot name {data['robot']!r} is taken by a xacrokit macro or a xacro "
+            "keyword (the robot's macro is named after it); choose another name",
+        )
+
+
+def edges(data: dict[str, Any], bodies: Sequence[Body]) -> list[tuple[str, str, PathKey]]:
+    """(parent, child, where) for every parent-child relation the spec creates: the joints', then each body's."""
+    joints = data.get("joints", {})
+    result: list[tuple[str, str, PathKey]] = [(j["parent"], j["child"], ("joints", n)) for n, j in joints.items()]
+    above = ""  # the link before the current one along an arm: its base, then each row's link
+    for kind, name, path, item in bodies:
+        if kind in ("row", "tool"):
+            result.append((above, name, path[:2]))
+        elif kind != "link":  # an arm's base, a wheel, a frame: hung from the parent the spec names
+            result.append((item["parent"], name, (*path, "parent")))
+        above = name
+    return result
+
+
+def tree_errors(raw: RawSpec, relations: list[tuple[str, str, PathKey]], link_names: set[str]) -> Iterator[SpecError]:
+    """A link with two parents, links in a cycle, and links that do not form exactly one tree, given the spec's
+    :func:`edges`."""
+    tree: Tree[PathKey] = Tree()
+    dangling: list[str] = []  # children of unknown parents: the bad reference is reported, not the tree again
+    for parent, child, where in relations:
+        if parent == child and where[0] == "joints":
+            continue  # "a joint cannot connect a link to itself" says it; not a cycle to report again
+        if parent not in link_names:
+            dangling.append(child)
+            tree.parent_of.setdefault(child, (parent, where))
+            continue
+        first = tree.add(parent, child, where)
+        if first is not None:
+            yield raw.error(
+                where,
+                f"link {child!r} already has parent {first[0]!r}; a link can hang from one joint only (URDF is a tree)",
+            )
+    roots = tree.roots(link_names)
+    stranded = sorted(link_names - tree.reachable([*roots, *dangling]))
+    if stranded:
+        where = tree.parent_of[stranded[0]][1]
+        yield raw.error(where, f"links {', '.join(stranded)} form a cycle (each hangs from another in the loop)")
+    if len(roots) > 1:
+        listed = ", ".join(roots)
+        yield raw.error(
+            ("links",),
+            f"the links form {len(roots)} separate trees (roots: {listed}); connect them with "
+            "joints so that exactly one link has no parent",
+            key=True,
+        )
+    elif not roots and not stranded:
+        yield raw.error(("links",), "no root link", key=True)
+
+
+def reference_errors(
+    raw: RawSpec, data: dict[str, Any], bodies: Sequence[Body], link_names: set[str], types: dict[str, str]
+) -> Iterator[SpecError]:
+    """Parents, children, materials, mimic joints, Gazebo links and ros2_control joints that name nothing."""
+    materials = set(data.get("materials", {}))
+    for kind, _, path, item in bodies:
+        if kind in ("arm", "wheel", "frame") and item["parent"] not in link_names:
+            parent = item["parent"]
+            yield raw.error(
+                (*path, "parent"), f"parent {parent!r} is not a link of this robot{_closest(parent, link_names)}"
+            )
+        material = item.get("material")
+        if material is not None and material not in materials:
+            known = ", ".join(sorted(materials)) or "none defined"
+            yield raw.error((*path, "material"), f"material {material!r} is not in materials (known: {known})")
+    for name, joint in data.get("joints", {}).items():
+        yield from _joint_reference_errors(raw, name, joint, link_names, data.get("links", {}), types)
+    for name in data.get("gazebo", {}).get("links", {}):
+        if name not in link_names:
+            yield raw.error(("gazebo", "links", name), f"gazebo settings for {name!r}, which is not a link", key=True)
+    for name in data.get("ros2_control", {}).get("joints", {}):
+        if types.get(name) not in MOVING:
+            what = "is not a joint" if name not in types else f"is a {types[name]} joint"
+            yield raw.error(
+                ("ros2_control", "joints", name), f"{name!r} {what}; only moving joints are controlled", key=True
+            )
+
+
+def _joint_reference_errors(
+    raw: RawSpec,
+    name: str,
+    joint: dict[str, Any],
+    link_names: set[str],
+    spec_links: dict[str, Any],
+    types: dict[str, str],
+) -> Iterator[SpecError]:
+    path = ("joints", name)
+    if joint["parent"] not in link_names:
+        yield raw.error(
+            (*path, "parent"),
+            f"parent {joint['parent']!r} is not a link of this robot{_closest(joint['parent'], link_names)}",
+        )
+    if joint["child"] not in spec_links:
+        yield raw.error(
+            (*path, "child"), f"child {joint['child']!r} is not in links{_closest(joint['child'], set(spec_links))}"
+        )
+    if joint["parent"] == joint["child"]:
+        yield raw.error((*path, "child"), "a joint cannot connect a link to itself")
+    mimic = joint.get("mimic")
+    if mimic:
+        target = mimic["joint"]
+        if target not in types:
+            yield raw.error((*path, "mimic", "joint"), f"mimic joint {target!r} is not a joint of this robot")
+        elif target == name:
+            yield raw.error((*path, "mimic", "joint"), "a joint cannot mimic itself")
+        elif types[target] not in MOVING or joint["type"] not in MOVING:
+            yield raw.error(
+                (*path, "mimic", "joint"),
+                f"mimic needs two moving joints; {target!r} is {types[target]} and this one is {joint['type']}",
+            )
+
+
+def _closest(name: str, known: set[str]) -> str:
+    import difflib  # (only when a name is wrong)
+
+    match = difflib.get_close_matches(name, sorted(known), n=1)
+    return f" (did you mean {match[0]!r}?)" if match else ""

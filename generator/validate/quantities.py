@@ -1,0 +1,160 @@
+"""The units pass: every length, angle and mass of a schema-valid spec converted to an SI float, each value that does
+not parse reported where it stands, and plain-number angles of many turns (degrees written without ``deg``) noted."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from ..errors import SpecError
+from ..load import PathKey, RawSpec
+from ..units import Kind, UnitError, parse_quantity, plain_number
+from .bodies import bodies
+
+# A plain-number angle beyond this many turns is most likely degrees: one turn for an orientation, two for a joint's
+# range (multi-turn joints exist; a range beyond two turns written in radians is rarer than degrees left unmarked).
+_TURNS: dict[str | int, int] = {"lower": 2, "upper": 2, "soft_lower_limit": 2, "soft_upper_limit": 2}
+
+# The quantities held directly in the mapping of an arm row and of a wheel.
+_ROW: tuple[tuple[str, Kind], ...] = (
+    ("a", "length"),
+    ("d", "length"),
+    ("alpha", "angle"),
+    ("theta", "angle"),
+    ("mass", "mass"),
+    ("radius", "length"),
+)
+_WHEEL: tuple[tuple[str, Kind], ...] = (("radius", "length"), ("width", "length"), ("mass", "mass"))
+
+
+class Quantities:
+    """Converts every quantity of a schema-valid spec to SI, collecting located errors.
+
+    The loaded data is only read: ``data`` is a copy in which the containers on the way to a converted value are new
+    and everything else is shared with ``raw.data`` (a spec written in SI floats throughout is not copied at all).
+    Nothing downstream changes the data.
+    """
+
+    def __init__(self, raw: RawSpec) -> None:
+        self.raw = raw
+        self.errors: list[SpecError] = []
+        self.warnings: list[SpecError] = []
+        self._changes: dict[PathKey, dict[str | int, float]] = {}  # container path -> key -> SI value
+        self._count = 0
+        self._built: tuple[int, Any] = (0, raw.data)
+
+    @property
+    def data(self) -> Any:
+        """The spec with the quantities converted so far."""
+        if self._built[0] != self._count:
+            self._built = (self._count, _with_changes(self.raw.data, self._changes))
+        return self._built[1]
+
+    def convert(self, container: Any, key: str | int, path: PathKey, kind: Kind) -> None:
+        if isinstance(container, dict) and key not in container:
+            return
+        value = container[key]
+        if kind == "angle":
+            plain = value if type(value) in (int, float) else plain_number(value) if isinstance(value, str) else None
+            if plain is not None and abs(plain) > _TURNS.get(key, 1) * math.tau:
+                self._turns(plain, key, (*path, key))
+        if type(value) is float and math.isfinite(value) and (value != 0.0 or math.copysign(1.0, value) > 0):
+            return  # already SI: what parse_quantity would return
+        try:
+            converted = parse_quantity(value, kind) + 0.0  # (+ 0.0: a -0.0 in the spec is written 0.0)
+        except UnitError as exc:
+            self.errors.append(self.raw.error((*path, key), str(exc)))
+            return
+        self._changes.setdefault(path, {})[key] = converted
+        self._count += 1
+
+    def _turns(self, value: float, key: str | int, path: PathKey) -> None:
+        what = "limit" if key in _TURNS else "angle"
+        self.warnings.append(
+            self.raw.error(
+                path,
+                f"{what} {value:g} rad is {abs(value) / math.tau:.3g} turns; "
+                f"if you meant degrees, write '{value:g} deg'",
+            )
+        )
+
+    def origin(self, holder: dict[str, Any], key: str, path: PathKey) -> None:
+        origin = holder.get(key)
+        if not isinstance(origin, dict):
+            return
+        for index in range(len(origin.get("xyz", []))):
+            self.convert(origin["xyz"], index, (*path, key, "xyz"), "length")
+        for index in range(len(origin.get("rpy", []))):
+            self.convert(origin["rpy"], index, (*path, key, "rpy"), "angle")
+
+    def shape(self, holder: dict[str, Any], path: PathKey) -> None:
+        shape = holder.get("shape")
+        if not isinstance(shape, dict):
+            return
+        path = (*path, "shape")
+        if "box" in shape:
+            for index in range(3):
+                self.convert(shape["box"]["size"], index, (*path, "box", "size"), "length")
+        for name in ("cylinder", "sphere"):
+            for key in ("radius", "length"):
+                if name in shape:
+                    self.convert(shape[name], key, (*path, name), "length")
+
+    def limits(self, holder: dict[str, Any], path: PathKey, joint_type: str) -> None:
+        kind: Kind = "length" if joint_type == "prismatic" else "angle"
+        for key in ("lower", "upper"):
+            if isinstance(holder.get("limit"), dict):
+                self.convert(holder["limit"], key, (*path, "limit"), kind)
+        if isinstance(holder.get("mimic"), dict):
+            self.convert(holder["mimic"], "offset", (*path, "mimic"), kind)
+        if isinstance(holder.get("safety_controller"), dict):
+            for key in ("soft_lower_limit", "soft_upper_limit"):
+                self.convert(holder["safety_controller"], key, (*path, "safety_controller"), kind)
+
+    def run(self) -> tuple[dict[str, Any], list[SpecError]]:
+        """Convert the whole spec: the converted data and the errors (the warnings are in ``warnings``)."""
+        data = self.raw.data
+        for name, joint in data.get("joints", {}).items():
+            self.origin(joint, "origin", ("joints", name))
+            self.limits(joint, ("joints", name), joint["type"])
+        for kind, _, path, item in bodies(data):
+            if kind == "row":  # (a row's pose is its DH parameters, not an origin)
+                for key, quantity in _ROW:
+                    self.convert(item, key, path, quantity)
+                self.limits(item, path, item.get("type", "revolute"))
+                continue
+            self.origin(item, "origin", path)
+            if kind == "wheel":
+                for key, quantity in _WHEEL:
+                    self.convert(item, key, path, quantity)
+            elif kind in ("link", "frame"):
+                self.shape(item, path)
+                self.convert(item, "mass", path, "mass")
+            if kind == "link":
+                self.origin(item, "com", path)
+                if isinstance(item.get("collision"), dict):
+                    self.shape(item["collision"], (*path, "collision"))
+                    self.origin(item["collision"], "origin", (*path, "collision"))
+                if isinstance(item.get("inertia"), dict):
+                    self.origin(item["inertia"], "origin", (*path, "inertia"))
+        return self.data, self.errors
+
+
+def _with_changes(root: Any, changes: dict[PathKey, dict[str | int, float]]) -> Any:
+    """``root`` with the values set in the containers at the given paths, copying only the containers on those paths
+    (``root`` itself is not changed)."""
+    if not changes:
+        return root
+    copies: dict[int, Any] = {id(root): root.copy()}
+    for path, values in changes.items():
+        original, copied = root, copies[id(root)]
+        for key in path:
+            child = original[key]
+            copy = copies.get(id(child))
+            if copy is None:
+                copy = copies[id(child)] = child.copy()
+            copied[key] = copy  # (also when another parent reached it first)
+            original, copied = child, copy
+        for key, value in values.items():
+            copied[key] = value
+    return copies[id(root)]

@@ -1,0 +1,244 @@
+"""The schema pass: the spec against the robot's JSON Schema (``schemas/robot.schema.json``), every error worded for a
+spec author and located.
+
+A valid document is recognised by jsonschema-rs in a fraction of the time; the errors of an invalid one come from
+jsonschema, whose ``pattern`` keyword is made to follow ECMA-262 as JSON Schema requires.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from collections.abc import Iterator
+from functools import cache, cached_property
+from typing import Any
+
+import jsonschema
+
+from ..errors import SpecError
+from ..load import PathKey, RawSpec
+from ..resources import schemas_dir
+
+
+@cache
+def robot_schema() -> dict[str, Any]:
+    return json.loads((schemas_dir() / "robot.schema.json").read_text(encoding="utf-8"))
+
+
+def inline_refs(schema: dict[str, Any]) -> dict[str, Any]:
+    """The schema with every local ``#/$defs/NAME`` reference replaced by the definition itself.
+
+    Our schemas are not recursive, so this terminates; validating against the inlined form is about twice as fast
+    (no reference resolution per value) and gives the same errors.
+    """
+    definitions = schema.get("$defs", {})
+
+    def inline(node: Any) -> Any:
+        if isinstance(node, dict):
+            if "$ref" in node:
+                target = inline(definitions[node["$ref"].rsplit("/", 1)[-1]])
+                rest = {k: inline(v) for k, v in node.items() if k != "$ref"}
+                return {**target, **rest} if rest else target
+            return {k: inline(v) for k, v in node.items()}
+        if isinstance(node, list):
+            return [inline(v) for v in node]
+        return node
+
+    return {key: inline(value) for key, value in schema.items() if key != "$defs"}
+
+
+@cache
+def _inlined_definitions() -> dict[str, Any]:
+    schema = robot_schema()
+    return {
+        name: _without_descriptions(inline_refs({**definition, "$defs": schema["$defs"]}))
+        for name, definition in schema["$defs"].items()
+    }
+
+
+def _ecma_pattern(
+    validator: jsonschema.protocols.Validator, pattern: str, instance: Any, schema: dict[str, Any]
+) -> Iterator[jsonschema.ValidationError]:
+    """The ``pattern`` keyword as JSON Schema defines it (ECMA-262 regular expressions).
+
+    The one difference that matters for our patterns: ECMA's ``$`` is the end of the text, while Python's also matches
+    before a final newline, so plain jsonschema accepts ``"base\\n"`` as a name. (Our patterns use ``$`` only at their
+    end.)
+    """
+    if validator.is_type(instance, "string") and not _python_regex(pattern).search(instance):
+        yield jsonschema.ValidationError(f"{instance!r} does not match {pattern!r}")
+
+
+@cache
+def _python_regex(pattern: str) -> re.Pattern[str]:
+    anchored = pattern.endswith("$") and not pattern.endswith("\\$")
+    return re.compile(pattern[:-1] + r"\Z" if anchored else pattern)
+
+
+_Draft2020 = jsonschema.validators.extend(jsonschema.Draft202012Validator, {"pattern": _ecma_pattern})
+
+
+class SchemaValidator:
+    """JSON Schema validation that is fast on valid documents and still reports every error in detail.
+
+    jsonschema-rs (compiled) decides whether the document is valid at all, in about a hundredth of the time; only a
+    document it rejects, or cannot take (NaN, a huge integer), goes through jsonschema, whose errors we word and
+    locate. jsonschema has the last word: a document it accepts is valid. The property tests check that whatever
+    jsonschema-rs accepts, jsonschema accepts too.
+    """
+
+    def __init__(self, schema: dict[str, Any]) -> None:
+        self.schema = schema
+        self.full = _Draft2020(schema)
+
+    @cached_property
+    def fast(self) -> Any:
+        try:
+            import jsonschema_rs
+        except ImportError:  # (a platform without its wheels: jsonschema alone gives the same verdicts, slower)
+            return None
+        return jsonschema_rs.validator_for(self.schema)
+
+    def accepts_quickly(self, instance: Any) -> bool:
+        """True when jsonschema-rs accepts ``instance``; False when it rejects it or cannot read it."""
+        if self.fast is None:
+            return False
+        try:
+            return bool(self.fast.is_valid(instance))
+        except (ValueError, TypeError, OverflowError):
+            return False
+
+    def iter_errors(self, instance: Any) -> Iterator[jsonschema.ValidationError]:
+        if self.accepts_quickly(instance):
+            return iter(())
+        return self.full.iter_errors(instance)
+
+
+@cache
+def robot_validator() -> SchemaValidator:
+    """The robot spec schema's validator (built once)."""
+    return SchemaValidator(inline_refs(robot_schema()))
+
+
+# ---------------------------------------------------------------- schema errors
+def _bad_name(name: object) -> str:
+    return f"{name!r} is not a valid name: use letters, digits and _, not starting with a digit"
+
+
+def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bool]:
+    """(path, message, point-at-key) for one schema error, in words a spec author understands."""
+    path: PathKey = tuple(error.absolute_path)
+    keyword = error.validator
+    if keyword == "additionalProperties":
+        allowed = sorted(error.schema.get("properties", {}))
+        extra = sorted(set(error.instance) - set(allowed)) if isinstance(error.instance, dict) else []
+        where = (*path, extra[0]) if extra else path
+        return where, f"unknown key {extra[0]!r}" + (f"; allowed here: {', '.join(allowed)}" if allowed else ""), True
+    if keyword == "propertyNames":
+        name = error.instance
+        return (
+            (*path, name),
+            _bad_name(name),
+            True,
+        )
+    if keyword == "pattern" and "propertyNames" in error.absolute_schema_path:
+        name = error.instance  # a mapping key that is not a valid name: point at the key itself
+        return (
+            (*path, name),
+            _bad_name(name),
+            True,
+        )
+    if keyword == "pattern":
+        return (
+            path,
+            _bad_name(error.instance),
+            False,
+        )
+    kind = _ref_name(error) if keyword in ("type", "exclusiveMinimum", "minLength") else None
+    if kind in ("length", "angle", "quantity", "mass"):
+        example = {"length": "150 mm", "angle": "90 deg", "quantity": "90 deg", "mass": "500 g"}[kind]
+        if keyword == "exclusiveMinimum":  # only a mass has one
+            return path, f"mass must be > 0 kg, got {float(error.instance)!r}", False  # as the physics check says it
+        return path, f"expected a number or a string such as {example!r}, got {error.instance!r}", False
+    if keyword in ("oneOf", "anyOf") and len(path) == 2 and path[0] == "instances":
+        given = [k for k in ("spec", "xacro") if isinstance(error.instance, dict) and k in error.instance]
+        said = f"both {' and '.join(given)}" if len(given) == 2 else (given[0] if given else "neither")
+        return (
+            path,
+            f"an instance takes exactly one of spec (a robot spec) or xacro (a third-party macro); got {said}",
+            False,
+        )
+    if keyword == "oneOf" and path and path[-1] == "collision":
+        return path, "collision must be same, none, or a mapping with a shape (and an origin)", False
+    if keyword in ("minProperties", "maxProperties") and "box" in error.schema.get("properties", {}):
+        return path, "a shape needs exactly one of box, cylinder, sphere, mesh", False
+    if keyword == "exclusiveMinimum":
+        return path, f"must be > {error.validator_value}, got {error.instance!r}", False
+    if keyword == "minimum":
+        return path, f"must be >= {error.validator_value}, got {error.instance!r}", False
+    if keyword == "maximum":
+        colour = " (colours are 0..1: divide 0-255 values by 255)" if path[:1] == ("materials",) else ""
+        return path, f"must be <= {error.validator_value}, got {error.instance!r}{colour}", False
+    if keyword == "type" and error.validator_value == "number" and isinstance(error.instance, str):
+        return (
+            path,
+            f"expected a plain number in SI units, got {error.instance!r} "
+            "(only lengths, angles and masses take unit strings)",
+            False,
+        )
+    if keyword == "type" and not path:
+        return path, f"a spec is a mapping (robot:, links:, ...), got {type(error.instance).__name__}", False
+    if keyword in ("minItems", "maxItems") and isinstance(error.instance, list):
+        low, high = error.schema.get("minItems"), error.schema.get("maxItems")
+        wanted = f"{low}" if low == high else f"{low} to {high}" if high is not None else f"at least {low}"
+        rows = error.schema.get("items", {}).get("type") == "object"
+        one = wanted in ("1", "at least 1")
+        what = ("entry" if one else "entries") if rows else ("value" if one else "values")
+        return path, f"expected {wanted} {what}, got {len(error.instance)}", False
+    if keyword == "minProperties" and error.instance == {}:
+        return path, "must not be empty", False
+    if keyword == "required":
+        return path, error.message.replace("is a required property", "is required here"), False
+    return path, error.message, False
+
+
+def _ref_name(error: jsonschema.ValidationError) -> str | None:
+    """Which $defs entry an error's schema is (schemas are compared by identity with the loaded definitions)."""
+    wanted = _without_descriptions(error.schema)
+    for name, definition in _inlined_definitions().items():
+        if definition == wanted:
+            return name
+    return None
+
+
+def _without_descriptions(node: Any) -> Any:
+    """A schema with its descriptions left out: a $ref that adds its own description is still the definition."""
+    if isinstance(node, dict):
+        return {k: _without_descriptions(v) for k, v in node.items() if k != "description"}
+    if isinstance(node, list):
+        return [_without_descriptions(v) for v in node]
+    return node
+
+
+def schema_errors(raw: RawSpec, validator: SchemaValidator | None = None) -> list[SpecError]:
+    """Every schema error of ``raw`` (against the robot schema unless another validator is given), located."""
+    return located(raw, list((validator or robot_validator()).iter_errors(raw.data)))
+
+
+def located(raw: RawSpec, errors: list[jsonschema.ValidationError]) -> list[SpecError]:
+    """The schema's errors as located spec errors, in the words of :func:`_schema_message`."""
+    result = []
+    for error in errors:
+        path, message, at_key = _schema_message(error)
+        result.append(raw.error(path, message, key=at_key))
+    return result
+
+
+# Schema errors that leave the spec's structure intact: the later checks can still run and report more.
+_VALUE_ONLY = {"exclusiveMinimum", "minimum", "maximum", "exclusiveMaximum", "pattern"}
+
+
+def structure_intact(errors: list[jsonschema.ValidationError]) -> bool:
+    """True when every error is about a value alone (a bound, a pattern), so that the passes after the schema, which
+    rely on the shapes the schema guarantees, can still run."""
+    return all(error.validator in _VALUE_ONLY for error in errors)

@@ -1,0 +1,166 @@
+"""The unit parser: quantities in the spec's unit syntax to SI floats, exactly; a clear refusal of anything else."""
+
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from xacrokit.units import UnitError, parse_quantity
+
+
+@pytest.mark.parametrize(
+    ("text", "kind", "value"),
+    [
+        (0.3, "length", 0.3),
+        (2, "length", 2.0),
+        ("150 mm", "length", 0.15),
+        ("15 cm", "length", 0.15),
+        ("1e-3", "length", 1e-3),
+        ("2 in", "length", 0.0508),
+        ("0.1*2", "length", 0.2),
+        ("-0.5 m", "length", -0.5),
+        ("90 deg", "angle", math.pi / 2),
+        ("pi/2", "angle", math.pi / 2),
+        ("-2*pi", "angle", -2 * math.pi),
+        ("pi", "angle", math.pi),
+        ("(1 + 1) * pi / 4 rad", "angle", math.pi / 2),
+        ("45deg", "angle", math.pi / 4),
+        ("500 g", "mass", 0.5),
+        ("1.5 kg", "mass", 1.5),
+        ("-pi", "angle", -math.pi),
+    ],
+)
+def test_quantities_parse_to_si(text, kind, value):
+    assert parse_quantity(text, kind) == pytest.approx(value, rel=1e-15)
+
+
+@pytest.mark.parametrize(
+    ("text", "kind", "words"),
+    [
+        ("150 mm", "angle", "is a length, expected an angle"),
+        ("90 deg", "length", "is an angle, expected a length"),
+        ("3 parsecs", "length", "unknown unit 'parsecs'"),
+        ("__import__('os')", "length", "unexpected"),
+        ("1/0", "length", "division by zero"),
+        ("2 pi", "angle", "unexpected 'pi'"),
+        ("", "length", "empty"),
+        ("(1", "length", "ends too early"),
+        ("1e999", "length", "not a finite number"),
+        (True, "length", "expected"),
+        ([1], "length", "expected a number"),
+        ("${x}", "length", "unexpected '$'"),
+        ("1 kg", "length", "is a mass"),
+        # refused on the one-number fast path too: it leaves them to the parser
+        ("1e999999999999999999999 mm", "length", "not a finite number"),
+        ("5 g", "length", "is a mass, expected a length"),
+    ],
+)
+def test_bad_quantities_say_what_is_wrong(text, kind, words):
+    with pytest.raises(UnitError, match=None) as caught:
+        parse_quantity(text, kind)
+    assert words in str(caught.value)
+
+
+@given(st.floats(allow_nan=False, allow_infinity=False, min_value=-1e9, max_value=1e9))
+def test_numbers_pass_through_exactly_and_as_text(value):
+    assert parse_quantity(value, "length") == value
+    assert parse_quantity(repr(value), "length") == value
+    assert parse_quantity(f"{value!r} mm", "length") == float(Fraction(repr(value)) / 1000)
+
+
+@given(
+    st.decimals(min_value=-(10**6), max_value=10**6, places=4, allow_nan=False, allow_infinity=False),
+    st.sampled_from(
+        [
+            ("mm", "length"),
+            ("cm", "length"),
+            ("km", "length"),
+            ("in", "length"),
+            ("ft", "length"),
+            ("g", "mass"),
+            ("m", "length"),
+            ("kg", "mass"),
+        ]
+    ),
+)
+def test_metric_and_imperial_units_give_the_nearest_double(number, unit):
+    """'9 mm' is 0.009, not 9 * 1e-3 = 0.009000000000000001: the number and the factor are exact decimals."""
+    name, kind = unit
+    factor = {"mm": "0.001", "cm": "0.01", "km": "1000", "in": "0.0254", "ft": "0.3048", "g": "0.001"}.get(name, "1")
+    assert parse_quantity(f"{number} {name}", kind) == float(Fraction(number) * Fraction(factor))
+
+
+@pytest.mark.parametrize(
+    ("text", "kind", "value"),
+    [
+        ("9 mm", "length", 0.009),
+        ("350 g", "mass", 0.35),
+        ("1.5 in", "length", 0.0381),
+        ("3 ft", "length", 0.9144),
+        ("0.1 + 0.2", "length", 0.3),
+        ("1/3", "length", 1 / 3),
+        ("1e-400 * 1e400", "length", 1.0),
+    ],
+)
+def test_exact_arithmetic_cases(text, kind, value):
+    assert parse_quantity(text, kind) == value  # exactly, not approximately
+
+
+def test_huge_exact_products_stay_cheap_and_are_not_finite():
+    with pytest.raises(UnitError, match="not a finite number"):
+        parse_quantity("*".join(["1e400"] * 5000), "length")
+    assert parse_quantity("*".join(["1e-400"] * 5000), "length") == 0.0
+
+
+def test_numbers_of_thousands_of_digits_are_read_not_a_traceback():
+    """Python refuses to turn more than 4,300 digits into an int; such a number is read as a float instead."""
+    assert parse_quantity("0.0" + "0" * 4400 + "25 m", "length") == 0.0
+    assert parse_quantity("1" + "0" * 5000 + "e-5000", "length") == 1.0
+    with pytest.raises(UnitError, match="not a finite number"):
+        parse_quantity("1e" + "9" * 5000, "length")
+
+
+@given(
+    st.one_of(
+        st.decimals(allow_nan=False, allow_infinity=False).map(str),
+        st.from_regex(r"[-+]?(\d{1,30}\.?\d{0,30}|\.\d{1,30})([eE][-+]?\d{1,3})?", fullmatch=True),
+    ),
+    st.sampled_from(
+        [
+            ("", "length"),
+            ("mm", "length"),
+            ("cm", "length"),
+            ("km", "length"),
+            ("in", "length"),
+            ("ft", "length"),
+            ("m", "length"),
+            ("g", "mass"),
+            ("kg", "mass"),
+            ("deg", "angle"),
+            ("rad", "angle"),
+            ("degrees", "angle"),
+        ]
+    ),
+)
+def test_the_one_number_fast_path_reads_what_the_parser_reads(number, unit):
+    """'150 mm' skips the parser (decimal arithmetic instead of fractions): both must give the same double, or the
+    same refusal."""
+    from xacrokit.units import _parsed
+
+    name, kind = unit
+    text = f"{number} {name}".strip()
+    try:
+        expected = _parsed(text, kind)
+    except UnitError:
+        with pytest.raises(UnitError):
+            parse_quantity(text, kind)
+        return
+    if not math.isfinite(expected):
+        with pytest.raises(UnitError, match="not a finite number"):
+            parse_quantity(text, kind)
+    else:
+        assert parse_quantity(text, kind) == expected

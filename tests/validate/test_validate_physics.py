@@ -1,0 +1,70 @@
+"""The physics pass: sizes and masses > 0, a mass on every body that moves or has a shape, physical inertia tensors,
+limits that suit the joint type, non-zero axes, floating joints only at the root."""
+
+from __future__ import annotations
+
+import pytest
+from validate_cases import assert_mistake_located, case_ids, errors_of, mutated
+
+CASES = [
+    # (what is changed, new value or "DELETE", expected JSON path, words of the message)
+    ("links.base_link.mass", "-2 kg", "$.links.base_link.mass", "mass must be > 0 kg"),  # (checked once in SI)
+    ("links.base_link.shape", {"box": {"size": [1, 1, 0]}}, "$.links.base_link.shape.box.size[2]", "must be > 0 m"),
+    (
+        "links.base_link.shape",
+        {"mesh": {"filename": "package://p/m.stl"}},
+        "$.links.base_link.mass",
+        "cannot be computed; give inertia",
+    ),
+    (
+        "links.base_link.inertia",
+        {"ixx": 1.0, "iyy": 1.0, "izz": 3.0},
+        "$.links.base_link.inertia",
+        "triangle inequality",
+    ),
+    (
+        "links.base_link.inertia",
+        {"ixx": 1.0, "iyy": 1.0, "izz": 1.0, "ixy": 2.0},
+        "$.links.base_link.inertia",
+        "not positive definite",
+    ),
+    ("links.arm.mass", "DELETE", "$.links.arm", "a link with a shape needs a mass"),
+    ("arms.dh.joints.0.mass", "DELETE", "$.arms.dh.joints[0]", "moves link 'l1', which has no mass"),
+    (
+        "frames.camera_link.shape",
+        {"box": {"size": [0.1, 0.1, 0.1]}},
+        "$.frames.camera_link",
+        "a frame with a shape needs a mass",
+    ),
+    (
+        "joints.shoulder",
+        {"type": "continuous", "parent": "base_link", "child": "arm"},
+        "$.joints.shoulder",
+        "a continuous joint needs limit",
+    ),
+    ("joints.shoulder.axis", [0, 0, 0], "$.joints.shoulder.axis", "axis must not be zero"),
+    (
+        "joints.shoulder.limit",
+        {"lower": 1.0, "upper": -1.0, "effort": 1.0, "velocity": 1.0},
+        "$.joints.shoulder.limit.lower",
+        "lower (1.0) is greater than upper (-1.0)",
+    ),
+    ("joints.shoulder.limit", "DELETE", "$.joints.shoulder", "a revolute joint needs limit"),
+    ("wheels.left_wheel.radius", "-5 cm", "$.wheels.left_wheel.radius", "radius must be > 0 m"),
+]
+
+
+@pytest.mark.parametrize(("change", "value", "path", "words"), CASES, ids=case_ids(CASES))
+def test_each_physics_mistake_is_located_and_explained(change, value, path, words):
+    assert_mistake_located(change, value, path, words)
+
+
+def test_a_floating_joint_must_hang_from_the_root():
+    data = mutated("joints.hover", {"type": "floating", "parent": "arm", "child": "hovering"})
+    data["links"]["hovering"] = {"shape": {"sphere": {"radius": 0.1}}, "mass": 1.0}
+    messages = [(e.path, e.message) for e in errors_of(data)]
+    assert (
+        "$.joints.hover.type",
+        "a floating joint may only hang from the root link (a floating base): simulators "
+        "such as MuJoCo reject deeper ones",
+    ) in messages

@@ -1,0 +1,140 @@
+"""The schema pass: what the JSON Schema rejects is worded for a spec author and located; the fast check (jsonschema-rs)
+accepts only what jsonschema accepts; patterns follow ECMA-262."""
+
+from __future__ import annotations
+
+import copy
+
+import pytest
+import yaml
+from hypothesis import given
+from hypothesis import strategies as st
+from validate_cases import BASE, assert_mistake_located, case_ids
+
+from conftest import REPO
+from xacrokit.errors import SpecErrors
+from xacrokit.load import load_text
+from xacrokit.scene import scene_validator
+from xacrokit.testing import valid_specs
+from xacrokit.validate import robot_validator, validate
+
+EXAMPLES = REPO / "examples"
+
+CASES = [
+    # (what is changed, new value or "DELETE", expected JSON path, words of the message)
+    ("robot", "my robot", "$.robot", "not a valid name"),
+    ("robot", "${evil}", "$.robot", "not a valid name"),
+    ("links.base_link.mass", -1.0, "$.links.base_link.mass", "mass must be > 0 kg, got -1.0"),
+    ("links.base_link.colour", "red", "$.links.base_link.colour", "unknown key 'colour'"),
+    (
+        "links.base_link.shape",
+        {"box": {"size": [1, 1]}},
+        "$.links.base_link.shape.box.size",
+        "expected 3 values, got 2",
+    ),
+    ("arms.dh.joints", [], "$.arms.dh.joints", "expected at least 1 entry, got 0"),
+    ("materials.gray", [128, 128, 128, 1], "$.materials.gray[0]", "must be <= 1, got 128 (colours are 0..1"),
+    (
+        "joints.shoulder.limit",
+        {"lower": -1.0, "upper": 1.0, "effort": "10 Nm", "velocity": 1.0},
+        "$.joints.shoulder.limit.effort",
+        "expected a plain number in SI units, got '10 Nm'",
+    ),
+    (
+        "links.base_link.shape",
+        {"box": {"size": [1, 1, 1]}, "sphere": {"radius": 1}},
+        "$.links.base_link.shape",
+        "exactly one of box",
+    ),
+    ("links.bad-name", {}, "$.links['bad-name']", "not a valid name"),
+    ("joints.shoulder.type", "ball", "$.joints.shoulder.type", "is not one of"),
+    (
+        "joints.shoulder.limit",
+        {"lower": -1.0, "upper": 1.0, "effort": 0, "velocity": 1.0},
+        "$.joints.shoulder.limit.effort",
+        "must be > 0",
+    ),
+]
+
+
+@pytest.mark.parametrize(("change", "value", "path", "words"), CASES, ids=case_ids(CASES))
+def test_each_schema_mistake_is_located_and_explained(change, value, path, words):
+    assert_mistake_located(change, value, path, words)
+
+
+def test_a_name_with_a_final_newline_is_not_a_name():
+    # Python's `$` matches before a final newline; JSON Schema's patterns are ECMA-262, where it does not
+    spec = copy.deepcopy(BASE)
+    spec["links"]["arm\n"] = spec["links"].pop("arm")
+    spec["joints"]["shoulder"]["child"] = "arm\n"
+    with pytest.raises(SpecErrors) as caught:
+        validate(load_text(yaml.safe_dump(spec, sort_keys=False), "spec.yaml"))
+    assert any("'arm\\n' is not a valid name" in error.message for error in caught.value.errors), caught.value.errors
+
+
+_ODD_VALUES = st.one_of(
+    st.none(),
+    st.booleans(),
+    st.integers(-(2**70), 2**70),
+    st.floats(),  # NaN and infinities too: jsonschema-rs cannot take them, so jsonschema decides
+    st.text(max_size=6),
+    st.sampled_from(["base\n", "", "1abc", "a b", "revolute", "150 mm", "pi/2", "a/b", "_x"]),
+    st.lists(st.floats(allow_nan=False), max_size=4),
+    st.dictionaries(st.sampled_from(["box", "size", "xyz", "mass", "x"]), st.integers(0, 3), max_size=2),
+)
+
+
+def _places(node: object, path: tuple = ()) -> list[tuple]:
+    found = [path]
+    if isinstance(node, dict):
+        for key, value in node.items():
+            found += _places(value, (*path, key))
+    elif isinstance(node, list):
+        for index, value in enumerate(node):
+            found += _places(value, (*path, index))
+    return found
+
+
+@st.composite
+def _perturbed(draw, documents: st.SearchStrategy[dict]) -> dict:
+    """A valid document with one place changed: a value replaced, a key renamed or added, or an entry removed."""
+    document = copy.deepcopy(draw(documents))
+    path = draw(st.sampled_from(_places(document)[1:]))
+    holder = document
+    for part in path[:-1]:
+        holder = holder[part]
+    how = draw(st.sampled_from(["replace", "rename", "add", "remove"]))
+    key = path[-1]
+    if how == "replace":
+        holder[key] = draw(_ODD_VALUES)
+    elif isinstance(holder, dict) and how == "rename":
+        holder[draw(st.sampled_from(["base\n", "x y", "extra", "9a", key + "_"]))] = holder.pop(key)
+    elif isinstance(holder, dict) and how == "add":
+        holder[draw(st.sampled_from(["extra", "mass", "origin", "type"]))] = draw(_ODD_VALUES)
+    else:
+        del holder[key]
+    return document
+
+
+def _scene_documents() -> list[dict]:
+    return [yaml.safe_load(path.read_text()) for path in sorted((EXAMPLES / "scenes").glob("*.yaml"))]
+
+
+@pytest.mark.parametrize("kind", ["robot", "scene"])
+@given(data=st.data())
+def test_the_fast_schema_check_accepts_only_what_jsonschema_accepts(kind, data):
+    validator = robot_validator() if kind == "robot" else scene_validator()
+    valid = valid_specs() if kind == "robot" else st.sampled_from(_scene_documents())
+    document = data.draw(valid)
+    if kind == "robot":  # a valid spec takes the fast path (or the speed is gone)
+        assert validator.accepts_quickly(document)
+    document = data.draw(st.one_of(_perturbed(valid), _perturbed(_perturbed(valid))))
+    if validator.accepts_quickly(document):
+        assert not list(validator.full.iter_errors(document)), document
+
+
+def test_a_spec_that_is_not_a_mapping_says_so():
+    with pytest.raises(SpecErrors) as caught:
+        validate(load_text("- 1\n- 2\n", "spec.yaml"))
+    (error,) = caught.value.errors
+    assert error.message == "a spec is a mapping (robot:, links:, ...), got list"
