@@ -38,29 +38,6 @@ def physics_errors(
         yield from _joint_errors(raw, data, ("joints", name), joint, children)
 
 
-def _row_errors(raw: RawSpec, row: dict[str, Any], path: PathKey) -> Iterator[SpecError]:
-    yield from _limit_errors(raw, row, path, row.get("type", "revolute"))
-    if "mass" in row:
-        yield from _mass_error(raw, row["mass"], (*path, "mass"))
-    elif row.get("type", "revolute") != "fixed":
-        yield raw.error(
-            path,
-            f"row {row['name']!r} moves link {row['link']!r}, which has no mass; give the row a mass (kg) for its body",
-        )
-    if "radius" in row and not row["radius"] > 0:
-        yield raw.error((*path, "radius"), f"radius must be > 0 m, got {row['radius']!r}")
-
-
-def _frame_errors(raw: RawSpec, frame: dict[str, Any], path: PathKey) -> Iterator[SpecError]:
-    yield from _shape_errors(raw, frame, path)
-    if "shape" in frame and "mass" not in frame:
-        yield raw.error(path, "a frame with a shape needs a mass (kg); for a bare frame, leave the shape out", key=True)
-    if "mass" in frame:
-        yield from _mass_error(raw, frame["mass"], (*path, "mass"))
-        if "mesh" in frame.get("shape", {"mesh": None}):
-            yield raw.error((*path, "mass"), "a frame's mass needs a box, cylinder or sphere shape")
-
-
 def _link_errors(raw: RawSpec, link: dict[str, Any], path: PathKey) -> Iterator[SpecError]:
     yield from _shape_errors(raw, link, path)
     if isinstance(link.get("collision"), dict):
@@ -85,6 +62,29 @@ def _link_errors(raw: RawSpec, link: dict[str, Any], path: PathKey) -> Iterator[
         yield raw.error((*path, "inertia"), "inertia needs a mass")
     if "inertia" in link:
         yield from _inertia_errors(raw, link["inertia"], (*path, "inertia"))
+
+
+def _row_errors(raw: RawSpec, row: dict[str, Any], path: PathKey) -> Iterator[SpecError]:
+    yield from _limit_errors(raw, row, path, row.get("type", "revolute"))
+    if "mass" in row:
+        yield from _mass_error(raw, row["mass"], (*path, "mass"))
+    elif row.get("type", "revolute") != "fixed":
+        yield raw.error(
+            path,
+            f"row {row['name']!r} moves link {row['link']!r}, which has no mass; give the row a mass (kg) for its body",
+        )
+    if "radius" in row and not row["radius"] > 0:
+        yield raw.error((*path, "radius"), f"radius must be > 0 m, got {row['radius']!r}")
+
+
+def _frame_errors(raw: RawSpec, frame: dict[str, Any], path: PathKey) -> Iterator[SpecError]:
+    yield from _shape_errors(raw, frame, path)
+    if "shape" in frame and "mass" not in frame:
+        yield raw.error(path, "a frame with a shape needs a mass (kg); for a bare frame, leave the shape out", key=True)
+    if "mass" in frame:
+        yield from _mass_error(raw, frame["mass"], (*path, "mass"))
+        if "mesh" in frame.get("shape", {"mesh": None}):
+            yield raw.error((*path, "mass"), "a frame's mass needs a box, cylinder or sphere shape")
 
 
 def _joint_errors(
