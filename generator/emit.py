@@ -136,7 +136,8 @@ def _joint(prefix: str, joint: Joint) -> etree._Element:
 def screw_origin(
     a: float, alpha: float, x: float, y: float, z: float, roll: float, pitch: float, yaw: float
 ) -> tuple[str, str]:
-    """(xyz, rpy) of Tx(a) Rx(alpha) T(x y z, roll pitch yaw), as the private xacro helper computes them."""
+    """(xyz, rpy) of Tx(a) Rx(alpha) T(x y z, roll pitch yaw), as its twin _xacrokit_origin_after_x_screw
+    (macros/_inc/frames.xacro) computes them: same operations, same order."""
     ca, sa = math.cos(alpha), math.sin(alpha)
     cr, sr, cp, sp, cy, sy = (
         math.cos(roll),

@@ -31,6 +31,8 @@ def test_wheel_contains_the_macro_library_and_data_packages(wheel):
     for macro in ("inertia", "links", "materials", "wheel", "dh"):
         assert f"xacrokit/macros/{macro}.xacro" in names
     assert "xacrokit/macros/_inc/checks.xacro" in names
+    assert "xacrokit/macros/_inc/frames.xacro" in names
+    assert "xacrokit/macros/_inc/helpers.xacro" not in names  # (a dead stub, removed)
     assert {"xacrokit/templates/__init__.py", "xacrokit/schemas/__init__.py", "xacrokit/py.typed"} <= names
     assert "xacrokit/cli.py" in names and not any(n.startswith(("generator/", "tests/")) for n in names)
     entry_points = next(n for n in names if n.endswith("entry_points.txt"))
