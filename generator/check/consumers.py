@@ -167,14 +167,14 @@ def verdicts(
 ) -> list[ConsumerResult]:
     """The named consumers' verdicts on a URDF text checked as the file in ``base_dir``; skipped when the structure is
     broken (``structural``)."""
-    from lxml import etree
-
     if not names:
         return []
     if structural:  # a tree that is not a tree hangs check_urdf and crashes others; our finding says it all
         return [
             ConsumerResult(n, "skipped", "not run: the structure errors above make the URDF unusable") for n in names
         ]
+    from lxml import etree  # (here, not at the top: this module is also each Python consumer's process)
+
     # relative mesh paths are relative to the checked file: make them absolute before the URDF moves to a scratch folder
     root = etree.fromstring(text.encode("utf-8"))
     for mesh in root.iter("mesh"):
