@@ -40,6 +40,7 @@ def test_wheel_contains_the_macro_library_and_data_packages(wheel):
     assert "xacrokit/macros/_inc/helpers.xacro" not in names  # (a dead stub, removed)
     assert {"xacrokit/templates/__init__.py", "xacrokit/schemas/__init__.py", "xacrokit/py.typed"} <= names
     assert "xacrokit/cli.py" in names and not any(n.startswith(("generator/", "tests/")) for n in names)
+    assert {"xacrokit/check/__init__.py", "xacrokit/check/run.py", "xacrokit/check/consumers.py"} <= names
     entry_points = next(n for n in names if n.endswith("entry_points.txt"))
     assert "gen-robot = xacrokit.cli:main" in zipfile.ZipFile(wheel).read(entry_points).decode()
 
