@@ -191,7 +191,7 @@ def test_readme_xml_sample_expands(tmp_path):
 
 
 def test_docs_check_rules_table_is_current():
-    from xacrokit.report import rules_markdown
+    from xacrokit.check.report import rules_markdown
 
     check_md = text_of(DOCS / "check.md")
     block = check_md.split("<!-- check-rules:start -->\n", 1)[1].split("<!-- check-rules:end -->", 1)[0]
