@@ -72,7 +72,7 @@ def read_triple(element: etree._Element | None, attribute: str, default: str = "
     """Three numbers from an attribute such as xyz or size; NaNs when it does not hold exactly three."""
     text = default if element is None else element.get(attribute, default)
     try:
-        values = tuple(float(v) for v in text.split())
-    except ValueError:
-        values = ()
-    return values if len(values) == 3 else (math.nan, math.nan, math.nan)  # type: ignore[return-value]
+        x, y, z = (float(v) for v in text.split())
+    except ValueError:  # (not numbers, or not three of them)
+        return (math.nan, math.nan, math.nan)
+    return (x, y, z)
