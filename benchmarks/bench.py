@@ -107,7 +107,7 @@ ROOTED_CYCLE = (
 
 def bench_check(folder: Path) -> None:
     from xacrokit.check import check
-    from xacrokit.consumers import run_consumer
+    from xacrokit.check.consumers import run_consumer
 
     print("== check (our rules, no external consumers), median of", STAGE_RUNS, "runs")
     paths = {}

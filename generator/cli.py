@@ -159,8 +159,8 @@ def _cmd_check(args: argparse.Namespace) -> int:
     import json
 
     from .check import check
+    from .check.report import format_text
     from .expansion import parse_mappings
-    from .report import format_text
 
     if args.consumers in ("all", None):
         consumers = None

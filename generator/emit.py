@@ -109,7 +109,8 @@ def _joint(prefix: str, joint: Joint) -> etree._Element:
     if joint.axis is not None:
         _sub(element, "axis", xyz=vec(joint.axis))
     if joint.limit is not None:
-        limit = {} if joint.limit.lower is None else {"lower": num(joint.limit.lower), "upper": num(joint.limit.upper)}
+        bounds = joint.limit.bounds
+        limit = {} if bounds is None else {"lower": num(bounds[0]), "upper": num(bounds[1])}
         _sub(element, "limit", **limit, effort=num(joint.limit.effort), velocity=num(joint.limit.velocity))
     if joint.dynamics is not None:
         _sub(element, "dynamics", damping=num(joint.dynamics.damping), friction=num(joint.dynamics.friction))
@@ -136,7 +137,8 @@ def _joint(prefix: str, joint: Joint) -> etree._Element:
 def screw_origin(
     a: float, alpha: float, x: float, y: float, z: float, roll: float, pitch: float, yaw: float
 ) -> tuple[str, str]:
-    """(xyz, rpy) of Tx(a) Rx(alpha) T(x y z, roll pitch yaw), as the private xacro helper computes them."""
+    """(xyz, rpy) of Tx(a) Rx(alpha) T(x y z, roll pitch yaw), as its twin _xacrokit_origin_after_x_screw
+    (macros/_inc/frames.xacro) computes them: same operations, same order."""
     ca, sa = math.cos(alpha), math.sin(alpha)
     cr, sr, cp, sp, cy, sy = (
         math.cos(roll),
@@ -205,17 +207,9 @@ def _arm(robot: Robot, prefix: str, arm: Arm) -> Iterator[etree._Element]:
         if row.type != "fixed":
             _sub(joint, "axis", xyz="0 0 1")
         if row.limit is not None and row.type != "fixed":
-            if row.type == "continuous":
-                _sub(joint, "limit", effort=num(row.limit.effort), velocity=num(row.limit.velocity))
-            else:
-                _sub(
-                    joint,
-                    "limit",
-                    lower=num(row.limit.lower),
-                    upper=num(row.limit.upper),  # type: ignore[arg-type]
-                    effort=num(row.limit.effort),
-                    velocity=num(row.limit.velocity),
-                )
+            bounds = row.limit.bounds if row.type != "continuous" else None
+            limit = {} if bounds is None else {"lower": num(bounds[0]), "upper": num(bounds[1])}
+            _sub(joint, "limit", **limit, effort=num(row.limit.effort), velocity=num(row.limit.velocity))
         if row.dynamics is not None and row.type != "fixed":
             _sub(joint, "dynamics", damping=num(row.dynamics.damping), friction=num(row.dynamics.friction))
         yield joint

@@ -110,7 +110,10 @@ def find_package(name: str, package_paths: Mapping[str, str | os.PathLike[str]] 
     if name == PACKAGE_NAME:
         return str(package_share_dir())
     with contextlib.suppress(ImportError):
-        from ament_index_python.packages import PackageNotFoundError, get_package_share_directory
+        from ament_index_python.packages import (  # type: ignore[import-not-found]
+            PackageNotFoundError,
+            get_package_share_directory,
+        )
 
         with contextlib.suppress(PackageNotFoundError):
             return get_package_share_directory(name)

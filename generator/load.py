@@ -8,6 +8,7 @@ and non-UTF-8 bytes are rejected with a located error. An unquoted scalar that r
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -97,17 +98,21 @@ _DECIMAL = re.compile(r"[-+]?(?:0|[1-9][0-9]*)")
 _RESOLVER = yaml.resolver.Resolver()
 
 
-def _at(event: yaml.Event) -> tuple[int, int]:
+def _at(event: Any) -> tuple[int, int]:
     return event.start_mark.line + 1, event.start_mark.column + 1
 
 
 class _Builder:
-    """Builds plain data and positions straight from the parser's events (no node tree: half the time)."""
+    """Builds plain data and positions straight from the parser's events (no node tree: half the time).
+
+    Events are told apart by their exact type (``type(event) is ...``, the fastest test) and typed ``Any``: PyYAML's
+    stubs give the attributes of each event class only to that class.
+    """
 
     def __init__(self, file: str, loader: yaml.CSafeLoader | yaml.SafeLoader, track: bool) -> None:
         self.file = file
         self.track = track  # record positions (and paths): without, errors are only noticed, for a second pass
-        self.next_event = loader.get_event
+        self.next_event: Callable[[], Any] = loader.get_event
         self.positions: dict[PathKey, tuple[int, int]] = {}
         self.key_positions: dict[PathKey, tuple[int, int]] = {}
         self.errors: list[SpecError] = []
@@ -115,11 +120,11 @@ class _Builder:
         self.plain: dict[str, Any] = {}  # plain scalar text -> its value
         self.data: Any = None
 
-    def fail(self, event: yaml.Event, path: PathKey, message: str) -> None:
+    def fail(self, event: Any, path: PathKey, message: str) -> None:
         line, column = _at(event)
         self.errors.append(SpecError(message, file=self.file, path=json_path(path), line=line, column=column))
 
-    def build(self, event: yaml.Event, path: PathKey, record: bool = True) -> Any:
+    def build(self, event: Any, path: PathKey, record: bool = True) -> Any:
         """The value that starts with ``event``; ``record=False`` consumes it without positions or errors."""
         kind = type(event)
         if kind is yaml.AliasEvent:
@@ -150,16 +155,18 @@ class _Builder:
             return self.mapping(path, record)
         return self.sequence(path, record)
 
-    def anchor(self, event: yaml.Event) -> None:
+    def anchor(self, event: Any) -> None:
         """Remember an anchor (&name); like PyYAML, a name used twice is an error of the YAML itself."""
         if event.anchor in self.anchors:
             problem = f"found duplicate anchor {event.anchor!r} (first on line {self.anchors[event.anchor]})"
             raise SpecErrors([_event_error(self.file, problem, event)])
         self.anchors[event.anchor] = event.start_mark.line + 1
 
-    def check_alias(self, event: yaml.AliasEvent) -> None:
+    def check_alias(self, event: Any) -> int:
+        """The line of the anchor an alias (*name) refers to; an alias to no anchor is an error of the YAML itself."""
         if event.anchor not in self.anchors:
             raise SpecErrors([_event_error(self.file, f"found undefined alias {event.anchor!r}", event)])
+        return self.anchors[event.anchor]
 
     def skip_collection(self) -> None:
         """Read past a rejected collection, still learning its anchors (a later alias to one is not 'undefined')."""
@@ -208,12 +215,11 @@ class _Builder:
             event = self.next_event()
         return result
 
-    def key(self, event: yaml.Event, path: PathKey, record: bool) -> str | None:
+    def key(self, event: Any, path: PathKey, record: bool) -> str | None:
         """A mapping key as text, or None (with an error) for a merge key, a collection or an alias."""
         if type(event) is yaml.AliasEvent:
-            self.check_alias(event)
+            anchored = self.check_alias(event)
             if record:
-                anchored = self.anchors[event.anchor]
                 message = (
                     f"YAML aliases (*name) are not supported in specs; write the key out (anchored on line {anchored})"
                 )
@@ -235,7 +241,7 @@ class _Builder:
             return None
         return event.value
 
-    def scalar(self, event: yaml.ScalarEvent, path: PathKey, record: bool) -> Any:
+    def scalar(self, event: Any, path: PathKey, record: bool) -> Any:
         try:
             if event.tag is None and not event.style:  # a plain scalar: its value depends on its text alone
                 value = self.plain.get(event.value, _UNSEEN)
@@ -256,7 +262,7 @@ class _Unreadable(Exception):
 _UNSEEN = object()
 
 
-def _scalar_value(event: yaml.ScalarEvent) -> Any:
+def _scalar_value(event: Any) -> Any:
     value = event.value
     tag = event.tag
     if tag is None or tag == "!":
@@ -282,7 +288,7 @@ def _scalar_value(event: yaml.ScalarEvent) -> Any:
         raise _Unreadable(f"cannot read this value: {problem}") from None
 
 
-def _event_error(file: str, problem: str, event: yaml.Event) -> SpecError:
+def _event_error(file: str, problem: str, event: Any) -> SpecError:
     line, column = _at(event)
     return SpecError(f"not valid YAML: {problem}", file=file, line=line, column=column)
 
@@ -298,8 +304,12 @@ def _yaml_error(file: str, exc: yaml.YAMLError, text: str) -> SpecError:
     problem = getattr(exc, "problem", None) or str(exc)
     if mark is not None and 0 <= mark.index < len(text) and text[mark.index] == "\t":
         problem += " (a tab: YAML indents with spaces only)"
-    line, column = (mark.line + 1, mark.column + 1) if mark else (None, None)
-    return SpecError(f"not valid YAML: {problem}", file=file, line=line, column=column)
+    return SpecError(
+        f"not valid YAML: {problem}",
+        file=file,
+        line=mark.line + 1 if mark else None,
+        column=mark.column + 1 if mark else None,
+    )
 
 
 def load_text(text: str, file: str = "<spec>") -> RawSpec:

@@ -124,6 +124,13 @@ class Limit:
     lower: float | None = None
     upper: float | None = None
 
+    @property
+    def bounds(self) -> tuple[float, float] | None:
+        """(lower, upper), or None for a continuous joint's limit (effort and velocity only)."""
+        if self.lower is None or self.upper is None:
+            return None
+        return self.lower, self.upper
+
 
 @dataclass(frozen=True)
 class Dynamics:

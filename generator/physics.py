@@ -44,7 +44,8 @@ def principal_moments(entries: Sequence[Sequence[float]]) -> list[list[float]]:
     if not entries:
         return []
     batch = np.array(entries, dtype=float).reshape(-1, 6)[:, [0, 1, 2, 1, 3, 4, 2, 4, 5]].reshape(-1, 3, 3)
-    return np.linalg.eigvalsh(batch).tolist()  # type: ignore[no-any-return]
+    moments: list[list[float]] = np.linalg.eigvalsh(batch).tolist()
+    return moments
 
 
 def moments_problem(moments: Iterable[float], rel: float = TOLERANCE) -> TensorProblem | None:

@@ -92,7 +92,7 @@ def used_macro_files(robot: Robot) -> list[str]:
 def _copied_macros(files: list[str]) -> list[RenderedFile]:
     """The library files a self-contained package carries, with the private helpers they include."""
     folder = macros_dir()
-    names = [*files, "_inc/checks.xacro"]
+    names = [*files, "_inc/checks.xacro", *(["_inc/frames.xacro"] if "dh.xacro" in files else [])]
     return [RenderedFile(f"{COPIED_MACROS_DIR}/{name}", (folder / name).read_text(encoding="utf-8")) for name in names]
 
 

@@ -237,7 +237,7 @@ def _wheel(name: str, data: dict[str, Any]) -> Wheel:
 
 
 def _frame(name: str, data: dict[str, Any]) -> tuple[Link, Joint]:
-    body = {k: data[k] for k in ("shape", "mass", "material") if k in data}
+    body: dict[str, Any] = {k: data[k] for k in ("shape", "mass", "material") if k in data}
     joint = Joint(
         name=attach_joint_name(name), type="fixed", parent=data["parent"], child=name, origin=origin(data.get("origin"))
     )

@@ -140,7 +140,7 @@ def _unit_kind(word: str) -> str | None:
 # (exact for these products) gives the same doubles as the parser's fractions, faster.
 _SIMPLE = re.compile(rf"\s*({NUMBER})\s*([A-Za-z_]*)\s*")
 _DECIMAL_FACTORS = {
-    kind: {unit: Decimal(factor.numerator) / Decimal(factor.denominator) for unit, factor in table.items()}
+    kind: {unit: Decimal(Fraction(f).numerator) / Decimal(Fraction(f).denominator) for unit, f in table.items()}
     for kind, table in UNITS.items()
     if kind in ("length", "mass")
 }

@@ -233,12 +233,12 @@ def write(files: list[RenderedFile], root: Path, *, force: bool = False, dry_run
         raise XacrokitError(f"cannot write the package in {root}: {where}: {exc.strerror or exc}{written}") from exc
     if not any(a.action == "remove" for a in actions):
         return actions
-    written = set()  # what this run wrote, by identity: on a case-blind disk a stale name may be one of these
+    identities: set[tuple[int, int]] = set()  # what this run wrote: on a case-blind disk a stale name may be one
     for file in files:
         with contextlib.suppress(OSError):
             status = (root / file.path).stat()
-            written.add((status.st_dev, status.st_ino))
-    return [_remove(root, a, previous.get(a.path, ""), written) if a.action == "remove" else a for a in actions]
+            identities.add((status.st_dev, status.st_ino))
+    return [_remove(root, a, previous.get(a.path, ""), identities) if a.action == "remove" else a for a in actions]
 
 
 def _remove(root: Path, action: FileAction, digest: str, written: set[tuple[int, int]]) -> FileAction:

@@ -1,4 +1,5 @@
-"""Documentation that cannot drift: macro banners vs. the macros, the README's reference and its two commands."""
+"""Documentation that cannot drift: macro banners vs. the macros, the README's two commands and quick starts, the
+reference in docs/ (its samples, generated parts and commands), and the links between them."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ import shlex
 import subprocess
 import sys
 from pathlib import Path
+from urllib.parse import unquote
 
 import pytest
 from lxml import etree
@@ -18,6 +20,8 @@ from conftest import REPO
 from xacrokit.macrodoc import XACRO_NS, read_macro_docs, render_reference
 from xacrokit.resources import PUBLIC_MACRO_FILES, PUBLIC_MACROS
 
+README = REPO / "README.md"
+DOCS = REPO / "docs"
 _PARAM = re.compile(r"""(\*{0,2}\w+)(?::=(?:'([^']*)'|"([^"]*)"|(\S+)))?""")
 
 
@@ -56,15 +60,29 @@ def test_private_macros_are_marked_private():
             assert public or name.startswith("_xacrokit"), f"{path.name}: {name}"
 
 
-def test_readme_macro_reference_is_current():
-    readme = (REPO / "README.md").read_text(encoding="utf-8")
-    block = readme.split("<!-- macro-reference:start -->\n", 1)[1].split("<!-- macro-reference:end -->", 1)[0]
-    assert block == render_reference(), "run: gen-robot macros --reference, and paste it between the markers"
+def text_of(path: Path) -> str:
+    return path.read_text(encoding="utf-8")
+
+
+def blocks(path: Path, language: str) -> list[str]:
+    """The fenced code blocks of one language in a Markdown file, in order."""
+    return re.findall(rf"```{language}\n(.*?)\n```", text_of(path), flags=re.S)
+
+
+def doc_pages() -> list[Path]:
+    return sorted(DOCS.glob("*.md"))
+
+
+def test_docs_macro_reference_is_current():
+    macros_md = text_of(DOCS / "macros.md")
+    block = macros_md.split("<!-- macro-reference:start -->\n", 1)[1].split("<!-- macro-reference:end -->", 1)[0]
+    assert block == render_reference(), (
+        "run: gen-robot macros --reference, and paste it between the markers in docs/macros.md"
+    )
 
 
 def readme_commands() -> list[str]:
-    readme = (REPO / "README.md").read_text(encoding="utf-8")
-    return re.findall(r"```sh\n(.*?)\n```", readme, flags=re.S)[:2]
+    return blocks(README, "sh")[:2]
 
 
 def test_readme_starts_with_the_two_commands_and_ci_runs_the_second():
@@ -72,6 +90,8 @@ def test_readme_starts_with_the_two_commands_and_ci_runs_the_second():
     assert "pip install" in main_job and "gen-robot" in main_job
     assert tests.endswith("python -m pytest")
     assert tests in (REPO / ".ci" / "run").read_text(encoding="utf-8")
+    readme = text_of(README)
+    assert readme.startswith("# xacrokit\n") and readme.index(tests) < readme.index("\n## ")  # before any section
 
 
 def test_readme_main_job_runs(tmp_path):
@@ -92,14 +112,14 @@ def test_readme_main_job_runs(tmp_path):
 
 
 @pytest.mark.parametrize("snippet", ["box_inertial", "dh_arm"])
-def test_readme_documents_the_include_path(snippet):
-    readme = (REPO / "README.md").read_text(encoding="utf-8")
-    assert "$(find xacrokit)/macros/" in readme and f"`{snippet}`" in readme
+def test_docs_document_the_include_path(snippet):
+    macros_md = text_of(DOCS / "macros.md")
+    assert "$(find xacrokit)/macros/" in macros_md and f"`{snippet}`" in macros_md
+    assert "$(find xacrokit)/macros/" in text_of(README)  # the quick start's first include
 
 
-def test_readme_error_sample_is_real_output(tmp_path):
-    readme = (REPO / "README.md").read_text(encoding="utf-8")
-    sample = readme.split("$ gen-robot robot.yaml\n", 1)[1].split("```", 1)[0]
+def test_docs_error_sample_is_real_output(tmp_path):
+    sample = text_of(DOCS / "spec.md").split("$ gen-robot robot.yaml\n", 1)[1].split("```", 1)[0]
     spec = (REPO / "examples" / "two_dof_arm.yaml").read_text(encoding="utf-8")
     for old, new in (
         ("    parent: upper_arm", "    parent: upper_ram"),
@@ -116,16 +136,16 @@ def test_readme_error_sample_is_real_output(tmp_path):
     assert result.stderr == sample
 
 
-def readme_blocks(language: str) -> list[str]:
-    readme = (REPO / "README.md").read_text(encoding="utf-8")
-    return re.findall(rf"```{language}\n(.*?)\n```", readme, flags=re.S)
-
-
-def test_readme_command_examples_run_in_sequence(tmp_path):
-    """Every sh block after the two set-up commands, then every Python block, run in one folder in order."""
+def test_command_examples_run_in_sequence(tmp_path):
+    """Every sh block of the README after its two set-up commands, then every sh block of docs/ (by file name), run in
+    one folder in order, as a reader would: the README's quick starts make the my_robot spec, package and xacro
+    document that the reference pages' examples use. Then every Python block of the README and docs/."""
     env = dict(os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}")
+    (xml_sample,) = blocks(README, "xml")
+    (tmp_path / "my_robot.urdf.xacro").write_text(xml_sample, encoding="utf-8")  # "Save this as my_robot.urdf.xacro"
+    sh_blocks = blocks(README, "sh")[2:] + [block for page in doc_pages() for block in blocks(page, "sh")]
     ran = []
-    for block in readme_blocks("sh")[2:]:
+    for block in sh_blocks:
         for line in block.splitlines():
             command = line.split("  #", 1)[0].strip()
             if not command or command.startswith("pip "):
@@ -135,10 +155,19 @@ def test_readme_command_examples_run_in_sequence(tmp_path):
             )
             assert result.returncode == 0, (command, result.stdout, result.stderr)
             ran.append(command)
-    assert any(c.startswith("gen-robot new") for c in ran) and any(c.startswith("gen-robot expand") for c in ran)
-    assert (tmp_path / "my_robot.urdf").is_file() and json.loads((tmp_path / "robot.schema.json").read_text())
+    for command in ("gen-robot new", "gen-robot check", "gen-robot expand", "gen-robot fleet"):
+        assert any(c.startswith(command) for c in ran), command
+    assert json.loads((tmp_path / "robot.schema.json").read_text())
     assert not (tmp_path / "src").exists()  # the --dry-run line wrote nothing
-    for block in readme_blocks("python"):
+    assert json.loads((tmp_path / "report.json").read_text())["summary"]["errors"] == 0
+    root = etree.parse(str(tmp_path / "my_robot.urdf")).getroot()  # the quick start's own xacro, expanded
+    assert float(root.find("link/inertial/inertia").get("ixx")) == pytest.approx(8.0 * (0.35**2 + 0.12**2) / 12)
+    prefixed = etree.parse(str(tmp_path / "left_my_robot.urdf")).getroot()  # the generated entry, with prefix:=left_
+    names = [e.get("name") for e in prefixed.iter("link", "joint")]
+    assert names and all(name.startswith("left_") for name in names)
+    python_blocks = blocks(README, "python") + [block for page in doc_pages() for block in blocks(page, "python")]
+    assert python_blocks
+    for block in python_blocks:
         cwd = REPO if "examples/" in block else tmp_path
         result = subprocess.run(
             [sys.executable, "-c", block], cwd=cwd, env=env, capture_output=True, text=True, timeout=300
@@ -146,28 +175,76 @@ def test_readme_command_examples_run_in_sequence(tmp_path):
         assert result.returncode == 0, (block, result.stderr)
 
 
-def test_readme_spec_sample_generates(tmp_path):
-    (sample,) = [b for b in readme_blocks("yaml") if b.startswith("# yaml-language-server: $schema=../schemas/robot")]
+def test_docs_spec_sample_generates(tmp_path):
+    blocks_yaml = blocks(DOCS / "spec.md", "yaml")
+    (sample,) = [b for b in blocks_yaml if b.startswith("# yaml-language-server: $schema=../schemas/robot")]
     (tmp_path / "spec.yaml").write_text(sample, encoding="utf-8")
     result = xacrokit.generate(tmp_path / "spec.yaml", tmp_path / "out")
     assert {"base_link", "upper_arm", "hand", "tool0", "camera_link"} <= set(result.robot.link_names)
 
 
 def test_readme_xml_sample_expands(tmp_path):
-    (sample,) = readme_blocks("xml")
+    (sample,) = blocks(README, "xml")
     (tmp_path / "my_robot.urdf.xacro").write_text(sample, encoding="utf-8")
     root = etree.fromstring(xacrokit.expand(tmp_path / "my_robot.urdf.xacro").encode())
     assert float(root.find("link/inertial/inertia").get("ixx")) == pytest.approx(8.0 * (0.35**2 + 0.12**2) / 12)
 
 
-def test_readme_check_rules_table_is_current():
-    from xacrokit.report import rules_markdown
+def test_docs_check_rules_table_is_current():
+    from xacrokit.check.report import rules_markdown
 
-    readme = (REPO / "README.md").read_text(encoding="utf-8")
-    block = readme.split("<!-- check-rules:start -->\n", 1)[1].split("<!-- check-rules:end -->", 1)[0]
-    assert block == rules_markdown()
+    check_md = text_of(DOCS / "check.md")
+    block = check_md.split("<!-- check-rules:start -->\n", 1)[1].split("<!-- check-rules:end -->", 1)[0]
+    assert block == rules_markdown(), (
+        f"run: python -c 'from {rules_markdown.__module__} import rules_markdown; print(rules_markdown(), end=\"\")' "
+        "and paste it between the markers in docs/check.md"
+    )
 
 
-def test_readme_scene_sample_is_the_example():
-    (sample,) = [b for b in readme_blocks("yaml") if "scene.schema.json" in b]
+def test_docs_scene_sample_is_the_example():
+    (sample,) = [b for b in blocks(DOCS / "scenes.md", "yaml") if "scene.schema.json" in b]
     assert sample + "\n" == (REPO / "examples" / "scenes" / "bin_sorting_cell.yaml").read_text(encoding="utf-8")
+
+
+_LINK = re.compile(r"\[[^\]]*\]\(([^)\s]+)\)|^\[[^\]]+\]:\s*(\S+)", flags=re.M)
+
+
+def heading_anchors(page: Path) -> set[str]:
+    """The anchors GitHub gives a page's headings: lower case, punctuation dropped, spaces as hyphens, repeats
+    numbered."""
+    text = re.sub(r"^```.*?^```", "", text_of(page), flags=re.S | re.M)
+    anchors: set[str] = set()
+    for heading in re.findall(r"^#{1,6} +(.+?) *$", text, flags=re.M):
+        slug = re.sub(r"[^\w\- ]", "", heading.lower()).replace(" ", "-")
+        anchor, n = slug, 0
+        while anchor in anchors:
+            n += 1
+            anchor = f"{slug}-{n}"
+        anchors.add(anchor)
+    return anchors
+
+
+def relative_links(page: Path) -> list[str]:
+    """The targets of a page's links that are not web addresses, outside code blocks and code spans."""
+    text = re.sub(r"^```.*?^```", "", text_of(page), flags=re.S | re.M)
+    text = re.sub(r"`[^`\n]*`", "code", text)
+    targets = [inline or reference for inline, reference in _LINK.findall(text)]
+    return [t for t in targets if not re.match(r"[a-z][a-z0-9+.-]*:", t)]
+
+
+@pytest.mark.parametrize("page", [README, *doc_pages()], ids=lambda p: p.relative_to(REPO).as_posix())
+def test_relative_links_point_at_files_that_exist(page):
+    for target in relative_links(page):
+        path_part, _, anchor = target.partition("#")
+        resolved = (page.parent / unquote(path_part)).resolve() if path_part else page
+        assert resolved == REPO or REPO in resolved.parents, f"{page.name}: {target} leaves the repository"
+        assert resolved.exists(), f"{page.name}: {target} points at nothing"
+        if anchor:
+            assert resolved.suffix == ".md", f"{page.name}: {target}: an anchor into a file that is not Markdown"
+            assert anchor in heading_anchors(resolved), f"{page.name}: {target}: no such heading"
+
+
+def test_readme_links_every_docs_page_and_pages_have_links():
+    linked = {(README.parent / t.partition("#")[0]).resolve() for t in relative_links(README)}
+    assert doc_pages() and set(doc_pages()) <= linked, "link every docs/*.md page from README.md"
+    assert all(relative_links(page) for page in doc_pages())  # the link checker reads each page's links at all

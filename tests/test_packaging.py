@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
 import zipfile
@@ -15,8 +16,12 @@ from conftest import REPO
 @pytest.fixture(scope="module")
 def wheel(tmp_path_factory):
     out = tmp_path_factory.mktemp("wheel")
+    # built from a copy of the sources: an in-tree build would package what an earlier build left in build/
+    source = tmp_path_factory.mktemp("source") / "xacrokit"
+    leftovers = shutil.ignore_patterns("build", "dist", ".venv", ".git", "*.egg-info", "__pycache__", ".*_cache", ".hypothesis")
+    shutil.copytree(REPO, source, ignore=leftovers)
     result = subprocess.run(
-        [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q", "-w", str(out), str(REPO)],
+        [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q", "-w", str(out), str(source)],
         capture_output=True,
         text=True,
         timeout=600,
@@ -31,8 +36,12 @@ def test_wheel_contains_the_macro_library_and_data_packages(wheel):
     for macro in ("inertia", "links", "materials", "wheel", "dh"):
         assert f"xacrokit/macros/{macro}.xacro" in names
     assert "xacrokit/macros/_inc/checks.xacro" in names
+    assert "xacrokit/macros/_inc/frames.xacro" in names
+    assert "xacrokit/macros/_inc/helpers.xacro" not in names  # (a dead stub, removed)
     assert {"xacrokit/templates/__init__.py", "xacrokit/schemas/__init__.py", "xacrokit/py.typed"} <= names
     assert "xacrokit/cli.py" in names and not any(n.startswith(("generator/", "tests/")) for n in names)
+    assert {"xacrokit/check/__init__.py", "xacrokit/check/run.py", "xacrokit/check/consumers.py"} <= names
+    assert {"xacrokit/validate/__init__.py", "xacrokit/validate/bodies.py", "xacrokit/validate/schema.py"} <= names
     entry_points = next(n for n in names if n.endswith("entry_points.txt"))
     assert "gen-robot = xacrokit.cli:main" in zipfile.ZipFile(wheel).read(entry_points).decode()
 

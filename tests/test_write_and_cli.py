@@ -130,11 +130,11 @@ def test_switching_modes_removes_what_is_no_longer_generated_and_keeps_edits(tmp
     dry = gen_robot(arm, "-o", out, "--dry-run")
     plan_lines = {" ".join(line.split()) for line in dry.stdout.splitlines()}
     assert dry.returncode == 0 and "remove urdf/xacrokit/dh.xacro (no longer generated)" in plan_lines, dry.stdout
-    assert "would remove 4 no longer generated; would keep 1" in dry.stdout
+    assert "would remove 5 no longer generated; would keep 1" in dry.stdout
     assert snapshot(out) == before
     result = gen_robot(arm, "-o", out)
     assert result.returncode == 0, result.stderr
-    assert "removed 4 no longer generated; kept 1 no longer generated (edited, or not removable)" in result.stdout, (
+    assert "removed 5 no longer generated; kept 1 no longer generated (edited, or not removable)" in result.stdout, (
         result.stdout
     )
     assert "keep urdf/xacrokit/links.xacro (no longer generated, but edited since: kept)" in {

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from .check import CheckReport, Finding
+from .findings import CheckReport, Finding
+from .rules import RULES
 
 _COLOURS = {"error": "\033[31m", "warning": "\033[33m", "ok": "\033[32m", "end": "\033[0m"}
 
@@ -39,8 +40,6 @@ def format_text(report: CheckReport, *, colour: bool = False, strict: bool = Fal
 
 def rules_markdown() -> str:
     """The rules table of the README (between the check-rules markers)."""
-    from .check import RULES
-
     lines = ["| rule | name | severity | checks that |", "|---|---|---|---|"]
     lines += [f"| {rule} | {name} | {severity} | {text} |" for rule, (name, severity, text) in RULES.items()]
     return "\n".join(lines) + "\n"

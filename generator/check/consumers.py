@@ -1,38 +1,50 @@
 """Independent consumers of a URDF: urdfdom's check_urdf, pinocchio, yourdfpy and (when installed) MuJoCo.
 
 Each runs in its own process with a time limit and an output cap, so a consumer that crashes, hangs or prints forever
-(check_urdf does on a cycle that hangs off the root) is reported, never propagated. Run as
-``python -m xacrokit.consumers NAME FILE`` this module loads FILE with one Python consumer and prints one JSON line.
+(check_urdf does on a cycle that hangs off the root) is reported, never propagated; one that refuses the URDF is a C001
+finding. Run as ``python -m xacrokit.check.consumers NAME FILE`` this module loads FILE with one Python consumer and
+prints one JSON line (it imports little, and the package ``xacrokit.check`` loads its modules only when asked).
 """
 
 from __future__ import annotations
 
 import importlib.util
 import json
+import os
 import shutil
 import subprocess
 import sys
+import tempfile
 import threading
-from collections.abc import Mapping
-from dataclasses import dataclass
+from collections.abc import Mapping, Sequence
 from pathlib import Path
+
+from ..errors import XacrokitError
+from .findings import ConsumerResult, Finding, rule_table, severity
+
+RULES = rule_table({"C001": ("consumer-accepts", "error", "an independent consumer loads the URDF")})
 
 CONSUMERS = ("check_urdf", "pinocchio", "yourdfpy", "mujoco")
 TIMEOUT_S = 30.0
 OUTPUT_CAP = 64 * 1024
 
 
-@dataclass(frozen=True)
-class ConsumerResult:
-    """``status``: accepted, rejected, crashed, timeout, skipped or unavailable."""
-
-    name: str
-    status: str
-    message: str = ""
-
-    @property
-    def failed(self) -> bool:
-        return self.status in ("rejected", "crashed", "timeout")
+def chosen(names: Sequence[str] | None) -> list[str]:
+    """The consumers to run: by default every installed one; those asked for by name must exist and be installed (a
+    verdict that was asked for is never left out)."""
+    if names is None:
+        return [n for n in CONSUMERS if available(n)]
+    unknown = [n for n in names if n not in CONSUMERS]
+    if unknown:
+        raise XacrokitError(f"unknown consumer(s) {', '.join(unknown)}; choose from {', '.join(CONSUMERS)}")
+    missing = [n for n in names if not available(n)]
+    if missing:
+        hint = " (pip install 'xacrokit[mujoco]')" if "mujoco" in missing else ""
+        raise XacrokitError(
+            f"consumer(s) {', '.join(missing)} asked for but not installed{hint}; install them, or leave them out "
+            "of --consumers"
+        )
+    return list(names)
 
 
 def available(name: str) -> bool:
@@ -56,8 +68,9 @@ def _run_capped(command: list[str], timeout: float, cwd: Path | None = None) -> 
 
     def drain() -> None:
         size = 0
-        assert process.stdout is not None
-        for chunk in iter(lambda: process.stdout.read(4096), b""):
+        stream = process.stdout
+        assert stream is not None  # (stdout=PIPE)
+        for chunk in iter(lambda: stream.read(4096), b""):
             if size < OUTPUT_CAP:
                 chunks.append(chunk)
             size += len(chunk)
@@ -92,7 +105,10 @@ def _urdfdom_errors(text: str, most: int = 3) -> str:
 
 
 def run_consumer(
-    name: str, urdf_path: Path, timeout: float = TIMEOUT_S, package_paths: Mapping[str, str | Path] | None = None
+    name: str,
+    urdf_path: Path,
+    timeout: float = TIMEOUT_S,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
 ) -> ConsumerResult:
     if not available(name):
         return ConsumerResult(
@@ -102,7 +118,7 @@ def run_consumer(
         command = [_check_urdf_binary() or "check_urdf", str(urdf_path.resolve())]
     else:
         packages = json.dumps({k: str(v) for k, v in (package_paths or {}).items()})
-        command = [sys.executable, "-m", "xacrokit.consumers", name, str(urdf_path.resolve()), packages]
+        command = [sys.executable, "-m", "xacrokit.check.consumers", name, str(urdf_path.resolve()), packages]
     # in the URDF's own folder: consumers may leave files behind (MuJoCo writes MUJOCO_LOG.TXT where it runs)
     code, output, overflow = _run_capped(command, timeout, cwd=urdf_path.resolve().parent)
     if overflow:
@@ -122,7 +138,10 @@ def run_consumer(
 
 
 def run_consumers(
-    names: list[str], urdf_path: Path, timeout: float = TIMEOUT_S, package_paths: Mapping[str, str | Path] | None = None
+    names: list[str],
+    urdf_path: Path,
+    timeout: float = TIMEOUT_S,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
 ) -> list[ConsumerResult]:
     """Run the named consumers side by side; results in the order asked."""
     results: dict[str, ConsumerResult] = {}
@@ -136,6 +155,45 @@ def run_consumers(
     for thread in threads:
         thread.join()
     return [results[n] for n in names]
+
+
+def verdicts(
+    names: list[str],
+    text: str,
+    *,
+    structural: bool,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None,
+    base_dir: Path,
+) -> list[ConsumerResult]:
+    """The named consumers' verdicts on a URDF text checked as the file in ``base_dir``; skipped when the structure is
+    broken (``structural``)."""
+    if not names:
+        return []
+    if structural:  # a tree that is not a tree hangs check_urdf and crashes others; our finding says it all
+        return [
+            ConsumerResult(n, "skipped", "not run: the structure errors above make the URDF unusable") for n in names
+        ]
+    from lxml import etree  # (here, not at the top: this module is also each Python consumer's process)
+
+    # relative mesh paths are relative to the checked file: make them absolute before the URDF moves to a scratch folder
+    root = etree.fromstring(text.encode("utf-8"))
+    for mesh in root.iter("mesh"):
+        filename = mesh.get("filename", "")
+        if filename and "://" not in filename and not Path(filename).is_absolute():
+            mesh.set("filename", str(base_dir.resolve() / filename))
+    with tempfile.TemporaryDirectory(prefix="xacrokit-check-") as folder:
+        urdf = Path(folder) / "robot.urdf"
+        urdf.write_text(etree.tostring(root, encoding="unicode"), encoding="utf-8")
+        return run_consumers(names, urdf, package_paths=package_paths)
+
+
+def consumer_findings(results: Sequence[ConsumerResult], file: str) -> list[Finding]:
+    """C001: a finding for each consumer that refused the URDF, crashed on it or gave no verdict in time."""
+    return [
+        Finding("C001", severity("C001"), "consumer", r.name, f"{r.name} {r.status}: {r.message}".rstrip(": "), file)
+        for r in results
+        if r.failed
+    ]
 
 
 def _load(name: str, path: str, packages: Mapping[str, str] | None = None) -> str:
@@ -160,7 +218,7 @@ def _load(name: str, path: str, packages: Mapping[str, str] | None = None) -> st
 def _with_mesh_paths(path: str, packages: Mapping[str, str]) -> str:
     from lxml import etree
 
-    from .expansion import find_package
+    from ..expansion import find_package
 
     root = etree.parse(path).getroot()
     for mesh in root.iter("mesh"):

@@ -1,0 +1,78 @@
+"""The document reader: a URDF parsed once (U001 when it cannot be), its links and joints, its numbers read leniently,
+and findings placed at the line they are about."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import overload
+
+from lxml import etree
+
+from .findings import Finding, rule_table, severity
+
+RULES = rule_table({"U001": ("urdf-readable", "error", "the document is well-formed XML with a <robot> root")})
+
+
+def parse_robot(text: str, file: str) -> etree._Element | Finding:
+    """The ``<robot>`` element of a URDF text, or the U001 finding saying why there is none."""
+    try:
+        root = etree.fromstring(text.encode("utf-8"))
+    except etree.XMLSyntaxError as exc:
+        return Finding("U001", severity("U001"), "robot", "", f"not well-formed XML: {exc}", file, exc.lineno)
+    if root.tag != "robot":
+        return Finding("U001", severity("U001"), "robot", "", f"the root element is <{root.tag}>, not <robot>", file, 1)
+    return root
+
+
+class Doc:
+    """The parts of a URDF the rules read, with source lines."""
+
+    def __init__(
+        self, root: etree._Element, file: str | None, lines: Mapping[tuple[str, str], int] | None, *, source_lines: bool
+    ) -> None:
+        self.root = root
+        self.file = file
+        self.spec_lines = lines  # for spec input: (kind, name) -> line in the spec
+        self.source_lines = source_lines  # URDF input: element lines are the file's own
+        self.links = [e for e in root if e.tag == "link"]
+        self.joints = [e for e in root if e.tag == "joint"]
+        self.link_names = {e.get("name", "") for e in self.links}
+        self.joint_by_name = {e.get("name", ""): e for e in self.joints}
+
+    def finding(self, rule: str, kind: str, name: str, message: str, element: etree._Element | None = None) -> Finding:
+        line = None
+        if self.spec_lines is not None:
+            line = self.spec_lines.get((kind, name))
+            owner = element
+            while line is None and owner is not None:  # a mesh, say: the line of the link or joint it belongs to
+                if owner.tag in ("link", "joint"):
+                    line = self.spec_lines.get((owner.tag, owner.get("name", "")))
+                owner = owner.getparent()
+        elif element is not None and self.source_lines:
+            line = element.sourceline  # (an expanded xacro's lines are not the xacro file's: leave them out)
+        return Finding(rule, severity(rule), kind, name, message, self.file, line)
+
+
+@overload
+def read_float(element: etree._Element | None, attribute: str, default: float) -> float: ...
+@overload
+def read_float(element: etree._Element | None, attribute: str, default: None = None) -> float | None: ...
+def read_float(element: etree._Element | None, attribute: str, default: float | None = None) -> float | None:
+    """An attribute as a number: ``default`` when it (or the element) is missing, NaN when it does not read."""
+    if element is None or element.get(attribute) is None:
+        return default
+    try:
+        return float(element.get(attribute, ""))
+    except ValueError:
+        return math.nan
+
+
+def read_triple(element: etree._Element | None, attribute: str, default: str = "0 0 0") -> tuple[float, float, float]:
+    """Three numbers from an attribute such as xyz or size; NaNs when it does not hold exactly three."""
+    text = default if element is None else element.get(attribute, default)
+    try:
+        x, y, z = (float(v) for v in text.split())
+    except ValueError:  # (not numbers, or not three of them)
+        return (math.nan, math.nan, math.nan)
+    return (x, y, z)

@@ -1,0 +1,104 @@
+"""What a check says: findings, the consumers' verdicts, the report holding both, and the rule table they name.
+
+Each rule family's module keeps its rows of the table beside its code and enters them here with :func:`rule_table`;
+a finding reads its rule's name and severity from there. ``xacrokit.check.rules.RULES`` lists every row in order.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Literal
+
+Severity = Literal["error", "warning"]
+Row = tuple[str, Severity, str]  # (name, severity, what it checks)
+
+# rule id -> row, as each rule family's module enters it. The ids are stable: scripts may filter on them.
+_ROWS: dict[str, Row] = {}
+
+
+def rule_table(rows: dict[str, Row]) -> dict[str, Row]:
+    """Enter a rule family's rows (id -> (name, severity, what it checks)); returns them for the family to keep."""
+    taken = sorted(_ROWS.keys() & rows.keys())
+    if taken:
+        raise ValueError(f"rule id(s) {', '.join(taken)} entered twice; give each rule an id of its own")
+    _ROWS.update(rows)
+    return rows
+
+
+def severity(rule: str) -> Severity:
+    """The severity of a rule's findings, as its row says."""
+    return _ROWS[rule][1]
+
+
+@dataclass(frozen=True)
+class Finding:
+    rule: str
+    severity: Severity
+    element_kind: str  # robot, link, joint, gazebo, material, mesh, ros2_control, consumer, value (a spec's)
+    element: str
+    message: str
+    file: str | None = None
+    line: int | None = None
+
+    @property
+    def name(self) -> str:
+        return _ROWS[self.rule][0]
+
+    def to_dict(self) -> dict[str, object]:
+        return {
+            "rule": self.rule,
+            "name": self.name,
+            "severity": self.severity,
+            "element": {"kind": self.element_kind, "name": self.element},
+            "file": self.file,
+            "line": self.line,
+            "message": self.message,
+        }
+
+
+@dataclass(frozen=True)
+class ConsumerResult:
+    """``status``: accepted, rejected, crashed, timeout, skipped or unavailable."""
+
+    name: str
+    status: str
+    message: str = ""
+
+    @property
+    def failed(self) -> bool:
+        return self.status in ("rejected", "crashed", "timeout")
+
+
+@dataclass(frozen=True)
+class CheckReport:
+    source: str
+    kind: str  # urdf, xacro or spec
+    robot: str | None
+    findings: tuple[Finding, ...]
+    consumers: tuple[ConsumerResult, ...] = field(default=())
+
+    @property
+    def errors(self) -> list[Finding]:
+        return [f for f in self.findings if f.severity == "error"]
+
+    @property
+    def warnings(self) -> list[Finding]:
+        return [f for f in self.findings if f.severity == "warning"]
+
+    def exit_code(self, strict: bool = False) -> int:
+        return 1 if self.errors or (strict and self.warnings) else 0
+
+    def to_dict(self) -> dict[str, object]:
+        return {
+            "format": "xacrokit-check/1",
+            "source": self.source,
+            "kind": self.kind,
+            "robot": self.robot,
+            "summary": {
+                "errors": len(self.errors),
+                "warnings": len(self.warnings),
+                "verdict": "clean" if not self.errors else "errors",
+            },
+            "findings": [f.to_dict() for f in self.findings],
+            "consumers": [{"name": c.name, "status": c.status, "message": c.message} for c in self.consumers],
+        }

@@ -1,0 +1,111 @@
+"""Joint rules (J001-J012): a joint's type, limits, axis, mimic, dynamics and safety controller are ones consumers
+accept."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+
+from lxml import etree
+
+from ..model import JOINT_TYPES, MOVING
+from .document import Doc, read_float, read_triple
+from .findings import Finding, rule_table
+
+RULES = rule_table(
+    {
+        "J001": ("limit-present", "error", "revolute and prismatic joints have <limit> with lower and upper"),
+        "J002": ("limit-order", "error", "lower <= upper"),
+        "J003": ("limit-effort", "error", "moving joints' effort limit is > 0"),
+        "J004": ("limit-velocity", "error", "moving joints' velocity limit is > 0"),
+        "J005": ("continuous-limit", "error", "continuous joints have <limit> with effort and velocity"),
+        "J006": ("axis-nonzero", "error", "a joint's axis is not the zero vector"),
+        "J007": ("axis-unit", "warning", "a joint's axis has unit length"),
+        "J008": ("mimic-target", "error", "<mimic> names an existing moving joint of the same type, not itself"),
+        "J009": ("dynamics-present", "warning", "moving joints have <dynamics> (damping, friction)"),
+        "J010": ("safety-inside-limits", "error", "safety_controller soft limits lie inside the hard limits"),
+        "J011": ("joint-type", "error", "a joint's type is one URDF knows"),
+        "J012": (
+            "floating-at-root",
+            "warning",
+            "a floating joint hangs from the root link (simulators reject deeper ones)",
+        ),
+    }
+)
+
+
+def joint_rules(doc: Doc) -> Iterator[Finding]:
+    types = {j.get("name", ""): j.get("type", "") for j in doc.joints}
+    children = {j.find("child").get("link") for j in doc.joints if j.find("child") is not None}
+    for joint in doc.joints:
+        name, kind = joint.get("name", ""), joint.get("type", "")
+
+        def found(rule: str, message: str, name: str = name, joint: etree._Element = joint) -> Finding:
+            return doc.finding(rule, "joint", name, message, joint)
+
+        if kind not in JOINT_TYPES:
+            yield found("J011", f"type {kind!r} is not a URDF joint type ({', '.join(JOINT_TYPES)})")
+            continue
+        limit = joint.find("limit")
+        if kind in ("revolute", "prismatic"):
+            lower, upper = read_float(limit, "lower"), read_float(limit, "upper")
+            if limit is None or lower is None or upper is None:
+                yield found("J001", f"a {kind} joint needs <limit lower upper effort velocity>")
+            elif not lower <= upper:
+                yield found("J002", f"limit lower ({lower}) is greater than upper ({upper}); swap them")
+        if kind == "continuous" and (limit is None or limit.get("effort") is None or limit.get("velocity") is None):
+            yield found(
+                "J005",
+                "a continuous joint needs <limit effort=... velocity=...> (controllers and simulators read them)",
+            )
+        if kind in MOVING and limit is not None:
+            for rule, key, unit in (("J003", "effort", "N*m or N"), ("J004", "velocity", "rad/s or m/s")):
+                value = read_float(limit, key)
+                if value is not None and not value > 0:
+                    yield found(rule, f"limit {key} is {value}; it must be > 0 ({unit})")
+                elif value is None and kind != "continuous":
+                    yield found(rule, f"limit has no {key}; give one > 0 ({unit})")
+        if kind in MOVING or kind == "planar":
+            axis = read_triple(joint.find("axis"), "xyz", "1 0 0")
+            norm = math.hypot(*axis)
+            if not math.isfinite(norm) or norm == 0:
+                yield found(
+                    "J006",
+                    f"axis {joint.find('axis').get('xyz') if joint.find('axis') is not None else ''!r}"
+                    " is zero or unreadable; give a direction such as '0 0 1'",
+                )
+            elif abs(norm - 1.0) > 1e-6:
+                yield found("J007", f"axis has length {norm:.6g}; consumers normalise it, write the unit vector")
+        if kind in MOVING and joint.find("dynamics") is None and joint.find("mimic") is None:
+            yield found("J009", "moving joint without <dynamics damping friction>; simulators then assume none")
+        if kind == "floating" and joint.find("parent") is not None and joint.find("parent").get("link") in children:
+            yield found(
+                "J012",
+                "floating joint below the root link; MuJoCo and most simulators accept a floating "
+                "joint only as the base: make it fixed, or the robot's root",
+            )
+        mimic = joint.find("mimic")
+        if mimic is not None:
+            target = mimic.get("joint", "")
+            if target == name:
+                yield found("J008", "a joint cannot mimic itself")
+            elif target not in types:
+                yield found("J008", f"mimics {target!r}, which is not a joint of this robot")
+            elif (
+                types[target] not in MOVING
+                or kind not in MOVING
+                or (types[target] == "prismatic") != (kind == "prismatic")
+            ):
+                yield found(
+                    "J008",
+                    f"mimics {target!r} ({types[target]}) from a {kind} joint; both must move, "
+                    "and rotate (or slide) alike",
+                )
+        safety = joint.find("safety_controller")
+        if safety is not None and limit is not None and kind in ("revolute", "prismatic"):
+            lower, upper = read_float(limit, "lower"), read_float(limit, "upper")
+            soft_lower, soft_upper = read_float(safety, "soft_lower_limit"), read_float(safety, "soft_upper_limit")
+            if lower is not None and soft_lower is not None and soft_lower < lower:
+                yield found("J010", f"soft_lower_limit {soft_lower} is below the hard lower limit {lower}")
+            if upper is not None and soft_upper is not None and soft_upper > upper:
+                yield found("J010", f"soft_upper_limit {soft_upper} is above the hard upper limit {upper}")

@@ -1,0 +1,138 @@
+"""The check stage: a strict verifier for any URDF, xacro document or spec.
+
+Our own rules run first (structure, numbers, joints, inertia, references, prefix, DH kinematics), then independent
+consumers (check_urdf, pinocchio, yourdfpy, MuJoCo when installed). Every finding has a stable rule id, a severity, the
+element it is about, where it came from when that can be known, and a message saying what is wrong and what would be
+right. This module reads the input and runs the rule families in turn; each family's module holds its rules.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
+
+from ..errors import SpecErrors, XacrokitError
+from ..expansion import expand_file, with_nearby_packages
+from ..gcpause import collector_paused
+from ..model import Robot
+from .consumers import chosen, consumer_findings, verdicts
+from .document import Doc, parse_robot
+from .findings import CheckReport, Finding
+from .inertia import inertia_rules
+from .joints import joint_rules
+from .numbers import number_rules
+from .references import prefix_rules, reference_rules
+from .spec import kinematics_rules, spec_findings
+from .structure import name_rules, structure_rules
+
+
+def input_kind(path: Path) -> str:
+    """spec, xacro or urdf: by the file's suffix, or for another suffix by its first 4 KiB (XML starts with '<'; a
+    xacro document declares the xacro namespace or uses a xacro: element)."""
+    name = path.name.lower()
+    if name.endswith((".yaml", ".yml")):
+        return "spec"
+    if name.endswith(".xacro"):
+        return "xacro"
+    if name.endswith((".urdf", ".xml")):
+        return "urdf"
+    try:
+        with path.open("rb") as file:
+            head = file.read(4096)
+    except OSError:
+        return "urdf"  # (reading it again says why it cannot be read)
+    text = head.decode("utf-8", "replace").lstrip("\ufeff \t\r\n")
+    if not text.startswith("<"):
+        return "spec"
+    return "xacro" if re.search(r"xmlns:xacro\s*=|<xacro:", text) else "urdf"
+
+
+def _load_urdf(
+    path: Path,
+    kind: str,
+    mappings: Mapping[str, str] | None,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None,
+) -> tuple[str, Robot | None, dict[tuple[str, str], int] | None, tuple[Finding, ...]]:
+    """URDF text, and for spec input the robot model, the spec lines and the spec's warnings."""
+    if kind == "spec":
+        from ..pipeline import spec_urdf  # (the whole generator: loaded for spec input only)
+
+        described = spec_urdf(path)
+        return described.urdf, described.robot, described.lines, spec_findings(described.warnings)
+    if kind == "xacro":
+        return expand_file(path, mappings, package_paths=package_paths), None, None, ()
+    try:
+        return path.read_text(encoding="utf-8"), None, None, ()
+    except (OSError, UnicodeDecodeError) as exc:
+        why = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        raise XacrokitError(f"cannot read {path}: {why}") from None
+
+
+@collector_paused()
+def check(
+    path: str | Path,
+    mappings: Mapping[str, str] | None = None,
+    *,
+    prefix: str | None = None,
+    consumers: Sequence[str] | None = None,
+    package_paths: Mapping[str, str | Path] | None = None,
+    progress: Callable[[str], None] | None = None,
+) -> CheckReport:
+    """Check a URDF, a xacro document (expanded with ``mappings``) or a spec (generated in memory, never written).
+
+    Args:
+        path: the file; ``.yaml``/``.yml`` is a spec, ``.xacro`` a xacro document, ``.urdf``/``.xml`` URDF; any
+            other name is told by its content (XML is URDF, or xacro when it declares the xacro namespace; else a
+            spec). A URDF or xacro file inside a ROS package finds that package and its siblings for ``package://``
+            and ``$(find)`` without ``package_paths``.
+        mappings: ``xacro:arg`` values for a xacro document.
+        prefix: when given, every link, joint, gazebo reference and ros2_control joint must start with it.
+        consumers: which independent consumers to run (default: every installed one of check_urdf, pinocchio,
+            yourdfpy, mujoco); ``[]`` for none.
+        package_paths: folders for ``$(find PKG)`` and ``package://PKG`` of packages not otherwise found.
+        progress: called with a short message as each step starts (the CLI shows it on a terminal).
+
+    Raises:
+        XacrokitError: the input cannot be read (a spec file that cannot be read raises SpecErrors, a xacro
+            ExpandError). A spec with located errors gives a report of V002 findings instead.
+    """
+    path = Path(path)
+    say = progress or (lambda message: None)
+    kind = input_kind(path)
+    if mappings and kind != "xacro":
+        raise XacrokitError("name:=value arguments only apply to xacro input")
+    names = chosen(consumers)
+    packages: Mapping[str, str | os.PathLike[str]] | None = package_paths
+    if kind != "spec":  # a file inside a package finds that package (and its workspace siblings) by itself
+        packages = with_nearby_packages(path, package_paths)
+    say(f"reading {path.name}")
+    try:
+        text, robot, lines, notes = _load_urdf(path, kind, mappings, packages)
+    except SpecErrors as exc:
+        if all(e.line is None for e in exc.errors):  # the file itself cannot be read: no report to give
+            raise
+        return CheckReport(str(path), kind, None, spec_findings(exc.errors, "V002"))
+    root = parse_robot(text, str(path))
+    if isinstance(root, Finding):  # U001: not a URDF, nothing more to read
+        return CheckReport(str(path), kind, None, (root,))
+    say("running our rules")
+    doc = Doc(root, str(path), lines, source_lines=kind == "urdf")
+    findings = [*notes, *structure_rules(doc)]
+    structural = any(f.rule.startswith("S") for f in findings)
+    findings += number_rules(doc)
+    findings += name_rules(doc)
+    findings += joint_rules(doc)
+    findings += inertia_rules(doc)
+    findings += reference_rules(doc, packages, path.parent)
+    if prefix is not None:
+        findings += prefix_rules(doc, prefix)
+    if robot is not None and not structural and robot.arms:
+        findings += kinematics_rules(doc, robot, text)
+    if names and not structural:
+        say(f"running {', '.join(names)}")
+    results = verdicts(names, text, structural=structural, package_paths=packages, base_dir=path.parent)
+    findings += consumer_findings(results, str(path))
+    unique = tuple(dict.fromkeys(findings))  # (a spec's visual and collision share a mesh: one finding, not two)
+    return CheckReport(str(path), kind, root.get("name"), unique, tuple(results))

@@ -1,0 +1,1 @@
+"""Tests of the check stage (xacrokit.check), one module per part of it."""

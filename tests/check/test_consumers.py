@@ -1,0 +1,91 @@
+"""The independent consumers: chosen by name or installed, stopped when they hang or print forever, their verdicts
+said in one line, and nothing left behind."""
+
+from __future__ import annotations
+
+import pytest
+
+import xacrokit
+from conftest import gen_robot
+from xacrokit.check import check
+from xacrokit.check.consumers import run_consumer
+
+from .helpers import BODY, CORPUS, MOVED_MASSLESS
+
+
+def test_rooted_cycle_is_reported_and_check_urdf_is_not_left_running(tmp_path):
+    urdf = tmp_path / "rooted.urdf"
+    urdf.write_text(
+        '<robot name="rc"><link name="root"/><link name="a"/><link name="b"/>'
+        '<joint name="ra" type="fixed"><parent link="root"/><child link="a"/></joint>'
+        '<joint name="ab" type="fixed"><parent link="a"/><child link="b"/></joint>'
+        '<joint name="ba" type="fixed"><parent link="b"/><child link="a"/></joint></robot>',
+        encoding="utf-8",
+    )
+    report = check(urdf)
+    assert [f.message for f in report.findings if f.rule == "S002"] == [
+        "joint 'ba' closes a cycle a -> b -> a; remove it"
+    ]
+    assert {c.status for c in report.consumers} == {"skipped"}
+    # run check_urdf anyway: it prints forever on this file; the output cap stops it
+    forced = run_consumer("check_urdf", urdf, timeout=20)
+    assert forced.status in ("rejected", "timeout") and forced.failed
+
+
+def test_consumer_that_hangs_is_stopped_and_reported(tmp_path, monkeypatch):
+    import xacrokit.check.consumers as consumers
+
+    monkeypatch.setattr(consumers, "_check_urdf_binary", lambda: str(tmp_path / "sleeper"))
+    sleeper = tmp_path / "sleeper"
+    sleeper.write_text("#!/bin/sh\nsleep 30\n", encoding="utf-8")
+    sleeper.chmod(0o755)
+    result = consumers.run_consumer("check_urdf", CORPUS / "J002_pass.urdf", timeout=0.5)
+    assert result.status == "timeout" and result.failed
+
+
+def test_consumers_asked_for_by_name_must_be_installed(monkeypatch, tmp_path):
+    import xacrokit.check.consumers as consumers
+
+    monkeypatch.setattr(consumers, "available", lambda name: name != "mujoco")
+    with pytest.raises(xacrokit.XacrokitError, match="mujoco asked for but not installed"):
+        check(CORPUS / "I001_pass.urdf", consumers=["check_urdf", "mujoco"])
+    with pytest.raises(xacrokit.XacrokitError, match="unknown consumer"):
+        check(CORPUS / "I001_pass.urdf", consumers=["nosuch"])
+    report = check(CORPUS / "I001_pass.urdf")  # 'all' means those installed: mujoco left out, not an error
+    assert "mujoco" not in {c.name for c in report.consumers} and not report.errors
+
+
+@pytest.mark.skipif(not __import__("importlib").util.find_spec("mujoco"), reason="MuJoCo is not installed")
+def test_mujoco_consumer_accepts_good_and_rejects_bad_inertia():
+    good = check(CORPUS / "I003_pass.urdf", consumers=["mujoco"])
+    assert [c.status for c in good.consumers] == ["accepted"]
+    bad = check(CORPUS / "I003_fail.urdf", consumers=["mujoco"])
+    (verdict,) = bad.consumers
+    assert verdict.status == "rejected" and "inertia" in verdict.message and "\n" not in verdict.message
+    assert {f.rule for f in bad.errors} == {"I003", "C001"}
+
+
+def test_consumers_leave_nothing_in_the_working_folder(tmp_path):
+    result = gen_robot("check", CORPUS / "I003_fail.urdf", cwd=tmp_path)  # MuJoCo, when installed, rejects it
+    assert result.returncode == 1
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_check_urdf_says_what_urdfdom_found_first(tmp_path):
+    """urdfdom prints the cause first and where it gave up after; the finding keeps the cause."""
+    urdf = tmp_path / "no_limit.urdf"
+    urdf.write_text(
+        MOVED_MASSLESS.replace("BODY", BODY).replace('<limit lower="-1" upper="1" effort="1" velocity="1"/>', "")
+    )
+    report = check(urdf, consumers=["check_urdf"])
+    (consumer,) = report.consumers
+    assert consumer.status == "rejected" and "does not specify limits" in consumer.message, consumer.message
+    assert "at line" not in consumer.message  # urdfdom's own source locations are left out
+
+
+def test_check_urdf_printing_an_error_is_a_rejection_even_when_it_exits_0():
+    """urdfdom reports an unreadable rpy ("pi/2", left by a xacro macro) and carries on to exit 0."""
+    report = check(CORPUS / "U002_fail.urdf", consumers=["check_urdf"])
+    (consumer,) = report.consumers
+    assert consumer.status == "rejected" and "pi/2" in consumer.message, consumer
+    assert {f.rule for f in report.errors} == {"U002", "C001"}

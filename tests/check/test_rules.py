@@ -1,0 +1,151 @@
+"""Our rules: every rule fires on its failing corpus fixture and not on its passing one; what single rules read and
+say."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from conftest import REPO, gen_robot
+from xacrokit.check import RULES, CheckReport, check
+
+from .helpers import BODY, CORPUS, MOVED_MASSLESS, rules_of
+
+SPEC_ONLY = ("K001", "V001", "V002")  # rules about a spec, which a URDF fixture cannot show
+
+
+def corpus_check(path: Path) -> CheckReport:
+    rule = path.name[:4]
+    return check(path, consumers=None if rule == "C001" else [], prefix="r1_" if rule == "P001" else None)
+
+
+def test_every_rule_has_a_failing_and_a_passing_fixture():
+    fixtures = {p.name for p in CORPUS.glob("*.urdf")}
+    for rule in RULES:
+        if rule in SPEC_ONLY:
+            continue  # needs a spec; see test_k001_*, test_v001_* and test_invalid_specs_*
+        assert {f"{rule}_fail.urdf", f"{rule}_pass.urdf"} <= fixtures, rule
+
+
+@pytest.mark.parametrize("rule", sorted(r for r in RULES if r not in SPEC_ONLY))
+def test_rule_fires_on_its_failing_fixture_only(rule):
+    failing = corpus_check(CORPUS / f"{rule}_fail.urdf")
+    assert rule in rules_of(failing), [str(f) for f in failing.findings]
+    assert all(f.severity == RULES[f.rule][1] or f.rule == "R003" for f in failing.findings)
+    passing = corpus_check(CORPUS / f"{rule}_pass.urdf")
+    assert rule not in rules_of(passing), [str(f) for f in passing.findings]
+    assert not passing.errors and failing.exit_code(strict=True) == 1
+
+
+def test_urdf_findings_point_at_the_element_line():
+    report = check(CORPUS / "J002_fail.urdf", consumers=[])
+    (finding,) = report.findings
+    lines = (CORPUS / "J002_fail.urdf").read_text(encoding="utf-8").splitlines()
+    assert finding.file == str(CORPUS / "J002_fail.urdf")
+    assert lines[finding.line - 1].strip().startswith('<joint name="shoulder"')
+    assert (finding.element_kind, finding.element) == ("joint", "shoulder")
+
+
+def test_a_moved_link_may_leave_its_mass_to_links_fixed_to_it(tmp_path):
+    """Consumers merge fixed children into their parent: the body j1 moves has mass through 'body', two fixed joints
+    down. Without that mass anywhere in the body, I001 names the moved link."""
+    good = tmp_path / "good.urdf"
+    good.write_text(MOVED_MASSLESS.replace("BODY", BODY), encoding="utf-8")
+    report = check(good)
+    assert "I001" not in rules_of(report), [str(f) for f in report.findings]
+    assert [c.status for c in report.consumers] == ["accepted"] * len(report.consumers)  # they agree
+    bad = tmp_path / "bad.urdf"
+    bad.write_text(MOVED_MASSLESS.replace("BODY", ""), encoding="utf-8")
+    (finding,) = [f for f in check(bad, consumers=[]).findings if f.rule == "I001"]
+    assert finding.element == "l1" and "nor any link fixed to it" in finding.message
+
+
+def test_k001_catches_a_urdf_that_does_not_follow_its_dh_table(tmp_path):
+    from lxml import etree
+
+    from xacrokit.check.document import Doc
+    from xacrokit.check.spec import kinematics_rules
+    from xacrokit.pipeline import build_robot, expand_package
+    from xacrokit.render import render_package
+
+    spec = REPO / "examples" / "industrial_arm_std_dh.yaml"
+    robot = build_robot(spec)
+    good = expand_package(robot, render_package(robot, macros="copy")).content  # the library's dh_arm
+    doc = Doc(etree.fromstring(good.encode()), str(spec), {}, source_lines=False)
+    assert list(kinematics_rules(doc, robot, good)) == []
+    wrong_spec = tmp_path / "ur5.yaml"
+    wrong_spec.write_text(spec.read_text(encoding="utf-8").replace("a: -0.39225", "a: -0.39"), encoding="utf-8")
+    wrong = build_robot(wrong_spec)
+    wrong_urdf = expand_package(wrong, render_package(wrong, macros="copy")).content
+    (finding,) = kinematics_rules(doc, robot, wrong_urdf)  # robot says one table, the URDF does another
+    assert finding.rule == "K001" and "differ from the DH product by up to" in finding.message
+
+
+UNITS_SPEC = """robot: units
+links:
+  base_link: {shape: {box: {size: [0.2, 0.2, 0.1]}}, mass: 2000, origin: {rpy: [0, "90", 90]}}
+  arm: {shape: {cylinder: {radius: 0.02, length: 0.3}}, mass: 0.5}
+  plate: {shape: {box: {size: [100, 100, 2]}}, mass: 1.5}
+joints:
+  shoulder: {type: revolute, parent: base_link, child: arm, axis: [0, 1, 0],
+             limit: {lower: -170, upper: "170 deg", effort: 10, velocity: 1}, dynamics: {damping: 0.1}}
+  mount: {type: fixed, parent: base_link, child: plate}
+"""
+
+
+def test_v001_names_values_that_look_like_units_left_out(tmp_path):
+    spec = tmp_path / "units.yaml"
+    spec.write_text(UNITS_SPEC, encoding="utf-8")
+    lines = UNITS_SPEC.splitlines()
+    notes = {f.element: f for f in check(spec, consumers=[]).findings if f.rule == "V001"}
+    assert set(notes) == {
+        "$.links.base_link.origin.rpy[1]",  # '90' (quoted): the same
+        "$.links.base_link.origin.rpy[2]",  # 90 rad: degrees without their unit
+        "$.links.base_link.mass",  # 2,000 kg in a 4-litre box: grams written as kilograms
+        "$.links.plate.mass",  # a 100 m plate of 1.5 kg: millimetres written as metres
+        "$.joints.shoulder.limit.lower",  # -170 rad (upper, '170 deg', says its unit)
+    }, sorted(notes)
+    assert "'-170 deg'" in notes["$.joints.shoulder.limit.lower"].message
+    assert "denser than osmium" in notes["$.links.base_link.mass"].message
+    assert "lighter than air" in notes["$.links.plate.mass"].message
+    for finding in notes.values():
+        assert finding.severity == "warning" and finding.file == str(spec)
+        key = finding.element.rsplit(".", 1)[-1].split("[")[0]
+        assert key in lines[finding.line - 1], (finding.element, finding.line)
+    result = gen_robot(spec, "-o", tmp_path / "pkg")  # generating says the same on stderr, and still generates
+    assert result.returncode == 0, result.stderr
+    assert result.stderr.count("gen-robot: warning:") == 5 and "$.links.plate.mass" in result.stderr
+    clean = check(REPO / "examples" / "two_dof_arm.yaml", consumers=[])
+    assert "V001" not in rules_of(clean)
+
+
+@pytest.mark.parametrize(
+    ("element", "bad"),
+    [
+        ('<inertia ixx="1_0" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/>', 'ixx="1_0"'),  # Python reads it; urdfdom not
+        ('<inertia ixx="\uff11" iyy="1" izz="1" ixy="0" ixz="0" iyz="0"/>', 'ixx="\uff11"'),  # a full-width digit
+        ('<origin xyz="0&#9;0 0"/>', 'xyz="0\t0 0"'),  # a tab between values (written as a reference: XML turns a
+        # literal tab in an attribute into a space)
+        ('<mass value="1.0 "/>', 'value="1.0 "'),  # urdfdom: "mass [1.0 ] is not a float"
+        ('<origin rpy="0 0 nan"/>', 'rpy="0 0 nan"'),
+    ],
+)
+def test_u002_reads_numbers_the_way_urdfdom_does(tmp_path, element, bad):
+    urdf = tmp_path / "r.urdf"
+    urdf.write_text(f'<robot name="r"><link name="a"><inertial>{element}</inertial></link></robot>', encoding="utf-8")
+    messages = [f.message for f in check(urdf, consumers=[]).findings if f.rule == "U002"]
+    assert len(messages) == 1 and bad in messages[0], messages
+
+
+def test_u002_accepts_what_urdf_allows_and_refuses_colours_beyond_1(tmp_path):
+    urdf = tmp_path / "r.urdf"
+    urdf.write_text(
+        '<robot name="r"><material name="m"><color rgba="2 0 0 1"/></material><link name="a"><visual><origin/>'
+        '<geometry><mesh filename="m.stl" scale=" 1e-3  +.5 -0. "/></geometry></visual>'
+        '<inertial><origin xyz="+1E-2 .01 -0." rpy="  0 0 0 "/><mass value=" 1"/>'
+        '<inertia ixx="0.011" iyy="0.012" izz="0.013" ixy="0" ixz="0" iyz="0"/></inertial></link></robot>',
+        encoding="utf-8",
+    )
+    messages = [f.message for f in check(urdf, consumers=[]).findings if f.rule == "U002"]
+    assert messages == ['<color rgba="2 0 0 1">: expected 4 numbers from 0 to 1']

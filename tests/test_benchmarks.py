@@ -1,0 +1,31 @@
+"""The benchmark script runs: the check timings and one measurement of every stage."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+from conftest import REPO
+
+
+def test_benchmark_script_runs():
+    result = subprocess.run(
+        [sys.executable, str(REPO / "benchmarks" / "bench.py"), "check", "cli"],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert result.returncode == 0, result.stderr
+    for words in ("1000 links:", "ratio t(3000)/t(1000)", "rooted cycle reported (S002)", "gen-robot --help"):
+        assert words in result.stdout
+
+
+def test_benchmark_stage_measurement_runs(tmp_path, monkeypatch):
+    monkeypatch.syspath_prepend(str(REPO / "benchmarks"))
+    from bench import measure_size, touch
+
+    row = measure_size(10, tmp_path)
+    stages = {"load", "validate", "resolve", "render", "write", "emit", "xacro", "check", "full", "lxml"}
+    assert set(row) == stages | {"touch"}  # (touch: the reference walk, not a stage)
+    assert all(value > 0 for value in row.values())
+    assert touch({"a": [1, {"b": 2.0}], "c": {}}) == 4  # it reaches every mapping and list
