@@ -18,7 +18,9 @@ def wheel(tmp_path_factory):
     out = tmp_path_factory.mktemp("wheel")
     # built from a copy of the sources: an in-tree build would package what an earlier build left in build/
     source = tmp_path_factory.mktemp("source") / "xacrokit"
-    leftovers = shutil.ignore_patterns("build", "dist", ".venv", ".git", "*.egg-info", "__pycache__", ".*_cache", ".hypothesis")
+    leftovers = shutil.ignore_patterns(
+        "build", "dist", ".venv", ".git", "*.egg-info", "__pycache__", ".*_cache", ".hypothesis"
+    )
     shutil.copytree(REPO, source, ignore=leftovers)
     result = subprocess.run(
         [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q", "-w", str(out), str(source)],
