@@ -18,8 +18,8 @@ from xacrokit.emit import emit_scene_urdf, emit_urdf, urdf_differences
 from xacrokit.expansion import expand_file
 from xacrokit.load import load_file
 from xacrokit.pipeline import build_robot, expand_package
-from xacrokit.render import render_package
-from xacrokit.scene import build_scene, expand_scene, render_scene
+from xacrokit.render import render_package, render_scene
+from xacrokit.scene import build_scene
 from xacrokit.testing import valid_specs
 
 EXAMPLES = sorted(p for p in (REPO / "examples").glob("*.yaml") if "macros_demo" not in p.name)
@@ -46,7 +46,7 @@ def test_every_example_is_emitted_exactly_as_the_library_macros_expand_it():
 def test_every_scene_example_too(mode):
     for path in SCENES:
         scene = build_scene(load_file(path))
-        xacro_urdf = expand_scene(scene, render_scene(scene, macros=mode)).content
+        xacro_urdf = expand_package(scene, render_scene(scene, macros=mode)).content
         assert urdf_differences(xacro_urdf, emit_scene_urdf(scene), rel=0.0) == [], path.name
 
 
