@@ -23,7 +23,8 @@ def fleet_scene(spec_path: str | Path, count: int, *, columns: int | None = None
     row, ``spacing`` metres apart, ``columns`` to a row (default: a square grid).
 
     Raises:
-        XacrokitError: a count below 1, a spacing that is not a positive length, or a scene spec for the robot.
+        XacrokitError: a count below 1, a spacing that is not a positive length (or one so large that the grid
+            leaves the floats), or a scene spec for the robot.
         SpecErrors: the robot spec is unreadable or invalid (located in it).
     """
     if count < 1:
@@ -44,6 +45,8 @@ def fleet_scene(spec_path: str | Path, count: int, *, columns: int | None = None
     for index in range(count):
         row, column = divmod(index, columns)
         origin = Origin(xyz=(column * spacing + 0.0, row * spacing + 0.0, 0.0))
+        if not all(math.isfinite(v) for v in origin.xyz):  # (a spacing near the largest float)
+            raise XacrokitError(f"the spacing of a fleet is too large: {spacing!r} m puts r{index} at {origin.xyz}")
         planned.append(Planned(f"r{index}", f"r{index}_", WORLD, origin, robot, spec_file))
     command = f"gen-robot fleet {Path(spec_path).name} --count {count}"
     if given_columns:
