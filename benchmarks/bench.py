@@ -250,8 +250,9 @@ def measure_fleet(links: int, folder: Path) -> dict[str, float]:
     """Time every stage for a fleet of 10-link chain robots with ``links`` links in all."""
 
     from xacrokit.emit import emit_scene_urdf
-    from xacrokit.pipeline import emitted_urdf
-    from xacrokit.scene import expand_scene, fleet_scene, render_scene
+    from xacrokit.pipeline import emitted_urdf, expand_package
+    from xacrokit.render import render_scene
+    from xacrokit.scene import fleet_scene
 
     count = links // FLEET_ROBOT_LINKS
     spec = folder / "fleet_robot.yaml"
@@ -264,7 +265,7 @@ def measure_fleet(links: int, folder: Path) -> dict[str, float]:
         "scene": median_time(lambda: fleet_scene(spec, count), runs),  # load, validate, resolve: scene and robot
         "render": median_time(lambda: render_scene(scene), runs),
         "emit": median_time(lambda: emit_scene_urdf(scene), runs),
-        "xacro": median_time(lambda: expand_scene(scene, files), 1 if links >= 1000 else runs),
+        "xacro": median_time(lambda: expand_package(scene, files), 1 if links >= 1000 else runs),
         **output_rows(
             f"fleet_{links}",
             [*files, emitted_urdf(scene.name, urdf)],
@@ -275,7 +276,7 @@ def measure_fleet(links: int, folder: Path) -> dict[str, float]:
     }
     if links == 1000:  # the package written with --macros copy (library macro calls), for comparison
         copy_files = render_scene(scene, macros="copy")
-        row["xacro_copy"] = median_time(lambda: expand_scene(scene, copy_files), 1)
+        row["xacro_copy"] = median_time(lambda: expand_package(scene, copy_files), 1)
     return row
 
 
@@ -399,11 +400,12 @@ def bench_xacro_cost(folder: Path) -> None:
     plain.write_text(urdf, encoding="utf-8")
     hand = median_time(lambda: expand_file(plain), 7)
     print(f"  hand-written plain XML: {hand:.4f} s")
+    # the entry is the arguments and one call of the robot macro (issue 12): xacro copies the macro's body once more
     for mode in ("inline", "copy"):  # inline is the default
         generate(spec, folder / f"ur5_{mode}", force=True, macros=mode)
         entry = folder / f"ur5_{mode}" / "urdf" / "ur5.urdf.xacro"
         ours = median_time(lambda entry=entry: expand_file(entry), 7)
-        print(f"  generated package, --macros {mode}: {ours:.4f} s; ratio {ours / hand:.2f}   (target <= 1.5)")
+        print(f"  generated package, --macros {mode}: {ours:.4f} s; ratio {ours / hand:.2f}   (target <= 2)")
 
 
 def bench_cli() -> None:

@@ -64,8 +64,9 @@ def _cmd_generate(args: argparse.Namespace) -> int:
     for action in result.actions:
         note = f"  ({action.reason})" if action.reason else ""
         print(f"{action.action:<{width}}  {action.path}{note}")
-    package = result.scene.package if result.scene else result.robot.package  # type: ignore[union-attr]
-    print(f"{package}: {_written(result, args.dry_run)}" + (" (dry run: nothing written)" if args.dry_run else ""))
+    print(
+        f"{result.package}: {_written(result, args.dry_run)}" + (" (dry run: nothing written)" if args.dry_run else "")
+    )
     return _conflicts_exit(result)
 
 

@@ -25,6 +25,7 @@ from .model import (
     Mesh,
     Origin,
     Robot,
+    Scene,
     Shape,
     Sphere,
     Wheel,
@@ -84,7 +85,8 @@ def _stored_inertial(parent: etree._Element, inertia: Inertia) -> None:
     _inertial(parent, i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz, i.mass, xyz, rpy)
 
 
-def _link(robot: Robot, prefix: str, link: Link) -> etree._Element:
+def link_element(robot: Robot, prefix: str, link: Link) -> etree._Element:
+    """A spec link (or frame) as URDF, its name glued to ``prefix``."""
     element = etree.Element("link", name=prefix + link.name)
     if link.visual is not None:
         visual = _sub(element, "visual")
@@ -101,7 +103,8 @@ def _link(robot: Robot, prefix: str, link: Link) -> etree._Element:
     return element
 
 
-def _joint(prefix: str, joint: Joint) -> etree._Element:
+def joint_element(prefix: str, joint: Joint) -> etree._Element:
+    """A spec joint as URDF, the names it holds glued to ``prefix``."""
     element = etree.Element("joint", name=prefix + joint.name, type=joint.type)
     _sub(element, "parent", link=prefix + joint.parent)
     _sub(element, "child", link=prefix + joint.child)
@@ -269,8 +272,8 @@ def robot_elements(
 
     ``extras=False`` leaves out the Gazebo surfaces and the ros2_control block (their own macros write them).
     """
-    elements = [_link(robot, prefix, link) for link in robot.links]
-    elements += [_joint(prefix, joint) for joint in robot.joints]
+    elements = [link_element(robot, prefix, link) for link in robot.links]
+    elements += [joint_element(prefix, joint) for joint in robot.joints]
     for arm in robot.arms:
         elements += _arm(robot, prefix, arm)
     for wheel in robot.wheels:
@@ -373,16 +376,18 @@ def urdf_differences(a: str, b: str, *, rel: float = 1e-12) -> list[str]:
 
 
 @collector_paused()
-def emit_scene_urdf(scene) -> str:  # noqa: ANN001 - a Scene; imported lazily to keep the modules acyclic
+def emit_scene_urdf(scene: Scene) -> str:
     """The URDF of a scene made only of our robots (third-party macros need xacro), default arguments."""
     root = etree.Element("robot", name=scene.name)
-    for robot in scene.robots:  # each robot's palette once, however many instances
-        for element in material_elements(robot):
+    for palette_robot in scene.robots:  # each robot's palette once, however many instances
+        for element in material_elements(palette_robot):
             root.append(element)
     root.append(etree.Element("link", name=scene.world))
     control = "mock" if any(r.ros2_control is not None for r in scene.robots) else "none"
     for instance in scene.instances:
         robot = instance.robot
+        if robot is None:
+            raise ValueError(f"instance {instance.name} is a third-party macro: only xacro can expand it")
         mount = etree.SubElement(root, "joint", name=instance.prefix + mount_joint_name(robot.root), type="fixed")
         _sub(mount, "parent", link=instance.parent)
         _sub(mount, "child", link=instance.prefix + robot.root)

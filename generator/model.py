@@ -1,14 +1,17 @@
-"""The resolved robot: plain frozen dataclasses in SI units, the single source of truth after validation.
+"""The resolved robot and scene: plain frozen dataclasses in SI units, the single source of truth after validation.
 
-What a package says about the robot (its templates and the direct URDF emitter) comes from this model. Also here, as
-the one place for them: the joint types and the names of the links and joints xacrokit makes for a spec's arms,
-wheels, frames and scene mounts (validate, resolve, emit and check all ask these functions).
+What a package says about the robot or scene (its templates and the direct URDF emitter) comes from this model. Also
+here, as the one place for them: the joint types and the names of the links and joints xacrokit makes for a spec's
+arms, wheels, frames and scene mounts (validate, resolve, emit and check all ask these functions).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Literal
+
+from .errors import SpecError
 
 Vec3 = tuple[float, float, float]
 ZERO: Vec3 = (0.0, 0.0, 0.0)
@@ -294,3 +297,65 @@ class Robot:
     @property
     def package(self) -> str:
         return f"{self.name}_description"
+
+
+# ------------------------------------------------------------------------------------------------------------ scenes
+@dataclass(frozen=True)
+class ThirdPartyMacro:
+    """A macro with the prefix / parent / *origin interface, from a .xacro file the scene includes where it is."""
+
+    file: Path
+    macro: str
+    params: tuple[tuple[str, str], ...] = ()
+    prefix_param: str = "prefix"
+    parent_param: str = "parent"
+
+
+@dataclass(frozen=True)
+class Instance:
+    """One robot in the scene: one of ours (``robot``, from ``spec_file``) or a third-party ``macro``. ``links`` and
+    ``joints`` are its full names in the scene (prefix included)."""
+
+    name: str
+    prefix: str
+    parent: str  # the full name of the link it is mounted on
+    origin: Origin
+    links: tuple[str, ...]
+    joints: tuple[str, ...]
+    robot: Robot | None = None
+    spec_file: Path | None = None
+    macro: ThirdPartyMacro | None = None
+    parent_instance: str | None = None
+
+
+@dataclass(frozen=True)
+class Scene:
+    """Several robots in one description, every name of every instance known (and disjoint) before rendering."""
+
+    name: str
+    world: str
+    instances: tuple[Instance, ...]
+    source: str = field(default="", compare=False)
+    warnings: tuple[SpecError, ...] = field(default=(), compare=False)  # its robots' and its own (Spec.warnings)
+    command: str = field(default="", compare=False)  # what makes it again, when not `gen-robot SPEC` (a fleet)
+
+    @property
+    def package(self) -> str:
+        return f"{self.name}_description"
+
+    @property
+    def robots(self) -> tuple[Robot, ...]:
+        """The distinct robots of the spec instances, in first-use order."""
+        seen: dict[str, Robot] = {}
+        for instance in self.instances:
+            if instance.robot is not None:
+                seen.setdefault(instance.robot.name, instance.robot)
+        return tuple(seen.values())
+
+    @property
+    def link_names(self) -> tuple[str, ...]:
+        return (self.world, *(n for i in self.instances for n in i.links))
+
+    @property
+    def joint_names(self) -> tuple[str, ...]:
+        return tuple(n for i in self.instances for n in i.joints)

@@ -1,46 +1,33 @@
-"""The render stage: the model becomes the files of a ROS 2 description package, in memory.
+"""The render stage for a robot: the model becomes the files of a ROS 2 description package, in memory.
 
-jinja2 with StrictUndefined (a template that asks for something the model lacks fails loudly) and XML autoescaping
-for the .xacro/.xml templates. Every user string that lands in a xacro file goes through ``xacro_text``, so a ``${``
-or ``$(`` in it is written escaped and never evaluated by xacro. Numbers are written with ``repr`` (round-trip exact).
+The robot is written once, in ``urdf/NAME_macro.xacro`` (the macro ``NAME``); the entry ``urdf/NAME.urdf.xacro`` is
+its arguments and one call of that macro, as Universal Robots' entry files are. Plain ``<link>``/``<joint>`` XML comes
+from the direct emitter (:mod:`xacrokit.emit`), written with the literal prefix ``${prefix}``: the whole robot in the
+``inline`` mode, the links no library macro makes and the spec's joints in the ``copy``/``find`` modes, which call the
+library's box_link/cylinder_link/sphere_link, dh_arm and wheel macros for the rest.
 """
 
 from __future__ import annotations
 
-import re
-from dataclasses import dataclass
-from functools import cache
+from collections.abc import Iterable
 from pathlib import PurePosixPath
-from typing import Any, Literal
+from typing import Any
 
-import jinja2
 import yaml
 from lxml import etree
 from markupsafe import Markup
 
-from . import __version__
-from .emit import robot_elements
-from .gcpause import collector_paused
-from .model import Box, Cylinder, Link, Mesh, Origin, Robot, Sphere
-from .resources import macros_dir, templates_dir
-from .text import material_name, num, vec, xacro_text
+from .. import __version__
+from ..emit import joint_element, link_element, robot_elements
+from ..gcpause import collector_paused
+from ..model import Box, Cylinder, Link, Mesh, Robot, Sphere, mount_joint_name
+from ..resources import macros_dir
+from ..text import material_name, xacro_text
+from .control import controllers
+from .environment import MacroMode, RenderedFile, environment
 
-MacroMode = Literal["copy", "find", "inline"]
 COPIED_MACROS_DIR = "urdf/xacrokit"
-
-
-@dataclass(frozen=True)
-class RenderedFile:
-    """One file of the package: a POSIX path relative to the package root and its full text."""
-
-    path: str
-    content: str
-
-
-def indent_block(text: str, width: int) -> Markup:
-    """Rendered template text with every non-empty line indented by ``width`` spaces (jinja's ``indent`` also
-    indents an empty block's first line)."""
-    return Markup(re.sub(r"(?m)^(?=.)", " " * width, str(text)))  # (already rendered, so already escaped)
+PREFIX = "${prefix}"  # what the robot macro glues in front of every name (xacro fills it in)
 
 
 def simple_shape_link(link: Link) -> str | None:
@@ -53,28 +40,6 @@ def simple_shape_link(link: Link) -> str | None:
     if not (same_collision and computed_here):
         return None
     return {Box: "box_link", Cylinder: "cylinder_link", Sphere: "sphere_link"}[type(visual.shape)]
-
-
-@cache
-def environment() -> jinja2.Environment:
-    env = jinja2.Environment(
-        loader=jinja2.FileSystemLoader(str(templates_dir())),
-        undefined=jinja2.StrictUndefined,
-        autoescape=jinja2.select_autoescape(enabled_extensions=("xacro.j2", "xml.j2"), default_for_string=False),
-        keep_trailing_newline=True,
-        trim_blocks=True,
-        lstrip_blocks=True,
-    )
-    env.filters.update(num=num, vec=vec, xacro_text=xacro_text, indent_block=indent_block)
-    env.globals.update(
-        simple_shape_link=simple_shape_link,
-        is_box=lambda s: isinstance(s, Box),
-        is_cylinder=lambda s: isinstance(s, Cylinder),
-        is_sphere=lambda s: isinstance(s, Sphere),
-        is_mesh=lambda s: isinstance(s, Mesh),
-        zero_origin=Origin(),
-    )
-    return env
 
 
 def used_macro_files(robot: Robot) -> list[str]:
@@ -112,7 +77,7 @@ def dh_table_yaml(robot: Robot, arm_index: int) -> str:
         }
         if row.limit is not None:
             limit = {"effort": row.limit.effort, "velocity": row.limit.velocity}
-            if row.limit.lower is not None:
+            if row.limit.lower is not None and row.limit.upper is not None:
                 limit.update(lower=row.limit.lower, upper=row.limit.upper)
             entry["limit"] = limit
         if row.dynamics is not None:
@@ -143,7 +108,8 @@ def render_package(robot: Robot, *, macros: MacroMode = "inline", spec_name: str
         "spec_name": spec_name,
         "macros": macros,
         "macro_includes": [include_prefix + name for name in macro_files],
-        "inline_body": _inline_body(robot) if macros == "inline" else "",
+        "mount_joint": mount_joint_name(robot.root),
+        **(_inline_parts(robot) if macros == "inline" else _library_parts(robot)),
         "material_name": lambda name: material_name(robot, name),
         "has_control": robot.ros2_control is not None,
         **controllers(robot),
@@ -175,16 +141,30 @@ def render_package(robot: Robot, *, macros: MacroMode = "inline", spec_name: str
     return sorted(files, key=lambda f: f.path)
 
 
-def _inline_body(robot: Robot) -> Markup:
-    """The robot's links, joints, arms and wheels as plain XML for the robot macro, names glued to ``${prefix}``.
+def _inline_parts(robot: Robot) -> dict[str, Any]:
+    """The robot macro's body in the inline mode: every link, joint, arm and wheel as plain XML."""
+    return {"inline_body": macro_xml(robot_elements(robot, prefix=PREFIX, extras=False))}
 
-    Written by the direct emitter with the literal prefix ``${prefix}``, which xacro then fills in; a mesh filename
-    (the only free text) is escaped so that xacro copies it verbatim. Each part of a link or joint is one line, not
-    indented further: readable in a diff, and about a fifth cheaper for xacro than full indentation (less whitespace
-    to copy).
+
+def _library_parts(robot: Robot) -> dict[str, Any]:
+    """The robot macro's body in the copy/find modes: ``link_parts``, each spec link with the links.xacro macro that
+    makes it or else its plain XML, and ``joint_xml``, the spec's joints (arms and wheels are library macro calls)."""
+    link_parts = []
+    for link in robot.links:
+        macro = simple_shape_link(link)
+        link_parts.append((link, macro, None if macro else macro_xml([link_element(robot, PREFIX, link)])))
+    return {"link_parts": link_parts, "joint_xml": macro_xml(joint_element(PREFIX, j) for j in robot.joints)}
+
+
+def macro_xml(elements: Iterable[etree._Element]) -> Markup:
+    """Emitted elements as the text of a macro body, names glued to ``${prefix}``, which xacro then fills in.
+
+    A mesh filename (the only free text) is escaped so that xacro copies it verbatim. Each part of a link or joint is
+    one line, not indented further: readable in a diff, and about a fifth cheaper for xacro than full indentation
+    (less whitespace to copy).
     """
     lines = []
-    for element in robot_elements(robot, prefix="${prefix}", extras=False):
+    for element in elements:
         for mesh in element.iter("mesh"):
             mesh.set("filename", xacro_text(mesh.get("filename", "")))
         children = list(element)
@@ -194,52 +174,4 @@ def _inline_body(robot: Robot) -> Markup:
                 child.tail = "\n  "
             children[-1].tail = "\n"
         lines.append(etree.tostring(element, encoding="unicode").strip())
-    return Markup("\n".join(lines) + "\n")
-
-
-def controllers(robot: Robot, prefix: str = "", *, mounted: bool = False) -> dict[str, Any]:
-    """What config/..._controllers.yaml sets up for ``robot`` (names with ``prefix``): ``drive``, a
-    diff_drive_controller for its wheels when they make a differential drive (see :func:`_differential_drive`), and
-    ``command_groups``, the other controlled joints grouped by their first command interface (one forward command
-    controller per group). ``mounted``: the robot is fixed into a scene's URDF, so its drive must not publish the
-    odom -> base transform (the base would have two parents in TF)."""
-    drive = _differential_drive(robot, prefix)
-    if drive:
-        drive["odom_tf"] = not mounted
-    driven = set(drive["left"] + drive["right"]) if drive else set()
-    groups: dict[str, list[str]] = {}
-    for joint in robot.ros2_control or ():
-        if joint.interfaces.command and prefix + joint.name not in driven:
-            groups.setdefault(joint.interfaces.command[0], []).append(prefix + joint.name)
-    return {"command_groups": groups, "drive": drive}
-
-
-def _differential_drive(robot: Robot, prefix: str) -> dict[str, Any] | None:
-    """The diff_drive_controller parameters of a robot whose wheels are a differential drive: two or more wheels on
-    one parent link, axles along +y unrotated (a positive speed drives forward, REP 103), velocity-commanded, of one
-    radius, on both sides of the parent's x-z plane. Separation: mean left y - mean right y. Otherwise None."""
-    controlled = {j.name: j for j in robot.ros2_control or ()}
-    wheels = robot.wheels
-    if len(wheels) < 2 or len({w.parent for w in wheels}) != 1:
-        return None
-    for wheel in wheels:
-        joint = controlled.get(wheel.joint_name)
-        if wheel.axis != "y" or any(wheel.origin.rpy) or joint is None:
-            return None
-        if tuple(joint.interfaces.command[:1]) != ("velocity",):
-            return None
-    if len({w.radius for w in wheels}) != 1:
-        return None
-    left = [w for w in wheels if w.origin.xyz[1] > 0]
-    right = [w for w in wheels if w.origin.xyz[1] < 0]
-    if not left or not right or len(left) + len(right) != len(wheels):
-        return None
-    separation = sum(w.origin.xyz[1] for w in left) / len(left) - sum(w.origin.xyz[1] for w in right) / len(right)
-    return {
-        "left": [prefix + w.joint_name for w in left],
-        "right": [prefix + w.joint_name for w in right],
-        "separation": separation,
-        "radius": wheels[0].radius,
-        "base_frame": prefix + robot.root,
-        "odom_frame": prefix + "odom",
-    }
+    return Markup("".join(line + "\n" for line in lines))

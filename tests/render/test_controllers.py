@@ -11,8 +11,8 @@ import yaml
 import xacrokit
 from conftest import REPO
 from xacrokit.pipeline import build_robot
-from xacrokit.render import controllers, render_package
-from xacrokit.scene import fleet_scene, render_scene
+from xacrokit.render import controllers, render_package, render_scene
+from xacrokit.scene import fleet_scene
 
 DIFF_DRIVE = REPO / "examples" / "diff_drive.yaml"
 

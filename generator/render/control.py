@@ -1,0 +1,56 @@
+"""What a package's config/..._controllers.yaml sets up: a diff_drive_controller for wheels that make a differential
+drive, one forward command controller per command interface for the other controlled joints."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ..model import Robot
+
+
+def controllers(robot: Robot, prefix: str = "", *, mounted: bool = False) -> dict[str, Any]:
+    """What config/..._controllers.yaml sets up for ``robot`` (names with ``prefix``): ``drive``, a
+    diff_drive_controller for its wheels when they make a differential drive (see :func:`_differential_drive`), and
+    ``command_groups``, the other controlled joints grouped by their first command interface (one forward command
+    controller per group). ``mounted``: the robot is fixed into a scene's URDF, so its drive must not publish the
+    odom -> base transform (the base would have two parents in TF)."""
+    drive = _differential_drive(robot, prefix)
+    if drive:
+        drive["odom_tf"] = not mounted
+    driven = set(drive["left"] + drive["right"]) if drive else set()
+    groups: dict[str, list[str]] = {}
+    for joint in robot.ros2_control or ():
+        if joint.interfaces.command and prefix + joint.name not in driven:
+            groups.setdefault(joint.interfaces.command[0], []).append(prefix + joint.name)
+    return {"command_groups": groups, "drive": drive}
+
+
+def _differential_drive(robot: Robot, prefix: str) -> dict[str, Any] | None:
+    """The diff_drive_controller parameters of a robot whose wheels are a differential drive: two or more wheels on
+    one parent link, axles along +y unrotated (a positive speed drives forward, REP 103), velocity-commanded, of one
+    radius, on both sides of the parent's x-z plane. Separation: mean left y - mean right y. Otherwise None."""
+    controlled = {j.name: j for j in robot.ros2_control or ()}
+    wheels = robot.wheels
+    if len(wheels) < 2 or len({w.parent for w in wheels}) != 1:
+        return None
+    for wheel in wheels:
+        joint = controlled.get(wheel.joint_name)
+        if wheel.axis != "y" or any(wheel.origin.rpy) or joint is None:
+            return None
+        if tuple(joint.interfaces.command[:1]) != ("velocity",):
+            return None
+    if len({w.radius for w in wheels}) != 1:
+        return None
+    left = [w for w in wheels if w.origin.xyz[1] > 0]
+    right = [w for w in wheels if w.origin.xyz[1] < 0]
+    if not left or not right or len(left) + len(right) != len(wheels):
+        return None
+    separation = sum(w.origin.xyz[1] for w in left) / len(left) - sum(w.origin.xyz[1] for w in right) / len(right)
+    return {
+        "left": [prefix + w.joint_name for w in left],
+        "right": [prefix + w.joint_name for w in right],
+        "separation": separation,
+        "radius": wheels[0].radius,
+        "base_frame": prefix + robot.root,
+        "odom_frame": prefix + "odom",
+    }

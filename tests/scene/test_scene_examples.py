@@ -1,0 +1,99 @@
+"""The example scenes: every one generates and checks clean; the bin-sorting cell prefixes and mounts as specified."""
+
+from __future__ import annotations
+
+import ast
+
+import pytest
+import yaml
+from scene_helpers import SCENES, urdf_root
+
+import xacrokit
+from conftest import gen_robot
+from xacrokit.check import check
+
+
+@pytest.fixture(scope="module")
+def cell(tmp_path_factory):
+    return xacrokit.generate(SCENES / "bin_sorting_cell.yaml", tmp_path_factory.mktemp("cell") / "pkg")
+
+
+def test_bin_sorting_cell_prefixes_every_name_and_mounts_as_specified(cell):
+    scene, root = cell.scene, urdf_root(cell)
+    links = [e.get("name") for e in root.findall("link")]
+    joints = [e.get("name") for e in root.findall("joint")]
+    assert sorted(links) == sorted(scene.link_names) and len(links) == len(set(links))
+    assert sorted(joints) == sorted(scene.joint_names) and len(joints) == len(set(joints))
+    by_name = {i.name: i for i in scene.instances}
+    for instance in scene.instances:
+        assert instance.links and all(n.startswith(instance.prefix) for n in (*instance.links, *instance.joints))
+    mount = root.find("joint[@name='left_gripper_gripper_base_mount_joint']")
+    assert mount.find("parent").get("link") == "left_tool0"
+    assert by_name["arm"].parent == "table_top"
+    mimic = root.find("joint[@name='left_gripper_right_finger_joint']/mimic")
+    assert mimic.get("joint") == "left_gripper_left_finger_joint"  # the mimic reference is prefixed too
+    control = {c.get("name"): [j.get("name") for j in c.findall("joint")] for c in root.findall("ros2_control")}
+    assert control["left_ur5"][0] == "left_shoulder_pan_joint"
+    assert control["left_gripper_parallel_gripper"] == ["left_gripper_left_finger_joint"]
+
+
+def test_bin_sorting_cell_checks_clean_with_every_consumer():
+    report = check(SCENES / "bin_sorting_cell.yaml")
+    assert not report.findings, [str(f) for f in report.findings]
+    assert report.consumers and all(c.status == "accepted" for c in report.consumers)
+
+
+def test_scene_rviz_fixed_frame_is_the_unprefixed_world_link(cell):
+    """A scene's names are fixed when it is generated (its launch file has no prefix argument), so the .rviz file's
+    fixed frame, the scene's world link, is valid as written and rviz2 needs no -f."""
+    files = {f.path: f.content for f in cell.files}
+    launch = files["launch/display.launch.py"]
+    declared = [
+        node.args[0].value
+        for node in ast.walk(ast.parse(launch))
+        if isinstance(node, ast.Call) and getattr(node.func, "id", None) == "DeclareLaunchArgument"
+    ]
+    assert "ros2_control" in declared and "prefix" not in declared
+    root = urdf_root(cell)
+    children = {j.find("child").get("link") for j in root.findall("joint")}
+    (world,) = [e.get("name") for e in root.findall("link") if e.get("name") not in children]
+    assert world == cell.scene.world
+    rviz = yaml.safe_load(files[f"rviz/{cell.scene.name}.rviz"])
+    assert rviz["Visualization Manager"]["Global Options"]["Fixed Frame"] == world
+
+
+def test_per_instance_controller_configs_list_prefixed_joints(cell):
+    config = yaml.safe_load({f.path: f.content for f in cell.files}["config/arm_controllers.yaml"])
+    assert config["left_position_controller"]["ros__parameters"]["joints"][0] == "left_shoulder_pan_joint"
+    assert "left_joint_state_broadcaster" in config["controller_manager"]["ros__parameters"]
+
+
+def test_two_identical_arms_share_one_macro_and_materials(tmp_path):
+    result = xacrokit.generate(SCENES / "two_arm_cell.yaml", tmp_path / "pkg")
+    root = urdf_root(result)
+    materials = [m.get("name") for m in root.findall("material")]
+    assert len(materials) == len(set(materials))
+    assert {"left_tool0", "right_tool0"} <= {e.get("name") for e in root.findall("link")}
+    entry = (tmp_path / "pkg" / "urdf" / "two_arm_cell.urdf.xacro").read_text(encoding="utf-8")
+    assert entry.count("ur5_macro.xacro") == 1
+    assert not check(tmp_path / "pkg" / "urdf" / "two_arm_cell.urdf", consumers=[]).errors
+
+
+@pytest.mark.parametrize(
+    "scene", sorted(p for p in SCENES.glob("*.yaml") if "scene:" in p.read_text("utf-8")), ids=lambda p: p.stem
+)
+def test_every_scene_example_generates_and_checks_clean(tmp_path, scene):
+    result = xacrokit.generate(scene, tmp_path / "pkg")
+    assert result.scene is not None and len(result.scene.instances) >= 2
+    report = check(tmp_path / "pkg" / "urdf" / f"{result.scene.name}.urdf")
+    assert not report.findings, [str(f) for f in report.findings]
+    assert report.consumers and all(c.status == "accepted" for c in report.consumers)
+    again = xacrokit.generate(scene, tmp_path / "pkg")
+    assert {a.action for a in again.actions} == {"identical"}
+
+
+def test_a_scene_refuses_gazebo_by_name(tmp_path):
+    xacrokit.generate(SCENES / "two_arm_cell.yaml", tmp_path / "pkg")
+    result = gen_robot("expand", tmp_path / "pkg" / "urdf" / "two_arm_cell.urdf.xacro", "ros2_control:=gazebo")
+    assert result.returncode == 2
+    assert "ros2_control must be mock or none in a scene, got 'gazebo'" in result.stderr
