@@ -392,7 +392,7 @@ def bench_xacro_cost(folder: Path) -> None:
     from xacrokit.pipeline import build_robot, generate
 
     print("== xacro cost of the generated package (6-axis arm, UR5), median of 7 expansions")
-    spec = REPO / "examples" / "industrial_arm_std_dh.yaml"
+    spec = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
     plain = folder / "ur5_plain.urdf.xacro"  # the same robot written by hand as plain <link>/<joint> XML
     urdf = emit_urdf(build_robot(spec)).replace(
         '<robot name="ur5">', '<robot name="ur5" xmlns:xacro="http://www.ros.org/wiki/xacro">'
@@ -405,7 +405,8 @@ def bench_xacro_cost(folder: Path) -> None:
         generate(spec, folder / f"ur5_{mode}", force=True, macros=mode)
         entry = folder / f"ur5_{mode}" / "urdf" / "ur5.urdf.xacro"
         ours = median_time(lambda entry=entry: expand_file(entry), 7)
-        print(f"  generated package, --macros {mode}: {ours:.4f} s; ratio {ours / hand:.2f}   (target <= 2)")
+        target = "   (target <= 2)" if mode == "inline" else "   (no target: the library's own macros at work)"
+        print(f"  generated package, --macros {mode}: {ours:.4f} s; ratio {ours / hand:.2f}{target}")
 
 
 def bench_cli() -> None:

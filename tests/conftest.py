@@ -15,6 +15,10 @@ from lxml import etree
 import xacrokit
 
 REPO = Path(__file__).resolve().parent.parent
+# the examples by kind: robot specs; scene specs (the robots only they use in scenes/robots/); the macro-library demo
+ROBOT_EXAMPLES = sorted((REPO / "examples" / "robots").glob("*.yaml"))
+SCENE_EXAMPLES = sorted((REPO / "examples" / "scenes").glob("*.yaml"))
+MACRO_DEMO = REPO / "examples" / "macros" / "macros_demo.urdf.xacro"
 
 # CI keeps example counts modest; HYPOTHESIS_PROFILE=dev (or thorough) raises them locally.
 settings.register_profile("ci", max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])

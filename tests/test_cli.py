@@ -6,7 +6,7 @@ from lxml import etree
 
 from conftest import REPO, gen_robot
 
-SPEC = REPO / "examples" / "two_dof_arm.yaml"
+SPEC = REPO / "examples" / "robots" / "two_dof_arm.yaml"
 
 
 def snapshot(root):

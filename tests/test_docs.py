@@ -120,7 +120,7 @@ def test_docs_document_the_include_path(snippet):
 
 def test_docs_error_sample_is_real_output(tmp_path):
     sample = text_of(DOCS / "spec.md").split("$ gen-robot robot.yaml\n", 1)[1].split("```", 1)[0]
-    spec = (REPO / "examples" / "two_dof_arm.yaml").read_text(encoding="utf-8")
+    spec = (REPO / "examples" / "robots" / "two_dof_arm.yaml").read_text(encoding="utf-8")
     for old, new in (
         ("    parent: upper_arm", "    parent: upper_ram"),
         ("limit: {lower: 0, upper: 2.8", "limit: {lower: 2.8, upper: 0"),

@@ -1,4 +1,4 @@
-"""examples/macros_demo.urdf.xacro: expands without ROS and is accepted by check_urdf, pinocchio and yourdfpy."""
+"""examples/macros/macros_demo.urdf.xacro: expands without ROS and is accepted by check_urdf, pinocchio and yourdfpy."""
 
 from __future__ import annotations
 
@@ -16,9 +16,9 @@ from lxml import etree
 from test_macros_dh import dh_product
 
 import xacrokit
-from conftest import REPO, assert_physical_tensor, link_inertial
+from conftest import MACRO_DEMO, REPO, assert_physical_tensor, link_inertial
 
-DEMO = REPO / "examples" / "macros_demo.urdf.xacro"
+DEMO = MACRO_DEMO
 
 
 @pytest.fixture(scope="module")
@@ -73,7 +73,7 @@ def test_demo_loads_in_pinocchio_and_yourdfpy_with_the_written_masses(demo_urdf)
 
 
 def test_demo_arm_follows_its_dh_table(demo_urdf):
-    rows = xacro.load_yaml(str(REPO / "examples" / "macros_demo_arm.yaml"))["joints"]
+    rows = xacro.load_yaml(str(REPO / "examples" / "macros" / "macros_demo_arm.yaml"))["joints"]
     rows = [dict(r) for r in rows]
     model = pin.buildModelFromUrdf(str(demo_urdf))
     data = model.createData()

@@ -66,7 +66,7 @@ def test_installed_wheel_finds_its_macros_and_expands_the_demo(wheel, tmp_path):
     )
     env = dict(os.environ, PYTHONPATH=str(target))
     result = subprocess.run(
-        [sys.executable, "-c", script, str(target), str(REPO / "examples" / "macros_demo.urdf.xacro")],
+        [sys.executable, "-c", script, str(target), str(REPO / "examples" / "macros" / "macros_demo.urdf.xacro")],
         capture_output=True,
         text=True,
         env=env,

@@ -18,14 +18,14 @@ from hypothesis import strategies as st
 from lxml import etree
 
 import xacrokit
-from conftest import REPO, gen_robot
+from conftest import REPO, ROBOT_EXAMPLES, gen_robot
 from xacrokit.check import check
 from xacrokit.render import RenderedFile
 from xacrokit.starter import KINDS as STARTER_KINDS
 from xacrokit.starter import starter_text, write_starter
 from xacrokit.write import MANIFEST, ConflictError, plan, write
 
-SPEC = REPO / "examples" / "two_dof_arm.yaml"
+SPEC = REPO / "examples" / "robots" / "two_dof_arm.yaml"
 
 
 def snapshot(root):
@@ -108,7 +108,7 @@ def test_manifest_records_what_was_generated(tmp_path):
 
 def test_the_default_package_needs_no_macro_library(tmp_path):
     # inline by default: plain links and joints, no copied macros, no DH tables for xacro to read
-    arm = REPO / "examples" / "industrial_arm_std_dh.yaml"
+    arm = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
     result = gen_robot(arm, "-o", tmp_path / "pkg")
     assert result.returncode == 0, result.stderr
     paths = {p.relative_to(tmp_path / "pkg").as_posix() for p in (tmp_path / "pkg").rglob("*") if p.is_file()}
@@ -119,7 +119,7 @@ def test_the_default_package_needs_no_macro_library(tmp_path):
 
 
 def test_switching_modes_removes_what_is_no_longer_generated_and_keeps_edits(tmp_path):
-    arm = REPO / "examples" / "industrial_arm_std_dh.yaml"
+    arm = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
     out = tmp_path / "pkg"
     copied = {f.path for f in xacrokit.generate(arm, out, macros="copy").files}
     stale = sorted(p for p in copied if p.startswith("urdf/xacrokit/") or p.endswith(".dh.yaml"))
@@ -193,7 +193,7 @@ def test_stale_files_behind_links_or_written_this_run_are_never_removed(tmp_path
 
 
 def test_a_removal_the_file_system_refuses_is_reported_as_kept(tmp_path, monkeypatch):
-    arm = REPO / "examples" / "industrial_arm_std_dh.yaml"
+    arm = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
     out = tmp_path / "pkg"
     xacrokit.generate(arm, out, macros="copy")
 
@@ -353,12 +353,14 @@ def test_schema_command_prints_a_valid_2020_12_schema_with_descriptions():
 def test_examples_carry_the_schema_modeline_and_validate_against_the_schema():
     from xacrokit.validate import robot_schema
 
-    for path in (REPO / "examples").glob("*.yaml"):
+    robots = [*ROBOT_EXAMPLES, *sorted((REPO / "examples" / "scenes" / "robots").glob("*.yaml"))]
+    assert len(robots) == 11
+    for path in robots:
         text = path.read_text(encoding="utf-8")
-        if "macros_demo" in path.name:
-            continue  # a DH table for the hand-written demo, not a spec
-        assert text.startswith("# yaml-language-server: $schema=../schemas/robot.schema.json"), path.name
+        schema = Path(os.path.relpath(REPO / "schemas" / "robot.schema.json", path.parent)).as_posix()
+        assert text.startswith(f"# yaml-language-server: $schema={schema}\n"), path.name
         jsonschema.validate(yaml.safe_load(text), robot_schema())
+        assert (path.parent / schema).is_file()
 
 
 def test_help_of_every_command():
@@ -399,7 +401,7 @@ def root_link(urdf: str) -> str:
 
 @pytest.mark.parametrize("example", ["two_dof_arm", "diff_drive", "humanoid_upper_body"])
 def test_rviz_fixed_frame_follows_the_prefix_launch_argument(tmp_path, example):
-    result = xacrokit.generate(REPO / "examples" / f"{example}.yaml", tmp_path / "pkg")
+    result = xacrokit.generate(REPO / "examples" / "robots" / f"{example}.yaml", tmp_path / "pkg")
     files = {f.path: f.content for f in result.files}
     name = result.robot.name
     launch = files["launch/display.launch.py"]
@@ -430,7 +432,7 @@ def test_rviz_fixed_frame_follows_the_prefix_launch_argument(tmp_path, example):
 @pytest.fixture(scope="module")
 def diff_drive_package(tmp_path_factory):
     out = tmp_path_factory.mktemp("dd") / "diff_drive_description"
-    xacrokit.generate(REPO / "examples" / "diff_drive.yaml", out)
+    xacrokit.generate(REPO / "examples" / "robots" / "diff_drive.yaml", out)
     return out
 
 

@@ -6,16 +6,14 @@ from __future__ import annotations
 import pytest
 
 import xacrokit
-from conftest import REPO, gen_robot
+from conftest import MACRO_DEMO, REPO, ROBOT_EXAMPLES, gen_robot
 from xacrokit.check import check
 
 from .helpers import CORPUS, rules_of
 
 
-@pytest.mark.parametrize("spec", sorted((REPO / "examples").glob("*.yaml")), ids=lambda p: p.stem)
+@pytest.mark.parametrize("spec", [*ROBOT_EXAMPLES, MACRO_DEMO], ids=lambda p: p.stem)
 def test_every_example_checks_clean_strictly_with_every_consumer(spec):
-    if "macros_demo" in spec.name:
-        spec = REPO / "examples" / "macros_demo.urdf.xacro"
     report = check(spec)
     assert not report.findings, [str(f) for f in report.findings]
     assert [c.status for c in report.consumers] == ["accepted"] * len(report.consumers)
@@ -23,7 +21,7 @@ def test_every_example_checks_clean_strictly_with_every_consumer(spec):
 
 
 def test_spec_findings_point_at_spec_lines(tmp_path):
-    text = (REPO / "examples" / "two_dof_arm.yaml").read_text(encoding="utf-8")
+    text = (REPO / "examples" / "robots" / "two_dof_arm.yaml").read_text(encoding="utf-8")
     text = text.replace("    dynamics: {damping: 0.05, friction: 0.0}\n", "")
     spec = tmp_path / "arm.yaml"
     spec.write_text(text, encoding="utf-8")
@@ -78,7 +76,7 @@ def test_a_spec_mesh_finding_is_given_once_at_its_link(tmp_path):
 
 def test_xacro_input_takes_arguments_and_prefix_rule(tmp_path):
     out = tmp_path / "pkg"
-    xacrokit.generate(REPO / "examples" / "diff_drive.yaml", out)
+    xacrokit.generate(REPO / "examples" / "robots" / "diff_drive.yaml", out)
     entry = out / "urdf" / "diff_drive.urdf.xacro"
     packages = {"diff_drive_description": out}
     report = check(entry, {"prefix": "r7_"}, prefix="r7_", consumers=[], package_paths=packages)
@@ -103,7 +101,7 @@ def test_input_kind_by_content_when_the_suffix_says_nothing(tmp_path):
     )
     assert input_kind(older) == "xacro"
     spec = tmp_path / "robot.spec"
-    spec.write_text((REPO / "examples" / "two_dof_arm.yaml").read_text(encoding="utf-8"), encoding="utf-8")
+    spec.write_text((REPO / "examples" / "robots" / "two_dof_arm.yaml").read_text(encoding="utf-8"), encoding="utf-8")
     assert [input_kind(p) for p in (urdf, xacro_doc, spec)] == ["urdf", "xacro", "spec"]
     assert check(spec, consumers=[]).kind == "spec" and not check(spec, consumers=[]).findings
 

@@ -69,7 +69,7 @@ def test_k001_catches_a_urdf_that_does_not_follow_its_dh_table(tmp_path):
     from xacrokit.pipeline import build_robot, expand_package
     from xacrokit.render import render_package
 
-    spec = REPO / "examples" / "industrial_arm_std_dh.yaml"
+    spec = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
     robot = build_robot(spec)
     good = expand_package(robot, render_package(robot, macros="copy")).content  # the library's dh_arm
     doc = Doc(etree.fromstring(good.encode()), str(spec), {}, source_lines=False)
@@ -116,7 +116,7 @@ def test_v001_names_values_that_look_like_units_left_out(tmp_path):
     result = gen_robot(spec, "-o", tmp_path / "pkg")  # generating says the same on stderr, and still generates
     assert result.returncode == 0, result.stderr
     assert result.stderr.count("gen-robot: warning:") == 5 and "$.links.plate.mass" in result.stderr
-    clean = check(REPO / "examples" / "two_dof_arm.yaml", consumers=[])
+    clean = check(REPO / "examples" / "robots" / "two_dof_arm.yaml", consumers=[])
     assert "V001" not in rules_of(clean)
 
 

@@ -8,7 +8,7 @@ import pytest
 import yaml
 from hypothesis import HealthCheck, given, settings
 
-from conftest import REPO
+from conftest import ROBOT_EXAMPLES, SCENE_EXAMPLES
 from xacrokit.emit import emit_scene_urdf, emit_urdf, urdf_differences
 from xacrokit.load import load_file
 from xacrokit.pipeline import build_robot, expand_package
@@ -16,10 +16,8 @@ from xacrokit.render import render_package, render_scene
 from xacrokit.scene import build_scene
 from xacrokit.testing import valid_specs
 
-EXAMPLES = sorted(p for p in (REPO / "examples").glob("*.yaml") if "macros_demo" not in p.name)
-
-
-SCENES = sorted(p for p in (REPO / "examples" / "scenes").glob("*.yaml") if "scene:" in p.read_text("utf-8"))
+EXAMPLES = ROBOT_EXAMPLES
+SCENES = SCENE_EXAMPLES
 
 
 def via_library(robot):

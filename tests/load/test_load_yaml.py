@@ -117,7 +117,7 @@ def test_positions_are_read_only_when_something_needs_locating():
     from xacrokit.resolve import resolve
     from xacrokit.validate import validate
 
-    text = (REPO / "examples" / "two_dof_arm.yaml").read_text(encoding="utf-8")
+    text = (REPO / "examples" / "robots" / "two_dof_arm.yaml").read_text(encoding="utf-8")
     raw = load_text(text, "two_dof_arm.yaml")
     resolve(validate(raw))
     assert "_position_tables" not in vars(raw)  # a valid spec never pays for recording where everything is

@@ -15,14 +15,11 @@ from test_examples import check_urdf_binary
 from test_macros_dh import dh_product
 
 import xacrokit
-from conftest import REPO, assert_physical_tensor, link_inertial
+from conftest import REPO, ROBOT_EXAMPLES, assert_physical_tensor, link_inertial
 from xacrokit.load import load_file
 from xacrokit.validate import validate
 
-SPEC_MODELINE = "# yaml-language-server: $schema=../schemas/robot.schema.json"
-EXAMPLES = sorted(
-    p for p in (REPO / "examples").glob("*.yaml") if p.read_text(encoding="utf-8").startswith(SPEC_MODELINE)
-)
+EXAMPLES = ROBOT_EXAMPLES
 
 
 def test_the_issue_examples_are_all_here():
@@ -176,7 +173,9 @@ def test_dh_arms_follow_their_tables(example):
 def test_ur5_home_pose_matches_the_published_geometry():
     """An independent sanity check of the standard-DH example: UR5 at q = 0 puts tool0 at
     (a2 + a3, -(d4 + d6), d1 - d5) = (-0.81725, -0.19145, -0.005491) m in base_link (UR's published zero pose)."""
-    result = xacrokit.generate(REPO / "examples" / "industrial_arm_std_dh.yaml", dry_run=True, output="/nonexistent")
+    result = xacrokit.generate(
+        REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml", dry_run=True, output="/nonexistent"
+    )
     urdf = next(f.content for f in result.files if f.path.endswith(".urdf"))
     model = pin.buildModelFromXML(urdf)
     data = model.createData()
@@ -189,7 +188,9 @@ def test_ur5_home_pose_matches_the_published_geometry():
 def test_panda_flange_at_zero_matches_the_published_geometry():
     """Panda at q = 0 (Craig DH): flange at (0.088, 0, 0.333 + 0.316 + 0.384 - 0.107) = (0.088, 0, 0.926) m,
     pointing down (z_flange = -z_base), as Franka's documentation draws it."""
-    result = xacrokit.generate(REPO / "examples" / "industrial_arm_mod_dh.yaml", dry_run=True, output="/nonexistent")
+    result = xacrokit.generate(
+        REPO / "examples" / "robots" / "industrial_arm_mod_dh.yaml", dry_run=True, output="/nonexistent"
+    )
     urdf = next(f.content for f in result.files if f.path.endswith(".urdf"))
     model = pin.buildModelFromXML(urdf)
     data = model.createData()

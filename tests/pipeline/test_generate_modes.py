@@ -16,7 +16,7 @@ from xacrokit.emit import urdf_differences
 
 
 def test_generate_emits_by_default_and_expands_with_via_xacro(tmp_path):
-    spec = REPO / "examples" / "industrial_arm_std_dh.yaml"
+    spec = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
     assert gen_robot(spec, "-o", tmp_path / "direct").returncode == 0
     result = gen_robot(spec, "-o", tmp_path / "xacro", "--via-xacro")
     assert result.returncode == 0, result.stderr
@@ -34,7 +34,7 @@ def test_generate_emits_by_default_and_expands_with_via_xacro(tmp_path):
 
 
 def test_cli_inline_mode_with_a_prefix(tmp_path):
-    spec = REPO / "examples" / "diff_drive.yaml"
+    spec = REPO / "examples" / "robots" / "diff_drive.yaml"
     assert gen_robot(spec, "-o", tmp_path / "pkg", "--macros", "inline").returncode == 0
     prefixed = xacrokit.expand(tmp_path / "pkg" / "urdf" / "diff_drive.urdf.xacro", {"prefix": "r3_"})
     from lxml import etree
@@ -49,7 +49,7 @@ def test_cli_inline_mode_with_a_prefix(tmp_path):
 def test_the_xacro_command_run_from_the_package_root_gives_the_emitted_urdf(tmp_path, mode):
     # what a user types after generating: a relative path, from the package folder (the DH table file is found
     # relative to the file that names it, not to the working directory), and no comments leaking from macro bodies
-    spec = REPO / "examples" / "industrial_arm_std_dh.yaml"
+    spec = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
     result = xacrokit.generate(spec, tmp_path / "pkg", macros=mode)
     xacro_command = Path(sys.executable).with_name("xacro")
     expanded = subprocess.run(
@@ -68,13 +68,13 @@ def test_a_result_names_what_it_describes_and_its_package(tmp_path):
     """One GenerateResult shape: ``model`` is the robot or the scene, ``name`` and ``package`` are read from it."""
     from xacrokit.model import Robot, Scene
 
-    robot = xacrokit.generate(REPO / "examples" / "two_dof_arm.yaml", tmp_path / "r", dry_run=True)
+    robot = xacrokit.generate(REPO / "examples" / "robots" / "two_dof_arm.yaml", tmp_path / "r", dry_run=True)
     scene = xacrokit.generate(REPO / "examples" / "scenes" / "two_arm_cell.yaml", tmp_path / "s", dry_run=True)
     assert isinstance(robot.model, Robot) and isinstance(scene.model, Scene)
     assert (robot.name, robot.package) == ("two_dof_arm", "two_dof_arm_description")
     assert (scene.name, scene.package) == ("two_arm_cell", "two_arm_cell_description")
     assert (robot.robot, robot.scene, scene.robot, scene.scene) == (robot.model, None, None, scene.model)
-    for spec, package in (("two_dof_arm.yaml", "two_dof_arm"), ("scenes/two_arm_cell.yaml", "two_arm_cell")):
+    for spec, package in (("robots/two_dof_arm.yaml", "two_dof_arm"), ("scenes/two_arm_cell.yaml", "two_arm_cell")):
         result = gen_robot(REPO / "examples" / spec, "-o", tmp_path / package, "--dry-run")
         assert result.returncode == 0, result.stderr
         assert result.stdout.splitlines()[-1].startswith(f"{package}_description: would write ")

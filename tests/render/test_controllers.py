@@ -14,7 +14,7 @@ from xacrokit.pipeline import build_robot
 from xacrokit.render import controllers, render_package, render_scene
 from xacrokit.scene import fleet_scene
 
-DIFF_DRIVE = REPO / "examples" / "diff_drive.yaml"
+DIFF_DRIVE = REPO / "examples" / "robots" / "diff_drive.yaml"
 
 
 def config_of(files, path: str) -> dict:
@@ -89,7 +89,7 @@ def test_a_four_wheel_skid_steer_base_drives_with_two_wheels_per_side(tmp_path):
 
 
 def test_an_arm_keeps_its_forward_command_controllers():
-    robot = build_robot(REPO / "examples" / "two_dof_arm.yaml")
+    robot = build_robot(REPO / "examples" / "robots" / "two_dof_arm.yaml")
     config = config_of(render_package(robot), "config/two_dof_arm_controllers.yaml")
     assert "diff_drive_controller" not in config
     groups = controllers(robot)["command_groups"]
@@ -104,7 +104,7 @@ def test_mock_hardware_integrates_velocity_commands_only_where_there_are_some():
     from xacrokit.emit import emit_urdf
 
     for example, integrates in (("diff_drive.yaml", True), ("two_dof_arm.yaml", False)):
-        robot = build_robot(REPO / "examples" / example)
+        robot = build_robot(REPO / "examples" / "robots" / example)
         hardware = etree.fromstring(emit_urdf(robot).encode()).find("ros2_control/hardware")
         params = {p.get("name"): p.text for p in hardware.findall("param")}
         assert params == ({"calculate_dynamics": "true"} if integrates else {}), example

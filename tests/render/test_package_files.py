@@ -25,7 +25,10 @@ def keyword(call: ast.Call, name: str):
 
 @pytest.mark.parametrize(
     ("spec", "launch"),
-    [(EXAMPLES / "diff_drive.yaml", "launch/display.launch.py"), (EXAMPLES / "scenes" / "two_arm_cell.yaml", None)],
+    [
+        (EXAMPLES / "robots" / "diff_drive.yaml", "launch/display.launch.py"),
+        (EXAMPLES / "scenes" / "two_arm_cell.yaml", None),
+    ],
 )
 def test_without_the_gui_a_joint_state_publisher_still_gives_every_joint_a_state(tmp_path, spec, launch):
     result = xacrokit.generate(spec, tmp_path / "pkg")
@@ -49,7 +52,7 @@ def test_without_the_gui_a_joint_state_publisher_still_gives_every_joint_a_state
 @pytest.mark.skipif(shutil.which("cmake") is None, reason="cmake is not installed")
 def test_meshes_added_after_the_first_build_are_installed(tmp_path):
     """install(DIRECTORY meshes ... OPTIONAL) is decided at install time; if(EXISTS) would be decided at configure."""
-    xacrokit.generate(EXAMPLES / "two_dof_arm.yaml", tmp_path / "pkg")
+    xacrokit.generate(EXAMPLES / "robots" / "two_dof_arm.yaml", tmp_path / "pkg")
     text = (tmp_path / "pkg" / "CMakeLists.txt").read_text(encoding="utf-8")
     # the same install rules without ament (not installed here): configure, install, add meshes, install again
     rules = "\n".join(line for line in text.splitlines() if line.startswith("install("))

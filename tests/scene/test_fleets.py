@@ -16,7 +16,7 @@ from xacrokit.emit import urdf_differences
 
 
 def test_fleet_of_ten_on_a_grid(tmp_path):
-    diff_drive = REPO / "examples" / "diff_drive.yaml"
+    diff_drive = REPO / "examples" / "robots" / "diff_drive.yaml"
     result = gen_robot(
         "fleet", diff_drive, "--count", "10", "--grid", "2x5", "--spacing", "1.5", "-o", tmp_path / "fleet"
     )
@@ -33,7 +33,7 @@ def test_fleet_of_ten_on_a_grid(tmp_path):
 
 
 def test_fleet_command_and_the_fleet_scene_example_agree(tmp_path):
-    diff_drive = REPO / "examples" / "diff_drive.yaml"
+    diff_drive = REPO / "examples" / "robots" / "diff_drive.yaml"
     assert (
         gen_robot(
             "fleet", diff_drive, "--count", "10", "--grid", "2x5", "--spacing", "1.5", "-o", tmp_path / "cli"
@@ -49,7 +49,7 @@ def test_fleet_command_and_the_fleet_scene_example_agree(tmp_path):
 
 @pytest.mark.parametrize("mode", ["copy", "find"])
 def test_fleets_take_the_macro_mode_and_describe_the_same_robots(tmp_path, mode):
-    diff_drive = REPO / "examples" / "diff_drive.yaml"
+    diff_drive = REPO / "examples" / "robots" / "diff_drive.yaml"
     for name, extra in (("default", ()), (mode, ("--macros", mode, "--via-xacro"))):
         result = gen_robot("fleet", diff_drive, "--count", "3", "-o", tmp_path / name, *extra)
         assert result.returncode == 0, result.stderr
@@ -91,7 +91,7 @@ def run_with_tty_stderr(*args) -> tuple[int, str, str]:
 
 
 def test_progress_shows_on_a_terminal_only(tmp_path):
-    diff_drive = REPO / "examples" / "diff_drive.yaml"
+    diff_drive = REPO / "examples" / "robots" / "diff_drive.yaml"
     code, stdout, terminal = run_with_tty_stderr("fleet", diff_drive, "--count", "4", "-o", tmp_path / "fleet")
     assert code == 0 and "4 robots r0_ .. r3_" in stdout
     for step in (
@@ -109,7 +109,7 @@ def test_progress_shows_on_a_terminal_only(tmp_path):
 
 
 def test_a_fleet_readme_says_how_to_make_it_again(tmp_path):
-    spec = REPO / "examples" / "diff_drive.yaml"
+    spec = REPO / "examples" / "robots" / "diff_drive.yaml"
     result = gen_robot("fleet", spec, "--count", 3, "--grid", "1x3", "--spacing", "150 cm", "-o", tmp_path / "f")
     assert result.returncode == 0, result.stderr
     readme = (tmp_path / "f" / "README.md").read_text(encoding="utf-8")
@@ -122,7 +122,7 @@ def test_a_fleet_is_the_scene_its_scene_spec_would_be():
     from xacrokit.load import load_file
     from xacrokit.scene import build_scene, fleet_scene
 
-    fleet = fleet_scene(REPO / "examples" / "diff_drive.yaml", 10, columns=5, spacing=1.5)
+    fleet = fleet_scene(REPO / "examples" / "robots" / "diff_drive.yaml", 10, columns=5, spacing=1.5)
     spec = build_scene(load_file(SCENES / "diff_drive_fleet.yaml"))
     assert fleet.instances == spec.instances and (fleet.name, fleet.world) == (spec.name, spec.world)
     assert fleet.command == "gen-robot fleet diff_drive.yaml --count 10 --grid 2x5 --spacing 1.5"
@@ -132,7 +132,7 @@ def test_what_a_fleet_cannot_be_is_refused_with_the_reason(tmp_path):
     from xacrokit.errors import SpecErrors, XacrokitError
     from xacrokit.scene import fleet_scene
 
-    arm = REPO / "examples" / "two_dof_arm.yaml"
+    arm = REPO / "examples" / "robots" / "two_dof_arm.yaml"
     with pytest.raises(XacrokitError, match="a fleet needs at least 1 robot, got count 0"):
         fleet_scene(arm, 0)
     for spacing in (0.0, -1.0, float("inf"), float("nan")):

@@ -30,7 +30,7 @@ def test_a_clash_names_both_instances_before_writing(tmp_path):
 
 
 def test_a_clash_between_our_robots(tmp_path):
-    arm = REPO / "examples" / "two_dof_arm.yaml"
+    arm = REPO / "examples" / "robots" / "two_dof_arm.yaml"
     path = scene_file(
         tmp_path,
         {
@@ -78,7 +78,7 @@ def test_a_clash_between_our_robots(tmp_path):
     ],
 )
 def test_scene_mistakes_are_located(tmp_path, instances, path, words):
-    arm = str(REPO / "examples" / "two_dof_arm.yaml")
+    arm = str(REPO / "examples" / "robots" / "two_dof_arm.yaml")
     for entry in instances.values():
         if entry.get("spec") == "ARM":
             entry["spec"] = arm
@@ -92,7 +92,9 @@ def test_scene_mistakes_are_located(tmp_path, instances, path, words):
 def test_errors_inside_an_instance_spec_point_into_that_spec(tmp_path):
     bad = tmp_path / "bad_robot.yaml"
     bad.write_text(
-        (REPO / "examples" / "two_dof_arm.yaml").read_text(encoding="utf-8").replace("mass: 0.5", "mass: -1"),
+        (REPO / "examples" / "robots" / "two_dof_arm.yaml")
+        .read_text(encoding="utf-8")
+        .replace("mass: 0.5", "mass: -1"),
         encoding="utf-8",
     )
     with pytest.raises(xacrokit.SpecErrors) as caught:

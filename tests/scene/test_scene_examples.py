@@ -9,7 +9,7 @@ import yaml
 from scene_helpers import SCENES, urdf_root
 
 import xacrokit
-from conftest import gen_robot
+from conftest import SCENE_EXAMPLES, gen_robot
 from xacrokit.check import check
 
 
@@ -79,9 +79,7 @@ def test_two_identical_arms_share_one_macro_and_materials(tmp_path):
     assert not check(tmp_path / "pkg" / "urdf" / "two_arm_cell.urdf", consumers=[]).errors
 
 
-@pytest.mark.parametrize(
-    "scene", sorted(p for p in SCENES.glob("*.yaml") if "scene:" in p.read_text("utf-8")), ids=lambda p: p.stem
-)
+@pytest.mark.parametrize("scene", SCENE_EXAMPLES, ids=lambda p: p.stem)
 def test_every_scene_example_generates_and_checks_clean(tmp_path, scene):
     result = xacrokit.generate(scene, tmp_path / "pkg")
     assert result.scene is not None and len(result.scene.instances) >= 2
