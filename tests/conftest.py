@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -116,3 +117,54 @@ def gen_robot(*args, cwd=None) -> subprocess.CompletedProcess:
     """Run the gen-robot command line with this interpreter; text output captured."""
     command = [sys.executable, "-m", "xacrokit.cli", *map(str, args)]
     return subprocess.run(command, capture_output=True, text=True, cwd=cwd, timeout=300)
+
+
+def snapshot(root: Path) -> dict[str, tuple[bytes, int]]:
+    """Every file under ``root``: relative path -> (content, modification time), to tell that nothing was touched."""
+    return {
+        p.relative_to(root).as_posix(): (p.read_bytes(), p.stat().st_mtime_ns) for p in root.rglob("*") if p.is_file()
+    }
+
+
+# ------------------------------------------------------------------ independent oracles: textbook DH, check_urdf
+def transform(rot: np.ndarray, xyz) -> np.ndarray:
+    t = np.eye(4)
+    t[:3, :3], t[:3, 3] = rot, xyz
+    return t
+
+
+def rot_x(a):
+    return transform(rpy_matrix(a, 0, 0), [0, 0, 0])
+
+
+def rot_z(a):
+    return transform(rpy_matrix(0, 0, a), [0, 0, 0])
+
+
+def trans(x, y, z):
+    return transform(np.eye(3), [x, y, z])
+
+
+def dh_product(rows, q, convention, origin, tool):
+    """The DH chain written out from the textbook definitions, independent of the macro's algebra."""
+    total = transform(rpy_matrix(*origin[1]), origin[0])
+    for row, value in zip(rows, q, strict=False):
+        theta, d = row.get("theta", 0.0), row["d"]
+        kind = row.get("type", "revolute")
+        if kind in ("revolute", "continuous"):
+            theta += value
+        elif kind == "prismatic":
+            d += value
+        if convention == "standard":
+            step = rot_z(theta) @ trans(0, 0, d) @ trans(row["a"], 0, 0) @ rot_x(row["alpha"])
+        else:
+            step = rot_x(row["alpha"]) @ trans(row["a"], 0, 0) @ rot_z(theta) @ trans(0, 0, d)
+        total = total @ step
+    return total @ transform(rpy_matrix(*tool[1]), tool[0])
+
+
+def check_urdf_binary() -> str:
+    """urdfdom's check_urdf, as pin installs it beside this Python (or on PATH)."""
+    found = shutil.which("check_urdf", path=str(Path(sys.executable).parent)) or shutil.which("check_urdf")
+    assert found, "check_urdf comes with pin (cmeel-urdfdom); is pin installed?"
+    return found

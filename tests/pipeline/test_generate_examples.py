@@ -11,11 +11,9 @@ import numpy as np
 import pinocchio as pin
 import pytest
 from lxml import etree
-from test_examples import check_urdf_binary
-from test_macros_dh import dh_product
 
 import xacrokit
-from conftest import REPO, ROBOT_EXAMPLES, assert_physical_tensor, link_inertial
+from conftest import REPO, ROBOT_EXAMPLES, assert_physical_tensor, check_urdf_binary, dh_product, link_inertial
 from xacrokit.load import load_file
 from xacrokit.validate import validate
 

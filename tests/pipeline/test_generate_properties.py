@@ -11,9 +11,9 @@ import pytest
 import yaml
 from hypothesis import HealthCheck, given, settings
 from lxml import etree
-from test_examples import check_urdf_binary
 
 import xacrokit
+from conftest import check_urdf_binary
 from xacrokit.testing import invalid_specs, valid_specs
 
 FAULT_WORDS = {

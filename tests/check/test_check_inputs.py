@@ -4,12 +4,11 @@ arguments, the kind of a file by its content, and the packages a file finds near
 from __future__ import annotations
 
 import pytest
+from check_helpers import CORPUS, rules_of
 
 import xacrokit
 from conftest import MACRO_DEMO, REPO, ROBOT_EXAMPLES, gen_robot
 from xacrokit.check import check
-
-from .helpers import CORPUS, rules_of
 
 
 @pytest.mark.parametrize("spec", [*ROBOT_EXAMPLES, MACRO_DEMO], ids=lambda p: p.stem)

@@ -4,13 +4,9 @@ from __future__ import annotations
 
 from lxml import etree
 
-from conftest import REPO, gen_robot
+from conftest import REPO, gen_robot, snapshot
 
 SPEC = REPO / "examples" / "robots" / "two_dof_arm.yaml"
-
-
-def snapshot(root):
-    return {p.relative_to(root).as_posix(): p.read_bytes() for p in root.rglob("*") if p.is_file()}
 
 
 def test_a_dry_run_shows_the_whole_plan_with_its_conflicts(tmp_path):

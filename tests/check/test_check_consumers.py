@@ -4,13 +4,12 @@ said in one line, and nothing left behind."""
 from __future__ import annotations
 
 import pytest
+from check_helpers import BODY, CORPUS, MOVED_MASSLESS
 
 import xacrokit
 from conftest import gen_robot
 from xacrokit.check import check
 from xacrokit.check.consumers import run_consumer
-
-from .helpers import BODY, CORPUS, MOVED_MASSLESS
 
 
 def test_rooted_cycle_is_reported_and_check_urdf_is_not_left_running(tmp_path):

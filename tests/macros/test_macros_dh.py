@@ -13,47 +13,11 @@ from hypothesis import strategies as st
 from lxml import etree
 
 import xacrokit
-from conftest import assert_physical_tensor, floats, link_inertial, rpy_matrix, xacro_doc
+from conftest import assert_physical_tensor, dh_product, floats, link_inertial, xacro_doc
 
 QUARTER_TURNS = [k * math.pi / 2 for k in range(-4, 5)]
 dh_angle = st.one_of(st.sampled_from(QUARTER_TURNS), st.floats(-2 * math.pi, 2 * math.pi))
 dh_length = st.one_of(st.just(0.0), st.floats(-1.0, 1.0))
-
-
-def transform(rot: np.ndarray, xyz) -> np.ndarray:
-    t = np.eye(4)
-    t[:3, :3], t[:3, 3] = rot, xyz
-    return t
-
-
-def rot_x(a):
-    return transform(rpy_matrix(a, 0, 0), [0, 0, 0])
-
-
-def rot_z(a):
-    return transform(rpy_matrix(0, 0, a), [0, 0, 0])
-
-
-def trans(x, y, z):
-    return transform(np.eye(3), [x, y, z])
-
-
-def dh_product(rows, q, convention, origin, tool):
-    """The DH chain written out from the textbook definitions, independent of the macro's algebra."""
-    total = transform(rpy_matrix(*origin[1]), origin[0])
-    for row, value in zip(rows, q, strict=False):
-        theta, d = row.get("theta", 0.0), row["d"]
-        kind = row.get("type", "revolute")
-        if kind in ("revolute", "continuous"):
-            theta += value
-        elif kind == "prismatic":
-            d += value
-        if convention == "standard":
-            step = rot_z(theta) @ trans(0, 0, d) @ trans(row["a"], 0, 0) @ rot_x(row["alpha"])
-        else:
-            step = rot_x(row["alpha"]) @ trans(row["a"], 0, 0) @ rot_z(theta) @ trans(0, 0, d)
-        total = total @ step
-    return total @ transform(rpy_matrix(*tool[1]), tool[0])
 
 
 @st.composite

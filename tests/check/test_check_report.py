@@ -8,10 +8,9 @@ import json
 import jsonschema
 import pytest
 import yaml
+from check_helpers import CORPUS
 
 from conftest import REPO, gen_robot
-
-from .helpers import CORPUS
 
 SCHEMA = json.loads((REPO / "schemas" / "check-report.schema.json").read_text(encoding="utf-8"))
 

@@ -6,11 +6,10 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from check_helpers import BODY, CORPUS, MOVED_MASSLESS, rules_of
 
 from conftest import REPO, gen_robot
 from xacrokit.check import RULES, CheckReport, check
-
-from .helpers import BODY, CORPUS, MOVED_MASSLESS, rules_of
 
 SPEC_ONLY = ("K001", "V001", "V002")  # rules about a spec, which a URDF fixture cannot show
 

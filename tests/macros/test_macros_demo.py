@@ -3,9 +3,7 @@
 from __future__ import annotations
 
 import math
-import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -13,10 +11,9 @@ import pinocchio as pin
 import pytest
 import xacro
 from lxml import etree
-from test_macros_dh import dh_product
 
 import xacrokit
-from conftest import MACRO_DEMO, REPO, assert_physical_tensor, link_inertial
+from conftest import MACRO_DEMO, REPO, assert_physical_tensor, check_urdf_binary, dh_product, link_inertial
 
 DEMO = MACRO_DEMO
 
@@ -26,12 +23,6 @@ def demo_urdf(tmp_path_factory) -> Path:
     path = tmp_path_factory.mktemp("demo") / "macros_demo.urdf"
     path.write_text(xacrokit.expand(DEMO), encoding="utf-8")
     return path
-
-
-def check_urdf_binary() -> str:
-    found = shutil.which("check_urdf", path=str(Path(sys.executable).parent)) or shutil.which("check_urdf")
-    assert found, "check_urdf comes with pin (cmeel-urdfdom); is pin installed?"
-    return found
 
 
 def test_demo_passes_check_urdf(demo_urdf):

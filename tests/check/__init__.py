@@ -1,1 +1,0 @@
-"""Tests of the check stage (xacrokit.check), one module per part of it."""

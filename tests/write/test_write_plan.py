@@ -1,0 +1,104 @@
+"""The write stage: plan then write; a second run changes nothing; edits are conflicts, kept unless forced; a dry
+run writes nothing; nothing lands outside the package."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+import xacrokit
+from conftest import REPO, gen_robot, snapshot
+from xacrokit.render import RenderedFile
+from xacrokit.write import MANIFEST, ConflictError, plan, write
+
+SPEC = REPO / "examples" / "robots" / "two_dof_arm.yaml"
+
+
+def test_first_run_creates_everything_and_a_second_changes_nothing(tmp_path):
+    out = tmp_path / "pkg"
+    first = xacrokit.generate(SPEC, out)
+    assert {a.action for a in first.actions} == {"create"}
+    before = snapshot(out)
+    second = xacrokit.generate(SPEC, out)
+    assert {a.action for a in second.actions} == {"identical"}
+    assert snapshot(out) == before  # same bytes and same mtimes: nothing was rewritten
+
+
+def test_an_edited_file_is_a_conflict_kept_and_nothing_is_written(tmp_path):
+    out = tmp_path / "pkg"
+    xacrokit.generate(SPEC, out)
+    edited = out / "README.md"
+    edited.write_text("my notes\n", encoding="utf-8")
+    spec = tmp_path / "two_dof_arm.yaml"
+    spec.write_text(SPEC.read_text(encoding="utf-8").replace("mass: 0.3", "mass: 0.35"), encoding="utf-8")
+    before = snapshot(out)
+    with pytest.raises(ConflictError) as caught:
+        xacrokit.generate(spec, out)
+    assert [c.path for c in caught.value.conflicts] == ["README.md"]
+    assert "edited since it was generated" in str(caught.value)
+    assert snapshot(out) == before  # not even the files that would merely have been updated
+
+
+def test_updates_replace_only_what_changed_and_force_overwrites_edits(tmp_path):
+    out = tmp_path / "pkg"
+    xacrokit.generate(SPEC, out)
+    spec = tmp_path / "two_dof_arm.yaml"
+    spec.write_text(SPEC.read_text(encoding="utf-8").replace("mass: 0.3", "mass: 0.35"), encoding="utf-8")
+    (out / "README.md").write_text("my notes\n", encoding="utf-8")
+    result = xacrokit.generate(spec, out, force=True)
+    actions = {a.path: a.action for a in result.actions}
+    assert actions["README.md"] == "overwrite"
+    assert actions["urdf/two_dof_arm_macro.xacro"] == actions["urdf/two_dof_arm.urdf"] == "update"
+    assert actions["package.xml"] == "identical"
+    assert "0.35" in (out / "urdf" / "two_dof_arm.urdf").read_text(encoding="utf-8")
+
+
+def test_dry_run_writes_nothing(tmp_path):
+    out = tmp_path / "pkg"
+    result = xacrokit.generate(SPEC, out, dry_run=True)
+    assert {a.action for a in result.actions} == {"create"} and not out.exists()
+
+
+def test_files_not_written_by_us_are_conflicts(tmp_path):
+    out = tmp_path / "pkg"
+    (out / "urdf").mkdir(parents=True)
+    (out / "package.xml").write_text("<package/>", encoding="utf-8")
+    with pytest.raises(ConflictError, match="not written by xacrokit"):
+        xacrokit.generate(SPEC, out)
+    assert sorted(p.name for p in out.rglob("*")) == ["package.xml", "urdf"]
+
+
+def test_writes_never_leave_the_output_folder(tmp_path):
+    with pytest.raises(xacrokit.XacrokitError, match="outside"):
+        plan([RenderedFile("../escape.txt", "x")], tmp_path / "pkg")
+    (tmp_path / "pkg").mkdir()
+    (tmp_path / "elsewhere").mkdir()
+    (tmp_path / "pkg" / "link").symlink_to(tmp_path / "elsewhere")
+    with pytest.raises(xacrokit.XacrokitError, match="outside"):
+        write([RenderedFile("link/file.txt", "x")], tmp_path / "pkg")
+    assert not any((tmp_path / "elsewhere").iterdir())
+
+
+def test_manifest_records_what_was_generated(tmp_path):
+    out = tmp_path / "pkg"
+    result = xacrokit.generate(SPEC, out)
+    manifest = json.loads((out / MANIFEST).read_text(encoding="utf-8"))
+    assert sorted(manifest["files"]) == sorted(f.path for f in result.files)
+
+
+def test_a_folder_that_cannot_be_written_is_an_error_not_a_traceback(tmp_path):
+    blocker = tmp_path / "a_file"
+    blocker.write_text("x", encoding="utf-8")
+    result = gen_robot(SPEC, "-o", blocker / "pkg")
+    assert result.returncode != 0 and "Traceback" not in result.stderr
+    assert f"cannot write the package in {blocker / 'pkg'}" in result.stderr and "nothing was written" in result.stderr
+
+
+def test_a_manifest_that_is_not_utf8_is_rewritten_without_a_traceback(tmp_path):
+    out = tmp_path / "pkg"
+    assert gen_robot(SPEC, "-o", out).returncode == 0
+    (out / MANIFEST).write_bytes(b"\xff\xfe not json")
+    again = gen_robot(SPEC, "-o", out)
+    assert again.returncode == 0 and "Traceback" not in again.stderr, again.stderr
+    assert json.loads((out / MANIFEST).read_text(encoding="utf-8"))["files"]
