@@ -1,6 +1,8 @@
 """``gen-robot``: a thin command-line shell over the public Python API.
 
-Exit codes: 0 success, 1 check findings, 2 bad input or usage. Errors are one located message, never a traceback.
+Exit codes (the same words in ``gen-robot --help``, one list: :data:`EXIT_CODES`): 0 success; 1 errors found by
+``check`` (its warnings too with --strict) or files refused because they were edited since generated (generate,
+fleet); 2 bad input or usage; 130 interrupted; 141 output closed. Errors are one located message, never a traceback.
 Imports stay light here: heavy libraries load inside the commands that use them.
 """
 
@@ -263,12 +265,18 @@ def _spacing(text: str) -> float:
     return spacing
 
 
+EXIT_CODES = (
+    "Exit codes: 0 success; 1 errors found (check; with --strict its warnings too) or files refused because they were "
+    "edited since generated (generate, fleet); 2 bad input or usage; 130 interrupted; 141 output closed."
+)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="gen-robot",
         description="xacrokit: correct robot descriptions from a macro library and short YAML specs. "
         "`gen-robot SPEC.yaml [options]` is short for `gen-robot generate SPEC.yaml [options]`.",
-        epilog="Exit codes: 0 success, 1 refused (files edited since generated), 2 bad input or usage.",
+        epilog=EXIT_CODES,
     )
     parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")

@@ -7,8 +7,9 @@ A banner is the XML comment directly before ``<xacro:macro>`` and has lines of t
     param: NAME [UNIT] (required|default VALUE) description
     creates: the links, joints and frames it creates
 
-The README's macro reference is rendered from these banners (``gen-robot macros --reference``), and a test checks
-both that every banner matches its macro's real parameter list and that the README holds the current rendering.
+The macro reference in docs/macros.md is rendered from these banners (``gen-robot macros --reference``), and a test
+checks both that every banner matches its macro's real parameter list and that docs/macros.md holds the current
+rendering.
 """
 
 from __future__ import annotations
@@ -129,7 +130,7 @@ def read_palette(folder: Path | None = None) -> list[tuple[str, str]]:
 
 
 def render_reference(docs: list[MacroDoc] | None = None) -> str:
-    """The Markdown macro reference (the README section between the macro-reference markers)."""
+    """The Markdown macro reference (the section of docs/macros.md between the macro-reference markers)."""
     reference = _render_macros(read_macro_docs() if docs is None else docs)
     if docs is not None:
         return reference

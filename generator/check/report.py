@@ -39,7 +39,7 @@ def format_text(report: CheckReport, *, colour: bool = False, strict: bool = Fal
 
 
 def rules_markdown() -> str:
-    """The rules table of the README (between the check-rules markers)."""
+    """The rules table of docs/check.md (between the check-rules markers)."""
     lines = ["| rule | name | severity | checks that |", "|---|---|---|---|"]
     lines += [f"| {rule} | {name} | {severity} | {text} |" for rule, (name, severity, text) in RULES.items()]
     return "\n".join(lines) + "\n"

@@ -98,3 +98,19 @@ def test_new_takes_a_folder_by_its_slash_and_checks_the_name_first(tmp_path):
 def test_options_without_a_spec_say_so():
     result = gen_robot("--dry-run")
     assert result.returncode == 2 and "no spec given for --dry-run" in result.stderr
+
+
+def test_exit_codes_are_said_one_way_in_the_help_the_module_and_the_docs():
+    import re
+
+    import xacrokit.cli
+
+    helped = " ".join(gen_robot("--help").stdout.split())
+    assert xacrokit.cli.EXIT_CODES in helped
+    codes = set(re.findall(r"\b(\d+) [a-z]", xacrokit.cli.EXIT_CODES))
+    assert codes == {"0", "1", "2", "130", "141"}
+    docstring = " ".join((xacrokit.cli.__doc__ or "").split())
+    documented = " ".join((REPO / "docs" / "safe-writing.md").read_text(encoding="utf-8").split())
+    for code in codes:
+        assert re.search(rf"\b{code} [a-z]", docstring), code
+        assert re.search(rf"\b{code}\b", documented), code

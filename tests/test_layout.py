@@ -1,0 +1,120 @@
+"""The layout of the xacrokit package stays as issue 12 left it: no import cycle among its modules (lazy imports
+inside functions included), no private name imported from another module, no module over 500 lines, and no stage
+module importing a later stage."""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+from conftest import REPO
+
+PACKAGE = REPO / "generator"
+MAX_LINES = 500
+
+
+def module_name(path: Path) -> str:
+    parts = ["xacrokit", *path.relative_to(PACKAGE).with_suffix("").parts]
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+MODULES = {module_name(p): p for p in sorted(PACKAGE.rglob("*.py"))}
+
+
+def imports(name: str) -> list[tuple[str, list[str], int]]:
+    """(module imported, names taken from it, line) for every import of xacrokit's own modules in ``name``, at any
+    depth (a function's lazy import counts: it runs the other module all the same)."""
+    path = MODULES[name]
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    found = []
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.ImportFrom):
+            base = package
+            for _ in range(node.level - 1):
+                base = base.rpartition(".")[0]
+            target = f"{base}.{node.module}" if node.level and node.module else (node.module or base)
+            if not target.startswith("xacrokit"):
+                continue
+            names = [alias.name for alias in node.names]
+            submodules = [f"{target}.{n}" for n in names if f"{target}.{n}" in MODULES]
+            if submodules:  # from . import emit: the module emit
+                found += [(module, [], node.lineno) for module in submodules]
+                names = [n for n in names if f"{target}.{n}" not in MODULES]
+            if names or not submodules:
+                found.append((target, names, node.lineno))
+        elif isinstance(node, ast.Import):
+            found += [(a.name, [], node.lineno) for a in node.names if a.name.startswith("xacrokit")]
+    return [(target, names, line) for target, names, line in found if target in MODULES]
+
+
+GRAPH = {name: sorted({target for target, _, _ in imports(name)} - {name}) for name in MODULES}
+
+
+def test_the_package_has_the_modules_the_layout_names():
+    assert {"xacrokit.check", "xacrokit.validate", "xacrokit.render", "xacrokit.scene"} <= set(MODULES)
+    assert len(MODULES) > 40
+
+
+def test_no_import_cycle():
+    state: dict[str, str] = {}
+    path: list[str] = []
+
+    def visit(name: str) -> None:
+        state[name] = "open"
+        path.append(name)
+        for target in GRAPH[name]:
+            if state.get(target) == "open":
+                cycle = path[path.index(target) :] + [target]
+                pytest.fail("import cycle: " + " -> ".join(cycle))
+            if target not in state:
+                visit(target)
+        path.pop()
+        state[name] = "done"
+
+    for name in MODULES:
+        if name not in state:
+            visit(name)
+
+
+def test_the_checker_finds_a_cycle_when_there_is_one(monkeypatch):
+    """The cycle test above can fail: a graph with a cycle makes it fail."""
+    monkeypatch.setitem(GRAPH, "xacrokit.model", [*GRAPH["xacrokit.model"], "xacrokit.emit"])
+    with pytest.raises(pytest.fail.Exception, match="import cycle"):
+        test_no_import_cycle()
+
+
+def test_no_private_name_is_imported_from_another_module():
+    private = [
+        f"{name}:{line} imports {taken} from {target}"
+        for name in MODULES
+        for target, names, line in imports(name)
+        for taken in names
+        if taken.startswith("_") and not taken.startswith("__")
+    ]
+    assert not private, private
+
+
+@pytest.mark.parametrize("name", sorted(MODULES))
+def test_no_module_is_over_500_lines(name):
+    lines = len(MODULES[name].read_text(encoding="utf-8").splitlines())
+    assert lines <= MAX_LINES, f"{MODULES[name]} has {lines} lines"
+
+
+# the stages in pipeline order: a module of a stage imports no module of a later stage (STYLE.md's one-way data flow)
+STAGES = ["xacrokit.load", "xacrokit.validate", "xacrokit.resolve", "xacrokit.render", "xacrokit.write"]
+
+
+def _stage(name: str) -> int | None:
+    return next((i for i, stage in enumerate(STAGES) if name == stage or name.startswith(stage + ".")), None)
+
+
+def test_no_stage_imports_a_later_stage():
+    backwards = [
+        f"{name} imports {target}"
+        for name in MODULES
+        for target in GRAPH[name]
+        if _stage(name) is not None and _stage(target) is not None and _stage(target) > _stage(name)  # type: ignore[operator]
+    ]
+    assert not backwards, backwards
