@@ -2,7 +2,8 @@
 
 What a package says about the robot or scene (its templates and the direct URDF emitter) comes from this model. Also
 here, as the one place for them: the joint types and the names of the links and joints xacrokit makes for a spec's
-arms, wheels, frames and scene mounts (validate, resolve, emit and check all ask these functions).
+arms, wheels, frames and scene mounts (validate, resolve, emit, render, scenes and the spec line map that check
+uses all ask these functions).
 """
 
 from __future__ import annotations
