@@ -153,7 +153,7 @@ def full_job(spec: Path, out: Path) -> None:
     from xacrokit.pipeline import generate
 
     result = generate(spec, out, force=True)
-    check(out / "urdf" / f"{result.robot.name}.urdf", consumers=[])
+    check(out / "urdf" / f"{result.name}.urdf", consumers=[])
 
 
 def touch(node: object) -> int:

@@ -46,16 +46,6 @@ class GenerateResult:
         """The package's name, NAME_description."""
         return self.model.package
 
-    @property
-    def robot(self) -> Robot | None:
-        """The robot, for a robot spec (None for a scene)."""
-        return self.model if isinstance(self.model, Robot) else None
-
-    @property
-    def scene(self) -> Scene | None:
-        """The scene, for a scene spec or a fleet (None for a robot)."""
-        return self.model if isinstance(self.model, Scene) else None
-
 
 def build_robot(spec_path: str | Path) -> Robot:
     """load -> validate -> resolve. Raises SpecErrors with every located problem."""
@@ -93,12 +83,12 @@ def expand_package(model: Robot | Scene, files: list[RenderedFile]) -> RenderedF
 
 @dataclass(frozen=True)
 class SpecURDF:
-    """A spec's URDF made in memory (nothing written), for ``gen-robot check``: the robot (None for a scene), where
-    each generated link and joint is written in the spec (``(kind, name) -> line``; empty for a scene), and the
-    spec's warnings (see Spec.warnings)."""
+    """A spec's URDF made in memory (nothing written), for ``gen-robot check``: what the spec describes (a robot, or a
+    scene), where each link and joint of a robot is written in its spec (``(kind, name) -> line``; a scene's come
+    from several files: none), and the spec's warnings (see Spec.warnings)."""
 
     urdf: str
-    robot: Robot | None
+    model: Robot | Scene
     lines: dict[tuple[str, str], int]
     warnings: tuple[SpecError, ...]
 
@@ -115,7 +105,7 @@ def spec_urdf(spec_path: str | Path) -> SpecURDF:
     if is_scene(raw):  # generated in memory as a whole
         scene = build_scene(raw)
         return SpecURDF(
-            expand_package(scene, render_scene(scene, spec_name=path.name)).content, None, {}, scene.warnings
+            expand_package(scene, render_scene(scene, spec_name=path.name)).content, scene, {}, scene.warnings
         )
     spec = validate(raw)
     robot = resolve(spec)

@@ -180,7 +180,7 @@ def test_docs_spec_sample_generates(tmp_path):
     (sample,) = [b for b in blocks_yaml if b.startswith("# yaml-language-server: $schema=../schemas/robot")]
     (tmp_path / "spec.yaml").write_text(sample, encoding="utf-8")
     result = xacrokit.generate(tmp_path / "spec.yaml", tmp_path / "out")
-    assert {"base_link", "upper_arm", "hand", "tool0", "camera_link"} <= set(result.robot.link_names)
+    assert {"base_link", "upper_arm", "hand", "tool0", "camera_link"} <= set(result.model.link_names)
 
 
 def test_readme_xml_sample_expands(tmp_path):

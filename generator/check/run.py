@@ -60,7 +60,8 @@ def _load_urdf(
         from ..pipeline import spec_urdf  # (the whole generator: loaded for spec input only)
 
         described = spec_urdf(path)
-        return described.urdf, described.robot, described.lines, spec_findings(described.warnings)
+        robot = described.model if isinstance(described.model, Robot) else None  # (only a robot has DH arms)
+        return described.urdf, robot, described.lines, spec_findings(described.warnings)
     if kind == "xacro":
         return expand_file(path, mappings, package_paths=package_paths), None, None, ()
     try:

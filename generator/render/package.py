@@ -104,6 +104,7 @@ def render_package(robot: Robot, *, macros: MacroMode = "inline", spec_name: str
         macro_files = []
     context = {
         "robot": robot,
+        "fixed_frame": robot.root,  # RViz's (the launch file passes the prefixed one to rviz2 -f)
         "version": __version__,
         "spec_name": spec_name,
         "macros": macros,

@@ -8,7 +8,6 @@ file, an RViz configuration and one controllers file per instance with ros2_cont
 from __future__ import annotations
 
 import dataclasses
-from types import SimpleNamespace
 
 from .. import __version__
 from ..gcpause import collector_paused
@@ -37,7 +36,7 @@ def render_scene(scene: Scene, *, spec_name: str = "scene.yaml", macros: MacroMo
         "spec_name": spec_name,
         "has_control": has_control,
         "macros": macros,
-        "robot": SimpleNamespace(root=scene.world),
+        "fixed_frame": scene.world,
         "xacro_text": xacro_text,
     }
     for path, template in (

@@ -38,7 +38,7 @@ def example(request, tmp_path_factory):
     spec_path: Path = request.param
     out = tmp_path_factory.mktemp(spec_path.stem) / "pkg"
     result = xacrokit.generate(spec_path, out)
-    urdf_path = out / "urdf" / f"{result.robot.name}.urdf"
+    urdf_path = out / "urdf" / f"{result.name}.urdf"
     data = validate(load_file(spec_path)).data  # the spec in SI: the reference the URDF is compared with
     return {"spec": data, "result": result, "urdf_path": urdf_path, "root": etree.parse(str(urdf_path)).getroot()}
 

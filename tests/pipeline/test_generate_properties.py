@@ -45,7 +45,7 @@ def write_spec(tmp_path_factory, spec, label):
 def test_every_valid_spec_generates_expands_and_loads(tmp_path_factory, spec):
     folder, path = write_spec(tmp_path_factory, spec, "valid")
     result = xacrokit.generate(path, folder / "pkg")
-    robot = result.robot
+    robot = result.model
     urdf_path = folder / "pkg" / "urdf" / f"{robot.name}.urdf"
     root = etree.parse(str(urdf_path)).getroot()
 

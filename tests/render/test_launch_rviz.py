@@ -48,11 +48,11 @@ def root_link(urdf: str) -> str:
 def test_rviz_fixed_frame_follows_the_prefix_launch_argument(tmp_path, example):
     result = xacrokit.generate(REPO / "examples" / "robots" / f"{example}.yaml", tmp_path / "pkg")
     files = {f.path: f.content for f in result.files}
-    name = result.robot.name
+    name = result.name
     launch = files["launch/display.launch.py"]
     compile(launch, "display.launch.py", "exec")
     root = root_link(files[f"urdf/{name}.urdf"])
-    assert root == result.robot.root
+    assert root == result.model.root
     arguments = node_arguments(launch, "rviz2")
     flags = [a.value for a in arguments if isinstance(a, ast.Constant)]
     assert flags.count("-f") == 1 and "-d" in flags

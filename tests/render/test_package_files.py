@@ -11,6 +11,7 @@ from lxml import etree
 
 import xacrokit
 from conftest import REPO
+from xacrokit.model import Scene
 
 EXAMPLES = REPO / "examples"
 
@@ -44,7 +45,7 @@ def test_without_the_gui_a_joint_state_publisher_still_gives_every_joint_a_state
     }
     assert keyword(arguments["gui"], "choices") == ["true", "false"]
     hardware = keyword(arguments["ros2_control"], "choices")
-    assert hardware == (["mock", "none"] if result.scene else ["mock", "gazebo", "none"])
+    assert hardware == (["mock", "none"] if isinstance(result.model, Scene) else ["mock", "gazebo", "none"])
     package = etree.parse(str(tmp_path / "pkg" / "package.xml")).getroot()
     assert {"joint_state_publisher", "joint_state_publisher_gui"} <= {e.text for e in package.iter("exec_depend")}
 

@@ -7,14 +7,14 @@ import pytest
 from lxml import etree
 
 import xacrokit
-from conftest import REPO
+from conftest import ROBOT_EXAMPLES
 from xacrokit.emit import joint_element, link_element, urdf_differences
 from xacrokit.expansion import expand_file
 from xacrokit.model import mount_joint_name
 from xacrokit.pipeline import build_robot
 from xacrokit.render import render_package, simple_shape_link
 
-EXAMPLES = sorted(p for p in (REPO / "examples").glob("*.yaml") if "macros_demo" not in p.name)
+EXAMPLES = ROBOT_EXAMPLES
 XACRO = "{http://www.ros.org/wiki/xacro}"
 MODES = ("inline", "copy", "find")
 
@@ -89,8 +89,8 @@ def test_every_macro_mode_gives_the_same_robot_with_every_argument(tmp_path, har
         outputs = []
         for mode in ("inline", "copy"):
             result = xacrokit.generate(spec, tmp_path / spec.stem / mode, macros=mode)
-            entry = result.output / "urdf" / f"{result.robot.name}.urdf.xacro"
-            packages = {result.robot.package: result.output}
+            entry = result.output / "urdf" / f"{result.name}.urdf.xacro"
+            packages = {result.package: result.output}
             urdf = expand_file(entry, {"prefix": "r7_", "ros2_control": hardware}, package_paths=packages)
             outputs.append(urdf.replace(str(result.output.resolve()), "PACKAGE"))  # $(find) of each package
         assert urdf_differences(*outputs, rel=0.0) == [], spec.name

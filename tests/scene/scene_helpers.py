@@ -35,7 +35,7 @@ THIRD_PARTY = """<?xml version="1.0"?>
 
 
 def urdf_root(result) -> etree._Element:
-    text = {f.path: f.content for f in result.files}[f"urdf/{result.scene.name}.urdf"]
+    text = {f.path: f.content for f in result.files}[f"urdf/{result.name}.urdf"]
     return etree.fromstring(text.encode())
 
 

@@ -11,6 +11,7 @@ from scene_helpers import SCENES, urdf_root
 import xacrokit
 from conftest import SCENE_EXAMPLES, gen_robot
 from xacrokit.check import check
+from xacrokit.model import Scene
 
 
 @pytest.fixture(scope="module")
@@ -19,7 +20,7 @@ def cell(tmp_path_factory):
 
 
 def test_bin_sorting_cell_prefixes_every_name_and_mounts_as_specified(cell):
-    scene, root = cell.scene, urdf_root(cell)
+    scene, root = cell.model, urdf_root(cell)
     links = [e.get("name") for e in root.findall("link")]
     joints = [e.get("name") for e in root.findall("joint")]
     assert sorted(links) == sorted(scene.link_names) and len(links) == len(set(links))
@@ -57,8 +58,8 @@ def test_scene_rviz_fixed_frame_is_the_unprefixed_world_link(cell):
     root = urdf_root(cell)
     children = {j.find("child").get("link") for j in root.findall("joint")}
     (world,) = [e.get("name") for e in root.findall("link") if e.get("name") not in children]
-    assert world == cell.scene.world
-    rviz = yaml.safe_load(files[f"rviz/{cell.scene.name}.rviz"])
+    assert world == cell.model.world
+    rviz = yaml.safe_load(files[f"rviz/{cell.name}.rviz"])
     assert rviz["Visualization Manager"]["Global Options"]["Fixed Frame"] == world
 
 
@@ -82,8 +83,8 @@ def test_two_identical_arms_share_one_macro_and_materials(tmp_path):
 @pytest.mark.parametrize("scene", SCENE_EXAMPLES, ids=lambda p: p.stem)
 def test_every_scene_example_generates_and_checks_clean(tmp_path, scene):
     result = xacrokit.generate(scene, tmp_path / "pkg")
-    assert result.scene is not None and len(result.scene.instances) >= 2
-    report = check(tmp_path / "pkg" / "urdf" / f"{result.scene.name}.urdf")
+    assert isinstance(result.model, Scene) and len(result.model.instances) >= 2
+    report = check(tmp_path / "pkg" / "urdf" / f"{result.name}.urdf")
     assert not report.findings, [str(f) for f in report.findings]
     assert report.consumers and all(c.status == "accepted" for c in report.consumers)
     again = xacrokit.generate(scene, tmp_path / "pkg")

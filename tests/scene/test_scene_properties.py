@@ -50,7 +50,7 @@ def test_random_scenes_prefix_disjoint_fk_and_check(tmp_path_factory, case, seed
     }
     path = scene_file(folder, entries)
     result = xacrokit.generate(path, folder / "pkg")
-    scene, root = result.scene, urdf_root(result)
+    scene, root = result.model, urdf_root(result)
 
     # every name of an instance carries its prefix; the scene's names are the disjoint union of the instances'
     all_links = [scene.world]

@@ -24,7 +24,7 @@ def test_third_party_macro_twice_in_one_scene(tmp_path):
     assert {"a_acme_link", "b_acme_base"} <= {e.get("name") for e in root.findall("link")}
     assert root.find("joint[@name='b_acme_mount']/parent").get("link") == "a_acme_link"
     assert float(root.find("link[@name='a_acme_link']/visual/geometry/cylinder").get("length")) == 0.3
-    by_name = {i.name: i for i in result.scene.instances}
+    by_name = {i.name: i for i in result.model.instances}
     assert set(by_name["one"].links) == {"a_acme_base", "a_acme_link"}
 
 

@@ -29,7 +29,7 @@ def test_new_writes_a_starter_that_generates(tmp_path, kind):
     text = spec.read_text(encoding="utf-8")
     assert all(line.startswith("# ") for line in text.splitlines()[:3])  # opens with its comments
     generated = xacrokit.generate(spec, tmp_path / "out")
-    assert generated.robot.name == f"my_{kind}"
+    assert generated.name == f"my_{kind}"
     again = gen_robot("new", f"my_{kind}", cwd=tmp_path)
     assert again.returncode == 2 and "already exists" in again.stderr
     assert spec.read_text(encoding="utf-8") == text

@@ -11,7 +11,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 from validate_cases import BASE, assert_mistake_located, case_ids
 
-from conftest import REPO
+from conftest import REPO, SCENE_EXAMPLES
 from xacrokit.errors import SpecErrors
 from xacrokit.load import load_text
 from xacrokit.scene import scene_validator
@@ -117,7 +117,7 @@ def _perturbed(draw, documents: st.SearchStrategy[dict]) -> dict:
 
 
 def _scene_documents() -> list[dict]:
-    return [yaml.safe_load(path.read_text()) for path in sorted((EXAMPLES / "scenes").glob("*.yaml"))]
+    return [yaml.safe_load(path.read_text()) for path in SCENE_EXAMPLES]
 
 
 @pytest.mark.parametrize("kind", ["robot", "scene"])
