@@ -21,6 +21,7 @@ JointType = Literal["revolute", "continuous", "prismatic", "fixed", "floating", 
 JOINT_TYPES: tuple[JointType, ...] = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 MOVING: tuple[JointType, ...] = ("revolute", "continuous", "prismatic")  # one degree of freedom, driven by a motor
 LIMITED: tuple[JointType, ...] = ("revolute", "prismatic")  # need lower and upper limits
+AXIAL: tuple[JointType, ...] = ("revolute", "continuous", "prismatic", "planar")  # have an <axis> (planar: the normal)
 DHRowType = Literal["revolute", "continuous", "prismatic", "fixed"]
 Convention = Literal["standard", "modified"]
 InertiaKind = Literal["box", "cylinder", "sphere", "explicit"]

@@ -66,20 +66,23 @@ def format_moments(values: Iterable[float]) -> str:
     return ", ".join(f"{v:.6g}" for v in values)
 
 
+def describe_problem(problem: TensorProblem, moments: Iterable[float]) -> str:
+    """The sentence that says what is wrong with principal moments (the spec's validation and check both say it)."""
+    if problem == "not-positive-definite":
+        return (
+            f"the inertia tensor is not positive definite (principal moments {format_moments(moments)}); "
+            "every principal moment must be > 0"
+        )
+    return (
+        f"the inertia tensor violates the triangle inequality (principal moments {format_moments(moments)}); "
+        "each must be at most the sum of the other two"
+    )
+
+
 def tensor_problem(matrix: np.ndarray, rel: float = TOLERANCE) -> str | None:
     """Why ``matrix`` cannot be a rigid body's inertia about its centre of mass (a sentence), or None when it can."""
     if not np.all(np.isfinite(matrix)):
         return "the inertia tensor has entries that are not finite"
     moments = np.linalg.eigvalsh(matrix).tolist()
     problem = moments_problem(moments, rel)
-    if problem == "not-positive-definite":
-        return (
-            f"the inertia tensor is not positive definite (principal moments {format_moments(moments)}); "
-            "every principal moment must be > 0"
-        )
-    if problem == "triangle-inequality":
-        return (
-            f"the inertia tensor violates the triangle inequality (principal moments {format_moments(moments)}); "
-            "each must be at most the sum of the other two"
-        )
-    return None
+    return None if problem is None else describe_problem(problem, moments)

@@ -10,6 +10,7 @@ from typing import Any
 
 from .gcpause import collector_paused
 from .model import (
+    AXIAL,
     DEFAULT_TOOL,
     MOVING,
     Arm,
@@ -148,7 +149,7 @@ def _dynamics(data: dict[str, Any]) -> Dynamics | None:
 def _joint(name: str, data: dict[str, Any]) -> Joint:
     kind = data["type"]
     axis = None
-    if kind not in ("fixed", "floating"):
+    if kind in AXIAL:
         raw_axis = _vec3(data.get("axis"), (1.0, 0.0, 0.0))
         norm = math.sqrt(sum(v * v for v in raw_axis))
         axis = (raw_axis[0] / norm, raw_axis[1] / norm, raw_axis[2] / norm)

@@ -23,7 +23,7 @@ from typing import Any
 
 from hypothesis import strategies as st
 
-from .model import JOINT_TYPES
+from .model import AXIAL, JOINT_TYPES, LIMITED, MOVING
 
 SHAPES = ("box", "cylinder", "sphere", "mesh", "none")
 FAULTS = (
@@ -126,7 +126,7 @@ def _link(draw, materials: list[str]) -> dict[str, Any]:
 
 def _limit(draw, kind: str) -> dict[str, Any]:
     limit: dict[str, Any] = {"effort": draw(_mass), "velocity": draw(_mass)}
-    if kind in ("revolute", "prismatic"):
+    if kind in LIMITED:
         low = draw(st.floats(-3.0, 0.0))
         limit.update(lower=low, upper=low + draw(st.floats(0.0, 3.0)))
     return limit
@@ -136,12 +136,12 @@ def _limit(draw, kind: str) -> dict[str, Any]:
 def _joint(draw, parent: str, child: str) -> dict[str, Any]:
     kind = draw(st.sampled_from(JOINT_TYPES))
     joint: dict[str, Any] = {"type": kind, "parent": parent, "child": child, "origin": draw(_origin())}
-    if kind not in ("fixed", "floating"):
+    if kind in AXIAL:
         axis = [draw(st.sampled_from([0.0, 1.0, -1.0, 0.5])) for _ in range(3)]
         joint["axis"] = axis if any(axis) else [0.0, 0.0, 1.0]
-    if kind in ("revolute", "prismatic", "continuous"):
+    if kind in MOVING:
         joint["limit"] = _limit(draw, kind)
-    if kind in ("revolute", "prismatic", "continuous") and draw(st.booleans()):
+    if kind in MOVING and draw(st.booleans()):
         joint["dynamics"] = {"damping": draw(st.floats(0.0, 1.0)), "friction": draw(st.floats(0.0, 1.0))}
     return joint
 
@@ -199,7 +199,7 @@ def valid_specs(draw, max_links: int = 5) -> dict[str, Any]:
         child = spec["links"][joint["child"]]
         if joint["type"] != "fixed" and "mass" not in child:
             child.update(mass=draw(_mass), inertia=draw(_physical_tensor()))
-    moving = [n for n, j in spec["joints"].items() if j["type"] in ("revolute", "continuous", "prismatic")]
+    moving = [n for n, j in spec["joints"].items() if j["type"] in MOVING]
     if len(moving) >= 2 and draw(st.booleans()):
         follower, leader = moving[-1], moving[0]
         if spec["joints"][follower]["type"] == spec["joints"][leader]["type"]:

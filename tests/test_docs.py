@@ -177,7 +177,7 @@ def test_command_examples_run_in_sequence(tmp_path):
 
 def test_docs_spec_sample_generates(tmp_path):
     blocks_yaml = blocks(DOCS / "spec.md", "yaml")
-    (sample,) = [b for b in blocks_yaml if b.startswith("# yaml-language-server: $schema=../schemas/robot")]
+    (sample,) = [b for b in blocks_yaml if b.startswith("# yaml-language-server: $schema=robot.schema.json")]
     (tmp_path / "spec.yaml").write_text(sample, encoding="utf-8")
     result = xacrokit.generate(tmp_path / "spec.yaml", tmp_path / "out")
     assert {"base_link", "upper_arm", "hand", "tool0", "camera_link"} <= set(result.model.link_names)

@@ -11,6 +11,8 @@ from typing import Literal
 
 Severity = Literal["error", "warning"]
 Row = tuple[str, Severity, str]  # (name, severity, what it checks)
+InputKind = Literal["urdf", "xacro", "spec"]
+ConsumerStatus = Literal["accepted", "rejected", "crashed", "timeout", "skipped", "unavailable"]
 
 # rule id -> row, as each rule family's module enters it. The ids are stable: scripts may filter on them.
 _ROWS: dict[str, Row] = {}
@@ -61,7 +63,7 @@ class ConsumerResult:
     """``status``: accepted, rejected, crashed, timeout, skipped or unavailable."""
 
     name: str
-    status: str
+    status: ConsumerStatus
     message: str = ""
 
     @property
@@ -72,7 +74,7 @@ class ConsumerResult:
 @dataclass(frozen=True)
 class CheckReport:
     source: str
-    kind: str  # urdf, xacro or spec
+    kind: InputKind
     robot: str | None
     findings: tuple[Finding, ...]
     consumers: tuple[ConsumerResult, ...] = field(default=())

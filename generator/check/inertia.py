@@ -9,7 +9,7 @@ from collections.abc import Iterator
 from lxml import etree
 
 from ..model import MOVING
-from ..physics import format_moments, moments_problem, principal_moments
+from ..physics import describe_problem, moments_problem, principal_moments
 from .document import Doc, read_float, read_triple
 from .findings import Finding, rule_table
 
@@ -124,27 +124,11 @@ def inertia_rules(doc: Doc) -> Iterator[Finding]:
             yield doc.finding("I002", "link", name, "the inertia tensor has unreadable entries", link)
             continue
         problem = moments_problem(moments)
-        if problem == "not-positive-definite":
-            yield doc.finding(
-                "I002",
-                "link",
-                name,
-                f"inertia is not positive definite (principal moments "
-                f"{format_moments(moments)}); every principal moment must be > 0",
-                link,
-            )
+        if problem is not None:
+            rule = "I002" if problem == "not-positive-definite" else "I003"
+            yield doc.finding(rule, "link", name, describe_problem(problem, moments), link)
             continue
         total = sum(moments)
-        if problem == "triangle-inequality":
-            yield doc.finding(
-                "I003",
-                "link",
-                name,
-                f"principal moments {format_moments(moments)} violate the triangle "
-                "inequality: each must be at most the sum of the other two",
-                link,
-            )
-            continue
         ixx, ixy, ixz, iyy, iyz, izz = entry
         if ixy == ixz == iyz == 0 and ixx == iyy == izz and ixx in _PLACEHOLDERS:
             yield doc.finding(

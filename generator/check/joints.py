@@ -8,7 +8,7 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from ..model import JOINT_TYPES, MOVING
+from ..model import AXIAL, JOINT_TYPES, LIMITED, MOVING
 from .document import Doc, read_float, read_triple
 from .findings import Finding, rule_table
 
@@ -47,7 +47,7 @@ def joint_rules(doc: Doc) -> Iterator[Finding]:
             yield found("J011", f"type {kind!r} is not a URDF joint type ({', '.join(JOINT_TYPES)})")
             continue
         limit = joint.find("limit")
-        if kind in ("revolute", "prismatic"):
+        if kind in LIMITED:
             lower, upper = read_float(limit, "lower"), read_float(limit, "upper")
             if limit is None or lower is None or upper is None:
                 yield found("J001", f"a {kind} joint needs <limit lower upper effort velocity>")
@@ -65,7 +65,7 @@ def joint_rules(doc: Doc) -> Iterator[Finding]:
                     yield found(rule, f"limit {key} is {value}; it must be > 0 ({unit})")
                 elif value is None and kind != "continuous":
                     yield found(rule, f"limit has no {key}; give one > 0 ({unit})")
-        if kind in MOVING or kind == "planar":
+        if kind in AXIAL:
             axis = read_triple(joint.find("axis"), "xyz", "1 0 0")
             norm = math.hypot(*axis)
             if not math.isfinite(norm) or norm == 0:
@@ -102,7 +102,7 @@ def joint_rules(doc: Doc) -> Iterator[Finding]:
                     "and rotate (or slide) alike",
                 )
         safety = joint.find("safety_controller")
-        if safety is not None and limit is not None and kind in ("revolute", "prismatic"):
+        if safety is not None and limit is not None and kind in LIMITED:
             lower, upper = read_float(limit, "lower"), read_float(limit, "upper")
             soft_lower, soft_upper = read_float(safety, "soft_lower_limit"), read_float(safety, "soft_upper_limit")
             if lower is not None and soft_lower is not None and soft_lower < lower:

@@ -19,7 +19,7 @@ from ..gcpause import collector_paused
 from ..model import Robot
 from .consumers import chosen, consumer_findings, verdicts
 from .document import Doc, parse_robot
-from .findings import CheckReport, Finding
+from .findings import CheckReport, Finding, InputKind
 from .inertia import inertia_rules
 from .joints import joint_rules
 from .numbers import number_rules
@@ -28,7 +28,7 @@ from .spec import kinematics_rules, spec_findings
 from .structure import name_rules, structure_rules
 
 
-def input_kind(path: Path) -> str:
+def input_kind(path: Path) -> InputKind:
     """spec, xacro or urdf: by the file's suffix, or for another suffix by its first 4 KiB (XML starts with '<'; a
     xacro document declares the xacro namespace or uses a xacro: element)."""
     name = path.name.lower()
@@ -51,7 +51,7 @@ def input_kind(path: Path) -> str:
 
 def _load_urdf(
     path: Path,
-    kind: str,
+    kind: InputKind,
     mappings: Mapping[str, str] | None,
     package_paths: Mapping[str, str | os.PathLike[str]] | None,
 ) -> tuple[str, Robot | None, dict[tuple[str, str], int] | None, tuple[Finding, ...]]:

@@ -8,22 +8,17 @@ environment, :class:`RenderedFile` and the macro modes.
 from __future__ import annotations
 
 from .control import controllers
-from .environment import MacroMode, RenderedFile, environment, indent_block
-from .package import COPIED_MACROS_DIR, dh_table_yaml, macro_xml, render_package, simple_shape_link, used_macro_files
+from .environment import MacroMode, RenderedFile, environment
+from .package import render_package, simple_shape_link
 from .scene import render_probe, render_scene
 
 __all__ = [
-    "COPIED_MACROS_DIR",
     "MacroMode",
     "RenderedFile",
     "controllers",
-    "dh_table_yaml",
     "environment",
-    "indent_block",
-    "macro_xml",
     "render_package",
     "render_probe",
     "render_scene",
     "simple_shape_link",
-    "used_macro_files",
 ]

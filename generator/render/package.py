@@ -9,6 +9,7 @@ library's box_link/cylinder_link/sphere_link, dh_arm and wheel macros for the re
 
 from __future__ import annotations
 
+import posixpath
 from collections.abc import Iterable
 from pathlib import PurePosixPath
 from typing import Any
@@ -27,6 +28,7 @@ from .control import controllers
 from .environment import MacroMode, RenderedFile, environment
 
 COPIED_MACROS_DIR = "urdf/xacrokit"
+XACRO_NS = "{http://www.ros.org/wiki/xacro}"
 PREFIX = "${prefix}"  # what the robot macro glues in front of every name (xacro fills it in)
 
 
@@ -55,10 +57,20 @@ def used_macro_files(robot: Robot) -> list[str]:
 
 
 def _copied_macros(files: list[str]) -> list[RenderedFile]:
-    """The library files a self-contained package carries, with the private helpers they include."""
+    """The library files a self-contained package carries: ``files`` and every file they include, as the files'
+    own ``<xacro:include>`` elements say (paths relative to the including file)."""
     folder = macros_dir()
-    names = [*files, "_inc/checks.xacro", *(["_inc/frames.xacro"] if "dh.xacro" in files else [])]
-    return [RenderedFile(f"{COPIED_MACROS_DIR}/{name}", (folder / name).read_text(encoding="utf-8")) for name in names]
+    copied: dict[str, str] = {}
+    pending = list(files)
+    while pending:
+        name = pending.pop(0)
+        if name in copied:
+            continue
+        copied[name] = text = (folder / name).read_text(encoding="utf-8")
+        root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+        for include in root.iter(f"{XACRO_NS}include"):
+            pending.append(posixpath.normpath(posixpath.join(posixpath.dirname(name), include.get("filename", ""))))
+    return [RenderedFile(f"{COPIED_MACROS_DIR}/{name}", text) for name, text in copied.items()]
 
 
 def dh_table_yaml(robot: Robot, arm_index: int) -> str:

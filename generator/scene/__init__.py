@@ -12,8 +12,7 @@ resolves it (``probe`` learns the third-party macros' names).
 
 from __future__ import annotations
 
-from ..model import Instance, Scene, ThirdPartyMacro
 from .build import build_scene, is_scene, scene_validator
 from .fleet import fleet_scene
 
-__all__ = ["Instance", "Scene", "ThirdPartyMacro", "build_scene", "fleet_scene", "is_scene", "scene_validator"]
+__all__ = ["build_scene", "fleet_scene", "is_scene", "scene_validator"]

@@ -10,7 +10,7 @@ from typing import Any
 
 from ..errors import SpecError
 from ..load import PathKey, RawSpec
-from ..model import LIMITED
+from ..model import AXIAL, LIMITED
 from ..physics import tensor, tensor_problem
 from .bodies import Body, BodyKind
 
@@ -107,7 +107,7 @@ def _joint_errors(
     axis = joint.get("axis")
     if axis is not None and not any(axis):
         yield raw.error((*path, "axis"), "axis must not be zero; e.g. [0, 0, 1] for the z axis")
-    if axis is not None and joint["type"] in ("fixed", "floating"):
+    if axis is not None and joint["type"] not in AXIAL:
         yield raw.error((*path, "axis"), f"a {joint['type']} joint takes no axis")
 
 

@@ -63,8 +63,12 @@ def test_each_single_fault_is_caught_by_its_rule(tmp_path_factory, spec, fault, 
     assert RULES[intended][1] == "error" and report.exit_code() == 1
 
 
-# The independent consumers take about a second a robot (a process each): a few random robots, our rules on the rest.
-@settings(max_examples=6, suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+# The independent consumers take about a second a robot (a process each): a quarter as many random robots as the
+# profile gives the others (6 in CI; HYPOTHESIS_PROFILE raises it), our rules on all of them above.
+@settings(
+    max_examples=max(1, settings.default.max_examples // 4),
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large],
+)
 @given(spec=valid_specs())
 def test_valid_specs_are_accepted_by_every_consumer(tmp_path_factory, mesh_package, spec):
     folder = tmp_path_factory.mktemp("consumers")

@@ -7,9 +7,7 @@ import json
 import jsonschema
 import pytest
 
-from conftest import REPO, gen_robot
-
-SPEC = REPO / "examples" / "robots" / "two_dof_arm.yaml"
+from conftest import gen_robot
 
 
 def test_schema_command_prints_a_valid_2020_12_schema_with_descriptions():

@@ -8,8 +8,6 @@ from lxml import etree
 import xacrokit
 from conftest import REPO
 
-SPEC = REPO / "examples" / "robots" / "two_dof_arm.yaml"
-
 
 @pytest.fixture(scope="module")
 def diff_drive_package(tmp_path_factory):

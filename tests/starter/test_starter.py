@@ -18,8 +18,6 @@ from xacrokit.check import check
 from xacrokit.starter import KINDS as STARTER_KINDS
 from xacrokit.starter import starter_text, write_starter
 
-SPEC = REPO / "examples" / "robots" / "two_dof_arm.yaml"
-
 
 @pytest.mark.parametrize("kind", STARTER_KINDS)
 def test_new_writes_a_starter_that_generates(tmp_path, kind):

@@ -10,8 +10,6 @@ import yaml
 
 from conftest import REPO, ROBOT_EXAMPLES
 
-SPEC = REPO / "examples" / "robots" / "two_dof_arm.yaml"
-
 
 def test_examples_carry_the_schema_modeline_and_validate_against_the_schema():
     from xacrokit.validate import robot_schema
