@@ -43,7 +43,7 @@ FAULTS = (
 )
 
 # mesh file names the strategies use (package://some_pkg/meshes/NAME.stl): xacro must write them verbatim
-MESH_NAMES = ("part", "${not_evaluated}", "$(find nothing)", "a&b<c>", "$${x}")
+MESH_NAMES = ("part", "${not_evaluated}", "$(find nothing)", "a&b<c>", "$${x}", "x$$y")  # xacro refused $$ once
 _size = st.floats(min_value=0.01, max_value=1.0, allow_nan=False)
 _mass = st.floats(min_value=0.01, max_value=20.0, allow_nan=False)
 _coord = st.floats(min_value=-1.0, max_value=1.0, allow_nan=False)

@@ -37,5 +37,17 @@ def material_name(robot: Robot, name: str | None) -> str:
 
 
 def xacro_text(value: object) -> str:
-    """Text xacro must copy verbatim: every run of ``$`` before ``{`` or ``(`` gets one more ``$`` (xacro drops one)."""
-    return re.sub(r"(\$+)(?=[{(])", r"$\1", str(value))
+    """Text xacro must copy verbatim. A run of ``$`` before ``{`` or ``(`` gets one more ``$`` (xacro drops one). A run
+    of two or more elsewhere is refused by xacro's lexer ('invalid expression: $$'), whatever its length: all but its
+    last ``$`` are written as the expression ``${'$'}``. A single ``$`` before anything else stays as it is."""
+    return _DOLLARS.sub(_escape_dollars, str(value))
+
+
+_DOLLARS = re.compile(r"(\$+)([{(]?)")
+
+
+def _escape_dollars(match: re.Match[str]) -> str:
+    run, opening = match.group(1), match.group(2)
+    if opening:
+        return f"${run}{opening}"
+    return "${'$'}" * (len(run) - 1) + "$"
