@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING
 
 from . import __version__
 from .errors import XacrokitError
+from .guard import trusting
 from .progress import Progress
 
 if TYPE_CHECKING:
@@ -230,6 +231,13 @@ def _add_write_options(parser: argparse.ArgumentParser, default_output: str) -> 
         "and copies them into the package; find calls them through $(find xacrokit) (the package then depends "
         "on xacrokit). All three describe the same robot",
     )
+    parser.add_argument(
+        "--trust",
+        action="store_true",
+        help="evaluate every xacro expression of a scene's third-party macros, as xacro does (for macros that are "
+        "your own; by default, expressions that could reach Python's internals are refused: see docs/macros.md, "
+        "Untrusted documents)",
+    )
 
 
 def _add_xacro_options(parser: argparse.ArgumentParser) -> None:
@@ -240,6 +248,12 @@ def _add_xacro_options(parser: argparse.ArgumentParser) -> None:
         default=[],
         metavar="NAME=PATH",
         help="folder for $(find NAME) and package://NAME; repeatable",
+    )
+    parser.add_argument(
+        "--trust",
+        action="store_true",
+        help="evaluate every xacro expression, as xacro does (for your own documents; by default, expressions that "
+        "could reach Python's internals are refused: see docs/macros.md, Untrusted documents)",
     )
 
 
@@ -417,7 +431,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.print_help(sys.stderr)
         return 2
     try:
-        return args.handler(args)
+        with trusting(getattr(args, "trust", False)):
+            return args.handler(args)
     except XacrokitError as exc:
         print(f"gen-robot: error: {exc}", file=sys.stderr)
         return exc.exit_code

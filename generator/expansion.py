@@ -24,6 +24,7 @@ import xacro
 import xacro.substitution_args
 
 from .errors import ExpandError
+from .guard import guarded, trusted_by_default
 from .resources import package_share_dir
 
 PACKAGE_NAME = "xacrokit"
@@ -190,6 +191,7 @@ def expand_file(
     *,
     package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
     xacro_banner: bool = True,
+    trust: bool | None = None,
 ) -> str:
     """Expand a xacro document to URDF text with the real xacro.
 
@@ -201,20 +203,24 @@ def expand_file(
             nor in a ROS workspace is looked for around the document (:func:`nearby_packages`).
         xacro_banner: keep the comment xacro puts on top (it names the input path, so output that must not depend
             on where it was made leaves it out).
+        trust: evaluate every expression, as xacro does; untrusted (the default, unless
+            :func:`xacrokit.guard.trusting` or ``XACROKIT_TRUST_XACRO=1`` says otherwise), expressions that could reach
+            Python's internals are refused (:mod:`xacrokit.guard`).
 
     Returns:
         The expanded URDF as pretty-printed XML text.
 
     Raises:
         ExpandError: the file cannot be read or parsed, xacro stops (a macro's argument check, an undefined property,
-            an unknown package), or a mapping names an argument the document does not declare.
+            an unknown package), an untrusted document's expression is refused, or a mapping names an argument the
+            document does not declare.
     """
     source = Path(path).resolve()
     where = str(path)
     table = _DeclaredArgs({str(k): str(v) for k, v in (mappings or {}).items()})
     xacro.all_includes = []  # module-level list xacro only ever appends to
     try:
-        with _find_resolver(package_paths, source):
+        with _find_resolver(package_paths, source), guarded(trusted_by_default() if trust is None else trust):
             document = xacro.process_file(str(source), mappings=table)
     except xacro.XacroException as exc:
         raise ExpandError(

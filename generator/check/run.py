@@ -16,6 +16,7 @@ from pathlib import Path
 from ..errors import SpecErrors, XacrokitError
 from ..expansion import expand_file, with_nearby_packages
 from ..gcpause import collector_paused
+from ..guard import trusting
 from ..model import Robot
 from .consumers import chosen, consumer_findings, verdicts
 from .document import Doc, parse_robot
@@ -80,6 +81,7 @@ def check(
     consumers: Sequence[str] | None = None,
     package_paths: Mapping[str, str | Path] | None = None,
     progress: Callable[[str], None] | None = None,
+    trust: bool = False,
 ) -> CheckReport:
     """Check a URDF, a xacro document (expanded with ``mappings``) or a spec (generated in memory, never written).
 
@@ -94,6 +96,8 @@ def check(
             yourdfpy, mujoco); ``[]`` for none.
         package_paths: folders for ``$(find PKG)`` and ``package://PKG`` of packages not otherwise found.
         progress: called with a short message as each step starts (the CLI shows it on a terminal).
+        trust: evaluate every expression of a xacro document (and of a scene's third-party macros); by default those
+            that could reach Python's internals are refused (:mod:`xacrokit.guard`).
 
     Raises:
         XacrokitError: the input cannot be read (a spec file that cannot be read raises SpecErrors, a xacro
@@ -110,7 +114,8 @@ def check(
         packages = with_nearby_packages(path, package_paths)
     say(f"reading {path.name}")
     try:
-        text, robot, lines, notes = _load_urdf(path, kind, mappings, packages)
+        with trusting(trust):
+            text, robot, lines, notes = _load_urdf(path, kind, mappings, packages)
     except SpecErrors as exc:
         if all(e.line is None for e in exc.errors):  # the file itself cannot be read: no report to give
             raise
