@@ -36,6 +36,26 @@ def material_name(robot: Robot, name: str | None) -> str:
     return f"{robot.name}/{name}" if name else ""
 
 
+def comment_text(value: object) -> str:
+    """Text from outside (a spec's file name) made safe for a one-line comment in every generated language (Python,
+    CMake, YAML, XML, Markdown): a character that is not printable (a newline would end the comment and start code)
+    becomes its escape (``\\n``, ``\\x00``, ``\\u2028``) and a backslash is doubled. In an XML comment, see
+    :func:`xml_comment_text`."""
+    return "".join(ch if ch.isprintable() and ch != "\\" else _escaped(ch) for ch in str(value))
+
+
+def xml_comment_text(value: object) -> str:
+    """:func:`comment_text` for an XML comment, which may not hold ``--``: each becomes ``-\\x2d``."""
+    return comment_text(value).replace("--", "-\\x2d").replace("--", "-\\x2d")
+
+
+def _escaped(ch: str) -> str:
+    if ch == "\\":
+        return "\\\\"
+    code = ord(ch)
+    return {"\n": "\\n", "\r": "\\r", "\t": "\\t"}.get(ch) or (f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}")
+
+
 def xacro_text(value: object) -> str:
     """Text xacro must copy verbatim. A run of ``$`` before ``{`` or ``(`` gets one more ``$`` (xacro drops one). A run
     of two or more elsewhere is refused by xacro's lexer ('invalid expression: $$'), whatever its length: all but its

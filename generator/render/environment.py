@@ -17,7 +17,7 @@ from markupsafe import Markup
 
 from ..model import Box, Cylinder
 from ..resources import templates_dir
-from ..text import num, vec, xacro_text
+from ..text import num, vec, xacro_text, xml_comment_text
 
 MacroMode = Literal["copy", "find", "inline"]
 
@@ -47,7 +47,7 @@ def environment() -> jinja2.Environment:
         trim_blocks=True,
         lstrip_blocks=True,
     )
-    env.filters.update(num=num, vec=vec, xacro_text=xacro_text, indent_block=indent_block)
+    env.filters.update(num=num, vec=vec, xacro_text=xacro_text, indent_block=indent_block, xml_comment=xml_comment_text)
     env.globals.update(
         is_box=lambda s: isinstance(s, Box),
         is_cylinder=lambda s: isinstance(s, Cylinder),

@@ -8,11 +8,12 @@ file, an RViz configuration and one controllers file per instance with ros2_cont
 from __future__ import annotations
 
 import dataclasses
+import shlex
 
 from .. import __version__
 from ..gcpause import collector_paused
 from ..model import Instance, Origin, Scene
-from ..text import xacro_text
+from ..text import comment_text, xacro_text
 from .control import controllers
 from .environment import MacroMode, RenderedFile, environment
 from .package import render_package
@@ -33,7 +34,8 @@ def render_scene(scene: Scene, *, spec_name: str = "scene.yaml", macros: MacroMo
     context = {
         "scene": scene,
         "version": __version__,
-        "spec_name": spec_name,
+        "spec_name": comment_text(spec_name),  # (a file name may hold a newline: it would end a comment)
+        "spec_command": comment_text(scene.command or "gen-robot " + shlex.quote(spec_name)),
         "has_control": has_control,
         "macros": macros,
         "fixed_frame": scene.world,
@@ -55,7 +57,7 @@ def render_scene(scene: Scene, *, spec_name: str = "scene.yaml", macros: MacroMo
             text = controllers_template.render(
                 robot=ours,
                 version=__version__,
-                spec_name=spec_name,
+                spec_name=context["spec_name"],
                 prefix=instance.prefix,
                 **controllers(ours, instance.prefix, mounted=True),
             )

@@ -7,6 +7,7 @@ copies go through the same checks as a scene's instances (:func:`~.plan.resolve_
 from __future__ import annotations
 
 import math
+import shlex
 from pathlib import Path
 
 from ..errors import SpecErrors, XacrokitError
@@ -48,7 +49,7 @@ def fleet_scene(spec_path: str | Path, count: int, *, columns: int | None = None
         if not all(math.isfinite(v) for v in origin.xyz):  # (a spacing near the largest float)
             raise XacrokitError(f"the spacing of a fleet is too large: {spacing!r} m puts r{index} at {origin.xyz}")
         planned.append(Planned(f"r{index}", f"r{index}_", WORLD, origin, robot, spec_file))
-    command = f"gen-robot fleet {Path(spec_path).name} --count {count}"
+    command = f"gen-robot fleet {shlex.quote(Path(spec_path).name)} --count {count}"
     if given_columns:
         command += f" --grid {math.ceil(count / given_columns)}x{given_columns}"
     if spacing != 2.0:
