@@ -12,6 +12,7 @@ import argparse
 import contextlib
 import difflib
 import os
+import re
 import sys
 from collections.abc import Iterator, Sequence
 from pathlib import Path
@@ -112,9 +113,10 @@ def _cmd_fleet(args: argparse.Namespace) -> int:
 
     columns = None
     if args.grid:
-        rows_text, sep, columns_text = args.grid.lower().partition("x")
-        if not (sep and rows_text.isdigit() and columns_text.isdigit()) or int(rows_text) * int(columns_text) < 1:
+        grid = re.fullmatch(r"([0-9]{1,6})x([0-9]{1,6})", args.grid.strip().lower())  # (ASCII digits: not ²x²)
+        if not grid or int(grid[1]) * int(grid[2]) < 1:
             raise XacrokitError(f"--grid expects ROWSxCOLUMNS such as 2x5, got {args.grid!r}")
+        rows_text, columns_text = grid[1], grid[2]
         if int(rows_text) * int(columns_text) < args.count:
             raise XacrokitError(
                 f"--grid {args.grid} has {int(rows_text) * int(columns_text)} places for {args.count} robots"
@@ -257,13 +259,18 @@ def _add_xacro_options(parser: argparse.ArgumentParser) -> None:
     )
 
 
+FLEET_LIMIT_WHY = "every copy is written out in the URDF; a scene that large is beyond what RViz shows usefully"
+
+
 def _count(text: str) -> int:
-    try:
-        count = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
-    if count < 1:
-        raise argparse.ArgumentTypeError(f"must be at least 1, got {count}")
+    from .scene.fleet import MAX_FLEET
+
+    if not re.fullmatch(r"[0-9]{1,9}", text.strip()):
+        raise argparse.ArgumentTypeError(f"expected a whole number (digits 0-9), got {text!r}")
+    count = int(text)
+    if not 1 <= count <= MAX_FLEET:
+        why = f" (the limit: {FLEET_LIMIT_WHY})" if count > MAX_FLEET else ""
+        raise argparse.ArgumentTypeError(f"must be 1 to {MAX_FLEET:,}, got {count:,}{why}")
     return count
 
 

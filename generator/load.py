@@ -7,7 +7,9 @@ and non-UTF-8 bytes are rejected with a located error. An unquoted scalar that r
 
 from __future__ import annotations
 
+import math
 import re
+import sys
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -94,6 +96,7 @@ _STR = "tag:yaml.org,2002:str"
 _INT = "tag:yaml.org,2002:int"
 _FLOAT = "tag:yaml.org,2002:float"
 _MERGE = "tag:yaml.org,2002:merge"
+_TIMESTAMP = "tag:yaml.org,2002:timestamp"
 _DECIMAL = re.compile(r"[-+]?(?:0|[1-9][0-9]*)")
 _RESOLVER = yaml.resolver.Resolver()
 
@@ -262,6 +265,36 @@ class _Unreadable(Exception):
 _UNSEEN = object()
 
 
+MAX_NUMBER_TEXT = 400  # characters: more than any double needs (17 digits and an exponent), far from Python's limits
+
+
+def _number(text: str, tag: str) -> float | int:
+    """One number reader for every number a spec holds: decimal digits (ASCII), finite, representable as a double.
+    YAML 1.1's other forms (.nan, .inf, 0x1f, 0o17, 1_000, the sexagesimal 1:30) are refused: they are mistakes in a
+    robot's numbers far more often than meant."""
+    if len(text) > MAX_NUMBER_TEXT:
+        raise _Unreadable(f"a number written with {len(text)} characters; at most {MAX_NUMBER_TEXT}")
+    if not _NUMBER.fullmatch(text):
+        if text.lower().lstrip("+-") in (".nan", ".inf"):
+            raise _Unreadable(f"{text} is not a finite number; every number of a spec is finite")
+        if ":" in text:
+            raise _Unreadable(f"{text} is a YAML 1.1 sexagesimal (base 60) number; write it in decimal, or quote text")
+        raise _Unreadable(f"{text} is not a decimal number; write digits 0-9 with a point and an exponent if needed")
+    if tag == _INT and _DIGITS.fullmatch(text):  # (010 is ten, as in YAML 1.2, not YAML 1.1's octal eight)
+        integer = int(text)
+        if abs(integer) > _LARGEST:
+            raise _Unreadable(f"{text} is beyond any double (about 1.8e308); not a finite number")
+        return integer
+    value = float(text)
+    if not math.isfinite(value):
+        raise _Unreadable(f"{text} is beyond any double (about 1.8e308); not a finite number")
+    return value
+
+
+_LARGEST = int(sys.float_info.max)
+_DIGITS = re.compile(r"[-+]?[0-9]+")
+
+
 def _scalar_value(event: Any) -> Any:
     value = event.value
     tag = event.tag
@@ -269,11 +302,11 @@ def _scalar_value(event: Any) -> Any:
         tag = _RESOLVER.resolve(yaml.ScalarNode, value, event.implicit)
     if tag == _STR:
         # an unquoted, untagged number that YAML 1.1 leaves a string (1e-3) reads as a number, as in JSON and YAML 1.2
-        return float(value) if event.tag is None and not event.style and _NUMBER.fullmatch(value) else value
-    if tag == _FLOAT and _NUMBER.fullmatch(value):
-        return float(value)
-    if tag == _INT and _DECIMAL.fullmatch(value):
-        return int(value)
+        return _number(value, _FLOAT) if event.tag is None and not event.style and _NUMBER.fullmatch(value) else value
+    if tag in (_FLOAT, _INT):
+        return _number(value, tag)
+    if tag == _TIMESTAMP and event.tag is None and not event.style:
+        raise _Unreadable(f"{value} reads as a date in YAML; a spec has no dates: write a number, or quote text")
     if tag not in _PLAIN_TAGS:
         shown = tag.replace("tag:yaml.org,2002:", "!!")
         raise _Unreadable(f"YAML tag {shown} is not allowed in specs; write a plain value")

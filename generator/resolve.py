@@ -151,7 +151,7 @@ def _joint(name: str, data: dict[str, Any]) -> Joint:
     axis = None
     if kind in AXIAL:
         raw_axis = _vec3(data.get("axis"), (1.0, 0.0, 0.0))
-        norm = math.sqrt(sum(v * v for v in raw_axis))
+        norm = math.hypot(*raw_axis)  # (validate keeps it within 1e-9..1e9: no overflow, no division by zero)
         axis = (raw_axis[0] / norm, raw_axis[1] / norm, raw_axis[2] / norm)
     mimic = data.get("mimic")
     safety = data.get("safety_controller")

@@ -40,6 +40,9 @@ FAULTS = (
     "bad_unit",
     "injected_name",
     "unknown_material",
+    "not_finite",
+    "extreme_axis",
+    "deep_quantity",
 )
 
 # mesh file names the strategies use (package://some_pkg/meshes/NAME.stl): xacro must write them verbatim
@@ -289,6 +292,21 @@ def invalid_specs(draw, faults: tuple[str, ...] = FAULTS) -> tuple[dict[str, Any
             joint["child"] = bad if joint["child"] == name else joint["child"]
     elif fault == "unknown_material":
         links[name] = {"shape": {"sphere": {"radius": 0.1}}, "mass": 1.0, "material": "no_such_colour"}
+    elif fault == "not_finite":  # (.nan, .inf in YAML; a quantity beyond any double)
+        value = draw(st.sampled_from([math.nan, math.inf, -math.inf, "1e400 kg", "1e300 * 1e300"]))
+        links[name] = {"shape": {"sphere": {"radius": 0.1}}, "mass": value}
+    elif fault == "extreme_axis":  # normalising it would divide by zero or overflow
+        spec.setdefault("joints", {})["bad_joint"] = {
+            "type": "continuous",
+            "parent": name,
+            "child": "bad_link",
+            "axis": draw(st.sampled_from([[0, 1e-320, 0], [1e308, 1e308, 0], [0, 0, 1e-12]])),
+            "limit": {"effort": 1, "velocity": 1},
+        }
+        links["bad_link"] = {"mass": 1.0, "inertia": {"ixx": 1.0, "iyy": 1.0, "izz": 1.0}}
+    elif fault == "deep_quantity":  # thousands of parentheses once exhausted the parser's recursion
+        depth = draw(st.integers(150, 3000))
+        links[name] = {"shape": {"sphere": {"radius": "(" * depth + "0.1" + ")" * depth}}, "mass": 1.0}
     return spec, fault
 
 

@@ -26,7 +26,8 @@ Kind = Literal["length", "angle", "mass", "number"]
 Value = Fraction | float  # exact while no pi is involved
 
 # A decimal literal as specs (JSON, YAML 1.2) and URDF files write one: sign, digits, point, exponent.
-NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+UNSIGNED_NUMBER = r"(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?"  # (ASCII digits only: float() reads others too)
+NUMBER = r"[-+]?" + UNSIGNED_NUMBER
 
 UNITS: dict[str, dict[str, Value]] = {
     "length": {
@@ -43,7 +44,7 @@ UNITS: dict[str, dict[str, Value]] = {
 }
 _EXACT_EXPONENT = 400  # beyond 1e±400 a number is no double anyway: read it as a float (inf or 0), not as a huge int
 
-_TOKEN = re.compile(r"\s*(?:(?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)|(?P<word>[A-Za-z_]+)|(?P<op>[-+*/()]))")
+_TOKEN = re.compile(rf"\s*(?:(?P<number>{UNSIGNED_NUMBER})|(?P<word>[A-Za-z_]+)|(?P<op>[-+*/()]))")
 
 
 class UnitError(ValueError):
@@ -170,6 +171,9 @@ def _simple(number: str, unit: str, kind: Kind, value: str) -> float:
         return _parsed(value, kind)
 
 
+MAX_QUANTITY_TEXT = 200  # characters: '-2*pi + (150 mm)' needs a few dozen
+
+
 def parse_quantity(value: object, kind: Kind) -> float:
     """Turn a spec value into a finite SI float.
 
@@ -184,6 +188,8 @@ def parse_quantity(value: object, kind: Kind) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float, str)):
         raise UnitError(f"expected a number or a string such as {_example(kind)!r}, got {value!r}")
     if isinstance(value, str):
+        if len(value) > MAX_QUANTITY_TEXT:  # (also bounds the parser's recursion: one level per sign or parenthesis)
+            raise UnitError(f"a quantity written with {len(value)} characters; at most {MAX_QUANTITY_TEXT}")
         simple = _SIMPLE.fullmatch(value)
         number = _simple(simple[1], simple[2], kind, value) if simple else _parsed(value, kind)
     else:

@@ -17,6 +17,7 @@ from .build import RobotSpecs, is_scene
 from .plan import Planned, resolve_plan
 
 WORLD = "world"
+MAX_FLEET = 1000  # robots: --count beyond this is refused (gen-robot fleet --help); 300 take seconds (benchmarks)
 
 
 def fleet_scene(spec_path: str | Path, count: int, *, columns: int | None = None, spacing: float = 2.0) -> Scene:
@@ -28,8 +29,8 @@ def fleet_scene(spec_path: str | Path, count: int, *, columns: int | None = None
             leaves the floats), or a scene spec for the robot.
         SpecErrors: the robot spec is unreadable or invalid (located in it).
     """
-    if count < 1:
-        raise XacrokitError(f"a fleet needs at least 1 robot, got count {count}")
+    if not 1 <= count <= MAX_FLEET:
+        raise XacrokitError(f"a fleet has 1 to {MAX_FLEET:,} robots, got count {count:,}")
     if not (spacing > 0 and math.isfinite(spacing)):
         raise XacrokitError(f"the spacing of a fleet must be > 0 m, got {spacing!r}")
     given_columns = columns

@@ -14,6 +14,8 @@ from ..model import AXIAL, LIMITED
 from ..physics import tensor, tensor_problem
 from .bodies import Body, BodyKind
 
+AXIS_LENGTHS = (1e-9, 1e9)  # what an axis may measure before it is normalised (resolve divides by its length)
+
 DENSEST = 22_590.0  # kg/m^3: osmium, the densest element
 LIGHTEST = 1.0  # kg/m^3: less than air (1.2); no solid body in a robot is lighter
 
@@ -107,6 +109,13 @@ def _joint_errors(
     axis = joint.get("axis")
     if axis is not None and not any(axis):
         yield raw.error((*path, "axis"), "axis must not be zero; e.g. [0, 0, 1] for the z axis")
+    elif axis is not None and not AXIS_LENGTHS[0] <= math.hypot(*axis) <= AXIS_LENGTHS[1]:
+        yield raw.error(
+            (*path, "axis"),
+            f"axis {list(axis)} has length {math.hypot(*axis):.3g}; a direction is normalised, so give one of length "
+            f"{AXIS_LENGTHS[0]:g} to {AXIS_LENGTHS[1]:g} (e.g. [0, 0, 1]): shorter or longer ones lose their direction "
+            "to rounding",
+        )
     if axis is not None and joint["type"] not in AXIAL:
         yield raw.error((*path, "axis"), f"a {joint['type']} joint takes no axis")
 

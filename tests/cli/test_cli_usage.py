@@ -56,7 +56,11 @@ def test_fleet_spacing_takes_units_and_count_must_be_positive(tmp_path):
     joints = {j.get("name"): j for j in etree.fromstring(urdfs[0]).iter("joint")}
     assert joints["r1_base_link_mount_joint"].find("origin").get("xyz").split()[0] == "1.5"
     for words, message in (
-        (("--count", 0), "argument --count: must be at least 1, got 0"),
+        (("--count", 0), "argument --count: must be 1 to 1,000, got 0"),
+        (("--count", 10**7), "argument --count: must be 1 to 1,000, got 10,000,000 (the limit: every copy"),
+        (("--count", "²"), "argument --count: expected a whole number (digits 0-9), got '²'"),
+        (("--count", 2, "--grid", "²x²"), "--grid expects ROWSxCOLUMNS such as 2x5, got '²x²'"),
+        (("--count", 2, "--spacing", "(" * 300 + "1" + ")" * 300), "argument --spacing: a quantity written with 601"),
         (("--count", 2, "--spacing", "15 deg"), "argument --spacing: '15 deg' is an angle, expected a length"),
         (("--count", 2, "--spacing", "-1"), "argument --spacing: must be > 0 m"),
     ):

@@ -30,6 +30,9 @@ FAULT_WORDS = {
     "bad_unit": ["unknown unit", "expected a length", "unexpected 'x'"],
     "injected_name": ["is not a valid name"],
     "unknown_material": ["material 'no_such_colour' is not in materials"],
+    "not_finite": ["is not a finite number"],
+    "extreme_axis": ["has length"],
+    "deep_quantity": ["at most 200"],
 }
 
 

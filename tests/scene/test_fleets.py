@@ -133,8 +133,9 @@ def test_what_a_fleet_cannot_be_is_refused_with_the_reason(tmp_path):
     from xacrokit.scene import fleet_scene
 
     arm = REPO / "examples" / "robots" / "two_dof_arm.yaml"
-    with pytest.raises(XacrokitError, match="a fleet needs at least 1 robot, got count 0"):
-        fleet_scene(arm, 0)
+    for count in (0, 1001):
+        with pytest.raises(XacrokitError, match=f"a fleet has 1 to 1,000 robots, got count {count:,}"):
+            fleet_scene(arm, count)
     for spacing in (0.0, -1.0, float("inf"), float("nan")):
         with pytest.raises(XacrokitError, match="the spacing of a fleet must be > 0 m"):
             fleet_scene(arm, 2, spacing=spacing)
