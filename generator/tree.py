@@ -3,7 +3,7 @@ which links are roots, which a walk from the roots never reaches (they sit in a 
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from typing import Generic, TypeVar
 
 Key = TypeVar("Key")  # what an edge is known by: a spec path, a joint name
@@ -52,3 +52,25 @@ class Tree(Generic[Key]):
             seen.add(current)
             path.append(current)
         return path
+
+
+def cycles(next_of: Mapping[str, str]) -> list[list[str]]:
+    """The cycles of a "follows" relation (a mimic joint and the joint it mimics): each once, as the names along it
+    starting from the smallest, in a stable order. A chain that ends (at a name with no successor) is no cycle."""
+    found: dict[tuple[str, ...], list[str]] = {}
+    done: set[str] = set()
+    for start in sorted(next_of):
+        path: list[str] = []
+        where: dict[str, int] = {}
+        current: str | None = start
+        while current is not None and current not in done and current not in where:
+            where[current] = len(path)
+            path.append(current)
+            current = next_of.get(current)
+        if current is not None and current in where:  # back to a name of this walk: the loop from there
+            loop = path[where[current] :]
+            first = loop.index(min(loop))
+            loop = loop[first:] + loop[:first]
+            found.setdefault(tuple(loop), loop)
+        done.update(path)
+    return list(found.values())

@@ -9,6 +9,7 @@ from collections.abc import Iterator
 from lxml import etree
 
 from ..model import AXIAL, JOINT_TYPES, LIMITED, MOVING
+from ..tree import cycles
 from .document import Doc, read_float, read_triple
 from .findings import Finding, rule_table
 
@@ -34,8 +35,18 @@ RULES = rule_table(
 )
 
 
+def _mimic_cycles(doc: Doc) -> Iterator[Finding]:
+    """J008 for mimic joints that follow each other round a loop (none of them moves by itself)."""
+    mimics = {j.get("name", ""): m.get("joint", "") for j in doc.joints if (m := j.find("mimic")) is not None}
+    for loop in cycles(mimics):
+        if len(loop) > 1:  # (a joint that mimics itself has its own message)
+            message = f"mimic joints {' -> '.join([*loop, loop[0]])} form a cycle: none of them moves by itself"
+            yield doc.finding("J008", "joint", loop[0], message, doc.joint_by_name.get(loop[0]))
+
+
 def joint_rules(doc: Doc) -> Iterator[Finding]:
     types = {j.get("name", ""): j.get("type", "") for j in doc.joints}
+    yield from _mimic_cycles(doc)
     children = {j.find("child").get("link") for j in doc.joints if j.find("child") is not None}
     for joint in doc.joints:
         name, kind = joint.get("name", ""), joint.get("type", "")

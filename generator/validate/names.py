@@ -12,7 +12,7 @@ from ..errors import SpecError
 from ..load import PathKey, RawSpec, json_path
 from ..model import MOVING, attach_joint_name
 from ..resources import PUBLIC_MACROS
-from ..tree import Tree
+from ..tree import Tree, cycles
 from .bodies import Body
 
 # The robot name becomes a xacro macro name: it must not shadow a library macro or a xacro keyword.
@@ -169,6 +169,14 @@ def reference_errors(
             yield raw.error((*path, "material"), f"material {material!r} is not in materials (known: {known})")
     for name, joint in data.get("joints", {}).items():
         yield from _joint_reference_errors(raw, name, joint, link_names, data.get("links", {}), types)
+    mimics = {n: j["mimic"]["joint"] for n, j in data.get("joints", {}).items() if j.get("mimic")}
+    for loop in cycles(mimics):
+        if len(loop) > 1:  # (a joint that mimics itself is said above)
+            yield raw.error(
+                ("joints", loop[0], "mimic", "joint"),
+                f"mimic joints {' -> '.join([*loop, loop[0]])} form a cycle: none of them moves by itself; let one "
+                "of them be driven (remove its mimic)",
+            )
     for name in data.get("gazebo", {}).get("links", {}):
         if name not in link_names:
             yield raw.error(("gazebo", "links", name), f"gazebo settings for {name!r}, which is not a link", key=True)

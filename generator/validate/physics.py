@@ -169,6 +169,19 @@ def _shape_errors(raw: RawSpec, holder: dict[str, Any], path: PathKey) -> Iterat
     for where, value in values:
         if isinstance(value, float) and not value > 0:
             yield raw.error(where, f"sizes must be > 0 m, got {value!r}")
+    filename = shape.get("mesh", {}).get("filename") if isinstance(shape.get("mesh"), dict) else None
+    bad = next((ch for ch in filename or "" if not _xml_character(ch)), None)
+    if bad is not None:
+        yield raw.error(
+            (*path, "shape", "mesh", "filename"),
+            f"the file name holds U+{ord(bad):04X}, a character an XML file (a URDF) cannot hold; rename the file",
+        )
+
+
+def _xml_character(ch: str) -> bool:
+    """Whether XML 1.0 allows ``ch`` in a document (tab, newline and carriage return of the control characters)."""
+    code = ord(ch)
+    return code in (0x9, 0xA, 0xD) or 0x20 <= code <= 0xD7FF or 0xE000 <= code <= 0xFFFD or 0x10000 <= code <= 0x10FFFF
 
 
 def _inertia_errors(raw: RawSpec, inertia: dict[str, Any], path: PathKey) -> Iterator[SpecError]:

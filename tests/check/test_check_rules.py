@@ -148,3 +148,25 @@ def test_u002_accepts_what_urdf_allows_and_refuses_colours_beyond_1(tmp_path):
     )
     messages = [f.message for f in check(urdf, consumers=[]).findings if f.rule == "U002"]
     assert messages == ['<color rgba="2 0 0 1">: expected 4 numbers from 0 to 1']
+
+
+def test_j008_mimic_joints_in_a_cycle(tmp_path):
+    joint = (
+        '<joint name="{0}" type="revolute"><parent link="base_link"/><child link="{1}"/><axis xyz="0 0 1"/>'
+        '<limit lower="-1" upper="1" effort="1" velocity="1"/><dynamics damping="0.1"/>{2}</joint>'
+        '<link name="{1}">' + BODY + "</link>"
+    )
+    mimic = '<mimic joint="{}"/>'
+    urdf = tmp_path / "cycle.urdf"
+    for mimics, cycle in (((mimic.format("b"), mimic.format("a")), True), (("", mimic.format("a")), False)):
+        urdf.write_text(
+            '<robot name="r"><link name="base_link">' + BODY + "</link>"
+            + joint.format("a", "la", mimics[0]) + joint.format("b", "lb", mimics[1]) + "</robot>",
+            encoding="utf-8",
+        )  # fmt: skip
+        found = [f for f in check(urdf, consumers=[]).findings if f.rule == "J008"]
+        if cycle:
+            (finding,) = found
+            assert finding.element == "a" and "mimic joints a -> b -> a form a cycle" in finding.message
+        else:
+            assert not found

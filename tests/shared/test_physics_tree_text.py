@@ -22,7 +22,7 @@ from xacrokit.physics import (
     tensor_problem,
 )
 from xacrokit.text import num, vec, xacro_text
-from xacrokit.tree import Tree
+from xacrokit.tree import Tree, cycles
 
 
 def integrated_moments(inside, half: tuple[float, float, float], mass: float, cells: int = 80) -> np.ndarray:
@@ -119,3 +119,11 @@ def test_xacro_copies_escaped_text_verbatim(tmp_path_factory, value):
         folder,
     )
     assert root.find("link").get("name") == value
+
+
+def test_cycles_of_a_follows_relation_each_once_from_its_smallest_name():
+    assert cycles({"a": "b", "b": "a", "c": "a", "d": "e", "e": "f", "f": "d", "g": "h"}) == [
+        ["a", "b"],
+        ["d", "e", "f"],
+    ]
+    assert cycles({"x": "x"}) == [["x"]] and cycles({"p": "q", "q": "r"}) == []

@@ -87,3 +87,23 @@ def test_a_joint_from_a_link_to_itself_is_one_error_not_also_a_cycle():
     messages = [e.message for e in errors_of(data)]
     assert any("a joint cannot connect a link to itself" in m for m in messages)
     assert not any("cycle" in m for m in messages), messages
+
+
+def test_mimic_joints_that_follow_each_other_round_a_loop_are_an_error():
+    data = copy.deepcopy(BASE)
+    data["links"]["finger_a"] = {"shape": {"sphere": {"radius": 0.01}}, "mass": 0.1}
+    data["links"]["finger_b"] = {"shape": {"sphere": {"radius": 0.01}}, "mass": 0.1}
+    for name, child, other in (("grip_a", "finger_a", "grip_b"), ("grip_b", "finger_b", "grip_a")):
+        data["joints"][name] = {
+            "type": "prismatic",
+            "parent": "base_link",
+            "child": child,
+            "axis": [0, 1, 0],
+            "limit": {"lower": 0.0, "upper": 0.04, "effort": 10.0, "velocity": 0.1},
+            "mimic": {"joint": other},
+        }
+    (error,) = errors_of(data)
+    assert error.path == "$.joints.grip_a.mimic.joint"
+    assert "mimic joints grip_a -> grip_b -> grip_a form a cycle" in error.message
+    del data["joints"]["grip_b"]["mimic"]  # one of them driven: a chain that ends, no cycle
+    validate(load_text(yaml.safe_dump(data, sort_keys=False), "spec.yaml"))

@@ -3,8 +3,10 @@ limits that suit the joint type, non-zero axes, floating joints only at the root
 
 from __future__ import annotations
 
+import copy
+
 import pytest
-from validate_cases import assert_mistake_located, case_ids, errors_of, mutated
+from validate_cases import BASE, assert_mistake_located, case_ids, errors_of, mutated
 
 CASES = [
     # (what is changed, new value or "DELETE", expected JSON path, words of the message)
@@ -68,3 +70,13 @@ def test_a_floating_joint_must_hang_from_the_root():
         "a floating joint may only hang from the root link (a floating base): simulators "
         "such as MuJoCo reject deeper ones",
     ) in messages
+
+
+@pytest.mark.parametrize("character", ["\x00", "\x01", "\x1f", "\ufffe", "\uffff"])
+def test_a_mesh_file_name_an_xml_file_cannot_hold_is_refused(character):
+    """lxml refused such a name with a traceback once; a URDF cannot carry it at all."""
+    data = copy.deepcopy(BASE)
+    data["links"]["base_link"]["collision"] = {"shape": {"mesh": {"filename": f"package://p/a{character}b.stl"}}}
+    (error,) = errors_of(data)
+    assert error.path == "$.links.base_link.collision.shape.mesh.filename"
+    assert f"U+{ord(character):04X}, a character an XML file (a URDF) cannot hold" in error.message
