@@ -2,7 +2,8 @@
 
 Exit codes (the same words in ``gen-robot --help``, one list: :data:`EXIT_CODES`): 0 success; 1 errors found by
 ``check`` (its warnings too with --strict) or files refused because they were edited since generated (generate,
-fleet); 2 bad input or usage; 130 interrupted; 141 output closed. Errors are one located message, never a traceback.
+fleet); 2 bad input or usage; 70 internal error (a bug; reported in two lines); 130 interrupted; 141 output closed.
+Errors are one located message, never a traceback.
 Imports stay light here: heavy libraries load inside the commands that use them.
 """
 
@@ -288,7 +289,8 @@ def _spacing(text: str) -> float:
 
 EXIT_CODES = (
     "Exit codes: 0 success; 1 errors found (check; with --strict its warnings too) or files refused because they were "
-    "edited since generated (generate, fleet); 2 bad input or usage; 130 interrupted; 141 output closed."
+    "edited since generated (generate, fleet); 2 bad input or usage; 70 internal error (a bug: please report it); "
+    "130 interrupted; 141 output closed."
 )
 
 
@@ -420,6 +422,8 @@ def _shorthand(words: list[str]) -> bool:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run ``gen-robot`` with ``argv`` (default: the process arguments); returns the exit code."""
+    if sys.stdout is None or sys.stdout.closed:  # (started with its output closed: nobody reads what it says)
+        return 141
     parser = build_parser()
     words = list(sys.argv[1:] if argv is None else argv)
     if _shorthand(words):
@@ -452,6 +456,24 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
     except KeyboardInterrupt:
         return 130
+    except Exception as exc:  # a bug of ours, whatever the input: a short report to file, never a bare traceback
+        return _internal_error(exc)
+
+
+INTERNAL_ERROR = 70  # EX_SOFTWARE (sysexits.h): no input may lead here; the tests feed every bad input class
+
+
+def _internal_error(exc: Exception) -> int:
+    import traceback
+
+    where = traceback.extract_tb(exc.__traceback__)[-1] if exc.__traceback__ else None
+    place = f" at {Path(where.filename).name}:{where.lineno}" if where else ""
+    print(
+        f"gen-robot: internal error (a bug in xacrokit {__version__}): {type(exc).__name__}: {exc}{place}\n"
+        "gen-robot: please report it with the command you ran and the files it read",
+        file=sys.stderr,
+    )
+    return INTERNAL_ERROR
 
 
 if __name__ == "__main__":  # pragma: no cover

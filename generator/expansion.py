@@ -24,10 +24,12 @@ import xacro
 import xacro.substitution_args
 
 from .errors import ExpandError
+from .fileio import read_input
 from .guard import guarded, trusted_by_default
 from .resources import package_share_dir
 
 PACKAGE_NAME = "xacrokit"
+MAX_DOCUMENT_BYTES = 64 * 1024 * 1024  # a xacro document (the file expanded; its includes are read by xacro)
 
 
 class _DeclaredArgs(dict):
@@ -215,8 +217,15 @@ def expand_file(
             an unknown package), an untrusted document's expression is refused, or a mapping names an argument the
             document does not declare.
     """
-    source = Path(path).resolve()
     where = str(path)
+    try:  # the document itself: a regular UTF-8 file of sane size (xacro would read a device or a link loop forever)
+        read_input(path, MAX_DOCUMENT_BYTES).decode("utf-8")
+        source = Path(path).resolve()
+    except OSError as exc:
+        raise ExpandError(f"cannot read the document: {exc.strerror}", file=where) from None
+    except (RuntimeError, ValueError) as exc:  # (resolve: a link loop; decode: not UTF-8)
+        why = "it is not UTF-8 text" if isinstance(exc, UnicodeDecodeError) else str(exc)
+        raise ExpandError(f"cannot read the document: {why}", file=where) from None
     table = _DeclaredArgs({str(k): str(v) for k, v in (mappings or {}).items()})
     xacro.all_includes = []  # module-level list xacro only ever appends to
     try:
@@ -230,6 +239,19 @@ def expand_file(
         raise ExpandError(f"not well-formed XML: {exc}", file=_file_stack()[0] if _file_stack() else where) from None
     except (OSError, LookupError) as exc:
         raise ExpandError(str(exc), file=where, file_stack=_file_stack()) from None
+    except RecursionError:  # a macro that calls itself, a file that includes itself: xacro recurses without end
+        macros, files = _macro_stack(), _file_stack()
+        what = (
+            f"macro {macros[0]} calls itself without end" if macros and len(set(macros[:50])) < 50 else
+            f"file {files[0]} includes itself" if files and len(set(files[:50])) < 50 else "it recurses without end"
+        )  # fmt: skip
+        raise ExpandError(
+            f"the document never ends expanding: {what}", file=where, macro_stack=macros[:3], file_stack=files[:3]
+        ) from None
+    except RuntimeError as exc:  # (xacro's own complaints about elements: 'xacro:include: missing attribute')
+        raise ExpandError(str(exc), file=where, file_stack=_file_stack()) from None
+    except UnicodeDecodeError:  # (an included file that is not text)
+        raise ExpandError("an included file is not UTF-8 text", file=where, file_stack=_file_stack()) from None
     undeclared = sorted(set(mappings or {}) - table.declared)
     if undeclared:
         declared = ", ".join(sorted(table.declared)) or "none"

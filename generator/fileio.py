@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import errno
 import os
+import stat
 import tempfile
 from pathlib import Path
 
@@ -18,3 +20,46 @@ def write_text_atomic(path: Path, text: str) -> None:
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+class InputError(OSError):
+    """An input file that cannot be read as one: missing, a folder, a device or FIFO, a link loop, too large."""
+
+
+def read_input(path: str | os.PathLike[str], limit: int) -> bytes:
+    """The bytes of a regular file of at most ``limit`` bytes. A device (``/dev/zero``), a FIFO or a folder is
+    refused before anything is read (a FIFO's open would block), and at most ``limit + 1`` bytes are ever read (a
+    file that grows while it is read).
+
+    Raises:
+        InputError: with ``strerror`` saying why, in words for the user.
+    """
+    require_regular_file(path, limit)
+    try:
+        with open(path, "rb") as handle:
+            data = handle.read(limit + 1)
+    except OSError as exc:
+        raise InputError(exc.errno or 0, exc.strerror or str(exc)) from None
+    if len(data) > limit:
+        raise InputError(errno.EFBIG, f"it is larger than {limit:,} bytes")
+    return data
+
+
+def require_regular_file(path: str | os.PathLike[str], limit: int) -> None:
+    """Refuse (:class:`InputError`) what :func:`read_input` refuses that a look at the file can tell, reading
+    nothing: a missing file, a folder, a device, a FIFO, a link loop, a file over ``limit`` bytes."""
+    try:
+        status = os.stat(path)
+    except FileNotFoundError:
+        raise InputError(errno.ENOENT, os.strerror(errno.ENOENT)) from None
+    except OSError as exc:
+        why = "a loop of symbolic links" if exc.errno == errno.ELOOP else exc.strerror or str(exc)
+        raise InputError(exc.errno or 0, why) from None
+    except ValueError:  # (a NUL in the path)
+        raise InputError(errno.EINVAL, "the path holds a NUL character") from None
+    if stat.S_ISDIR(status.st_mode):
+        raise InputError(errno.EISDIR, "it is a folder, not a file")
+    if not stat.S_ISREG(status.st_mode):
+        raise InputError(errno.EINVAL, "it is not a regular file (a device, a FIFO or a socket)")
+    if status.st_size > limit:
+        raise InputError(errno.EFBIG, f"it is larger than {limit:,} bytes")

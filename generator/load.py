@@ -20,6 +20,7 @@ import yaml
 from yaml.constructor import SafeConstructor
 
 from .errors import SpecError, SpecErrors
+from .fileio import read_input
 from .gcpause import collector_paused
 from .units import NUMBER
 
@@ -389,11 +390,9 @@ def load_file(path: str | Path) -> RawSpec:
     """Read a spec file: UTF-8, at most 16 MiB. Raises :class:`SpecErrors` with a located message."""
     file = str(path)
     try:
-        raw = Path(path).read_bytes()
+        raw = read_input(path, MAX_SPEC_BYTES)
     except OSError as exc:
         raise SpecErrors([SpecError(f"cannot read the spec: {exc.strerror}", file=file)]) from None
-    if len(raw) > MAX_SPEC_BYTES:
-        raise SpecErrors([SpecError(f"the spec is larger than {MAX_SPEC_BYTES} bytes", file=file)])
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:

@@ -27,6 +27,12 @@ PUBLIC_MACROS = (
 )
 
 
+# the elements of the xacro language (xacro:NAME): no macro may be named so, or xacro takes it for the element
+XACRO_KEYWORDS = frozenset(
+    {"include", "macro", "property", "arg", "if", "unless", "call", "insert_block", "element", "attribute"}
+)
+
+
 def _data_dir(package: str) -> Path:
     try:
         traversable = importlib.resources.files(package)

@@ -15,6 +15,7 @@ from pathlib import Path
 
 from ..errors import SpecErrors, XacrokitError
 from ..expansion import expand_file, with_nearby_packages
+from ..fileio import read_input, require_regular_file
 from ..gcpause import collector_paused
 from ..guard import trusting
 from ..model import Robot
@@ -27,6 +28,8 @@ from .numbers import number_rules
 from .references import prefix_rules, reference_rules
 from .spec import kinematics_rules, spec_findings
 from .structure import name_rules, structure_rules
+
+MAX_URDF_BYTES = 256 * 1024 * 1024  # a URDF with meshes inlined runs to megabytes; 256 MiB is far beyond any robot
 
 
 def input_kind(path: Path) -> InputKind:
@@ -66,9 +69,9 @@ def _load_urdf(
     if kind == "xacro":
         return expand_file(path, mappings, package_paths=package_paths), None, None, ()
     try:
-        return path.read_text(encoding="utf-8"), None, None, ()
+        return read_input(path, MAX_URDF_BYTES).decode("utf-8"), None, None, ()
     except (OSError, UnicodeDecodeError) as exc:
-        why = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
+        why = exc.strerror if isinstance(exc, OSError) and exc.strerror else "it is not UTF-8 text"
         raise XacrokitError(f"cannot read {path}: {why}") from None
 
 
@@ -109,6 +112,11 @@ def check(
     if mappings and kind != "xacro":
         raise XacrokitError("name:=value arguments only apply to xacro input")
     names = chosen(consumers)
+    if kind != "spec":  # (a spec's own reader says why it cannot be read, located)
+        try:
+            require_regular_file(path, MAX_URDF_BYTES)
+        except OSError as exc:
+            raise XacrokitError(f"cannot read {path}: {exc.strerror}") from None
     packages: Mapping[str, str | os.PathLike[str]] | None = package_paths
     if kind != "spec":  # a file inside a package finds that package (and its workspace siblings) by itself
         packages = with_nearby_packages(path, package_paths)

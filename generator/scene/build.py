@@ -18,7 +18,7 @@ from ..load import PathKey, RawSpec, load_file
 from ..model import Robot, Scene, ThirdPartyMacro
 from ..resolve import origin as resolve_origin
 from ..resolve import resolve
-from ..resources import schemas_dir
+from ..resources import XACRO_KEYWORDS, schemas_dir
 from ..validate import Quantities, SchemaValidator, inline_refs, schema_errors, validate
 from .plan import Planned, resolve_plan
 
@@ -102,7 +102,9 @@ class RobotSpecs:
     ) -> tuple[Robot | None, Path, list[SpecError], list[SpecError]]:
         """(robot or None, its spec file, errors, warnings) of the spec ``spec`` (relative to ``base``) that the
         scene ``raw`` names at ``path``."""
-        spec_file = (base / spec).resolve()
+        spec_file, problem = resolved_path(base, spec)
+        if problem:
+            return None, spec_file, [raw.error((*path, "spec"), f"cannot use this path: {problem}")], []
         if spec_file in self.loaded:
             return self.loaded[spec_file], spec_file, [], []
         self.loaded[spec_file] = None
@@ -126,13 +128,28 @@ class RobotSpecs:
         return robot, spec_file, [], list(valid.warnings)
 
 
+def resolved_path(base: Path, text: str | Path) -> tuple[Path, str | None]:
+    """``base / text`` made absolute, or the reason it cannot be (a NUL in it, a loop of symbolic links)."""
+    try:
+        return (base / text).resolve(), None
+    except ValueError:
+        return base, "it holds a NUL character"
+    except (RuntimeError, OSError) as exc:  # (Python 3.11 raises RuntimeError on a link loop)
+        return base, str(exc)
+
+
 def third_party(
     raw: RawSpec, entry: dict[str, Any], base: Path, path: PathKey
 ) -> tuple[ThirdPartyMacro | None, list[SpecError]]:
     """The third-party macro an instance's ``xacro`` entry names, or the error that its file is missing."""
-    file = (base / entry["file"]).resolve()
+    file, problem = resolved_path(base, entry["file"])
+    if problem:
+        return None, [raw.error((*path, "xacro", "file"), f"cannot use this path: {problem}")]
     if not file.is_file():
         return None, [raw.error((*path, "xacro", "file"), f"no xacro file at {file}")]
+    if entry["macro"] in XACRO_KEYWORDS:
+        message = f"{entry['macro']!r} is a xacro keyword (xacro:{entry['macro']}), not a macro xacro can call by name"
+        return None, [raw.error((*path, "xacro", "macro"), message)]
     params = tuple((k, _literal(v)) for k, v in entry.get("params", {}).items())
     macro = ThirdPartyMacro(
         file=file,

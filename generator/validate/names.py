@@ -11,26 +11,12 @@ from typing import Any
 from ..errors import SpecError
 from ..load import PathKey, RawSpec, json_path
 from ..model import MOVING, attach_joint_name
-from ..resources import PUBLIC_MACROS
+from ..resources import PUBLIC_MACROS, XACRO_KEYWORDS
 from ..tree import Tree, cycles
 from .bodies import Body
 
 # The robot name becomes a xacro macro name: it must not shadow a library macro or a xacro keyword.
-RESERVED_ROBOT_NAMES = frozenset(
-    {
-        *PUBLIC_MACROS,
-        "call",
-        "arg",
-        "property",
-        "include",
-        "if",
-        "unless",
-        "macro",
-        "element",
-        "attribute",
-        "insert_block",
-    }
-)
+RESERVED_ROBOT_NAMES = frozenset({*PUBLIC_MACROS, *XACRO_KEYWORDS})
 
 
 @dataclass(frozen=True)

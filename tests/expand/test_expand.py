@@ -77,7 +77,8 @@ def test_bad_documents_raise_expand_error(expand, doc, words):
 def test_missing_file_is_an_expand_error(tmp_path):
     with pytest.raises(xacrokit.ExpandError) as caught:
         xacrokit.expand(tmp_path / "missing.xacro")
-    assert caught.value.message == f"cannot read {tmp_path / 'missing.xacro'}: No such file or directory"  # once
+    assert caught.value.message == "cannot read the document: No such file or directory"
+    assert str(caught.value) == f"{tmp_path / 'missing.xacro'}: cannot read the document: No such file or directory"
 
 
 def test_error_names_the_public_macro_stack(expand):

@@ -1,0 +1,90 @@
+"""No input gives a traceback: inputs that are not files, documents that never end expanding, paths no file system
+takes, a closed output. Each is a clear message and the documented exit code; a bug of ours is exit 70 with a short
+report, never a bare traceback."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import pytest
+
+import xacrokit.cli
+from conftest import XACRO_HEADER, gen_robot
+
+
+def assert_refused(result: subprocess.CompletedProcess, words: str, code: int = 2) -> None:
+    assert result.returncode == code and words in result.stderr, (result.returncode, result.stderr)
+    assert "Traceback" not in result.stderr
+
+
+@pytest.fixture
+def odd_files(tmp_path):
+    (tmp_path / "loop_a.urdf").symlink_to(tmp_path / "loop_b.urdf")
+    (tmp_path / "loop_b.urdf").symlink_to(tmp_path / "loop_a.urdf")
+    os.mkfifo(tmp_path / "fifo.urdf")
+    (tmp_path / "binary.xacro").write_bytes(bytes(range(128, 256)) * 8)
+    (tmp_path / "recursive.xacro").write_text(
+        XACRO_HEADER + '<xacro:macro name="m" params="n"><xacro:m n="${n}"/></xacro:macro><xacro:m n="1"/></robot>'
+    )
+    (tmp_path / "self.xacro").write_text(XACRO_HEADER + '<xacro:include filename="self.xacro"/></robot>')
+    (tmp_path / "keyword.xacro").write_text(XACRO_HEADER + "<xacro:include/></robot>")
+    return tmp_path
+
+
+@pytest.mark.parametrize(
+    ("words", "message"),
+    [
+        (("check", "/dev/zero"), "cannot read the spec: it is not a regular file"),
+        (("check", "{d}/fifo.urdf"), "it is not a regular file (a device, a FIFO or a socket)"),
+        (("check", "{d}/loop_a.urdf"), "a loop of symbolic links"),
+        (("check", "{d}"), "it is a folder, not a file"),
+        (("expand", "{d}/loop_a.urdf"), "a loop of symbolic links"),
+        (("expand", "{d}/binary.xacro"), "it is not UTF-8 text"),
+        (("check", "{d}/binary.xacro"), "it is not UTF-8 text"),
+        (("expand", "{d}/recursive.xacro"), "never ends expanding: macro m calls itself without end"),
+        (("check", "{d}/recursive.xacro", "--consumers", "none"), "macro m calls itself without end"),
+        (("expand", "{d}/self.xacro"), "includes itself"),
+        (("expand", "{d}/keyword.xacro"), "xacro:include: missing attribute 'filename'"),
+    ],
+)
+def test_inputs_that_are_no_document_are_refused_with_a_reason(odd_files, words, message):
+    result = gen_robot(*(w.format(d=odd_files) for w in words))
+    assert_refused(result, message)
+
+
+def test_scene_paths_no_file_system_takes_and_macros_named_like_xacro_elements(tmp_path):
+    (tmp_path / "m.xacro").write_text(
+        XACRO_HEADER + '<xacro:macro name="include" params="prefix parent *origin"/></robot>', encoding="utf-8"
+    )
+    nul = tmp_path / "nul.yaml"
+    nul.write_text('scene: s\ninstances:\n  a: {spec: "x\\0y.yaml", prefix: a_, parent: world}\n', encoding="utf-8")
+    assert_refused(
+        gen_robot(nul, "--dry-run"), "nul.yaml:3:13: $.instances.a.spec: cannot use this path: it holds a NUL"
+    )
+    keyword = tmp_path / "keyword.yaml"
+    keyword.write_text(
+        "scene: s\ninstances:\n  a: {xacro: {file: m.xacro, macro: include}, prefix: a_, parent: world}\n",
+        encoding="utf-8",
+    )
+    assert_refused(gen_robot(keyword, "--dry-run"), "'include' is a xacro keyword")
+
+
+def test_a_closed_output_is_exit_141_quietly():
+    result = subprocess.run(
+        [sys.executable, "-m", "xacrokit.cli", "schema"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+        close_fds=True, preexec_fn=lambda: os.close(1),
+    )  # fmt: skip
+    assert result.returncode == 141 and result.stderr == ""
+
+
+def test_a_bug_of_ours_is_exit_70_with_a_short_report(monkeypatch, capsys):
+    def broken(args):
+        raise KeyError("no such thing")
+
+    monkeypatch.setattr(xacrokit.cli, "_cmd_schema", broken)
+    assert xacrokit.cli.main(["schema"]) == 70
+    err = capsys.readouterr().err
+    assert "gen-robot: internal error (a bug in xacrokit" in err and "KeyError: 'no such thing'" in err
+    assert "Traceback" not in err and len(err.splitlines()) == 2
