@@ -26,7 +26,8 @@ RULES = rule_table({"C001": ("consumer-accepts", "error", "an independent consum
 
 CONSUMERS = ("check_urdf", "pinocchio", "yourdfpy", "mujoco")
 TIMEOUT_S = 30.0
-OUTPUT_CAP = 64 * 1024
+OUTPUT_CAP = 64 * 1024  # bytes of a consumer's output kept at its start, and at its end
+HARD_CAP = 64 * 1024 * 1024  # bytes: a consumer printing more is stopped (check_urdf loops printing on a rooted cycle)
 
 
 def chosen(names: Sequence[str] | None) -> list[str]:
@@ -59,22 +60,32 @@ def _check_urdf_binary() -> str | None:
 
 
 def _run_capped(command: list[str], timeout: float, cwd: Path | None = None) -> tuple[int | None, str, bool]:
-    """Run ``command``; return (exit code or None on timeout, first OUTPUT_CAP bytes of output, output overflowed)."""
+    """Run ``command``; return (exit code or None on timeout, its output, overflowed). The output kept is the first and
+    the last OUTPUT_CAP bytes with every line that starts with ``Error:`` in between (check_urdf prints a big robot's
+    whole tree: its length is no verdict); a consumer still printing after HARD_CAP bytes is stopped (overflowed)."""
     process = subprocess.Popen(
         command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, cwd=cwd
     )
-    chunks: list[bytes] = []
+    head: list[bytes] = []
+    tail = bytearray()
+    errors: list[bytes] = []
     overflow = threading.Event()
 
     def drain() -> None:
-        size = 0
+        size, carry = 0, b""
         stream = process.stdout
         assert stream is not None  # (stdout=PIPE)
-        for chunk in iter(lambda: stream.read(4096), b""):
+        for chunk in iter(lambda: stream.read(65536), b""):
             if size < OUTPUT_CAP:
-                chunks.append(chunk)
+                head.append(chunk)
+            else:
+                tail.extend(chunk)
+                del tail[: max(0, len(tail) - OUTPUT_CAP)]
+                *lines, carry = (carry + chunk).split(b"\n")
+                errors.extend(line for line in lines if line.lstrip().startswith(b"Error:"))
+                del errors[20:]
             size += len(chunk)
-            if size > OUTPUT_CAP:
+            if size > HARD_CAP:
                 overflow.set()
                 process.kill()  # a consumer printing without end: its verdict is already clear
                 break
@@ -88,8 +99,8 @@ def _run_capped(command: list[str], timeout: float, cwd: Path | None = None) -> 
         process.wait()
         code = None
     reader.join(timeout=5)
-    text = b"".join(chunks)[:OUTPUT_CAP].decode("utf-8", errors="replace")
-    return (None if overflow.is_set() else code), text, overflow.is_set()
+    kept = b"".join(head) + (b"\n" + b"\n".join(errors) + b"\n" + bytes(tail) if tail else b"")
+    return (None if overflow.is_set() else code), kept.decode("utf-8", errors="replace"), overflow.is_set()
 
 
 def _tail(text: str, lines: int = 3) -> str:
@@ -122,7 +133,7 @@ def run_consumer(
     # in the URDF's own folder: consumers may leave files behind (MuJoCo writes MUJOCO_LOG.TXT where it runs)
     code, output, overflow = _run_capped(command, timeout, cwd=urdf_path.resolve().parent)
     if overflow:
-        return ConsumerResult(name, "rejected", f"printed more than {OUTPUT_CAP} bytes without ending; stopped")
+        return ConsumerResult(name, "rejected", f"printed more than {HARD_CAP:,} bytes without ending; stopped")
     if code is None:
         return ConsumerResult(name, "timeout", f"no verdict within {timeout:g} s; stopped")
     if name == "check_urdf":

@@ -88,3 +88,27 @@ def test_check_urdf_printing_an_error_is_a_rejection_even_when_it_exits_0():
     (consumer,) = report.consumers
     assert consumer.status == "rejected" and "pi/2" in consumer.message, consumer
     assert {f.rule for f in report.errors} == {"U002", "C001"}
+
+
+def test_check_urdf_printing_a_big_robots_whole_tree_is_no_rejection(tmp_path):
+    """check_urdf prints the whole tree, indented by depth: about 2 MB for a 1,000-link chain. Its verdict is its exit
+    status and its error lines (once, output over 64 KiB was called a rejection: robots gen-robot wrote FAILED)."""
+    links = 1000
+    parts = ['<robot name="chain">']
+    for i in range(links):
+        parts.append(
+            f'<link name="l{i}"><inertial><mass value="1"/>'
+            '<inertia ixx="0.01" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial></link>'
+        )
+        if i:
+            parts.append(
+                f'<joint name="j{i}" type="revolute"><parent link="l{i - 1}"/><child link="l{i}"/>'
+                '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+            )
+    urdf = tmp_path / "chain.urdf"
+    urdf.write_text("".join(parts) + "</robot>", encoding="utf-8")
+    result = run_consumer("check_urdf", urdf)
+    assert result.status == "accepted", result
+    broken = tmp_path / "broken.urdf"  # an error line after the long printout still counts
+    broken.write_text("".join(parts).replace('<limit lower="-1"', '<limit lower="x"', 1) + "</robot>", encoding="utf-8")
+    assert run_consumer("check_urdf", broken).status == "rejected"
