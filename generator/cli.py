@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from . import __version__
+from .cliargs import fleet_count, parse_packages, require_plain_output, spacing
 from .errors import XacrokitError
 from .guard import trusting
 from .progress import Progress
@@ -31,8 +32,10 @@ if TYPE_CHECKING:
 def _cmd_expand(args: argparse.Namespace) -> int:
     from .expansion import expand_file, parse_mappings
 
-    urdf = expand_file(args.file, parse_mappings(args.mappings), package_paths=_parse_packages(args.package))
-    if args.output:
+    if args.output is not None:
+        require_plain_output(args.output, folder=False)
+    urdf = expand_file(args.file, parse_mappings(args.mappings), package_paths=parse_packages(args.package))
+    if args.output is not None:
         from .fileio import write_text_atomic
 
         write_text_atomic(Path(args.output), urdf)
@@ -53,6 +56,9 @@ def _progress() -> Iterator[Progress]:
 
 def _cmd_generate(args: argparse.Namespace) -> int:
     from .pipeline import generate
+
+    if args.output is not None:
+        require_plain_output(args.output, folder=True)
 
     with _progress() as progress:
         result = generate(
@@ -112,6 +118,8 @@ def _cmd_fleet(args: argparse.Namespace) -> int:
     from .pipeline import generate_scene
     from .scene import fleet_scene
 
+    if args.output is not None:
+        require_plain_output(args.output, folder=True)
     columns = None
     if args.grid:
         grid = re.fullmatch(r"([0-9]{1,6})x([0-9]{1,6})", args.grid.strip().lower())  # (ASCII digits: not ²x²)
@@ -152,16 +160,6 @@ def _cmd_new(args: argparse.Namespace) -> int:
     return 0
 
 
-def _parse_packages(items: list[str]) -> dict[str, str]:
-    packages = {}
-    for item in items:
-        name, sep, folder = item.partition("=")
-        if not sep or not name:
-            raise XacrokitError(f"--package expects NAME=PATH, got {item!r}")
-        packages[name] = folder
-    return packages
-
-
 def _cmd_check(args: argparse.Namespace) -> int:
     import json
 
@@ -181,7 +179,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
             parse_mappings(args.mappings),
             prefix=args.prefix,
             consumers=consumers,
-            package_paths=_parse_packages(args.package),
+            package_paths=parse_packages(args.package),
             progress=progress,
         )
     if args.json:
@@ -260,33 +258,6 @@ def _add_xacro_options(parser: argparse.ArgumentParser) -> None:
     )
 
 
-FLEET_LIMIT_WHY = "every copy is written out in the URDF; a scene that large is beyond what RViz shows usefully"
-
-
-def _count(text: str) -> int:
-    from .scene.fleet import MAX_FLEET
-
-    if not re.fullmatch(r"[0-9]{1,9}", text.strip()):
-        raise argparse.ArgumentTypeError(f"expected a whole number (digits 0-9), got {text!r}")
-    count = int(text)
-    if not 1 <= count <= MAX_FLEET:
-        why = f" (the limit: {FLEET_LIMIT_WHY})" if count > MAX_FLEET else ""
-        raise argparse.ArgumentTypeError(f"must be 1 to {MAX_FLEET:,}, got {count:,}{why}")
-    return count
-
-
-def _spacing(text: str) -> float:
-    from .units import UnitError, parse_quantity
-
-    try:
-        spacing = parse_quantity(text, "length")
-    except UnitError as exc:
-        raise argparse.ArgumentTypeError(str(exc)) from None
-    if not spacing > 0:
-        raise argparse.ArgumentTypeError(f"must be > 0 m, got {text!r}")
-    return spacing
-
-
 EXIT_CODES = (
     "Exit codes: 0 success; 1 errors found (check; with --strict its warnings too) or files refused because they were "
     "edited since generated (generate, fleet); 2 bad input or usage; 70 internal error (a bug: please report it); "
@@ -324,11 +295,11 @@ def build_parser() -> argparse.ArgumentParser:
         "prefixes r0_, r1_, ... placed row by row on a grid in the world (x along a row, y across rows).",
     )
     fleet.add_argument("spec", help="the robot spec")
-    fleet.add_argument("--count", type=_count, required=True, help="how many robots (1 or more)")
+    fleet.add_argument("--count", type=fleet_count, required=True, help="how many robots (1 or more)")
     fleet.add_argument("--grid", help="ROWSxCOLUMNS, e.g. 2x5 (default: a square grid)")
     fleet.add_argument(
         "--spacing",
-        type=_spacing,
+        type=spacing,
         default=2.0,
         help="distance between neighbours: metres, or with a unit such as '150 cm' (default 2.0)",
     )

@@ -31,7 +31,7 @@ from typing import Literal
 
 from . import __version__
 from .errors import XacrokitError
-from .fileio import write_text_atomic
+from .fileio import remove_leftover_temporaries, write_text_atomic
 from .render import RenderedFile
 
 MANIFEST = ".xacrokit-manifest.json"
@@ -215,6 +215,7 @@ def write(files: list[RenderedFile], root: Path, *, force: bool = False, dry_run
     conflicts = [a for a in actions if a.action == "conflict"]
     if conflicts:
         raise ConflictError(root, conflicts)
+    remove_leftover_temporaries(root)  # (a run killed mid-write leaves its temporary file behind)
     by_path = {f.path: f for f in files}
     done = 0
     try:

@@ -11,7 +11,9 @@ import sys
 import pytest
 
 import xacrokit.cli
-from conftest import XACRO_HEADER, gen_robot
+from conftest import ROBOT_EXAMPLES, XACRO_HEADER, gen_robot
+
+SPEC = next(p for p in ROBOT_EXAMPLES if p.stem == "two_dof_arm")
 
 
 def assert_refused(result: subprocess.CompletedProcess, words: str, code: int = 2) -> None:
@@ -88,3 +90,15 @@ def test_a_bug_of_ours_is_exit_70_with_a_short_report(monkeypatch, capsys):
     err = capsys.readouterr().err
     assert "gen-robot: internal error (a bug in xacrokit" in err and "KeyError: 'no such thing'" in err
     assert "Traceback" not in err and len(err.splitlines()) == 2
+
+
+@pytest.mark.parametrize("command", ["expand", "generate"])
+def test_output_must_be_a_plain_path(tmp_path, command):
+    doc = tmp_path / "a.xacro"
+    doc.write_text('<robot name="r"><link name="a"/></robot>', encoding="utf-8")
+    source = doc if command == "expand" else SPEC
+    words = ["expand", source] if command == "expand" else [source]
+    what = "a regular file" if command == "expand" else "a folder"
+    assert_refused(gen_robot(*words, "-o", "/dev/null"), f"-o /dev/null: it exists and is not {what}")
+    assert_refused(gen_robot(*words, "-o", ""), "-o needs a path")
+    assert os.path.exists("/dev/null") and not os.path.isfile("/dev/null")  # (still the device)

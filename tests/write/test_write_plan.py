@@ -4,6 +4,7 @@ run writes nothing; nothing lands outside the package."""
 from __future__ import annotations
 
 import json
+import os
 
 import pytest
 
@@ -102,3 +103,27 @@ def test_a_manifest_that_is_not_utf8_is_rewritten_without_a_traceback(tmp_path):
     again = gen_robot(SPEC, "-o", out)
     assert again.returncode == 0 and "Traceback" not in again.stderr, again.stderr
     assert json.loads((out / MANIFEST).read_text(encoding="utf-8"))["files"]
+
+
+def test_files_get_the_permissions_the_umask_gives(tmp_path):
+    """mkstemp makes its files 0600; a package's files are read by others (colcon, a web server): 0644 under 022."""
+    old = os.umask(0o022)
+    try:
+        xacrokit.generate(SPEC, tmp_path / "pkg")
+    finally:
+        os.umask(old)
+    modes = {p.stat().st_mode & 0o777 for p in (tmp_path / "pkg").rglob("*") if p.is_file()}
+    assert modes == {0o644}
+
+
+def test_the_next_run_removes_the_temporary_files_a_killed_run_left(tmp_path):
+    out = tmp_path / "pkg"
+    xacrokit.generate(SPEC, out)
+    left = [out / "urdf" / ".two_dof_arm.urdf.k3j_x9q2.tmp", out / ".package.xml.abcdefgh.tmp"]
+    for path in left:
+        path.write_text("half a file", encoding="utf-8")
+    mine = out / "urdf" / ".notes.tmp"  # not one of ours (not mkstemp's name): kept
+    mine.write_text("mine", encoding="utf-8")
+    (out / "urdf" / "two_dof_arm.urdf").unlink()  # (so that the run writes something)
+    xacrokit.generate(SPEC, out)
+    assert not any(path.exists() for path in left) and mine.read_text(encoding="utf-8") == "mine"

@@ -1,0 +1,63 @@
+"""What gen-robot's options take: argument types and checks that say what is wrong with a value (argparse shows
+their messages), and the -o check, shared by the commands that write."""
+
+from __future__ import annotations
+
+import argparse
+import os
+import re
+
+from .errors import XacrokitError
+
+
+def require_plain_output(output: str, *, folder: bool) -> None:
+    """-o must name a file (or a package folder) that is one, or nothing yet: never '' (the working folder), a device
+    (-o /dev/null replaced the device with a file), a FIFO or a socket."""
+    import stat
+
+    if not output.strip():
+        raise XacrokitError("-o needs a path; an empty one would mean the working folder itself")
+    try:
+        mode = os.stat(output).st_mode
+    except OSError:  # (not there yet, or not reachable: the write says which, and that nothing was written)
+        return
+    wanted, what = (stat.S_ISDIR, "a folder") if folder else (stat.S_ISREG, "a regular file")
+    if not wanted(mode):
+        raise XacrokitError(f"-o {output}: it exists and is not {what} (a device, FIFO or socket is never written)")
+
+
+def parse_packages(items: list[str]) -> dict[str, str]:
+    packages = {}
+    for item in items:
+        name, sep, folder = item.partition("=")
+        if not sep or not name:
+            raise XacrokitError(f"--package expects NAME=PATH, got {item!r}")
+        packages[name] = folder
+    return packages
+
+
+FLEET_LIMIT_WHY = "every copy is written out in the URDF; a scene that large is beyond what RViz shows usefully"
+
+
+def fleet_count(text: str) -> int:
+    from .scene.fleet import MAX_FLEET
+
+    if not re.fullmatch(r"[0-9]{1,9}", text.strip()):
+        raise argparse.ArgumentTypeError(f"expected a whole number (digits 0-9), got {text!r}")
+    count = int(text)
+    if not 1 <= count <= MAX_FLEET:
+        why = f" (the limit: {FLEET_LIMIT_WHY})" if count > MAX_FLEET else ""
+        raise argparse.ArgumentTypeError(f"must be 1 to {MAX_FLEET:,}, got {count:,}{why}")
+    return count
+
+
+def spacing(text: str) -> float:
+    from .units import UnitError, parse_quantity
+
+    try:
+        spacing = parse_quantity(text, "length")
+    except UnitError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+    if not spacing > 0:
+        raise argparse.ArgumentTypeError(f"must be > 0 m, got {text!r}")
+    return spacing
