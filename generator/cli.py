@@ -242,7 +242,10 @@ def _add_write_options(parser: argparse.ArgumentParser, default_output: str) -> 
 
 
 def _add_xacro_options(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("mappings", nargs="*", metavar="name:=value", help="values for the document's xacro:args")
+    # (default=[]: argparse otherwise calls an optional list of positionals required when the path is missing)
+    parser.add_argument(
+        "mappings", nargs="*", default=[], metavar="name:=value", help="values for the document's xacro:args"
+    )
     parser.add_argument(
         "--package",
         action="append",
@@ -391,6 +394,17 @@ def _shorthand(words: list[str]) -> bool:
     return spec_like(words[0]) if not words[0].startswith("-") else any(map(spec_like, words))
 
 
+def _closest_options(parser: argparse.ArgumentParser, args: argparse.Namespace, unknown: list[str]) -> str:
+    """'; did you mean --dry-run?' for a mistyped option of the command given (or of gen-robot itself)."""
+    options = set(parser._option_string_actions)  # (argparse keeps them only there)
+    for action in parser._subparsers._group_actions if parser._subparsers else ():
+        chosen = getattr(action, "choices", {}).get(getattr(args, "command", None))
+        if chosen is not None:
+            options |= set(chosen._option_string_actions)
+    close = [m for word in unknown if word.startswith("-") for m in difflib.get_close_matches(word, options, n=1)]
+    return f"; did you mean {', '.join(close)}?" if close else ""
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Run ``gen-robot`` with ``argv`` (default: the process arguments); returns the exit code."""
     if sys.stdout is None or sys.stdout.closed:  # (started with its output closed: nobody reads what it says)
@@ -408,7 +422,9 @@ def main(argv: Sequence[str] | None = None) -> int:
             f"{words[0]!r} is neither a command nor a spec file; {hint}commands: {', '.join(COMMANDS)}, or give a "
             "spec: gen-robot SPEC.yaml"
         )
-    args = parser.parse_args(words)
+    args, unknown = parser.parse_known_args(words)
+    if unknown:
+        parser.error(f"unrecognized arguments: {' '.join(unknown)}{_closest_options(parser, args, unknown)}")
     if not getattr(args, "handler", None):
         parser.print_help(sys.stderr)
         return 2

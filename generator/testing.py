@@ -12,7 +12,7 @@ wheels, fixed frames, materials, unit strings (``"150 mm"``, ``"90 deg"``), ros2
 filenames holding ``${`` / ``$(`` that must come out verbatim. ``invalid_specs()`` draws ``(spec, fault)``: a valid
 spec with exactly one fault of the kind named by ``fault``.
 
-Requires hypothesis (``pip install xacrokit[test]``).
+Requires hypothesis (``pip install '.[test]'`` in a clone of xacrokit).
 """
 
 from __future__ import annotations

@@ -204,6 +204,10 @@ def _parsed(value: str, kind: Kind) -> float:
     tokens = _tokens(value)
     if not tokens:
         raise UnitError(f"expected a quantity such as {_example(kind)!r}, got an empty string")
+    if (
+        kind in ("length", "mass") and ("word", "pi") in tokens
+    ):  # (radius: pi/2 is an angle written where a length goes)
+        raise UnitError(f"{value!r} holds pi, which belongs to angles; a {kind} is written as {_example(kind)!r}")
     scale: Value = Fraction(1)
     if len(tokens) > 1 and tokens[-1][0] == "word" and tokens[-1][1] != "pi":
         unit = tokens.pop()[1]

@@ -21,10 +21,14 @@ from __future__ import annotations
 
 import contextlib
 import errno
+import fcntl
 import hashlib
 import json
 import os
+import shutil
 import stat
+import time
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 from typing import Literal
@@ -33,6 +37,8 @@ from . import __version__
 from .errors import XacrokitError
 from .fileio import remove_leftover_temporaries, write_text_atomic
 from .render import RenderedFile
+
+LOCK_WAIT_S = 10.0  # seconds a second writer of one package waits for the first (XACROKIT_LOCK_WAIT sets another)
 
 MANIFEST = ".xacrokit-manifest.json"
 Action = Literal["create", "identical", "update", "conflict", "overwrite", "remove", "keep"]
@@ -208,10 +214,63 @@ def write(files: list[RenderedFile], root: Path, *, force: bool = False, dry_run
             Not raised by a dry run.
         XacrokitError: the file system refused a write (the message names the file and what was written before it).
     """
+    if dry_run:  # conflicts included: the plan shows them
+        return plan(files, root, force=force, manifest=_read_manifest(root))
+    made = _first_missing(root)  # the folder this run makes (with the package below it), if any
+    try:
+        with package_lock(root):
+            return _write_planned(files, root, force=force, fresh=made is not None)
+    except BaseException:
+        if made is not None:  # a fresh package that could not be written leaves nothing behind
+            shutil.rmtree(made, ignore_errors=True)
+        raise
+
+
+def _first_missing(root: Path) -> Path | None:
+    """The topmost folder of ``root`` (itself included) that does not exist yet, or None when ``root`` exists."""
+    missing = None
+    for folder in (root, *root.parents):
+        if folder.exists() or folder.is_symlink():
+            return missing
+        missing = folder
+    return missing
+
+
+@contextlib.contextmanager
+def package_lock(root: Path, wait: float | None = None) -> Iterator[None]:
+    """Hold an exclusive lock on the package folder (made if missing) while a run plans and writes it: a second
+    gen-robot writing the same folder waits up to ``wait`` seconds, then stops with a message, instead of mixing its
+    files with ours. (flock on the folder itself: no lock file in the package.)"""
+    if wait is None:
+        wait = float(os.environ.get("XACROKIT_LOCK_WAIT", LOCK_WAIT_S))
+    try:
+        root.mkdir(parents=True, exist_ok=True)
+        fd = os.open(root, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0))
+    except OSError as exc:
+        where = exc.filename or root
+        raise XacrokitError(
+            f"cannot write the package in {root}: {where}: {exc.strerror or exc}; nothing was written"
+        ) from exc
+    try:
+        deadline = time.monotonic() + wait
+        while True:
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                break
+            except BlockingIOError:
+                if time.monotonic() > deadline:
+                    raise XacrokitError(
+                        f"another gen-robot is writing {root} (waited {wait:g} s); run again when it is done"
+                    ) from None
+                time.sleep(0.05)
+        yield
+    finally:
+        os.close(fd)  # (closing releases the lock)
+
+
+def _write_planned(files: list[RenderedFile], root: Path, *, force: bool, fresh: bool) -> list[FileAction]:
     previous = _read_manifest(root)
     actions = plan(files, root, force=force, manifest=previous)
-    if dry_run:
-        return actions  # conflicts included: the plan shows them
     conflicts = [a for a in actions if a.action == "conflict"]
     if conflicts:
         raise ConflictError(root, conflicts)
@@ -230,7 +289,13 @@ def write(files: list[RenderedFile], root: Path, *, force: bool = False, dry_run
             write_text_atomic(manifest_path, text)
     except OSError as exc:
         where = exc.filename or root
-        written = f"; {done} file(s) were written before it, each whole" if done else "; nothing was written"
+        written = (
+            "; nothing was written (the new folder is removed)"
+            if fresh
+            else f"; {done} file(s) were written before it, each whole"
+            if done
+            else "; nothing was written"
+        )
         raise XacrokitError(f"cannot write the package in {root}: {where}: {exc.strerror or exc}{written}") from exc
     if not any(a.action == "remove" for a in actions):
         return actions

@@ -40,7 +40,7 @@ def chosen(names: Sequence[str] | None) -> list[str]:
         raise XacrokitError(f"unknown consumer(s) {', '.join(unknown)}; choose from {', '.join(CONSUMERS)}")
     missing = [n for n in names if not available(n)]
     if missing:
-        hint = " (pip install 'xacrokit[mujoco]')" if "mujoco" in missing else ""
+        hint = " (pip install mujoco)" if "mujoco" in missing else ""
         raise XacrokitError(
             f"consumer(s) {', '.join(missing)} asked for but not installed{hint}; install them, or leave them out "
             "of --consumers"
@@ -123,7 +123,7 @@ def run_consumer(
 ) -> ConsumerResult:
     if not available(name):
         return ConsumerResult(
-            name, "unavailable", "not installed" + (" (pip install xacrokit[mujoco])" if name == "mujoco" else "")
+            name, "unavailable", "not installed" + (" (pip install mujoco)" if name == "mujoco" else "")
         )
     if name == "check_urdf":
         command = [_check_urdf_binary() or "check_urdf", str(urdf_path.resolve())]

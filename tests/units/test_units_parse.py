@@ -168,3 +168,10 @@ def test_the_one_number_fast_path_reads_what_the_parser_reads(number, unit):
             parse_quantity(text, kind)
     else:
         assert parse_quantity(text, kind) == expected
+
+
+@pytest.mark.parametrize(("value", "kind"), [("pi/2", "length"), ("2*pi", "mass"), ("0.1*pi", "length")])
+def test_pi_belongs_to_angles(value, kind):
+    with pytest.raises(UnitError, match=f"holds pi, which belongs to angles; a {kind} is written as"):
+        parse_quantity(value, kind)
+    assert parse_quantity(value, "angle") > 0

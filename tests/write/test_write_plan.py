@@ -10,6 +10,7 @@ import pytest
 
 import xacrokit
 from conftest import REPO, gen_robot, snapshot
+from xacrokit.errors import XacrokitError
 from xacrokit.render import RenderedFile
 from xacrokit.write import MANIFEST, ConflictError, plan, write
 
@@ -127,3 +128,38 @@ def test_the_next_run_removes_the_temporary_files_a_killed_run_left(tmp_path):
     (out / "urdf" / "two_dof_arm.urdf").unlink()  # (so that the run writes something)
     xacrokit.generate(SPEC, out)
     assert not any(path.exists() for path in left) and mine.read_text(encoding="utf-8") == "mine"
+
+
+def test_a_second_writer_waits_for_the_first_then_stops_with_a_message(tmp_path, monkeypatch):
+    from xacrokit.write import package_lock
+
+    out = tmp_path / "pkg"
+    with package_lock(out):  # the first writer holds the folder
+        with pytest.raises(XacrokitError, match=r"another gen-robot is writing .*pkg \(waited 0.2 s\)"):
+            with package_lock(out, wait=0.2):
+                pass
+        monkeypatch.setenv("XACROKIT_LOCK_WAIT", "0.5")  # a whole second process: refused after its wait
+        result = gen_robot(SPEC, "-o", out)
+    assert result.returncode == 2 and "another gen-robot is writing" in result.stderr, result.stderr
+    assert "(waited 0.5 s)" in result.stderr
+    assert not any(out.iterdir())
+    assert xacrokit.generate(SPEC, out).actions  # free again once the first is done
+
+
+def test_a_fresh_package_that_cannot_be_written_leaves_nothing_behind(tmp_path, monkeypatch):
+    import xacrokit.write
+
+    calls = []
+
+    def full_disk(path, text):
+        calls.append(path)
+        if len(calls) == 3:
+            raise OSError(28, "No space left on device", str(path))
+        real(path, text)
+
+    real = xacrokit.write.write_text_atomic
+    monkeypatch.setattr(xacrokit.write, "write_text_atomic", full_disk)
+    out = tmp_path / "new" / "pkg"
+    with pytest.raises(XacrokitError, match="No space left on device; nothing was written"):
+        xacrokit.generate(SPEC, out)
+    assert len(calls) == 3 and not (tmp_path / "new").exists()
