@@ -8,10 +8,12 @@ prints one JSON line (it imports little, and the package ``xacrokit.check`` load
 
 from __future__ import annotations
 
+import contextlib
 import importlib.util
 import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -64,8 +66,18 @@ def _run_capped(command: list[str], timeout: float, cwd: Path | None = None) -> 
     the last OUTPUT_CAP bytes with every line that starts with ``Error:`` in between (check_urdf prints a big robot's
     whole tree: its length is no verdict); a consumer still printing after HARD_CAP bytes is stopped (overflowed)."""
     process = subprocess.Popen(
-        command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, cwd=cwd
+        command,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        stdin=subprocess.DEVNULL,
+        cwd=cwd,
+        start_new_session=True,  # its own process group: stopping it stops what it started too
     )
+
+    def stop() -> None:
+        with contextlib.suppress(ProcessLookupError, PermissionError):
+            os.killpg(process.pid, signal.SIGKILL)  # (a child left behind would hold the pipe open)
+
     head: list[bytes] = []
     tail = bytearray()
     errors: list[bytes] = []
@@ -87,7 +99,7 @@ def _run_capped(command: list[str], timeout: float, cwd: Path | None = None) -> 
             size += len(chunk)
             if size > HARD_CAP:
                 overflow.set()
-                process.kill()  # a consumer printing without end: its verdict is already clear
+                stop()  # a consumer printing without end: its verdict is already clear
                 break
 
     reader = threading.Thread(target=drain, daemon=True)
@@ -95,7 +107,7 @@ def _run_capped(command: list[str], timeout: float, cwd: Path | None = None) -> 
     try:
         code: int | None = process.wait(timeout=timeout)
     except subprocess.TimeoutExpired:
-        process.kill()
+        stop()
         process.wait()
         code = None
     reader.join(timeout=5)

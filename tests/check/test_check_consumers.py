@@ -3,6 +3,9 @@ said in one line, and nothing left behind."""
 
 from __future__ import annotations
 
+import time
+from pathlib import Path
+
 import pytest
 from check_helpers import BODY, CORPUS, MOVED_MASSLESS
 
@@ -31,15 +34,33 @@ def test_rooted_cycle_is_reported_and_check_urdf_is_not_left_running(tmp_path):
     assert forced.status in ("rejected", "timeout") and forced.failed
 
 
+def running(pid: int) -> bool:
+    """Whether process ``pid`` runs (a zombie, dead but not yet reaped by whoever adopted it, does not)."""
+    try:
+        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+    except (OSError, IndexError):
+        return False
+    return state != "Z"
+
+
 def test_consumer_that_hangs_is_stopped_and_reported(tmp_path, monkeypatch):
     import xacrokit.check.consumers as consumers
 
     monkeypatch.setattr(consumers, "_check_urdf_binary", lambda: str(tmp_path / "sleeper"))
     sleeper = tmp_path / "sleeper"
-    sleeper.write_text("#!/bin/sh\nsleep 30\n", encoding="utf-8")
+    sleeper.write_text(f"#!/bin/sh\nsleep 30 &\necho $! > {tmp_path / 'child'}\nwait\n", encoding="utf-8")
     sleeper.chmod(0o755)
+    started = time.monotonic()
     result = consumers.run_consumer("check_urdf", CORPUS / "J002_pass.urdf", timeout=0.5)
     assert result.status == "timeout" and result.failed
+    assert time.monotonic() - started < 4  # (a child holding the pipe open once kept the reader 5 s more)
+    child = int((tmp_path / "child").read_text())
+    for _ in range(50):  # what the consumer started is stopped with it (its process group)
+        if not running(child):
+            break
+        time.sleep(0.05)
+    else:
+        pytest.fail(f"the consumer's child {child} is still running")
 
 
 def test_consumers_asked_for_by_name_must_be_installed(monkeypatch, tmp_path):
