@@ -298,7 +298,7 @@ def build_parser() -> argparse.ArgumentParser:
         "prefixes r0_, r1_, ... placed row by row on a grid in the world (x along a row, y across rows).",
     )
     fleet.add_argument("spec", help="the robot spec")
-    fleet.add_argument("--count", type=fleet_count, required=True, help="how many robots (1 or more)")
+    fleet.add_argument("--count", type=fleet_count, required=True, help="how many robots (1 to 1,000)")
     fleet.add_argument("--grid", help="ROWSxCOLUMNS, e.g. 2x5 (default: a square grid)")
     fleet.add_argument(
         "--spacing",

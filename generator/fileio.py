@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import contextlib
 import errno
+import glob
 import os
 import re
 import stat
 import tempfile
+from collections.abc import Iterable
 from pathlib import Path
 
 TEMPORARY = re.compile(r"\..+\.[A-Za-z0-9_]{8}\.tmp")  # what mkstemp names ours: .NAME.XXXXXXXX.tmp
@@ -34,17 +36,20 @@ def _umask() -> int:
     return mask
 
 
-def remove_leftover_temporaries(folder: Path) -> list[Path]:
-    """Delete the temporary files :func:`write_text_atomic` left under ``folder`` when a run was killed mid-write (a
-    file ``.NAME.XXXXXXXX.tmp`` beside a file NAME or where one was being created); returns what was removed."""
+def remove_leftover_temporaries(root: Path, paths: Iterable[str]) -> list[Path]:
+    """Delete the temporary files :func:`write_text_atomic` left for the files ``paths`` (relative to ``root``) when a
+    run was killed mid-write: ``.NAME.XXXXXXXX.tmp`` beside each, mkstemp's names only, nothing else and nowhere else.
+    Returns what was removed."""
     removed: list[Path] = []
-    if not folder.is_dir():
-        return removed
-    for candidate in folder.rglob(".*.tmp"):
-        if TEMPORARY.fullmatch(candidate.name) and candidate.is_file() and not candidate.is_symlink():
-            with contextlib.suppress(OSError):
-                candidate.unlink()
-                removed.append(candidate)
+    for relative in paths:
+        target = root / relative
+        if not target.parent.is_dir():
+            continue
+        for candidate in target.parent.glob(f".{glob.escape(target.name)}.*.tmp"):
+            if TEMPORARY.fullmatch(candidate.name) and candidate.is_file() and not candidate.is_symlink():
+                with contextlib.suppress(OSError):
+                    candidate.unlink()
+                    removed.append(candidate)
     return removed
 
 

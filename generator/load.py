@@ -281,7 +281,9 @@ def _number(text: str, tag: str) -> float | int:
         if ":" in text:
             raise _Unreadable(f"{text} is a YAML 1.1 sexagesimal (base 60) number; write it in decimal, or quote text")
         raise _Unreadable(f"{text} is not a decimal number; write digits 0-9 with a point and an exponent if needed")
-    if tag == _INT and _DIGITS.fullmatch(text):  # (010 is ten, as in YAML 1.2, not YAML 1.1's octal eight)
+    if tag == _INT and not _DIGITS.fullmatch(text):  # (!!int 1.5)
+        raise _Unreadable(f"{text} is not a whole number, which !!int asks for")
+    if tag == _INT:  # (010 is ten, as in YAML 1.2, not YAML 1.1's octal eight)
         integer = int(text)
         if abs(integer) > _LARGEST:
             raise _Unreadable(f"{text} is beyond any double (about 1.8e308); not a finite number")
@@ -289,6 +291,8 @@ def _number(text: str, tag: str) -> float | int:
     value = float(text)
     if not math.isfinite(value):
         raise _Unreadable(f"{text} is beyond any double (about 1.8e308); not a finite number")
+    if value == 0.0 and any(digit in "123456789" for digit in text.lower().partition("e")[0]):
+        raise _Unreadable(f"{text} is below any double (about 5e-324) and would read as 0")
     return value
 
 
@@ -306,7 +310,7 @@ def _scalar_value(event: Any) -> Any:
         return _number(value, _FLOAT) if event.tag is None and not event.style and _NUMBER.fullmatch(value) else value
     if tag in (_FLOAT, _INT):
         return _number(value, tag)
-    if tag == _TIMESTAMP and event.tag is None and not event.style:
+    if tag == _TIMESTAMP and (event.tag is not None or not event.style):  # (plain, or tagged !!timestamp)
         raise _Unreadable(f"{value} reads as a date in YAML; a spec has no dates: write a number, or quote text")
     if tag not in _PLAIN_TAGS:
         shown = tag.replace("tag:yaml.org,2002:", "!!")

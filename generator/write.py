@@ -24,8 +24,8 @@ import errno
 import fcntl
 import hashlib
 import json
+import math
 import os
-import shutil
 import stat
 import time
 from collections.abc import Iterator
@@ -216,14 +216,32 @@ def write(files: list[RenderedFile], root: Path, *, force: bool = False, dry_run
     """
     if dry_run:  # conflicts included: the plan shows them
         return plan(files, root, force=force, manifest=_read_manifest(root))
-    made = _first_missing(root)  # the folder this run makes (with the package below it), if any
+    made = _first_missing(root)  # the topmost folder this run makes (the package, maybe folders above it)
+    written: list[Path] = []
     try:
         with package_lock(root):
-            return _write_planned(files, root, force=force, fresh=made is not None)
+            return _write_planned(files, root, force=force, fresh=made is not None, written=written)
     except BaseException:
         if made is not None:  # a fresh package that could not be written leaves nothing behind
-            shutil.rmtree(made, ignore_errors=True)
+            _undo_fresh(root, made, written)
         raise
+
+
+def _undo_fresh(root: Path, made: Path, written: list[Path]) -> None:
+    """Remove what a run that made ``made`` wrote, then every folder from ``root`` up to ``made`` that this leaves
+    empty. Only this run's files go and only empty folders: another run's package in the same folders stays whole."""
+    for path in written:
+        with contextlib.suppress(OSError):
+            path.unlink()
+    if root.is_dir() and not root.is_symlink():
+        for inner, _, _ in sorted(os.walk(root), key=lambda entry: -len(entry[0])):  # (deepest first)
+            with contextlib.suppress(OSError):
+                os.rmdir(inner)
+    for above in (root, *root.parents):
+        with contextlib.suppress(OSError):
+            os.rmdir(above)  # (fails, and stops nothing, when another run's files are in it)
+        if above == made:
+            break
 
 
 def _first_missing(root: Path) -> Path | None:
@@ -242,7 +260,7 @@ def package_lock(root: Path, wait: float | None = None) -> Iterator[None]:
     gen-robot writing the same folder waits up to ``wait`` seconds, then stops with a message, instead of mixing its
     files with ours. (flock on the folder itself: no lock file in the package.)"""
     if wait is None:
-        wait = float(os.environ.get("XACROKIT_LOCK_WAIT", LOCK_WAIT_S))
+        wait = lock_wait()
     try:
         root.mkdir(parents=True, exist_ok=True)
         fd = os.open(root, os.O_RDONLY | getattr(os, "O_DIRECTORY", 0))
@@ -268,35 +286,55 @@ def package_lock(root: Path, wait: float | None = None) -> Iterator[None]:
         os.close(fd)  # (closing releases the lock)
 
 
-def _write_planned(files: list[RenderedFile], root: Path, *, force: bool, fresh: bool) -> list[FileAction]:
+def lock_wait() -> float:
+    """Seconds to wait for another writer: XACROKIT_LOCK_WAIT when set (0 to 3600), else LOCK_WAIT_S."""
+    text = os.environ.get("XACROKIT_LOCK_WAIT", "").strip()
+    if not text:
+        return LOCK_WAIT_S
+    try:
+        wait = float(text)
+    except ValueError:
+        wait = math.nan
+    if not 0 <= wait <= 3600:  # (nan fails too)
+        raise XacrokitError(f"XACROKIT_LOCK_WAIT must be a number of seconds from 0 to 3600, got {text!r}")
+    return wait
+
+
+def _write_planned(
+    files: list[RenderedFile], root: Path, *, force: bool, fresh: bool, written: list[Path]
+) -> list[FileAction]:
+    """:func:`write` under the lock; each file written is appended to ``written``."""
     previous = _read_manifest(root)
     actions = plan(files, root, force=force, manifest=previous)
     conflicts = [a for a in actions if a.action == "conflict"]
     if conflicts:
         raise ConflictError(root, conflicts)
-    remove_leftover_temporaries(root)  # (a run killed mid-write leaves its temporary file behind)
+    remove_leftover_temporaries(root, [a.path for a in actions] + [MANIFEST])  # (a killed run leaves them)
     by_path = {f.path: f for f in files}
     done = 0
     try:
         for action in actions:
             if action.action in ("create", "update", "overwrite"):
-                write_text_atomic(_inside(root, action.path), by_path[action.path].content)
+                target = _inside(root, action.path)
+                write_text_atomic(target, by_path[action.path].content)
+                written.append(target)
                 done += 1
         manifest = {"generator": f"xacrokit {__version__}", "files": {f.path: _digest(f.content) for f in files}}
         text = json.dumps(manifest, indent=2, sort_keys=True) + "\n"
         manifest_path = root / MANIFEST
         if not manifest_path.is_file() or manifest_path.read_bytes() != text.encode("utf-8"):
             write_text_atomic(manifest_path, text)
+            written.append(manifest_path)
     except OSError as exc:
         where = exc.filename or root
-        written = (
-            "; nothing was written (the new folder is removed)"
+        said = (
+            "; nothing was written (what this run wrote is removed)"
             if fresh
             else f"; {done} file(s) were written before it, each whole"
             if done
             else "; nothing was written"
         )
-        raise XacrokitError(f"cannot write the package in {root}: {where}: {exc.strerror or exc}{written}") from exc
+        raise XacrokitError(f"cannot write the package in {root}: {where}: {exc.strerror or exc}{said}") from exc
     if not any(a.action == "remove" for a in actions):
         return actions
     identities: set[tuple[int, int]] = set()  # what this run wrote: on a case-blind disk a stale name may be one

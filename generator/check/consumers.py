@@ -110,6 +110,10 @@ def _run_capped(command: list[str], timeout: float, cwd: Path | None = None) -> 
         stop()
         process.wait()
         code = None
+    except BaseException:  # (Ctrl-C: the consumer, in a session of its own, did not get it)
+        stop()
+        raise
+    stop()  # what the consumer started and left running (it would hold the output pipe open)
     reader.join(timeout=5)
     kept = b"".join(head) + (b"\n" + b"\n".join(errors) + b"\n" + bytes(tail) if tail else b"")
     return (None if overflow.is_set() else code), kept.decode("utf-8", errors="replace"), overflow.is_set()

@@ -130,6 +130,22 @@ def test_check_urdf_printing_a_big_robots_whole_tree_is_no_rejection(tmp_path):
     urdf.write_text("".join(parts) + "</robot>", encoding="utf-8")
     result = run_consumer("check_urdf", urdf)
     assert result.status == "accepted", result
-    broken = tmp_path / "broken.urdf"  # an error line after the long printout still counts
+    broken = tmp_path / "broken.urdf"  # (check_urdf stops at the unreadable limit: a plain rejection)
     broken.write_text("".join(parts).replace('<limit lower="-1"', '<limit lower="x"', 1) + "</robot>", encoding="utf-8")
     assert run_consumer("check_urdf", broken).status == "rejected"
+
+
+def test_an_error_line_after_a_long_printout_is_a_rejection(tmp_path, monkeypatch):
+    """The output kept is its start and end and every Error: line between: one after 64 KiB still counts."""
+    import xacrokit.check.consumers as consumers
+
+    fake = tmp_path / "fake_check_urdf"
+    fake.write_text(
+        "#!/bin/sh\necho 'Successfully Parsed XML'\nhead -c 300000 /dev/zero | tr '\\0' 'x'\necho\n"
+        "echo 'Error:   limit lower is not a number'\nhead -c 100000 /dev/zero | tr '\\0' 'y'\necho\nexit 0\n",
+        encoding="utf-8",
+    )
+    fake.chmod(0o755)
+    monkeypatch.setattr(consumers, "_check_urdf_binary", lambda: str(fake))
+    result = consumers.run_consumer("check_urdf", CORPUS / "J002_pass.urdf")
+    assert result.status == "rejected" and "limit lower is not a number" in result.message, result

@@ -19,14 +19,17 @@ ESCAPES = [
     "('{0._' + '_class_' + '_}').format(x)",
     "python.type(x)",
     "python.vars(x)",
-    "getattr(x, 'y')",
     "m._private",
     "__import__('os')",
-    "exec('1')",
-    "open('/etc/passwd')",
     "b'__class__'",
     "f'{x.__class__}'",
+    # a walk from a generator's frame to a module's globals, with no underscore (found in review)
+    "python.list((g := (g.gi_frame.f_back.f_back.f_globals for x in [0])) and g)[0]['os'].getpid()",
+    "(x for x in [0]).gi_frame.f_back.f_globals",
+    "python.type.mro(python.type)",
 ]
+# $(eval ...) sees Python's builtins: there these names are refused too
+BUILTIN_ESCAPES = ["getattr(x, 'y')", "exec('1')", "open('/etc/passwd')", "vars()", "type(x)", "eval('1')"]
 
 # what real descriptions write (UR, Franka, KUKA, our own library): all allowed
 REAL = [
@@ -45,6 +48,9 @@ REAL = [
     "name.split('_')[0].upper()",
     "xacro.fatal('inertial: bad', python.repr(v))",
     "_xacrokit_pivot2 > 0",  # our own private properties: a name with one leading _ is a property, not internals
+    "type",  # a macro's own parameter named type (a joint macro's: params="name type parent child")
+    "cfg.type + '_joint'",  # a field of a xacro.dotify'd YAML file
+    "'revolute' if type == 'r' else input",  # (in ${...} these are the document's names, not Python's builtins)
 ]
 
 
@@ -53,9 +59,38 @@ def test_escapes_are_refused(expression):
     assert expression_problem(expression) is not None
 
 
+@pytest.mark.parametrize("expression", BUILTIN_ESCAPES)
+def test_escapes_through_builtins_are_refused_in_eval(expression):
+    assert expression_problem(expression, builtins=True) is not None
+
+
 @pytest.mark.parametrize("expression", REAL)
 def test_real_expressions_pass(expression):
     assert expression_problem(expression) is None
+
+
+NAMESPACE_ESCAPES = [
+    "<link name=\"${python['type'] is not None}\"/>",  # the python namespace is a dict: a subscript reaches type
+    # a dunder name held in a property (never evaluated, so never parsed) used as a key
+    '<xacro:property name="k" value="__subclasses__"/>'
+    "<link name=\"${python['vars'](python['type'])[k] is not None}\"/>",
+]
+
+
+@pytest.mark.parametrize("body", NAMESPACE_ESCAPES, ids=["subscript", "property-held-dunder"])
+def test_type_and_vars_are_out_of_reach_when_untrusted(tmp_path, body):
+    doc = XACRO_HEADER + body + "\n</robot>\n"
+    with pytest.raises(xacrokit.ExpandError, match="type"):
+        expand_text(doc, tmp_path)
+    assert expand_text(doc, tmp_path, trust=True).find("link").get("name") == "True"
+
+
+def test_a_macro_parameter_named_type_expands_untrusted(tmp_path):
+    doc = XACRO_HEADER + (
+        '<xacro:macro name="j" params="name type"><joint name="${name}" type="${type}"/></xacro:macro>'
+        '<xacro:j name="a" type="revolute"/></robot>'
+    )
+    assert expand_text(doc, tmp_path).find("joint").get("type") == "revolute"
 
 
 # a harmless use of the escape's first step: the object graph is in reach when trusted, refused when not

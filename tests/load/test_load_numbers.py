@@ -71,3 +71,17 @@ def test_generate_refuses_them_with_exit_2_and_writes_nothing(tmp_path, replace,
 def test_a_valid_spec_still_loads_every_number_it_had():
     data = load_text(SPEC.read_text(encoding="utf-8"), "s.yaml").data
     assert data == yaml.safe_load(SPEC.read_text(encoding="utf-8"))
+
+
+@pytest.mark.parametrize(
+    ("text", "words"),
+    [
+        ("!!timestamp 2001-12-14", "reads as a date"),  # (an explicit tag once skipped the date check: 1975 kg)
+        ("!!int 1.5", "1.5 is not a whole number"),
+        ("1e-400", "1e-400 is below any double"),
+    ],
+)
+def test_tagged_dates_fractional_ints_and_underflow_are_errors(text, words):
+    with pytest.raises(SpecErrors, match=words):
+        load_text(f"x: {text}\n", "s.yaml")
+    assert load_text("x: 0e5\n", "s.yaml").data == {"x": 0.0}  # (a zero written as one is a zero)

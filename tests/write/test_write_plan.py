@@ -125,9 +125,12 @@ def test_the_next_run_removes_the_temporary_files_a_killed_run_left(tmp_path):
         path.write_text("half a file", encoding="utf-8")
     mine = out / "urdf" / ".notes.tmp"  # not one of ours (not mkstemp's name): kept
     mine.write_text("mine", encoding="utf-8")
+    other = out / "urdf" / ".editor.abcdefgh.tmp"  # another program's, beside no file of the package: kept
+    other.write_text("theirs", encoding="utf-8")
     (out / "urdf" / "two_dof_arm.urdf").unlink()  # (so that the run writes something)
     xacrokit.generate(SPEC, out)
     assert not any(path.exists() for path in left) and mine.read_text(encoding="utf-8") == "mine"
+    assert other.read_text(encoding="utf-8") == "theirs"
 
 
 def test_a_second_writer_waits_for_the_first_then_stops_with_a_message(tmp_path, monkeypatch):
@@ -163,3 +166,36 @@ def test_a_fresh_package_that_cannot_be_written_leaves_nothing_behind(tmp_path, 
     with pytest.raises(XacrokitError, match="No space left on device; nothing was written"):
         xacrokit.generate(SPEC, out)
     assert len(calls) == 3 and not (tmp_path / "new").exists()
+
+
+def test_a_failed_fresh_package_removes_only_its_own_files(tmp_path, monkeypatch):
+    """Two packages made side by side in a new folder: the one that fails leaves the other whole (the review found
+    that removing the new folder wholesale deleted a sibling run's package)."""
+    import xacrokit.write
+
+    out = tmp_path / "new"
+    xacrokit.generate(SPEC, out / "a")
+    (out / "a" / "mine.txt").write_text("a user's file", encoding="utf-8")
+    monkeypatch.setattr(xacrokit.write, "_first_missing", lambda root: out)  # as if b's run had made new/ too
+    real = xacrokit.write.write_text_atomic
+    calls = []
+
+    def full_disk(path, text):
+        calls.append(path)
+        if len(calls) == 3:
+            raise OSError(28, "No space left on device", str(path))
+        real(path, text)
+
+    monkeypatch.setattr(xacrokit.write, "write_text_atomic", full_disk)
+    before = snapshot(out / "a")
+    with pytest.raises(XacrokitError, match="what this run wrote is removed"):
+        xacrokit.generate(SPEC, out / "b")
+    assert not (out / "b").exists() and snapshot(out / "a") == before
+
+
+@pytest.mark.parametrize("value", ["abc", "nan", "-1", "1e9"])
+def test_a_lock_wait_that_is_no_number_of_seconds_is_refused(tmp_path, monkeypatch, value):
+    monkeypatch.setenv("XACROKIT_LOCK_WAIT", value)
+    with pytest.raises(XacrokitError, match="XACROKIT_LOCK_WAIT must be a number of seconds from 0 to 3600"):
+        xacrokit.generate(SPEC, tmp_path / "pkg")
+    assert not (tmp_path / "pkg").exists()
