@@ -149,26 +149,35 @@ def test_a_second_writer_waits_for_the_first_then_stops_with_a_message(tmp_path,
     assert xacrokit.generate(SPEC, out).actions  # free again once the first is done
 
 
-def test_a_fresh_package_that_cannot_be_written_leaves_nothing_behind(tmp_path, monkeypatch):
+@pytest.fixture
+def full_disk(monkeypatch):
+    """Called, it makes the disk fill at the third file the write stage writes from then on; it returns the list of
+    the paths the stage tried."""
     import xacrokit.write
 
-    calls = []
+    def install() -> list:
+        real, calls = xacrokit.write.write_text_atomic, []
 
-    def full_disk(path, text):
-        calls.append(path)
-        if len(calls) == 3:
-            raise OSError(28, "No space left on device", str(path))
-        real(path, text)
+        def write_until_full(path, text):
+            calls.append(path)
+            if len(calls) == 3:
+                raise OSError(28, "No space left on device", str(path))
+            real(path, text)
 
-    real = xacrokit.write.write_text_atomic
-    monkeypatch.setattr(xacrokit.write, "write_text_atomic", full_disk)
-    out = tmp_path / "new" / "pkg"
+        monkeypatch.setattr(xacrokit.write, "write_text_atomic", write_until_full)
+        return calls
+
+    return install
+
+
+def test_a_fresh_package_that_cannot_be_written_leaves_nothing_behind(tmp_path, full_disk):
+    tried = full_disk()
     with pytest.raises(XacrokitError, match="No space left on device; nothing was written"):
-        xacrokit.generate(SPEC, out)
-    assert len(calls) == 3 and not (tmp_path / "new").exists()
+        xacrokit.generate(SPEC, tmp_path / "new" / "pkg")
+    assert len(tried) == 3 and not (tmp_path / "new").exists()
 
 
-def test_a_failed_fresh_package_removes_only_its_own_files(tmp_path, monkeypatch):
+def test_a_failed_fresh_package_removes_only_its_own_files(tmp_path, monkeypatch, full_disk):
     """Two packages made side by side in a new folder: the one that fails leaves the other whole (the review found
     that removing the new folder wholesale deleted a sibling run's package)."""
     import xacrokit.write
@@ -176,18 +185,9 @@ def test_a_failed_fresh_package_removes_only_its_own_files(tmp_path, monkeypatch
     out = tmp_path / "new"
     xacrokit.generate(SPEC, out / "a")
     (out / "a" / "mine.txt").write_text("a user's file", encoding="utf-8")
-    monkeypatch.setattr(xacrokit.write, "_first_missing", lambda root: out)  # as if b's run had made new/ too
-    real = xacrokit.write.write_text_atomic
-    calls = []
-
-    def full_disk(path, text):
-        calls.append(path)
-        if len(calls) == 3:
-            raise OSError(28, "No space left on device", str(path))
-        real(path, text)
-
-    monkeypatch.setattr(xacrokit.write, "write_text_atomic", full_disk)
     before = snapshot(out / "a")
+    monkeypatch.setattr(xacrokit.write, "_first_missing", lambda root: out)  # as if b's run had made new/ too
+    full_disk()
     with pytest.raises(XacrokitError, match="what this run wrote is removed"):
         xacrokit.generate(SPEC, out / "b")
     assert not (out / "b").exists() and snapshot(out / "a") == before
