@@ -155,7 +155,7 @@ def guarded(trust: bool) -> Iterator[None]:
             raise xacro.XacroException(refusal_message(expression, problem))
         return saved_extension(expression, context)
 
-    namespace = module._global_symbols.get("python")  # (a dict: python['type'] would reach it as well)
+    namespace = getattr(module, "_global_symbols", {}).get("python")  # (a dict: python['type'] reaches it as well)
     removed = {k: namespace.pop(k) for k in NAMESPACE_REMOVED if k in namespace} if namespace is not None else {}
     module.safe_eval = safe_eval
     substitution._eval = extension_eval
