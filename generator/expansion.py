@@ -24,7 +24,7 @@ import xacro
 import xacro.substitution_args
 
 from .errors import ExpandError
-from .fileio import read_input
+from .fileio import require_regular_file
 from .guard import guarded, trusted_by_default
 from .resources import package_share_dir
 
@@ -218,14 +218,13 @@ def expand_file(
             document does not declare.
     """
     where = str(path)
-    try:  # the document itself: a regular UTF-8 file of sane size (xacro would read a device or a link loop forever)
-        read_input(path, MAX_DOCUMENT_BYTES).decode("utf-8")
+    try:  # the document itself: a regular file of sane size (xacro would read a device or a link loop forever)
+        require_regular_file(path, MAX_DOCUMENT_BYTES)
         source = Path(path).resolve()
     except OSError as exc:
         raise ExpandError(f"cannot read the document: {exc.strerror}", file=where) from None
-    except (RuntimeError, ValueError) as exc:  # (resolve: a link loop; decode: not UTF-8)
-        why = "it is not UTF-8 text" if isinstance(exc, UnicodeDecodeError) else str(exc)
-        raise ExpandError(f"cannot read the document: {why}", file=where) from None
+    except RuntimeError as exc:  # (resolve: a link loop)
+        raise ExpandError(f"cannot read the document: {exc}", file=where) from None
     table = _DeclaredArgs({str(k): str(v) for k, v in (mappings or {}).items()})
     xacro.all_includes = []  # module-level list xacro only ever appends to
     try:
@@ -250,8 +249,11 @@ def expand_file(
         ) from None
     except RuntimeError as exc:  # (xacro's own complaints about elements: 'xacro:include: missing attribute')
         raise ExpandError(str(exc), file=where, file_stack=_file_stack()) from None
-    except UnicodeDecodeError:  # (an included file that is not text)
-        raise ExpandError("an included file is not UTF-8 text", file=where, file_stack=_file_stack()) from None
+    except UnicodeDecodeError:  # (xacro decodes what it reads: the document, or a file it includes)
+        files = _file_stack()
+        if not files or files[0] == str(source):
+            raise ExpandError("cannot read the document: it is not UTF-8 text", file=where) from None
+        raise ExpandError("an included file is not UTF-8 text", file=where, file_stack=files) from None
     undeclared = sorted(set(mappings or {}) - table.declared)
     if undeclared:
         declared = ", ".join(sorted(table.declared)) or "none"

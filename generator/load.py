@@ -98,7 +98,6 @@ _INT = "tag:yaml.org,2002:int"
 _FLOAT = "tag:yaml.org,2002:float"
 _MERGE = "tag:yaml.org,2002:merge"
 _TIMESTAMP = "tag:yaml.org,2002:timestamp"
-_DECIMAL = re.compile(r"[-+]?(?:0|[1-9][0-9]*)")
 _RESOLVER = yaml.resolver.Resolver()
 
 
