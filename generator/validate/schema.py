@@ -125,6 +125,15 @@ def _bad_name(name: object) -> str:
     return f"{name!r} is not a valid name: use letters, digits and _, not starting with a digit"
 
 
+def _long_name(error: jsonschema.ValidationError) -> str:
+    name = error.instance
+    shown = f"{name[:24]}...{name[-8:]}"
+    return (
+        f"the name {shown!r} is {len(name):,} characters long; a name has at most {error.validator_value} (the file "
+        "names made from it must fit the file system's 255-byte limit)"
+    )
+
+
 def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bool]:
     """(path, message, point-at-key) for one schema error, in words a spec author understands."""
     path: PathKey = tuple(error.absolute_path)
@@ -140,6 +149,12 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
             (*path, name),
             _bad_name(name),
             True,
+        )
+    if keyword == "maxLength" and isinstance(error.instance, str):
+        return (
+            path + ((error.instance,) if "propertyNames" in error.absolute_schema_path else ()),
+            _long_name(error),
+            ("propertyNames" in error.absolute_schema_path),
         )
     if keyword == "pattern" and "propertyNames" in error.absolute_schema_path:
         name = error.instance  # a mapping key that is not a valid name: point at the key itself
@@ -235,7 +250,7 @@ def located(raw: RawSpec, errors: list[jsonschema.ValidationError]) -> list[Spec
 
 
 # Schema errors that leave the spec's structure intact: the later checks can still run and report more.
-_VALUE_ONLY = {"exclusiveMinimum", "minimum", "maximum", "exclusiveMaximum", "pattern"}
+_VALUE_ONLY = {"exclusiveMinimum", "minimum", "maximum", "exclusiveMaximum", "pattern", "maxLength"}
 
 
 def structure_intact(errors: list[jsonschema.ValidationError]) -> bool:
