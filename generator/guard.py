@@ -16,7 +16,8 @@ arithmetic, ``math``, ``xacro.load_yaml`` and indexing, string methods, conditio
 names it and says how to trust one's own documents: ``--trust`` or ``XACROKIT_TRUST_XACRO=1``.
 
 A guard, not a proof and not a sandbox: it refuses the ways of reaching Python's object graph that are known (two more
-were found by a review and are now refused); it does not bound time or memory (``${'x' * 10**10}``), and it leaves
+were found by a review and are now refused); time, memory and output are bounded elsewhere (an untrusted document
+expands in a bounded child: :mod:`xacrokit.bounded`), and it leaves
 what xacro offers on purpose: ``xacro.load_yaml`` reads any YAML file the process can read, ``$(env NAME)`` any
 environment variable, into the output.
 """
