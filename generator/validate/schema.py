@@ -185,6 +185,13 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
         )
     if keyword == "oneOf" and path and path[-1] == "collision":
         return path, "collision must be same, none, or a mapping with a shape (and an origin)", False
+    if keyword == "maxProperties" and path == ("instances",):
+        return (
+            path,
+            f"a scene has at most {error.validator_value:,} instances, got {len(error.instance):,} (as for fleets: "
+            "every instance is written out in the URDF, and a scene that large is beyond what RViz shows usefully)",
+            False,
+        )
     if keyword in ("minProperties", "maxProperties") and "box" in error.schema.get("properties", {}):
         return path, "a shape needs exactly one of box, cylinder, sphere, mesh", False
     if keyword == "exclusiveMinimum":
