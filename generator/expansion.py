@@ -27,7 +27,7 @@ import xacro.substitution_args
 from .bounded import Bounds, ChildFailed, OutOfBounds, run_bounded
 from .errors import ExpandError
 from .fileio import require_regular_file
-from .guard import HOW_TO_TRUST, guarded, trusted_by_default
+from .guard import HOW_TO_TRUST, NAMESPACE_REMOVED, guarded, trusted_by_default
 from .resources import package_share_dir
 
 PACKAGE_NAME = "xacrokit"
@@ -191,8 +191,17 @@ def _xacro_message(exc: BaseException) -> str:
     inner = getattr(exc, "exc", None)
     if isinstance(exc, xacro.XacroException) and isinstance(inner, xacro.XacroException):
         return _xacro_message(inner)
-    if isinstance(exc, xacro.XacroException) and isinstance(inner, LookupError) and inner.args:
+    if isinstance(exc, xacro.XacroException) and isinstance(inner, KeyError) and inner.args:
+        key = inner.args[0]
+        where = str(exc).strip().splitlines()[-1] if "when evaluating" in str(exc) else ""
+        said = f"no key {key!r}" + (f" ({where})" if where else "")
+        if key in NAMESPACE_REMOVED:  # python['type'], python['vars']: out of reach while untrusted
+            said += f"; python.{key} is out of reach of documents from elsewhere: {HOW_TO_TRUST}"
+        return said
+    if isinstance(exc, xacro.XacroException) and type(inner) is LookupError and inner.args:  # ($(find): ours)
         return str(inner.args[0])
+    if isinstance(exc, xacro.XacroException) and isinstance(inner, Exception) and str(exc).startswith("<class '"):
+        return str(inner).strip()  # (xacro says '<class ...SubstitutionException>: text text')
     if str(exc).strip() == "Not enough blocks":
         return (
             "Not enough blocks: the macro takes a block parameter (*origin, say) that the call does not give; put "

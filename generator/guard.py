@@ -105,7 +105,7 @@ def expression_problem(expression: str, builtins: bool = False) -> str | None:
             if node.attr.startswith("_"):
                 return f"it reads the attribute {node.attr!r} (names starting with _ are Python's internals)"
             if node.attr.startswith(INTROSPECTION_PREFIXES) or node.attr == "mro":
-                return f"it reads the attribute {node.attr!r} (Python's frames and code objects)"
+                return f"it reads the attribute {node.attr!r} (Python's classes, frames and code objects)"
             if isinstance(node.value, ast.Name) and node.value.id == "python" and node.attr in REFUSED_NAMES:
                 return f"it uses python.{node.attr}, which reaches Python's internals"
             if node.attr in ("format", "format_map") and not _literal_text(node.value):

@@ -377,3 +377,34 @@ def inject_urdf_fault(urdf: str, fault: str, root_link: str) -> str:
     for piece in pieces:
         robot.append(etree.fromstring(piece))
     return etree.tostring(robot, encoding="unicode")
+
+
+# ------------------------------------------------------------------------------------------------ hostile inputs
+from .hostile import (  # noqa: E402  (re-exported: the bad inputs of every class, xacrokit.hostile)
+    HOSTILE_FILE_NAMES,
+    HOSTILE_NUMBERS,
+    HOSTILE_PATHS,
+    hostile_arguments,
+    hostile_file_names,
+    hostile_spec_texts,
+    hostile_xacro_documents,
+    make_hostile_path,
+    spec_text,
+)
+
+__all__ = [
+    "FAULTS",
+    "HOSTILE_FILE_NAMES",
+    "HOSTILE_NUMBERS",
+    "HOSTILE_PATHS",
+    "URDF_FAULTS",
+    "hostile_arguments",
+    "hostile_file_names",
+    "hostile_spec_texts",
+    "hostile_xacro_documents",
+    "inject_urdf_fault",
+    "invalid_specs",
+    "make_hostile_path",
+    "spec_text",
+    "valid_specs",
+]

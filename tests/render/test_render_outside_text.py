@@ -11,7 +11,6 @@ import re
 import pytest
 import yaml
 from hypothesis import HealthCheck, given, settings
-from hypothesis import strategies as st
 from lxml import etree
 
 from conftest import ROBOT_EXAMPLES, SCENE_EXAMPLES
@@ -19,19 +18,10 @@ from xacrokit.load import load_file
 from xacrokit.pipeline import build_robot
 from xacrokit.render import render_package, render_scene
 from xacrokit.scene import build_scene
+from xacrokit.testing import HOSTILE_FILE_NAMES, hostile_file_names
 
-NASTY = [
-    "x.yaml\nimport os; os.system('id')  #",
-    "x.yaml\r\nmessage(FATAL_ERROR boom)\n#",
-    "a--b--.yaml",
-    "quote'\"`$(x)${y}$$z.yaml",
-    "nul\x00.yaml",
-    "line\u2028sep\x0c\x85.yaml",
-    "#[[bracket]].yaml",
-    "-->.yaml",
-    "\\back\\slash\\",
-]
-names = st.one_of(st.sampled_from(NASTY), st.text(min_size=1, max_size=30))
+NASTY = HOSTILE_FILE_NAMES
+names = hostile_file_names()
 
 
 def cmake_commands(text: str) -> list[str]:
