@@ -1,12 +1,14 @@
 """xacrokit: an Xacro macro library and code-generation toolkit for correct ROS 2 robot descriptions.
 
 Public API:
-    generate(spec, output=None, *, dry_run=False, force=False, macros="inline", via_xacro=False, progress=...)
-        -> GenerateResult                                       the main job: spec -> ROS 2 description package;
+    generate(spec, output=None, *, dry_run=False, force=False, macros="inline", via_xacro=False, trust=False,
+             progress=...) -> GenerateResult
+                                                                the main job: spec -> ROS 2 description package;
                                                                 .model is the Robot (or the Scene of a scene spec)
-    check(path, mappings=None, *, prefix=None, consumers=None, package_paths=None) -> CheckReport
+    check(path, mappings=None, *, prefix=None, consumers=None, package_paths=None, trust=False) -> CheckReport
                                                                 verify a URDF, xacro document or spec
-    expand(path, mappings=None, *, package_paths=None) -> str   expand a xacro document to URDF text
+    expand(path, mappings=None, *, package_paths=None, trust=None) -> str
+                                                                expand a xacro document to URDF text
     macros_dir() -> Path                                        where the shipped macro library is
     XacrokitError, SpecError, SpecErrors, ExpandError, ResourceError, ConflictError   the errors raised on bad input
 

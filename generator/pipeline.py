@@ -16,6 +16,7 @@ from .emit import emit_scene_urdf, emit_urdf
 from .errors import SpecError
 from .expansion import expand_file
 from .fileio import write_text_atomic
+from .guard import trusting
 from .load import RawSpec, load_file
 from .model import Robot, Scene, attach_joint_name
 from .render import MacroMode, RenderedFile, render_package, render_scene
@@ -157,6 +158,7 @@ def generate(
     force: bool = False,
     macros: MacroMode = "inline",
     via_xacro: bool = False,
+    trust: bool = False,
     progress: Callable[[str], None] = _quiet,
 ) -> GenerateResult:
     """Generate the ROS 2 description package of a spec.
@@ -171,6 +173,9 @@ def generate(
             The three describe the same robot.
         via_xacro: write ``urdf/NAME.urdf`` by expanding the package with xacro instead of emitting it directly
             (the two describe the same robot; the direct path is much faster).
+        trust: evaluate every expression of a scene's third-party macros, as xacro does (``--trust``); by default
+            they are untrusted: expressions that could reach Python's internals are refused and the expansion is
+            bounded (docs/macros.md, Untrusted documents). What xacrokit writes itself is always expanded trusted.
         progress: called with a short message as each stage starts (the CLI shows it on a terminal).
 
     Raises:
@@ -183,18 +188,18 @@ def generate(
     raw = load_file(spec_path)
     if is_scene(raw):
         progress("checking the scene and its robots")
-        scene = build_scene(raw)
-        name = Path(spec_path).name
-        return generate_scene(
-            scene,
-            output,
-            dry_run=dry_run,
-            force=force,
-            spec_name=name,
-            macros=macros,
-            via_xacro=via_xacro,
-            progress=progress,
-        )
+        with trusting(trust):
+            scene = build_scene(raw)
+            return generate_scene(
+                scene,
+                output,
+                dry_run=dry_run,
+                force=force,
+                spec_name=Path(spec_path).name,
+                macros=macros,
+                via_xacro=via_xacro,
+                progress=progress,
+            )
     progress("validating")
     spec = validate(raw)
     robot = resolve(spec)
