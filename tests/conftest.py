@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import ast
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -10,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import yaml
 from hypothesis import HealthCheck, settings
 from lxml import etree
 
@@ -170,3 +173,25 @@ def check_urdf_binary() -> str:
     found = shutil.which("check_urdf", path=str(Path(sys.executable).parent)) or shutil.which("check_urdf")
     assert found, "check_urdf comes with pin (cmeel-urdfdom); is pin installed?"
     return found
+
+
+def cmake_commands(text: str) -> list[str]:
+    """CMake's command invocations with comments (line and bracket) removed: what cmake would run."""
+    text = re.sub(r"#\[(=*)\[.*?\]\1\]", "", text, flags=re.S)  # bracket comments
+    text = re.sub(r"#[^\n]*", "", text)  # line comments (our files quote no #)
+    return re.findall(r"(?m)^\s*([A-Za-z_][A-Za-z0-9_]*)\s*\(", text)
+
+
+def parse_generated(path: str, content: str) -> object:
+    """The file read by its own parser, with the parts a spec's name may fill (comments, the README) left out."""
+    if path.endswith(".py"):
+        return ast.dump(ast.parse(content))  # (comments are not in the tree)
+    if path.endswith("CMakeLists.txt"):
+        return cmake_commands(content)
+    if path.endswith((".xml", ".xacro", ".urdf")):
+        parser = etree.XMLParser(remove_comments=True, resolve_entities=False, no_network=True)
+        return etree.tostring(etree.fromstring(content.encode("utf-8"), parser))
+    if path.endswith((".yaml", ".rviz")):
+        return yaml.safe_load(content)
+    assert path.endswith(".md"), path
+    return None  # Markdown: anything parses

@@ -13,7 +13,7 @@ from hypothesis import HealthCheck, given, settings
 from lxml import etree
 
 import xacrokit
-from conftest import check_urdf_binary
+from conftest import check_urdf_binary, parse_generated
 from xacrokit.testing import invalid_specs, valid_specs
 
 FAULT_WORDS = {
@@ -65,6 +65,8 @@ def test_every_valid_spec_generates_expands_and_loads(tmp_path_factory, spec):
     import yourdfpy
 
     yourdfpy.URDF.load(str(urdf_path), build_scene_graph=False, load_meshes=False)
+    for file in result.files:  # launch, CMake, package.xml, xacro, YAML: each parses with its own parser
+        parse_generated(file.path, file.content)
     again = xacrokit.generate(path, folder / "pkg")
     assert {a.action for a in again.actions} == {"identical"}
 

@@ -6,14 +6,11 @@ package.xml and every xacro file ill-formed."""
 from __future__ import annotations
 
 import ast
-import re
 
 import pytest
-import yaml
 from hypothesis import HealthCheck, given, settings
-from lxml import etree
 
-from conftest import ROBOT_EXAMPLES, SCENE_EXAMPLES
+from conftest import ROBOT_EXAMPLES, SCENE_EXAMPLES, cmake_commands, parse_generated
 from xacrokit.load import load_file
 from xacrokit.pipeline import build_robot
 from xacrokit.render import render_package, render_scene
@@ -24,35 +21,13 @@ NASTY = HOSTILE_FILE_NAMES
 names = hostile_file_names()
 
 
-def cmake_commands(text: str) -> list[str]:
-    """CMake's command invocations with comments (line and bracket) removed: what cmake would run."""
-    text = re.sub(r"#\[(=*)\[.*?\]\1\]", "", text, flags=re.S)  # bracket comments
-    text = re.sub(r"#[^\n]*", "", text)  # line comments (our files quote no #)
-    return re.findall(r"(?m)^\s*([A-Za-z_][A-Za-z0-9_]*)\s*\(", text)
-
-
-def parsed(path: str, content: str) -> object:
-    """The file read by its own parser, with the parts a spec's name may fill (comments, the README) left out."""
-    if path.endswith(".py"):
-        return ast.dump(ast.parse(content))  # (comments are not in the tree)
-    if path.endswith("CMakeLists.txt"):
-        return cmake_commands(content)
-    if path.endswith((".xml", ".xacro", ".urdf")):
-        parser = etree.XMLParser(remove_comments=True, resolve_entities=False, no_network=True)
-        return etree.tostring(etree.fromstring(content.encode("utf-8"), parser))
-    if path.endswith((".yaml", ".rviz")):
-        return yaml.safe_load(content)
-    assert path.endswith(".md"), path
-    return None  # Markdown: anything parses
-
-
 @pytest.fixture(scope="module")
 def models():
     robot = build_robot(next(p for p in ROBOT_EXAMPLES if p.stem == "diff_drive"))
     scene = build_scene(load_file(next(p for p in SCENE_EXAMPLES if p.stem == "two_arm_cell")))
     plain = {
-        "robot": {f.path: parsed(f.path, f.content) for f in render_package(robot, spec_name="plain.yaml")},
-        "scene": {f.path: parsed(f.path, f.content) for f in render_scene(scene, spec_name="plain.yaml")},
+        "robot": {f.path: parse_generated(f.path, f.content) for f in render_package(robot, spec_name="plain.yaml")},
+        "scene": {f.path: parse_generated(f.path, f.content) for f in render_scene(scene, spec_name="plain.yaml")},
     }
     return robot, scene, plain
 
@@ -68,7 +43,7 @@ def test_any_file_name_leaves_every_generated_file_as_a_plain_name_does(models, 
         assert {f.path for f in files} == set(plain[kind])
         for file in files:
             assert file.content.encode("utf-8")  # (a lone surrogate would not encode)
-            assert parsed(file.path, file.content) == plain[kind][file.path], (kind, file.path)
+            assert parse_generated(file.path, file.content) == plain[kind][file.path], (kind, file.path)
 
 
 def test_the_published_injections_stay_comments():
