@@ -71,13 +71,28 @@ def _digest(content: str | bytes) -> str:
     return hashlib.sha256(content.encode("utf-8") if isinstance(content, str) else content).hexdigest()
 
 
-def _read_manifest(root: Path) -> dict[str, str]:
+Manifest = dict[str, frozenset[str]]  # path -> the SHA-256 digests of the contents we wrote there
+
+
+def _read_manifest(root: Path) -> Manifest:
+    """The manifest's digests per path. A run in progress (or killed) records two per file, the last run's and its
+    own: whichever of them is on disk is ours."""
     try:
         data = json.loads((root / MANIFEST).read_text(encoding="utf-8"))
         files = data.get("files", {})
-        return {str(k): str(v) for k, v in files.items()} if isinstance(files, dict) else {}
-    except (OSError, ValueError, AttributeError):
+        if not isinstance(files, dict):
+            return {}
+        return {str(k): frozenset([v] if isinstance(v, str) else map(str, v)) for k, v in files.items()}
+    except (OSError, ValueError, AttributeError, TypeError):
         return {}
+
+
+def _manifest_text(files: dict[str, str | list[str]], *, in_progress: bool) -> str:
+    data: dict[str, object] = {"generator": f"xacrokit {__version__}"}
+    if in_progress:
+        data["in_progress"] = "a run is writing (or was killed): each file is ours with any digest listed"
+    data["files"] = files
+    return json.dumps(data, indent=2, sort_keys=True) + "\n"
 
 
 def _inside(root: Path, relative: str) -> Path:
@@ -88,7 +103,7 @@ def _inside(root: Path, relative: str) -> Path:
 
 
 def plan(
-    files: list[RenderedFile], root: Path, *, force: bool = False, manifest: dict[str, str] | None = None
+    files: list[RenderedFile], root: Path, *, force: bool = False, manifest: Manifest | None = None
 ) -> list[FileAction]:
     """Decide the action for every file, touching nothing. ``manifest``: the folder's manifest, if already read."""
     if root.exists() and not root.is_dir():
@@ -110,7 +125,7 @@ def plan(
             current = None
         if current == file.content:
             actions.append(FileAction(file.path, "identical"))
-        elif current is not None and manifest.get(file.path) == _digest(current):
+        elif current is not None and _digest(current) in manifest.get(file.path, ()):
             actions.append(FileAction(file.path, "update"))
         else:
             reason = "edited since it was generated" if file.path in manifest else "not written by xacrokit"
@@ -118,7 +133,7 @@ def plan(
     return actions + _stale(manifest, files, root)
 
 
-def _stale(manifest: dict[str, str], files: list[RenderedFile], root: Path) -> list[FileAction]:
+def _stale(manifest: Manifest, files: list[RenderedFile], root: Path) -> list[FileAction]:
     """What happens to the files we generated last time that this run does not generate.
 
     Only plain files reached without a symbolic link, named in normal form inside the folder, are candidates: a
@@ -137,7 +152,7 @@ def _stale(manifest: dict[str, str], files: list[RenderedFile], root: Path) -> l
         except (OSError, ValueError) as exc:
             actions.append(FileAction(path, "keep", f"no longer generated, but not removable: {_why(exc)}"))
             continue
-        if _digest(data) == manifest[path]:
+        if _digest(data) in manifest[path]:
             actions.append(FileAction(path, "remove", "no longer generated"))
         else:
             actions.append(FileAction(path, "keep", "no longer generated, but edited since: kept"))
@@ -311,41 +326,65 @@ def _write_planned(
         raise ConflictError(root, conflicts)
     remove_leftover_temporaries(root, [a.path for a in actions] + [MANIFEST])  # (a killed run leaves them)
     by_path = {f.path: f for f in files}
+    digests = {f.path: _digest(f.content) for f in files}
+    manifest_path = root / MANIFEST
     done = 0
     try:
+        if any(a.action in ("create", "update", "overwrite", "remove") for a in actions):
+            # first the manifest "in progress": every file ours with the last run's digest or this run's, so that a
+            # run killed midway leaves a folder the next run (of either spec) takes over without a false conflict
+            pending = {path: sorted(previous.get(path, frozenset()) | {digests[path]}) for path in digests}
+            pending |= {path: sorted(previous[path]) for path in previous.keys() - digests.keys()}
+            write_text_atomic(manifest_path, _manifest_text(dict(pending), in_progress=True))
+            written.append(manifest_path)
         for action in actions:
             if action.action in ("create", "update", "overwrite"):
                 target = _inside(root, action.path)
                 write_text_atomic(target, by_path[action.path].content)
                 written.append(target)
                 done += 1
-        manifest = {"generator": f"xacrokit {__version__}", "files": {f.path: _digest(f.content) for f in files}}
-        text = json.dumps(manifest, indent=2, sort_keys=True) + "\n"
-        manifest_path = root / MANIFEST
+    except OSError as exc:
+        raise _write_error(root, exc, fresh=fresh, done=done) from exc
+    if any(a.action == "remove" for a in actions):
+        actions = _remove_stale(files, root, actions, previous)
+    try:  # last: the manifest of what is on disk now
+        text = _manifest_text(dict(digests), in_progress=False)
         if not manifest_path.is_file() or manifest_path.read_bytes() != text.encode("utf-8"):
             write_text_atomic(manifest_path, text)
             written.append(manifest_path)
     except OSError as exc:
-        where = exc.filename or root
-        said = (
-            "; nothing was written (what this run wrote is removed)"
-            if fresh
-            else f"; {done} file(s) were written before it, each whole"
-            if done
-            else "; nothing was written"
-        )
-        raise XacrokitError(f"cannot write the package in {root}: {where}: {exc.strerror or exc}{said}") from exc
-    if not any(a.action == "remove" for a in actions):
-        return actions
+        raise _write_error(root, exc, fresh=fresh, done=done) from exc
+    return actions
+
+
+def _write_error(root: Path, exc: OSError, *, fresh: bool, done: int) -> XacrokitError:
+    """The file system refused a write: what, where, and what was written before it."""
+    where = exc.filename or root
+    said = (
+        "; nothing was written (what this run wrote is removed)"
+        if fresh
+        else f"; {done} file(s) were written before it, each whole"
+        if done
+        else "; nothing was written"
+    )
+    return XacrokitError(f"cannot write the package in {root}: {where}: {exc.strerror or exc}{said}")
+
+
+def _remove_stale(
+    files: list[RenderedFile], root: Path, actions: list[FileAction], previous: Manifest
+) -> list[FileAction]:
+    """Remove the stale files planned for removal (see :func:`_remove`); the actions with each outcome."""
     identities: set[tuple[int, int]] = set()  # what this run wrote: on a case-blind disk a stale name may be one
     for file in files:
         with contextlib.suppress(OSError):
             status = (root / file.path).stat()
             identities.add((status.st_dev, status.st_ino))
-    return [_remove(root, a, previous.get(a.path, ""), identities) if a.action == "remove" else a for a in actions]
+    return [
+        _remove(root, a, previous.get(a.path, frozenset()), identities) if a.action == "remove" else a for a in actions
+    ]
 
 
-def _remove(root: Path, action: FileAction, digest: str, written: set[tuple[int, int]]) -> FileAction:
+def _remove(root: Path, action: FileAction, digests: frozenset[str], written: set[tuple[int, int]]) -> FileAction:
     """Delete a stale file if it is still as generated and is not a file this run wrote, then each folder above it
     that this leaves empty. Every step goes through folder descriptors opened without following symbolic links, so
     a folder swapped for a link while we ran cannot lead us outside the package."""
@@ -356,7 +395,7 @@ def _remove(root: Path, action: FileAction, digest: str, written: set[tuple[int,
             return FileAction(
                 action.path, "keep", "no longer generated under this name, but the same file as one that is"
             )
-        if _digest(data) != digest:
+        if _digest(data) not in digests:
             return FileAction(action.path, "keep", "no longer generated, but changed while we ran: kept")
         fds = _open_folders(root, parts)
     except (OSError, ValueError) as exc:
