@@ -324,7 +324,9 @@ def _write_planned(
     conflicts = [a for a in actions if a.action == "conflict"]
     if conflicts:
         raise ConflictError(root, conflicts)
-    remove_leftover_temporaries(root, [a.path for a in actions] + [MANIFEST])  # (a killed run leaves them)
+    # a killed run leaves temporaries beside the files it was writing: this run's, or those its manifest lists
+    listed = [path for path in previous if _normal(path) and (root / path).resolve().is_relative_to(root.resolve())]
+    remove_leftover_temporaries(root, [a.path for a in actions] + listed + [MANIFEST])
     by_path = {f.path: f for f in files}
     digests = {f.path: _digest(f.content) for f in files}
     manifest_path = root / MANIFEST
