@@ -7,6 +7,7 @@ are written with ``repr`` (round-trip exact) and never as ``-0.0``.
 from __future__ import annotations
 
 import re
+from collections.abc import Iterable
 
 from .model import Robot
 
@@ -71,3 +72,11 @@ def _escape_dollars(match: re.Match[str]) -> str:
     if opening:
         return f"${run}{opening}"
     return "${'$'}" * (len(run) - 1) + "$"
+
+
+def did_you_mean(name: str, known: Iterable[str]) -> str:
+    """`` (did you mean 'base_link'?)`` when one of ``known`` is close to the mistyped ``name`` (difflib), else ''."""
+    import difflib  # (only when a name is wrong)
+
+    match = difflib.get_close_matches(name, sorted(known), n=1)
+    return f" (did you mean {match[0]!r}?)" if match else ""

@@ -49,15 +49,16 @@ def build_scene(raw: RawSpec) -> Scene:
     robots = RobotSpecs()
     base = Path(raw.file).resolve().parent
     sources: dict[str, Source] = {}
+    failed = []
     for name, entry in data["instances"].items():
         source, problems, notes = _source(raw, ("instances", name), entry, base, robots)
         errors += problems
         warnings += notes
         if source is not None:
             sources[name] = source
-    if errors:
-        raise SpecErrors(errors)
-    planned = []
+        else:
+            failed.append(name)
+    planned = []  # (the instances that could be read: their parents and names are checked in this same round)
     for name, source in sources.items():
         entry = data["instances"][name]
         origin = resolve_origin(entry.get("origin"))
@@ -66,7 +67,9 @@ def build_scene(raw: RawSpec) -> Scene:
         else:
             robot, spec_file = source
             planned.append(Planned(name, entry.get("prefix", ""), entry["parent"], origin, robot, spec_file))
-    return resolve_plan(raw, data["scene"], data.get("world", "world"), planned, warnings=warnings)
+    return resolve_plan(
+        raw, data["scene"], data.get("world", "world"), planned, warnings=warnings, failed=failed, errors=errors
+    )
 
 
 def _source(

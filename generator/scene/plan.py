@@ -15,6 +15,7 @@ from pathlib import Path
 from ..errors import SpecError, SpecErrors
 from ..load import PathKey, RawSpec
 from ..model import Instance, Origin, Robot, Scene, ThirdPartyMacro, mount_joint_name
+from ..text import did_you_mean
 from .probe import probe_names
 
 
@@ -59,10 +60,15 @@ def resolve_plan(
     *,
     warnings: Sequence[SpecError] = (),
     command: str = "",
+    failed: Sequence[str] = (),
+    errors: Sequence[SpecError] = (),
 ) -> Scene:
-    """The scene ``name`` of ``planned`` (``raw`` locates its errors). Raises SpecErrors with every problem found."""
+    """The scene ``name`` of ``planned`` (``raw`` locates its errors). Raises SpecErrors with every problem found,
+    ``errors`` (found before) included. ``failed``: instances of the scene that could not be planned (their errors
+    are in ``errors``): they exist, so naming one as a parent is no mistake, but nothing can be checked against them."""
     by_name = {p.name: p for p in planned}
-    mounts, errors = resolve_parents(raw, world, by_name)
+    mounts, found_errors = resolve_parents(raw, world, by_name, failed)
+    errors = [*errors, *found_errors]
     names: Names = {p.name: found for p in planned if (found := p.names()) is not None}
     for plan in planned:  # third-party names: expand each such instance alone, on its real parent
         if plan.macro is not None and plan.name in mounts:
@@ -71,9 +77,7 @@ def resolve_plan(
             if found is not None:
                 names[plan.name] = found
     names = {p.name: names[p.name] for p in planned if p.name in names}  # in the spec's order (errors name them so)
-    if errors:
-        raise SpecErrors(errors)
-    errors = parent_link_errors(raw, by_name, mounts, names) + collision_errors(raw, world, names)
+    errors += parent_link_errors(raw, by_name, mounts, names) + collision_errors(raw, world, names)
     if errors:
         raise SpecErrors(errors)
     instances = tuple(
@@ -101,25 +105,35 @@ def resolve_plan(
     )
 
 
-def resolve_parents(raw: RawSpec, world: str, planned: dict[str, Planned]) -> tuple[dict[str, Mount], list[SpecError]]:
+def resolve_parents(
+    raw: RawSpec, world: str, planned: dict[str, Planned], failed: Sequence[str] = ()
+) -> tuple[dict[str, Mount], list[SpecError]]:
     """Where each instance is mounted, and the errors: unknown parents, instances mounted on themselves or in a
-    loop. An instance whose parent is wrong has no mount."""
+    loop. An instance whose parent is wrong, or is a ``failed`` instance, has no mount."""
     errors: list[SpecError] = []
     mounts: dict[str, Mount] = {}
+    every = sorted([*planned, *failed])
     for name, plan in planned.items():
         where: PathKey = ("instances", name, "parent")
         if "/" not in plan.parent:
             if plan.parent not in (world, "world"):
-                errors.append(raw.error(where, f"parent {plan.parent!r} must be {world!r} or INSTANCE/LINK"))
+                hint = did_you_mean(plan.parent, {world, *every})
+                errors.append(raw.error(where, f"parent {plan.parent!r} must be {world!r} or INSTANCE/LINK{hint}"))
                 continue
             mounts[name] = Mount(world, None)
             continue
         other, link = plan.parent.split("/", 1)
         if other == name:
             errors.append(raw.error(where, "an instance cannot be mounted on itself"))
+        elif other in failed:
+            continue  # (its own errors are said; its links are not known)
         elif other not in planned:
             errors.append(
-                raw.error(where, f"instance {other!r} is not in this scene (instances: {', '.join(planned)})")
+                raw.error(
+                    where,
+                    f"instance {other!r} is not in this scene{did_you_mean(other, every)} (instances: "
+                    f"{', '.join(every)})",
+                )
             )
         else:
             mounts[name] = Mount(planned[other].prefix + link, other)
@@ -148,15 +162,18 @@ def parent_link_errors(
     for name, mount in mounts.items():
         if mount.instance is None:
             continue
+        if mount.instance not in names:  # (its macro could not be expanded: said already)
+            continue
         other = planned[mount.instance]
-        links = names.get(mount.instance, ((), ()))[0]
+        links = names[mount.instance][0]
         if mount.link not in links:
             plain = planned[name].parent.split("/", 1)[1]
             known = [n.removeprefix(other.prefix) for n in links]
             errors.append(
                 raw.error(
                     ("instances", name, "parent"),
-                    f"{plain!r} is not a link of instance {mount.instance!r} (its links: {', '.join(known)})",
+                    f"{plain!r} is not a link of instance {mount.instance!r}{did_you_mean(plain, known)} (its links: "
+                    f"{', '.join(known)})",
                 )
             )
     return errors

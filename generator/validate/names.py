@@ -12,6 +12,7 @@ from ..errors import SpecError
 from ..load import PathKey, RawSpec, json_path
 from ..model import MOVING, attach_joint_name
 from ..resources import PUBLIC_MACROS, XACRO_KEYWORDS
+from ..text import did_you_mean
 from ..tree import Tree, cycles
 from .bodies import Body
 
@@ -147,7 +148,7 @@ def reference_errors(
         if kind in ("arm", "wheel", "frame") and item["parent"] not in link_names:
             parent = item["parent"]
             yield raw.error(
-                (*path, "parent"), f"parent {parent!r} is not a link of this robot{_closest(parent, link_names)}"
+                (*path, "parent"), f"parent {parent!r} is not a link of this robot{did_you_mean(parent, link_names)}"
             )
         material = item.get("material")
         if material is not None and material not in materials:
@@ -186,11 +187,11 @@ def _joint_reference_errors(
     if joint["parent"] not in link_names:
         yield raw.error(
             (*path, "parent"),
-            f"parent {joint['parent']!r} is not a link of this robot{_closest(joint['parent'], link_names)}",
+            f"parent {joint['parent']!r} is not a link of this robot{did_you_mean(joint['parent'], link_names)}",
         )
     if joint["child"] not in spec_links:
         yield raw.error(
-            (*path, "child"), f"child {joint['child']!r} is not in links{_closest(joint['child'], set(spec_links))}"
+            (*path, "child"), f"child {joint['child']!r} is not in links{did_you_mean(joint['child'], set(spec_links))}"
         )
     if joint["parent"] == joint["child"]:
         yield raw.error((*path, "child"), "a joint cannot connect a link to itself")
@@ -206,10 +207,3 @@ def _joint_reference_errors(
                 (*path, "mimic", "joint"),
                 f"mimic needs two moving joints; {target!r} is {types[target]} and this one is {joint['type']}",
             )
-
-
-def _closest(name: str, known: set[str]) -> str:
-    import difflib  # (only when a name is wrong)
-
-    match = difflib.get_close_matches(name, sorted(known), n=1)
-    return f" (did you mean {match[0]!r}?)" if match else ""
