@@ -27,6 +27,7 @@ from .names import (
     joint_types,
     link_and_joint_names,
     reference_errors,
+    repeated_paths,
     robot_name_errors,
     tree_errors,
 )
@@ -78,7 +79,9 @@ def semantic_errors(
     link_names = {item.name for item in link_named}
     errors += reference_errors(raw, data, every, link_names, joint_types(data, every))
     relations = edges(data, every)
-    errors += tree_errors(raw, relations, link_names)
+    again = repeated_paths(link_named)  # (a link named twice is said once, not again as a second parent or a cycle)
+    kept = [r for r in relations if not any(r[2][: len(p)] == p[: len(r[2])] for p in again)]  # (either holds other)
+    errors += tree_errors(raw, kept, link_names)
     if physics:
         errors += physics_errors(raw, data, every, {child for _, child, _ in relations})
     return errors

@@ -81,6 +81,17 @@ def duplicate_errors(raw: RawSpec, named: list[Named], what: str) -> Iterator[Sp
             first[item.name] = item
 
 
+def repeated_paths(named: list[Named]) -> list[PathKey]:
+    """Where a name is given again after its first use (the places :func:`duplicate_errors` reports)."""
+    seen: set[str] = set()
+    again = []
+    for item in named:
+        if item.name in seen:
+            again.append(item.path)
+        seen.add(item.name)
+    return again
+
+
 def robot_name_errors(raw: RawSpec, data: dict[str, Any]) -> Iterator[SpecError]:
     if data["robot"] in RESERVED_ROBOT_NAMES or data["robot"].startswith("_xacrokit"):
         yield raw.error(
@@ -97,7 +108,7 @@ def edges(data: dict[str, Any], bodies: Sequence[Body]) -> list[tuple[str, str, 
     above = ""  # the link before the current one along an arm: its base, then each row's link
     for kind, name, path, item in bodies:
         if kind in ("row", "tool"):
-            result.append((above, name, path[:2]))
+            result.append((above, name, path))
         elif kind != "link":  # an arm's base, a wheel, a frame: hung from the parent the spec names
             result.append((item["parent"], name, (*path, "parent")))
         above = name
@@ -123,12 +134,13 @@ def tree_errors(raw: RawSpec, relations: list[tuple[str, str, PathKey]], link_na
                 f"link {child!r} already has parent {first[0]!r}; a link can hang from one joint only (URDF is a tree)",
             )
     roots = tree.roots(link_names)
+    unknown_children = [child for _, child, where in relations if child not in link_names and where[0] == "joints"]
     stranded = sorted(link_names - tree.reachable([*roots, *dangling]))
     if stranded:
         where = tree.parent_of[stranded[0]][1]
         yield raw.error(where, f"links {', '.join(stranded)} form a cycle (each hangs from another in the loop)")
-    if len(roots) > 1:
-        listed = ", ".join(roots)
+    if len(roots) > 1 and len(roots) - 1 > len(unknown_children):  # (a mistyped child leaves its link a root: its
+        listed = ", ".join(roots)  # reference error says so, and the trees may well be one once it is corrected)
         yield raw.error(
             ("links",),
             f"the links form {len(roots)} separate trees (roots: {listed}); connect them with "
