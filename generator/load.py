@@ -330,6 +330,16 @@ def _event_error(file: str, problem: str, event: Any) -> SpecError:
     return SpecError(f"not valid YAML: {problem}", file=file, line=line, column=column)
 
 
+# PyYAML's words for what is, in a spec, nearly always a line indented too far, too little, or a missing ': '
+_INDENTATION_SIGNS = (
+    "did not find expected key",
+    "mapping values are not allowed",
+    "could not find expected ':'",
+    "expected <block end>",
+    "did not find expected '-' indicator",
+)
+
+
 def _yaml_error(file: str, exc: yaml.YAMLError, text: str) -> SpecError:
     if isinstance(exc, yaml.reader.ReaderError):  # a character YAML does not allow: it has an offset, not a mark
         at = min(max(exc.position, 0), len(text))
@@ -341,6 +351,11 @@ def _yaml_error(file: str, exc: yaml.YAMLError, text: str) -> SpecError:
     problem = getattr(exc, "problem", None) or str(exc)
     if mark is not None and 0 <= mark.index < len(text) and text[mark.index] == "\t":
         problem += " (a tab: YAML indents with spaces only)"
+    elif any(words in problem for words in _INDENTATION_SIGNS):
+        problem += (
+            "; check the indentation of this line and of the line above it: the keys of one mapping start in the "
+            "same column, a key's contents further right (spaces only), and a key is followed by ': '"
+        )
     return SpecError(
         f"not valid YAML: {problem}",
         file=file,

@@ -134,6 +134,25 @@ def _long_name(error: jsonschema.ValidationError) -> str:
     )
 
 
+_COLLECTIONS = {"links": "link", "joints": "joint", "arms": "arm", "wheels": "wheel", "frames": "frame"}
+
+
+def _not_a_mapping(path: PathKey, error: jsonschema.ValidationError) -> str:
+    """A scalar or a list where a mapping belongs: in a spec, nearly always a line indented too little."""
+    fields = ", ".join(f"{k}:" for k in list(error.schema.get("properties", {}))[:4])
+    got = f"{error.instance!r}" if not isinstance(error.instance, list) else "a list"
+    if len(path) == 2 and path[0] in _COLLECTIONS:
+        kind = _COLLECTIONS[str(path[0])]
+        return (
+            f"{path[1]!r} is read as a {kind} name, with the value {got}, but a {kind} is a mapping ({fields} ...); "
+            f"if `{path[1]}:` belongs to the {kind} above it, indent it as far as that {kind}'s other keys"
+        )
+    return (
+        f"expected a mapping here ({fields} ...), got {got}; if the lines below belong to it, indent them further "
+        "(YAML nests by indentation)"
+    )
+
+
 def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bool]:
     """(path, message, point-at-key) for one schema error, in words a spec author understands."""
     path: PathKey = tuple(error.absolute_path)
@@ -208,6 +227,17 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
             "(only lengths, angles and masses take unit strings)",
             False,
         )
+    if keyword == "enum" or (keyword == "type" and "enum" in error.schema):  # (a value of the wrong type breaks both)
+        choices = error.schema["enum"]
+        named = ", ".join(map(str, choices[:-1])) + f" or {choices[-1]}" if len(choices) > 1 else str(choices[0])
+        axle = (
+            " (the axle's direction in the wheel's frame: write axis: y, not a vector)"
+            if path[-1:] == ("axis",)
+            else ""
+        )
+        return path, f"must be {named}, got {error.instance!r}{axle}", False
+    if keyword == "type" and error.validator_value == "object" and path and not isinstance(error.instance, dict):
+        return path, _not_a_mapping(path, error), False
     if keyword == "type" and not path:
         return path, f"a spec is a mapping (robot:, links:, ...), got {type(error.instance).__name__}", False
     if keyword in ("minItems", "maxItems") and isinstance(error.instance, list):
@@ -250,9 +280,12 @@ def schema_errors(raw: RawSpec, validator: SchemaValidator | None = None) -> lis
 def located(raw: RawSpec, errors: list[jsonschema.ValidationError]) -> list[SpecError]:
     """The schema's errors as located spec errors, in the words of :func:`_schema_message`."""
     result = []
+    said: set[tuple[PathKey, str]] = set()
     for error in errors:
         path, message, at_key = _schema_message(error)
-        result.append(raw.error(path, message, key=at_key))
+        if (path, message) not in said:  # (one wrong value can break two keywords, worded alike)
+            said.add((path, message))
+            result.append(raw.error(path, message, key=at_key))
     return result
 
 

@@ -47,7 +47,12 @@ CASES = [
         "exactly one of box",
     ),
     ("links.bad-name", {}, "$.links['bad-name']", "not a valid name"),
-    ("joints.shoulder.type", "ball", "$.joints.shoulder.type", "is not one of"),
+    (
+        "joints.shoulder.type",
+        "ball",
+        "$.joints.shoulder.type",
+        "must be revolute, continuous, prismatic, fixed, floating or planar, got 'ball'",
+    ),
     (
         "joints.shoulder.limit",
         {"lower": -1.0, "upper": 1.0, "effort": 0, "velocity": 1.0},
