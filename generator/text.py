@@ -40,9 +40,16 @@ def material_name(robot: Robot, name: str | None) -> str:
 def comment_text(value: object) -> str:
     """Text from outside (a spec's file name) made safe for a one-line comment in every generated language (Python,
     CMake, YAML, XML, Markdown): a character that is not printable (a newline would end the comment and start code)
-    becomes its escape (``\\n``, ``\\x00``, ``\\u2028``) and a backslash is doubled. In an XML comment, see
-    :func:`xml_comment_text`."""
-    return "".join(ch if ch.isprintable() and ch != "\\" else _escaped(ch) for ch in str(value))
+    becomes its escape (``\\n``, ``\\x00``, ``\\u2028``), a backtick too (it would end a Markdown code span) and a
+    backslash is doubled. In an XML comment, see :func:`xml_comment_text`."""
+    return "".join(ch if ch.isprintable() and ch not in "\\`" else _escaped(ch) for ch in str(value))
+
+
+def command_text(command: str) -> str:
+    """A shell command (its words quoted with ``shlex.quote``) for a Markdown code span: as it is, so that it can be
+    copied and run, when every character is printable and none is a backtick; else :func:`comment_text` (safe, but
+    then the escapes show what to type)."""
+    return command if all(ch.isprintable() and ch != "`" for ch in command) else comment_text(command)
 
 
 def xml_comment_text(value: object) -> str:

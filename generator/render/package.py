@@ -24,7 +24,7 @@ from ..emit import joint_element, link_element, robot_elements
 from ..gcpause import collector_paused
 from ..model import Box, Cylinder, Link, Mesh, Robot, Sphere, mount_joint_name
 from ..resources import macros_dir
-from ..text import comment_text, material_name, xacro_text
+from ..text import command_text, comment_text, material_name, xacro_text
 from .control import controllers
 from .environment import MacroMode, RenderedFile, environment
 
@@ -120,7 +120,7 @@ def render_package(robot: Robot, *, macros: MacroMode = "inline", spec_name: str
         "fixed_frame": robot.root,  # RViz's (the launch file passes the prefixed one to rviz2 -f)
         "version": __version__,
         "spec_name": comment_text(spec_name),  # (a file name may hold a newline: it would end a comment)
-        "spec_command": comment_text("gen-robot " + shlex.quote(spec_name)),
+        "spec_command": command_text("gen-robot " + shlex.quote(spec_name)),
         "macros": macros,
         "macro_includes": [include_prefix + name for name in macro_files],
         "mount_joint": mount_joint_name(robot.root),

@@ -13,7 +13,7 @@ import shlex
 from .. import __version__
 from ..gcpause import collector_paused
 from ..model import Instance, Origin, Scene
-from ..text import comment_text, xacro_text
+from ..text import command_text, comment_text, xacro_text
 from .control import controllers
 from .environment import MacroMode, RenderedFile, environment
 from .package import render_package
@@ -35,7 +35,7 @@ def render_scene(scene: Scene, *, spec_name: str = "scene.yaml", macros: MacroMo
         "scene": scene,
         "version": __version__,
         "spec_name": comment_text(spec_name),  # (a file name may hold a newline: it would end a comment)
-        "spec_command": comment_text(scene.command or "gen-robot " + shlex.quote(spec_name)),
+        "spec_command": command_text(scene.command or "gen-robot " + shlex.quote(spec_name)),
         "has_control": has_control,
         "macros": macros,
         "fixed_frame": scene.world,

@@ -54,3 +54,22 @@ def test_the_published_injections_stay_comments():
     assert not any(isinstance(node, ast.Import) and node.names[0].name == "os" for node in ast.walk(launch))
     files = {f.path: f.content for f in render_package(robot, spec_name="x.yaml\nmessage(FATAL_ERROR boom)")}
     assert "message" not in cmake_commands(files["CMakeLists.txt"])
+
+
+@pytest.mark.parametrize(
+    ("spec_name", "command"),
+    [
+        ("my robot.yaml", "gen-robot 'my robot.yaml'"),
+        ("a\\b.yaml", "gen-robot 'a\\b.yaml'"),  # (a backslash is written once: the command runs as shown)
+        ("it's.yaml", "gen-robot 'it'\"'\"'s.yaml'"),
+        ("x`y.yaml", "gen-robot 'x\\x60y.yaml'"),  # (a backtick would end the code span: escaped, not runnable)
+    ],
+)
+def test_the_readme_command_is_the_command_to_run(spec_name, command):
+    robot = build_robot(next(p for p in ROBOT_EXAMPLES if p.stem == "two_dof_arm"))
+    readme = next(f.content for f in render_package(robot, spec_name=spec_name) if f.path == "README.md")
+    assert f"run `{command}` again" in readme, readme[:400]
+    if "`" not in spec_name:
+        import shlex
+
+        assert shlex.split(command) == ["gen-robot", spec_name]
