@@ -41,6 +41,7 @@ from .render import RenderedFile
 LOCK_WAIT_S = 10.0  # seconds a second writer of one package waits for the first (XACROKIT_LOCK_WAIT sets another)
 
 MANIFEST = ".xacrokit-manifest.json"
+NOT_OURS = "not written by xacrokit"
 Action = Literal["create", "identical", "update", "conflict", "overwrite", "remove", "keep"]
 
 
@@ -60,9 +61,15 @@ class ConflictError(XacrokitError):
         self.root = root
         self.conflicts = conflicts
         outcome = "a run would write nothing" if planned else "nothing was written"  # (planned: a dry run's plan)
-        lines = [f"{len(conflicts)} file(s) in {root} changed since they were generated; {outcome}:"]
+        lines = [f"{len(conflicts)} file(s) in {root} are not as xacrokit generated them; {outcome}:"]
         lines += [f"  {c.path}: {c.reason}" for c in conflicts]
-        lines.append("Keep your edits by moving them into the spec, or run again with --force to overwrite.")
+        if any(c.reason == NOT_OURS for c in conflicts):  # (a hand-written package.xml, a package of another tool)
+            lines.append(
+                f"A file {NOT_OURS} is not ours to replace: write the package into another folder (-o), move the "
+                "file away, or run again with --force to overwrite it."
+            )
+        if any(c.reason != NOT_OURS for c in conflicts):
+            lines.append("Keep your edits by moving them into the spec, or run again with --force to overwrite.")
         super().__init__("\n".join(lines))
 
 
@@ -128,7 +135,7 @@ def plan(
         elif current is not None and _digest(current) in manifest.get(file.path, ()):
             actions.append(FileAction(file.path, "update"))
         else:
-            reason = "edited since it was generated" if file.path in manifest else "not written by xacrokit"
+            reason = "edited since it was generated" if file.path in manifest else NOT_OURS
             actions.append(FileAction(file.path, "overwrite" if force else "conflict", reason))
     return actions + _stale(manifest, files, root)
 

@@ -39,6 +39,7 @@ def test_an_edited_file_is_a_conflict_kept_and_nothing_is_written(tmp_path):
         xacrokit.generate(spec, out)
     assert [c.path for c in caught.value.conflicts] == ["README.md"]
     assert "edited since it was generated" in str(caught.value)
+    assert str(caught.value).splitlines()[-1].startswith("Keep your edits by moving them into the spec")
     assert snapshot(out) == before  # not even the files that would merely have been updated
 
 
@@ -66,9 +67,12 @@ def test_files_not_written_by_us_are_conflicts(tmp_path):
     out = tmp_path / "pkg"
     (out / "urdf").mkdir(parents=True)
     (out / "package.xml").write_text("<package/>", encoding="utf-8")
-    with pytest.raises(ConflictError, match="not written by xacrokit"):
+    with pytest.raises(ConflictError, match="not written by xacrokit") as caught:
         xacrokit.generate(SPEC, out)
     assert sorted(p.name for p in out.rglob("*")) == ["package.xml", "urdf"]
+    advice = str(caught.value).splitlines()[-1]  # (not "move your edits into the spec": it was never ours)
+    assert advice.startswith("A file not written by xacrokit is not ours to replace: write the package into another")
+    assert "into the spec" not in str(caught.value)
 
 
 def test_writes_never_leave_the_output_folder(tmp_path):
