@@ -17,7 +17,7 @@ import re
 import sys
 from collections.abc import Iterator, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NoReturn
 
 from . import __version__
 from .cliargs import fleet_count, parse_packages, require_plain_output, spacing
@@ -268,8 +268,17 @@ EXIT_CODES = (
 )
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with one prefix for every error, as gen-robot's own errors have: ``gen-robot: error: ...`` (a
+    command's parser said ``gen-robot fleet: error: ...`` for its option errors; its usage line still names it)."""
+
+    def error(self, message: str) -> NoReturn:
+        self.print_usage(sys.stderr)
+        self.exit(2, f"gen-robot: error: {message}\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="gen-robot",
         description="xacrokit: correct robot descriptions from a macro library and short YAML specs. "
         "`gen-robot SPEC.yaml [options]` is short for `gen-robot generate SPEC.yaml [options]`.",

@@ -120,6 +120,8 @@ def test_every_hostile_command_line_is_refused(tmp_path, kind, words):
     code, err = run([w.format(spec=spec, out=out) for w in words])
     assert_refused(code, err)
     assert not out.exists() and not (tmp_path / "out.yaml").exists()
+    said = [line for line in err.splitlines() if ": error: " in line]  # one prefix, whichever parser said it
+    assert said and all(line.startswith("gen-robot: error: ") for line in said), said
 
 
 @pytest.mark.parametrize("kind", HOSTILE_PATHS)
