@@ -84,10 +84,16 @@ def assert_physical_tensor(tensor: np.ndarray, rel: float = 1e-9) -> None:
 
 @pytest.fixture(scope="session")
 def expand(tmp_path_factory):
-    """expand(doc_text, **kwargs) -> URDF root. Session-wide (hypothesis-safe): each call rewrites one file."""
+    """expand(doc_text, **kwargs) -> URDF root. Session-wide (hypothesis-safe): each call rewrites one file.
+
+    The documents are the tests' own, calling the macro library: trusted unless ``trust=False`` is given, so they
+    expand in-process (an untrusted expansion forks a bounded child, 15 to 50 ms in a process as large as pytest's,
+    thousands of times here). The untrusted path has tests of its own (tests/expand: the guard and the bounds), and
+    test_macro_library_expands_untrusted expands every public macro untrusted."""
     folder = tmp_path_factory.mktemp("expand")
 
     def run(doc: str, **kwargs):
+        kwargs.setdefault("trust", True)
         return expand_text(doc, folder, **kwargs)
 
     return run

@@ -64,6 +64,7 @@ def test_demo_loads_in_pinocchio_and_yourdfpy_with_the_written_masses(demo_urdf)
 
 
 def test_demo_arm_follows_its_dh_table(demo_urdf):
+    xacro.init_stacks(None)  # (load_yaml outside an expansion: xacro's file stack is set only while it expands)
     rows = xacro.load_yaml(str(REPO / "examples" / "macros" / "macros_demo_arm.yaml"))["joints"]
     rows = [dict(r) for r in rows]
     model = pin.buildModelFromUrdf(str(demo_urdf))
@@ -88,3 +89,16 @@ def test_demo_with_a_prefix_prefixes_every_name():
     names = [e.get("name") for e in root.iter("link", "joint")]
     assert names and all(n.startswith("r2_") for n in names)
     assert all(g.get("reference").startswith("r2_") for g in root.iter("gazebo"))
+
+
+def test_macro_library_expands_untrusted(tmp_path):
+    """Every public macro (the demo calls each, the *_inertial ones through the *_link ones) and a generated package
+    calling the library (--macros copy: dh_arm reading its table with xacro.load_yaml) expand as documents from
+    elsewhere, guarded and bounded, to exactly what trusted xacro gives: the other macro tests expand trusted."""
+    assert xacrokit.expand(DEMO, trust=False) == xacrokit.expand(DEMO, trust=True)
+    arm = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
+    xacrokit.generate(arm, tmp_path / "pkg", macros="copy")
+    entry = tmp_path / "pkg" / "urdf" / "ur5.urdf.xacro"
+    paths = {"ur5_description": tmp_path / "pkg"}
+    untrusted = xacrokit.expand(entry, package_paths=paths, trust=False)
+    assert untrusted == xacrokit.expand(entry, package_paths=paths, trust=True) and "<link" in untrusted
