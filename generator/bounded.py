@@ -127,12 +127,13 @@ def _collect(reader: int, bounds: Bounds) -> tuple[bytes, bool, bool]:
     deadline = time.monotonic() + bounds.seconds
     chunks: list[bytes] = []
     size = 0
+    poller = select.poll()  # (not select.select: it refuses descriptors above 1023, which a busy process may hold)
+    poller.register(reader, select.POLLIN | select.POLLHUP)
     while True:
         left = deadline - time.monotonic()
         if left <= 0:
             return b"", False, True
-        ready, _, _ = select.select([reader], [], [], min(left, 1.0))
-        if not ready:
+        if not poller.poll(min(left, 1.0) * 1000):
             continue
         chunk = os.read(reader, 1 << 20)
         if not chunk:
