@@ -18,13 +18,12 @@ import sys
 import time
 
 import pytest
+from write_helpers import contents, two_specs
 
 import xacrokit
-from conftest import REPO
 from xacrokit.fileio import TEMPORARY
 from xacrokit.write import MANIFEST
 
-SPEC_A = REPO / "examples" / "robots" / "two_dof_arm.yaml"
 SEED = 20261124
 
 # gen-robot, killed by SIGKILL at the K-th call (from 0) of STAGE: "write" (before a file's atomic write begins) or
@@ -57,19 +56,7 @@ sys.exit(main(sys.argv[1:]))
 
 @pytest.fixture(scope="module")
 def specs(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("specs")
-    text = SPEC_A.read_text(encoding="utf-8")
-    spec_b = folder / "b.yaml"
-    spec_b.write_text(text.replace("robot: two_dof_arm", "robot: arm_b").replace("mass: 0.3", "mass: 0.35"))
-    clean = {}
-    for name, spec in (("a", SPEC_A), ("b", spec_b)):
-        xacrokit.generate(spec, folder / f"clean_{name}")
-        clean[name] = contents(folder / f"clean_{name}")
-    return {"a": SPEC_A, "b": spec_b}, clean
-
-
-def contents(root):
-    return {p.relative_to(root).as_posix(): p.read_bytes() for p in root.rglob("*") if p.is_file()}
+    return two_specs(tmp_path_factory.mktemp("specs"))
 
 
 def gen_robot_killed(spec, out, point, stage):

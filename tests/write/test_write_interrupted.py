@@ -10,13 +10,11 @@ import json
 import os
 
 import pytest
+from write_helpers import contents, two_specs
 
 import xacrokit
 import xacrokit.write as write_stage
-from conftest import REPO
 from xacrokit.write import MANIFEST, ConflictError
-
-SPEC_A = REPO / "examples" / "robots" / "two_dof_arm.yaml"
 
 
 class Killed(BaseException):
@@ -25,20 +23,7 @@ class Killed(BaseException):
 
 @pytest.fixture(scope="module")
 def specs(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("specs")
-    text = SPEC_A.read_text(encoding="utf-8")
-    spec_b = folder / "b.yaml"  # another robot: some paths shared (CMakeLists.txt, ...), some only A's or B's
-    spec_b.write_text(text.replace("robot: two_dof_arm", "robot: arm_b").replace("mass: 0.3", "mass: 0.35"))
-    assert spec_b.read_text() != text
-    clean = {}
-    for name, spec in (("a", SPEC_A), ("b", spec_b)):
-        xacrokit.generate(spec, folder / f"clean_{name}")
-        clean[name] = contents(folder / f"clean_{name}")
-    return {"a": SPEC_A, "b": spec_b}, clean
-
-
-def contents(root):
-    return {p.relative_to(root).as_posix(): p.read_bytes() for p in root.rglob("*") if p.is_file()}
+    return two_specs(tmp_path_factory.mktemp("specs"))
 
 
 def killed_after(monkeypatch, target, function, count):
@@ -53,6 +38,16 @@ def killed_after(monkeypatch, target, function, count):
         return original(*args, **kwargs)
 
     monkeypatch.setattr(target, function, dying)
+
+
+def killed_update(spec_from, spec_to, out, target, function, count):
+    """Generate ``spec_from`` into ``out``, then update it to ``spec_to``, killed at call ``count`` of
+    ``target.function``."""
+    xacrokit.generate(spec_from, out)
+    with pytest.MonkeyPatch.context() as patch:
+        killed_after(patch, target, function, count)
+        with pytest.raises(Killed):
+            xacrokit.generate(spec_to, out)
 
 
 def count_writes(spec_from, spec_to, out):
@@ -80,11 +75,7 @@ def test_an_update_killed_at_any_write_is_completed_by_the_next_run_of_either_sp
     assert writes >= 10
     for k in range(writes):
         out = tmp_path / f"k{k}"
-        xacrokit.generate(spec["a"], out)
-        with pytest.MonkeyPatch.context() as patch:
-            killed_after(patch, write_stage, "write_text_atomic", k)
-            with pytest.raises(Killed):
-                xacrokit.generate(spec["b"], out)
+        killed_update(spec["a"], spec["b"], out, write_stage, "write_text_atomic", k)
         if k > 0:  # (killed before its first write: the folder is still A's, with A's manifest)
             assert "in_progress" in json.loads((out / MANIFEST).read_text())
         result = xacrokit.generate(spec[then], out)  # no ConflictError
@@ -97,11 +88,7 @@ def test_an_update_killed_while_removing_stale_files_is_completed(tmp_path, spec
     spec, clean = specs
     for k in range(4):
         out = tmp_path / f"r{k}"
-        xacrokit.generate(spec["a"], out)
-        with pytest.MonkeyPatch.context() as patch:
-            killed_after(patch, os, "unlink", k)
-            with pytest.raises(Killed):
-                xacrokit.generate(spec["b"], out)
+        killed_update(spec["a"], spec["b"], out, os, "unlink", k)
         left = contents(out).keys() - clean["b"].keys()
         assert left, "some of A's files were left, to be removed by the next run"
         xacrokit.generate(spec["b"], out)
@@ -111,11 +98,7 @@ def test_an_update_killed_while_removing_stale_files_is_completed(tmp_path, spec
 def test_an_edit_made_after_a_killed_run_is_still_a_conflict(tmp_path, specs):
     spec, _ = specs
     out = tmp_path / "pkg"
-    xacrokit.generate(spec["a"], out)
-    with pytest.MonkeyPatch.context() as patch:
-        killed_after(patch, write_stage, "write_text_atomic", 3)
-        with pytest.raises(Killed):
-            xacrokit.generate(spec["b"], out)
+    killed_update(spec["a"], spec["b"], out, write_stage, "write_text_atomic", 3)
     readme = out / "README.md"
     readme.write_text(readme.read_text(encoding="utf-8") + "my notes\n", encoding="utf-8")
     with pytest.raises(ConflictError) as caught:
