@@ -9,7 +9,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Literal
 
-Severity = Literal["error", "warning"]
+# error: a consumer rejects the file, or the physics is impossible for a body that moves; warning: a likely mistake an
+# expert would fix; info: style, or what a simulator assumes when the file is silent (never fails a check)
+Severity = Literal["error", "warning", "info"]
 Row = tuple[str, Severity, str]  # (name, severity, what it checks)
 InputKind = Literal["urdf", "xacro", "spec"]
 ConsumerStatus = Literal["accepted", "rejected", "crashed", "timeout", "skipped", "unavailable"]
@@ -87,6 +89,10 @@ class CheckReport:
     def warnings(self) -> list[Finding]:
         return [f for f in self.findings if f.severity == "warning"]
 
+    @property
+    def infos(self) -> list[Finding]:
+        return [f for f in self.findings if f.severity == "info"]
+
     def exit_code(self, strict: bool = False) -> int:
         return 1 if self.errors or (strict and self.warnings) else 0
 
@@ -99,6 +105,7 @@ class CheckReport:
             "summary": {
                 "errors": len(self.errors),
                 "warnings": len(self.warnings),
+                "infos": len(self.infos),
                 "verdict": "clean" if not self.errors else "errors",
             },
             "findings": [f.to_dict() for f in self.findings],

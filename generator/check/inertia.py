@@ -1,5 +1,6 @@
-"""Inertia rules (I001-I005): the bodies that need mass have it, with a tensor a rigid body can have, of a size that
-fits the body and not a placeholder."""
+"""Inertia rules (I001-I007): the bodies that need mass have it, with a tensor a rigid body can have, of a size that
+fits the body and not a placeholder. Rigid bodies are judged as simulators see them: links joined by fixed joints are
+one body."""
 
 from __future__ import annotations
 
@@ -18,13 +19,28 @@ RULES = rule_table(
         "I001": (
             "mass-positive",
             "error",
-            "links with geometry have an inertial with mass > 0; so does the body a moving joint moves (its child link "
-            "or a link fixed to it)",
+            "no mass is negative, and every body a joint moves has mass > 0: judged per rigid body, as simulators see "
+            "it (links joined by fixed joints are one body, so a massless link fixed to a massive one is fine)",
         ),
-        "I002": ("inertia-positive-definite", "error", "the inertia tensor is positive definite"),
+        "I002": (
+            "inertia-positive-definite",
+            "error",
+            "an inertia tensor is positive definite, or zero (a point mass) on a body whose other links give it one",
+        ),
         "I003": ("inertia-triangle", "error", "principal moments obey the triangle inequality"),
         "I004": ("inertia-plausible", "warning", "inertia fits the collision geometry's size (within 100x)"),
         "I005": ("inertia-placeholder", "warning", "the tensor is not an identity-like placeholder"),
+        "I006": (
+            "inertia-present",
+            "error",
+            "an <inertial> with a <mass> has an <inertia> (urdfdom rejects it without)",
+        ),
+        "I007": (
+            "base-mass",
+            "warning",
+            "the robot's base body (the root link and the links fixed to it) has a mass when it has geometry (a fixed "
+            "base needs none; a mobile one in a simulator does)",
+        ),
     }
 )
 
@@ -47,88 +63,122 @@ def _geometry_extent(geometry: etree._Element | None) -> tuple[float, float, flo
     return None
 
 
-def _massive(link: etree._Element) -> bool:
-    inertial = link.find("inertial")
-    mass = read_float(inertial.find("mass"), "value") if inertial is not None else None
-    return mass is not None and mass > 0
+ZERO_MOMENT = 1e-12  # kg*m^2: below it every principal moment is zero (a 1 g, 1 mm part has about 1e-10)
 
 
-class _BodyMass:
-    """Whether the rigid body of a link has mass: a link hanging from it by fixed joints may carry it (consumers merge
-    fixed children into their parent, so a moving joint may move a massless link whose fixed child carries the mass).
-    The fixed joints are read when first asked; each fixed-joint component has one moved link at its top, so all
-    questions together are linear."""
+class _Bodies:
+    """The rigid bodies of a document as consumers see them: links joined by fixed joints are one body (pinocchio,
+    MuJoCo and Gazebo fuse them), so mass and inertia are asked of the body, not of each link. A body is moved when
+    one of its links is the child of a moving joint; the body that holds the root link is the robot's base."""
 
-    def __init__(self, doc: Doc) -> None:
-        self.doc = doc
-        self.fixed_children: dict[str, list[str]] | None = None
-        self.massive: set[str] = set()
+    def __init__(self, doc: Doc, masses: dict[str, float | None], solid: set[str]) -> None:
+        self.owner: dict[str, str] = {name: name for name in doc.link_names}  # union-find: link -> representative
+        for joint in doc.joints:
+            parent, child = joint.find("parent"), joint.find("child")
+            if joint.get("type") == "fixed" and parent is not None and child is not None:
+                self._join(parent.get("link", ""), child.get("link", ""))
+        self.members: dict[str, list[str]] = {}
+        for name in (link.get("name", "") for link in doc.links):  # (in the document's order: messages list them)
+            self.members.setdefault(self.body(name), []).append(name)
+        self.massive = {self.body(n) for n, m in masses.items() if m is not None and m > 0}
+        self.solid = {self.body(n) for n in solid}  # bodies with a link whose tensor is positive definite
 
-    def __call__(self, name: str) -> bool:
-        if self.fixed_children is None:
-            self.fixed_children = {}
-            for joint in self.doc.joints:
-                parent, child = joint.find("parent"), joint.find("child")
-                if joint.get("type") == "fixed" and parent is not None and child is not None:
-                    self.fixed_children.setdefault(parent.get("link", ""), []).append(child.get("link", ""))
-            self.massive = {link.get("name", "") for link in self.doc.links if _massive(link)}
-        seen, stack = {name}, [name]
-        while stack:  # (a cycle of fixed joints is S002's; ``seen`` keeps this walk finite)
-            current = stack.pop()
-            if current in self.massive:
-                return True
-            for child in self.fixed_children.get(current, ()):
-                if child not in seen:
-                    seen.add(child)
-                    stack.append(child)
-        return False
+    def body(self, name: str) -> str:
+        root = self.owner.setdefault(name, name)
+        while self.owner[root] != root:
+            self.owner[root] = self.owner[self.owner[root]]  # (path halving)
+            root = self.owner[root]
+        return root
+
+    def _join(self, a: str, b: str) -> None:
+        self.owner[self.body(a)] = self.body(b)
+
+    def others(self, name: str) -> str:
+        """The links fixed to ``name``, for messages: 'a, b' (at most four)."""
+        rest = [n for n in self.members.get(self.body(name), []) if n != name]
+        return ", ".join(rest[:4]) + (f" and {len(rest) - 4} more" if len(rest) > 4 else "")
 
 
 def inertia_rules(doc: Doc) -> Iterator[Finding]:
     moved = {j.find("child").get("link") for j in doc.joints if j.get("type") in MOVING and j.find("child") is not None}
-    body_has_mass = _BodyMass(doc)
     # (ixx, ixy, ixz, iyy, iyz, izz) of every link that has them; the principal moments of all the finite ones in one
     # batched eigvalsh, consumed in link order below (per-link numpy calls cost ten times more)
     entries = [_inertia_entries(link) for link in doc.links]
-    moments_in_order = iter(
-        principal_moments([e for e in entries if e is not None and all(math.isfinite(v) for v in e)])
-    )
-    for link, entry in zip(doc.links, entries, strict=True):
-        moments = next(moments_in_order) if entry is not None and all(math.isfinite(v) for v in entry) else None
+    finite = [e is not None and all(math.isfinite(v) for v in e) for e in entries]
+    moments_in_order = iter(principal_moments([e for e in entries if e is not None and all(map(math.isfinite, e))]))
+    moments_of = [next(moments_in_order) if ok else None for ok in finite]
+    masses = {link.get("name", ""): _mass(link) for link in doc.links}
+    solid = {
+        link.get("name", "")
+        for link, moments in zip(doc.links, moments_of, strict=True)
+        if moments is not None and max(moments) >= ZERO_MOMENT and moments_problem(moments) is None
+    }
+    bodies = _Bodies(doc, masses, solid)
+    moved_bodies = {bodies.body(n) for n in moved}
+    said_base: set[str] = set()  # (I007 once per base body)
+    for link, entry, moments in zip(doc.links, entries, moments_of, strict=True):
         name = link.get("name", "")
-        inertial = link.find("inertial")
+        body = bodies.body(name)
+        mass = masses[name]
         has_geometry = link.find("visual") is not None or link.find("collision") is not None
-        mass = read_float(inertial.find("mass"), "value") if inertial is not None else None
-        if has_geometry or name in moved:
-            why = "has geometry" if has_geometry else "is moved by a joint"
-            if mass is None:
-                if not has_geometry and body_has_mass(name):
-                    continue  # a massless link whose fixed children carry the moved body's mass
-                where = "" if has_geometry else " (nor any link fixed to it)"
+        inertial = link.find("inertial")
+        if inertial is not None and inertial.find("mass") is not None and inertial.find("inertia") is None:
+            yield doc.finding(
+                "I006",
+                "link",
+                name,
+                "<inertial> has a mass but no <inertia>; urdfdom rejects it: "
+                "give <inertia ixx iyy izz ixy ixz iyz> (kg*m^2)",
+                link,
+            )
+        if mass is not None and not mass >= 0:
+            yield doc.finding(
+                "I001", "link", name, f"mass is {mass}; it must be > 0 kg (or 0 on a massless frame)", link
+            )
+            continue
+        if body not in bodies.massive:
+            if name in moved:
+                fixed = bodies.others(name)
+                what = f"neither it nor a link fixed to it ({fixed})" if fixed else "it"
                 yield doc.finding(
                     "I001",
                     "link",
                     name,
-                    f"link {why} but no <inertial> mass{where}; give mass > 0 (kg) and its inertia",
+                    f"it is moved by a joint but {what} has a mass: give it <inertial> with mass > 0 (kg) and its "
+                    "inertia (simulators cannot move a massless body)",
                     link,
                 )
-                continue
-            if not mass > 0:
-                yield doc.finding("I001", "link", name, f"mass is {mass}; it must be > 0 kg", link)
-                continue
-        if entry is None:
+            elif has_geometry and body not in moved_bodies and body not in said_base:
+                said_base.add(body)
+                yield doc.finding(
+                    "I007",
+                    "link",
+                    name,
+                    "the robot's base has geometry but no mass anywhere (it or a link fixed to it): enough for a "
+                    "fixed base, but a simulator that lets the robot move (a mobile base in Gazebo) needs its mass",
+                    link,
+                )
             continue
-        if mass == 0 and not any(entry) and not (has_geometry or name in moved):
-            continue  # an explicit all-zero inertial on a bare frame: a massless frame, as many descriptions write
-        if moments is None:
-            yield doc.finding("I002", "link", name, "the inertia tensor has unreadable entries", link)
+        if entry is None or moments is None:
+            if entry is not None:
+                yield doc.finding("I002", "link", name, "the inertia tensor has unreadable entries", link)
+            continue
+        if max(abs(m) for m in moments) < ZERO_MOMENT:  # (a point mass, or a massless frame's zeros)
+            if mass and body not in bodies.solid and body in moved_bodies:
+                yield doc.finding(
+                    "I002",
+                    "link",
+                    name,
+                    f"mass {mass:g} kg with no rotational inertia (all principal moments below {ZERO_MOMENT:g} "
+                    "kg*m^2), and no link fixed to it has any: give the body its inertia",
+                    link,
+                )
             continue
         problem = moments_problem(moments)
         if problem is not None:
             rule = "I002" if problem == "not-positive-definite" else "I003"
             yield doc.finding(rule, "link", name, describe_problem(problem, moments), link)
             continue
-        total = sum(moments)
         ixx, ixy, ixz, iyy, iyz, izz = entry
         if ixy == ixz == iyz == 0 and ixx == iyy == izz and ixx in _PLACEHOLDERS:
             yield doc.finding(
@@ -140,7 +190,12 @@ def inertia_rules(doc: Doc) -> Iterator[Finding]:
                 link,
             )
         if mass and mass > 0:
-            yield from _plausibility(doc, link, name, mass, total)
+            yield from _plausibility(doc, link, name, mass, sum(moments))
+
+
+def _mass(link: etree._Element) -> float | None:
+    inertial = link.find("inertial")
+    return read_float(inertial.find("mass"), "value") if inertial is not None else None
 
 
 def _inertia_entries(link: etree._Element) -> tuple[float, ...] | None:

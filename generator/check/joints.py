@@ -19,11 +19,20 @@ RULES = rule_table(
         "J002": ("limit-order", "error", "lower <= upper"),
         "J003": ("limit-effort", "error", "moving joints' effort limit is > 0"),
         "J004": ("limit-velocity", "error", "moving joints' velocity limit is > 0"),
-        "J005": ("continuous-limit", "error", "continuous joints have <limit> with effort and velocity"),
+        "J005": (
+            "continuous-limit",
+            "error",
+            "a continuous joint's <limit>, when given (it is optional), has effort and velocity (urdfdom rejects it "
+            "without)",
+        ),
         "J006": ("axis-nonzero", "error", "a joint's axis is not the zero vector"),
         "J007": ("axis-unit", "warning", "a joint's axis has unit length"),
         "J008": ("mimic-target", "error", "<mimic> names an existing moving joint of the same type, not itself"),
-        "J009": ("dynamics-present", "warning", "moving joints have <dynamics> (damping, friction)"),
+        "J009": (
+            "dynamics-present",
+            "info",
+            "moving joints have <dynamics> (damping, friction; optional in URDF: without it simulators assume none)",
+        ),
         "J010": ("safety-inside-limits", "error", "safety_controller soft limits lie inside the hard limits"),
         "J011": ("joint-type", "error", "a joint's type is one URDF knows"),
         "J012": (
@@ -64,10 +73,16 @@ def joint_rules(doc: Doc) -> Iterator[Finding]:
                 yield found("J001", f"a {kind} joint needs <limit lower upper effort velocity>")
             elif not lower <= upper:
                 yield found("J002", f"limit lower ({lower}) is greater than upper ({upper}); swap them")
-        if kind == "continuous" and (limit is None or limit.get("effort") is None or limit.get("velocity") is None):
+        if (
+            kind == "continuous"
+            and limit is not None
+            and (limit.get("effort") is None or limit.get("velocity") is None)
+        ):
+            missing = " and ".join(k for k in ("effort", "velocity") if limit.get(k) is None)
             yield found(
                 "J005",
-                "a continuous joint needs <limit effort=... velocity=...> (controllers and simulators read them)",
+                f"<limit> has no {missing}; urdfdom rejects a limit without them: give effort and velocity, or leave "
+                "the <limit> out (a passive continuous joint needs none)",
             )
         if kind in MOVING and limit is not None:
             for rule, key, unit in (("J003", "effort", "N*m or N"), ("J004", "velocity", "rad/s or m/s")):
@@ -88,7 +103,7 @@ def joint_rules(doc: Doc) -> Iterator[Finding]:
             elif abs(norm - 1.0) > 1e-6:
                 yield found("J007", f"axis has length {norm:.6g}; consumers normalise it, write the unit vector")
         if kind in MOVING and joint.find("dynamics") is None and joint.find("mimic") is None:
-            yield found("J009", "moving joint without <dynamics damping friction>; simulators then assume none")
+            yield found("J009", "no <dynamics damping friction>: simulators assume none (URDF makes it optional)")
         if kind == "floating" and joint.find("parent") is not None and joint.find("parent").get("link") in children:
             yield found(
                 "J012",

@@ -20,9 +20,10 @@ def _where(finding: Finding) -> str:
 
 def format_text(report: CheckReport, *, colour: bool = False, strict: bool = False) -> str:
     lines = [f"{report.source}: {report.kind}, robot {report.robot!r}"]
-    for severity, findings in (("error", report.errors), ("warning", report.warnings)):
+    for severity, findings in (("error", report.errors), ("warning", report.warnings), ("note", report.infos)):
         if findings:
-            lines.append(_paint(f"{len(findings)} {severity}{'s' if len(findings) != 1 else ''}:", severity, colour))
+            head = f"{len(findings)} {severity}{'s' if len(findings) != 1 else ''}:"
+            lines.append(_paint(head, severity, colour) if severity != "note" else head)
             for f in findings:
                 subject = f"{f.element_kind} {f.element!r}" if f.element else f.element_kind
                 lines.append(f"  {f.rule} {f.name}: {subject}{_where(f)}: {f.message}")
@@ -34,6 +35,7 @@ def format_text(report: CheckReport, *, colour: bool = False, strict: bool = Fal
         lines.append("consumers: " + "; ".join(verdicts))
     failed = bool(report.errors) or (strict and bool(report.warnings))
     summary = f"{len(report.errors)} error(s), {len(report.warnings)} warning(s)"
+    summary += f", {len(report.infos)} note(s)" if report.infos else ""
     lines.append(_paint(("FAILED: " if failed else "OK: ") + summary, "error" if failed else "ok", colour))
     return "\n".join(lines) + "\n"
 

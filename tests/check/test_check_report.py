@@ -26,8 +26,10 @@ def test_json_report_follows_its_documented_schema(fixture):
 
 def test_exit_codes():
     assert gen_robot("check", CORPUS / "J009_pass.urdf", "--consumers", "none").returncode == 0
-    assert gen_robot("check", CORPUS / "J009_fail.urdf", "--consumers", "none").returncode == 0  # a warning
-    assert gen_robot("check", CORPUS / "J009_fail.urdf", "--consumers", "none", "--strict").returncode == 1
+    assert gen_robot("check", CORPUS / "J007_fail.urdf", "--consumers", "none").returncode == 0  # a warning
+    assert gen_robot("check", CORPUS / "J007_fail.urdf", "--consumers", "none", "--strict").returncode == 1
+    noted = gen_robot("check", CORPUS / "J009_fail.urdf", "--consumers", "none", "--strict")  # a note never fails
+    assert noted.returncode == 0 and noted.stdout.splitlines()[-1] == "OK: 0 error(s), 0 warning(s), 1 note(s)"
     assert gen_robot("check", CORPUS / "I002_fail.urdf", "--consumers", "none").returncode == 1
     missing = gen_robot("check", CORPUS / "nothing.urdf")
     assert missing.returncode == 2 and "Traceback" not in missing.stderr

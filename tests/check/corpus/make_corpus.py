@@ -82,9 +82,9 @@ CASES = {
     "J002": (base(**{'lower="-1" upper="1"': 'lower="1" upper="-1"'}), base()),
     "J003": (base(**{'effort="10"': 'effort="0"'}), base()),
     "J004": (base(**{'velocity="1"': 'velocity="-2"'}), base()),
-    "J005": (
+    "J005": (  # a <limit> without effort (urdfdom rejects it); none at all is fine (a passive continuous joint)
+        base(**{'type="revolute"': 'type="continuous"', 'lower="-1" upper="1" effort="10" ': ""}),
         base(**{'type="revolute"': 'type="continuous"', '<limit lower="-1" upper="1" effort="10" velocity="1"/>': ""}),
-        base(**{'type="revolute"': 'type="continuous"', 'lower="-1" upper="1" ': ""}),
     ),
     "J006": (base(**{'<axis xyz="0 1 0"/>': '<axis xyz="0 0 0"/>'}), base()),
     "J007": (base(**{'<axis xyz="0 1 0"/>': '<axis xyz="0 2 0"/>'}), base()),
@@ -149,6 +149,21 @@ CASES = {
             }
         ),
         base(),
+    ),
+    "I006": (  # urdfdom: "Inertial element must have inertia element"
+        base(**{'<inertia ixx="0.00380" ixy="0" ixz="0" iyy="0.00380" iyz="0" izz="0.0001"/>': ""}),
+        base(),
+    ),
+    "I007": (  # a base with geometry and no mass anywhere in its body; with mass on a link fixed to it, fine
+        base(**{BASE_LINK.splitlines()[3] + "\n": ""}),
+        base(
+            **{
+                BASE_LINK.splitlines()[3] + "\n": "",
+                "</robot>": '<link name="ballast"><inertial><mass value="2"/><inertia ixx="0.01" ixy="0" ixz="0" '
+                'iyy="0.01" iyz="0" izz="0.01"/></inertial></link>\n<joint name="ballast_joint" type="fixed">'
+                '<parent link="base_link"/><child link="ballast"/></joint>\n</robot>',
+            }
+        ),
     ),
     "R001": (
         base(**{"</robot>": '<gazebo reference="nowhere"><mu1>1</mu1></gazebo>\n</robot>'}),
