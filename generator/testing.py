@@ -340,7 +340,7 @@ def inject_urdf_fault(urdf: str, fault: str, root_link: str) -> str:
     from lxml import etree
 
     robot = etree.fromstring(urdf.encode("utf-8"))
-    link = {"mass": 1.0, "ixx": 1.0, "ixy": 0.0, "izz": 1.0}
+    link = {"mass": 1.0, "ixx": 1.0, "ixy": 0.0, "izz": 1.2}  # (not 1 * identity: I005 would call it a placeholder)
     joint = {
         "kind": "revolute",
         "parent": root_link,
@@ -359,7 +359,7 @@ def inject_urdf_fault(urdf: str, fault: str, root_link: str) -> str:
     elif fault == "not_positive_definite":
         link["ixy"] = 1.5
     elif fault == "triangle_violation":
-        link["izz"] = 2.5
+        link["izz"] = 2.5  # > ixx + iyy = 2
     elif fault == "cycle":
         extra = [
             '<link name="loop_a"/>',

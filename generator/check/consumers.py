@@ -24,7 +24,16 @@ from pathlib import Path
 from ..errors import XacrokitError
 from .findings import ConsumerResult, Finding, rule_table, severity
 
-RULES = rule_table({"C001": ("consumer-accepts", "error", "an independent consumer loads the URDF")})
+RULES = rule_table(
+    {
+        "C001": (
+            "consumer-accepts",
+            "error",
+            "an independent consumer loads the URDF (MuJoCo judges it without the .dae, .glb and ASCII STL meshes "
+            "it cannot read, a limit of its own, and says how many it left out)",
+        )
+    }
+)
 
 CONSUMERS = ("check_urdf", "pinocchio", "yourdfpy", "mujoco")
 TIMEOUT_S = 30.0
@@ -237,9 +246,52 @@ def _load(name: str, path: str, packages: Mapping[str, str] | None = None) -> st
         return f"{len(robot.link_map)} links, {len(robot.joint_map)} joints"
     import mujoco
 
-    # MuJoCo opens mesh files by plain path: hand it the files that package:// and file:// URIs name.
-    model = mujoco.MjModel.from_xml_string(_with_mesh_paths(path, packages or {}))
-    return f"{model.nbody} bodies"
+    # MuJoCo opens mesh files by plain path: hand it the files that package:// and file:// URIs name. It cannot read
+    # some formats (.dae, .glb, ASCII STL): a limit of MuJoCo, not a defect of the file, so the visuals and collisions
+    # made of them are left out and MuJoCo judges the rest (the bodies, their inertia, the joints)
+    text, left_out = _without_meshes_mujoco_cannot_read(_with_mesh_paths(path, packages or {}))
+    model = mujoco.MjModel.from_xml_string(text)
+    return f"{model.nbody} bodies" + (f" ({left_out} left out: MuJoCo cannot read them)" if left_out else "")
+
+
+MUJOCO_MESH_FORMATS = (".stl", ".obj", ".msh")  # MuJoCo 3-4's mesh readers (binary STL only)
+
+
+def _without_meshes_mujoco_cannot_read(urdf: str) -> tuple[str, str]:
+    """``urdf`` without the visuals and collisions whose mesh file MuJoCo cannot read, and what was left out
+    ('3 .dae and 1 ASCII STL meshes'; '' when nothing was)."""
+    from lxml import etree
+
+    root = etree.fromstring(urdf.encode("utf-8"))
+    formats: dict[str, int] = {}
+    for mesh in list(root.iter("mesh")):
+        name = mesh.get("filename", "")
+        suffix = Path(name).suffix.lower()
+        unreadable = (suffix or "suffix-less") if suffix not in MUJOCO_MESH_FORMATS else ""
+        if suffix == ".stl" and _ascii_stl(Path(name)):
+            unreadable = "ASCII STL"
+        shape = next((a for a in mesh.iterancestors() if a.tag in ("visual", "collision")), None)
+        if unreadable and shape is not None and shape.getparent() is not None:
+            formats[unreadable] = formats.get(unreadable, 0) + 1
+            shape.getparent().remove(shape)
+    said = " and ".join(f"{n} {what}" for what, n in formats.items())
+    if said:
+        said += " meshes" if sum(formats.values()) > 1 else " mesh"
+    return etree.tostring(root, encoding="unicode"), said
+
+
+def _ascii_stl(path: Path) -> bool:
+    """An STL in the ASCII form (MuJoCo reads the binary one only): it starts with 'solid' and its size is not that of
+    a binary STL (84 bytes and 50 per triangle, the count at byte 80)."""
+    try:
+        with open(path, "rb") as handle:
+            head = handle.read(84)
+        size = path.stat().st_size
+    except OSError:
+        return False  # (a missing file: MuJoCo's own complaint, and R003's)
+    if not head.startswith(b"solid") or len(head) < 84:
+        return head.startswith(b"solid")
+    return size != 84 + 50 * int.from_bytes(head[80:84], "little")
 
 
 def _with_mesh_paths(path: str, packages: Mapping[str, str]) -> str:

@@ -38,7 +38,7 @@ def severity(rule: str) -> Severity:
 class Finding:
     rule: str
     severity: Severity
-    element_kind: str  # robot, link, joint, gazebo, material, mesh, ros2_control, consumer, value (a spec's)
+    element_kind: str  # robot, link, joint, gazebo, material, mesh, ros2_control, consumer, value (a spec's), namespace
     element: str
     message: str
     file: str | None = None

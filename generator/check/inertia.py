@@ -4,13 +4,14 @@ one body."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Iterator
 
 from lxml import etree
 
 from ..model import MOVING
-from ..physics import describe_problem, moments_problem, principal_moments
+from ..physics import TOLERANCE, describe_problem, format_moments, moments_problem, principal_moments
 from .document import Doc, read_float, read_triple
 from .findings import Finding, rule_table
 
@@ -139,13 +140,13 @@ def inertia_rules(doc: Doc) -> Iterator[Finding]:
         if body not in bodies.massive:
             if name in moved:
                 fixed = bodies.others(name)
-                what = f"neither it nor a link fixed to it ({fixed})" if fixed else "it"
+                what = f"neither it nor a link fixed to it ({fixed}) has a mass" if fixed else "it has no mass"
                 yield doc.finding(
                     "I001",
                     "link",
                     name,
-                    f"it is moved by a joint but {what} has a mass: give it <inertial> with mass > 0 (kg) and its "
-                    "inertia (simulators cannot move a massless body)",
+                    f"it is moved by a joint but {what}: give it <inertial> with mass > 0 (kg) and its inertia "
+                    "(simulators cannot move a massless body; MuJoCo rejects it, even between two joints)",
                     link,
                 )
             elif has_geometry and body not in moved_bodies and body not in said_base:
@@ -174,10 +175,16 @@ def inertia_rules(doc: Doc) -> Iterator[Finding]:
                     link,
                 )
             continue
-        problem = moments_problem(moments)
+        problem = _tensor_problem(moments)
         if problem is not None:
-            rule = "I002" if problem == "not-positive-definite" else "I003"
-            yield doc.finding(rule, "link", name, describe_problem(problem, moments), link)
+            rule, said, kind = problem
+            # the only inertia of a body a joint moves: impossible physics (MuJoCo rejects it); a part of a body whose
+            # other links have a proper tensor, or of the base: its numbers are wrong, the body may still be fine
+            alone = body in moved_bodies and body not in bodies.solid
+            degenerate = kind == "degenerate"
+            if alone or not degenerate:
+                finding = doc.finding(rule, "link", name, said, link)
+                yield finding if alone else dataclasses.replace(finding, severity="warning")
             continue
         ixx, ixy, ixz, iyy, iyz, izz = entry
         if ixy == ixz == iyz == 0 and ixx == iyy == izz and ixx in _PLACEHOLDERS:
@@ -193,6 +200,29 @@ def inertia_rules(doc: Doc) -> Iterator[Finding]:
             yield from _plausibility(doc, link, name, mass, sum(moments))
 
 
+def _tensor_problem(moments: tuple[float, ...] | list[float]) -> tuple[str, str, str] | None:
+    """(rule, message, kind: triangle, negative or degenerate) for principal moments no rigid body has, or None.
+    Moments within rounding of zero (1e-9 of the largest) are zero: a rod's or a sheet's tensor, which no real part
+    has, is I002 like a negative moment."""
+    problem = moments_problem(moments)
+    if problem is None:
+        return None
+    if problem == "triangle-inequality":
+        return "I003", describe_problem(problem, moments) + " (a real body's always are)", "triangle"
+    shown = format_moments(moments)
+    if min(moments) < -max(ZERO_MOMENT, TOLERANCE * max(abs(m) for m in moments)):
+        said = (
+            f"the inertia tensor has a negative principal moment ({shown} kg*m^2); every principal moment of a "
+            "body is > 0: the entries are wrong (a sign, or a product of inertia of the wrong frame?)"
+        )
+        return "I002", said, "negative"
+    said = (
+        f"the inertia tensor has a principal moment of zero ({shown} kg*m^2): a thin rod's or a flat sheet's, "
+        "which no real part has; simulators need every moment > 0 (MuJoCo rejects it): give the part its thickness"
+    )
+    return "I002", said, "degenerate"
+
+
 def _mass(link: etree._Element) -> float | None:
     inertial = link.find("inertial")
     return read_float(inertial.find("mass"), "value") if inertial is not None else None
@@ -205,12 +235,25 @@ def _inertia_entries(link: etree._Element) -> tuple[float, ...] | None:
 
 
 def _plausibility(doc: Doc, link: etree._Element, name: str, mass: float, trace: float) -> Iterator[Finding]:
-    """Compare trace(I) with a solid box filling the collision geometry's bounding box: m * diagonal^2 / 6."""
-    extents = [_geometry_extent(c.find("geometry")) for c in link.findall("collision")]
-    known = [e for e in extents if e is not None and all(math.isfinite(v) for v in e)]
-    if not extents or len(known) != len(extents):
+    """Compare trace(I) with a solid box filling the collision geometry: m * diagonal^2 / 6, the box bounding every
+    collision geometry where it sits (several small spheres far apart make a large body)."""
+    low, high = [math.inf] * 3, [-math.inf] * 3
+    collisions = link.findall("collision")
+    for collision in collisions:
+        extent = _geometry_extent(collision.find("geometry"))
+        if extent is None or not all(math.isfinite(v) for v in extent):
+            return  # (a mesh, or an unreadable size: the body's size is not known)
+        origin = collision.find("origin")
+        centre = read_triple(origin, "xyz")
+        turned = any(v != 0 for v in read_triple(origin, "rpy")) if origin is not None else False
+        radius = 0.5 * math.sqrt(sum(v * v for v in extent))  # (turned: the bounding sphere holds it in any pose)
+        half = (radius, radius, radius) if turned else tuple(v / 2 for v in extent)
+        for axis in range(3):
+            low[axis] = min(low[axis], centre[axis] - half[axis])
+            high[axis] = max(high[axis], centre[axis] + half[axis])
+    if not collisions or not all(math.isfinite(v) for v in (*low, *high)):
         return
-    diagonal_sq = max(sum(v * v for v in e) for e in known)
+    diagonal_sq = sum((high[axis] - low[axis]) ** 2 for axis in range(3))
     expected = mass * diagonal_sq / 6.0
     if expected > 0 and not 1e-2 <= trace / expected <= 1e2:
         yield doc.finding(

@@ -40,6 +40,12 @@ RULES = rule_table(
             "warning",
             "a floating joint hangs from the root link (simulators reject deeper ones)",
         ),
+        "J013": (
+            "limit-range",
+            "warning",
+            "a revolute or prismatic joint's lower and upper limits differ (equal ones leave it no motion: a fixed "
+            "joint says so)",
+        ),
     }
 )
 
@@ -73,6 +79,10 @@ def joint_rules(doc: Doc) -> Iterator[Finding]:
                 yield found("J001", f"a {kind} joint needs <limit lower upper effort velocity>")
             elif not lower <= upper:
                 yield found("J002", f"limit lower ({lower}) is greater than upper ({upper}); swap them")
+            elif lower == upper:
+                yield found(
+                    "J013", f"limit lower and upper are both {lower}: the joint cannot move; make it a fixed joint"
+                )
         if (
             kind == "continuous"
             and limit is not None

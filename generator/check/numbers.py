@@ -18,6 +18,12 @@ RULES = rule_table(
             "every number URDF reads (origins, axes, sizes, masses, tensors, limits, dynamics, colours) is finite, "
             "with as many values as its attribute takes",
         ),
+        "G001": (
+            "geometry-size",
+            "error",
+            "box sizes, cylinder radii and lengths and sphere radii are > 0, mesh scales nonzero (negative ones "
+            "mirror); MuJoCo rejects a geometry of size 0, which has no volume to collide with",
+        ),
     }
 )
 
@@ -78,3 +84,35 @@ def number_rules(doc: Doc) -> Iterator[Finding]:
             if owner.tag in ("link", "joint", "material"):  # (not a <gazebo> or <ros2_control> block's own)
                 message = f'<{element.tag} {attribute}="{text}">: {problem}'
                 yield doc.finding("U002", owner.tag, owner.get("name", ""), message, element)
+
+
+_SIZES = {"box": ("size",), "cylinder": ("radius", "length"), "sphere": ("radius",), "mesh": ("scale",)}
+
+
+def geometry_rules(doc: Doc) -> Iterator[Finding]:
+    """G001: a primitive of size 0 (or less), or a mesh scaled by 0, in a link's visual or collision."""
+    for link in doc.links:
+        for geometry in link.iter("geometry"):
+            for shape in geometry:
+                for attribute in _SIZES.get(shape.tag, ()):
+                    text = shape.get(attribute)
+                    if text is None:
+                        continue
+                    try:
+                        values = [float(v) for v in text.split()]
+                    except ValueError:
+                        continue  # (U002 says it)
+                    finite = [v for v in values if math.isfinite(v)]
+                    # a negative mesh scale mirrors the mesh (CAD exports of left/right parts): only 0 collapses it
+                    mirror = shape.tag == "mesh"
+                    if any(v == 0 if mirror else not v > 0 for v in finite):
+                        kind = geometry.getparent().tag if geometry.getparent() is not None else "geometry"
+                        must = "be nonzero (a negative scale mirrors; 0 flattens the mesh)" if mirror else "be > 0"
+                        yield doc.finding(
+                            "G001",
+                            "link",
+                            link.get("name", ""),
+                            f'{kind} <{shape.tag} {attribute}="{text}">: every value must {must}; a size of 0 has no '
+                            "volume, which MuJoCo rejects: give the real size, or leave the geometry out",
+                            shape,
+                        )

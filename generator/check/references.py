@@ -9,14 +9,25 @@ import re
 from collections.abc import Iterator, Mapping
 from pathlib import Path
 
+from lxml import etree
+
 from ..expansion import find_package
 from .document import Doc
 from .findings import Finding, Severity, rule_table
 
 RULES = rule_table(
     {
-        "R001": ("gazebo-reference", "error", "<gazebo reference> names an existing link or joint"),
-        "R002": ("material-defined", "error", "a material used by name without a colour is defined"),
+        "R001": (
+            "gazebo-reference",
+            "warning",
+            "<gazebo reference> names an existing link or joint (Gazebo ignores a block that names none: its friction "
+            "or sensor is silently lost)",
+        ),
+        "R002": (
+            "material-defined",
+            "error",
+            "a material used by name without a colour is defined (at the top level, or with a colour in any visual)",
+        ),
         "R003": ("mesh-resolves", "error", "mesh files resolve (package://, file:// or paths) and exist"),
         "P001": ("prefix", "error", "every link, joint, gazebo reference and ros2_control joint carries the prefix"),
     }
@@ -30,9 +41,19 @@ def reference_rules(
         reference = gazebo.get("reference")
         if reference is not None and reference not in doc.link_names and reference not in doc.joint_by_name:
             yield doc.finding(
-                "R001", "gazebo", reference, f"<gazebo reference={reference!r}> names no link or joint", gazebo
+                "R001",
+                "gazebo",
+                reference,
+                f"<gazebo reference={reference!r}> names no link or joint; Gazebo ignores the block (a typo, or a "
+                "name left from another version of the robot?)",
+                gazebo,
             )
+    # urdfdom registers a material for the whole robot wherever it is given a colour or texture, a link's visual
+    # included (the Allegro hand defines its colours in its first visuals and names them in later ones)
     defined = {m.get("name") for m in doc.root.findall("material")}
+    defined |= {
+        m.get("name") for m in doc.root.iter("material") if m.find("color") is not None or m.find("texture") is not None
+    }
     for material in doc.root.iter("material"):
         if material.getparent() is doc.root:
             continue
@@ -46,21 +67,37 @@ def reference_rules(
                 f"material {name!r} is used but not defined; add <material name={name!r}><color rgba=.../></material>",
                 material,
             )
+    # one finding per kind of problem: a file whose 180 mesh URIs all miss the package name says it once, with the
+    # count (a missing folder, an unknown package and a malformed URI are each one mistake, not one per mesh)
+    groups: dict[tuple[str, str], list[tuple[etree._Element, str, str, Severity]]] = {}
     for mesh in doc.root.iter("mesh"):
         filename = mesh.get("filename", "")
-        problem, severity = _mesh_problem(filename, package_paths, base_dir)
+        problem, severity, group = _mesh_problem(filename, package_paths, base_dir)
         if problem:
-            finding = doc.finding("R003", "mesh", filename, problem, mesh)
-            if severity == "warning":  # (a package not known here: the file cannot be looked at)
-                finding = dataclasses.replace(finding, severity="warning")
-            yield finding
+            groups.setdefault(group, []).append((mesh, filename, problem, severity))
+    for same in groups.values():
+        mesh, filename, problem, severity = same[0]
+        if len(same) > 1:
+            problem += f" (and {len(same) - 1} more mesh file name{'s' if len(same) > 2 else ''} like it)"
+        finding = doc.finding("R003", "mesh", filename, problem, mesh)
+        if severity == "warning":  # (a package not known here: the file cannot be looked at)
+            finding = dataclasses.replace(finding, severity="warning")
+        yield finding
 
 
 def _mesh_problem(
     filename: str, package_paths: Mapping[str, str | os.PathLike[str]] | None, base_dir: Path | None
-) -> tuple[str | None, Severity]:
+) -> tuple[str | None, Severity, tuple[str, str]]:
+    """What is wrong with a mesh file name (None when nothing), its severity, and the group of like mistakes."""
     if filename.startswith("package://"):
         package, _, rest = filename[len("package://") :].partition("/")
+        if not package or not rest:
+            return (
+                f"{filename!r} is not a package URI: write package://PACKAGE/path/to/mesh (the package's name, "
+                "then the path inside it)",
+                "error",
+                ("malformed", ""),
+            )
         try:
             folder = Path(find_package(package, package_paths))
         except LookupError:
@@ -68,17 +105,22 @@ def _mesh_problem(
                 f"package {package!r} is not known here, so {filename!r} cannot be checked; pass "
                 f"--package {package}=PATH",
                 "warning",
+                ("package", package),
             )
         path = folder / rest
     elif filename.startswith("file://"):
         path = Path(filename[len("file://") :])
     elif re.match(r"^[a-z][a-z0-9+.-]*://", filename):
-        return f"{filename!r}: unknown URI scheme; use package:// or file://", "error"
+        scheme = filename.split(":", 1)[0]
+        return f"{filename!r}: unknown URI scheme; use package:// or file://", "error", ("scheme", scheme)
     else:
         path = (base_dir or Path.cwd()) / filename
     if not path.is_file():
-        return f"mesh file {filename!r} does not exist (looked at {path})", "error"
-    return None, "error"
+        if not path.parent.is_dir():
+            said = f"mesh file {filename!r} does not exist: there is no folder {path.parent}"
+            return said, "error", ("folder", str(path.parent))
+        return f"mesh file {filename!r} does not exist (looked at {path})", "error", ("file", str(path))
+    return None, "error", ("", "")
 
 
 def prefix_rules(doc: Doc, prefix: str) -> Iterator[Finding]:

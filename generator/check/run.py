@@ -24,10 +24,10 @@ from .document import Doc, parse_robot
 from .findings import CheckReport, Finding, InputKind
 from .inertia import inertia_rules
 from .joints import joint_rules
-from .numbers import number_rules
+from .numbers import geometry_rules, number_rules
 from .references import prefix_rules, reference_rules
 from .spec import kinematics_rules, spec_findings
-from .structure import name_rules, structure_rules
+from .structure import name_rules, structure_rules, xacro_rules
 
 MAX_URDF_BYTES = 256 * 1024 * 1024  # a URDF with meshes inlined runs to megabytes; 256 MiB is far beyond any robot
 
@@ -128,14 +128,15 @@ def check(
         if all(e.line is None for e in exc.errors):  # the file itself cannot be read: no report to give
             raise
         return CheckReport(str(path), kind, None, spec_findings(exc.errors, "V002"))
-    root = parse_robot(text, str(path))
-    if isinstance(root, Finding):  # U001: not a URDF, nothing more to read
-        return CheckReport(str(path), kind, None, (root,))
+    root, read = parse_robot(text, str(path))
+    if root is None:  # U001: not a URDF, nothing more to read
+        return CheckReport(str(path), kind, None, tuple(read))
     say("running our rules")
     doc = Doc(root, str(path), lines, source_lines=kind == "urdf")
-    findings = [*notes, *structure_rules(doc)]
+    findings = [*notes, *read, *xacro_rules(doc), *structure_rules(doc)]
     structural = any(f.rule.startswith("S") for f in findings)
     findings += number_rules(doc)
+    findings += geometry_rules(doc)
     findings += name_rules(doc)
     findings += joint_rules(doc)
     findings += inertia_rules(doc)

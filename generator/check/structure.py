@@ -19,6 +19,18 @@ RULES = rule_table(
         "S004": ("unique-link-names", "error", "no two links share a name"),
         "S005": ("unique-joint-names", "error", "no two joints share a name"),
         "S006": ("one-parent", "error", "no link is the child of two joints"),
+        "S007": (
+            "robot-named",
+            "error",
+            "the <robot> has a name and at least one link (urdfdom rejects a robot without either: an expanded macro "
+            "file, say)",
+        ),
+        "U004": (
+            "xacro-expanded",
+            "error",
+            "no xacro is left in the document (xacro: elements, ${...} or $(...) in names and values other than "
+            "file names): consumers do not expand it",
+        ),
         "N001": (
             "name-plain",
             "warning",
@@ -39,7 +51,58 @@ def _duplicate_names(doc: Doc, elements: list[etree._Element], kind: str, rule: 
         seen[name] = element
 
 
+XACRO_NAMESPACE = "http://www.ros.org/wiki/xacro"
+_UNEXPANDED = re.compile(r"\$\{|\$\(")
+
+
+def xacro_rules(doc: Doc) -> Iterator[Finding]:
+    """U004: a xacro document read as a URDF (its xacro: elements are unknown to consumers, which then see another
+    robot or none), or ${...}/$(...) left in a name or a value by an expansion that did not happen."""
+    for element in doc.root.iter():
+        if isinstance(element.tag, str) and element.tag.startswith(f"{{{XACRO_NAMESPACE}}}"):
+            local = element.tag.split("}", 1)[1]
+            yield doc.finding(
+                "U004",
+                "robot",
+                doc.root.get("name", ""),
+                f"<xacro:{local}> in the document: it is xacro, not URDF; check the .xacro (gen-robot check FILE.xacro "
+                "expands it) or expand it first (gen-robot expand)",
+                element,
+            )
+            return  # (one says it; the rest would say it again)
+    said = 0
+    for element in doc.root.iter():
+        for attribute, value in element.items():
+            # (a file name may really hold "${": a file that is not there is R003's, whatever its name)
+            if attribute != "filename" and _UNEXPANDED.search(value) and said < 5:
+                said += 1
+                owner = (
+                    element
+                    if element.tag in ("link", "joint")
+                    else next((a for a in element.iterancestors() if a.tag in ("link", "joint")), doc.root)
+                )
+                kind = owner.tag if owner.tag in ("link", "joint") else "robot"
+                yield doc.finding(
+                    "U004",
+                    kind,
+                    owner.get("name", ""),
+                    f'{element.tag} {attribute}="{value}" holds an unexpanded xacro expression; consumers read it as '
+                    "text: expand the document with its arguments",
+                    element,
+                )
+
+
 def structure_rules(doc: Doc) -> Iterator[Finding]:
+    missing = [what for what, gone in (("name", not doc.root.get("name", "").strip()), ("link", not doc.links)) if gone]
+    if missing:
+        yield doc.finding(
+            "S007",
+            "robot",
+            doc.root.get("name", ""),
+            f"the <robot> has no {' and no '.join(missing)}; urdfdom rejects it (a macro file expanded without a call "
+            "to its macro?)",
+            doc.root,
+        )
     yield from _duplicate_names(doc, doc.links, "link", "S004")
     yield from _duplicate_names(doc, doc.joints, "joint", "S005")
     tree: Tree[str] = Tree()  # child -> (parent, joint)

@@ -55,6 +55,28 @@ def joint(name: str, parent: str, child: str, kind: str = "revolute", extra: str
 B, S = BASE_LINK, SHOULDER
 CASES = {
     "U001": ('<robot name="x"><link name="a"></robot>\n', base()),
+    "U003": (  # a prefix used without its declaration (Drake's exporters write drake: elements)
+        base(**{"</robot>": "<drake:collision_filter_group/>\n</robot>"}),
+        base(
+            **{
+                '<robot name="corpus">': '<robot name="corpus" xmlns:drake="http://drake.mit.edu">',
+                "</robot>": "<drake:collision_filter_group/>\n</robot>",
+            }
+        ),
+    ),
+    "U004": (  # a xacro document read as a URDF, or an expression never expanded
+        base(**{'<box size="0.2 0.2 0.1"/></geometry><material': '<box size="${width} 0.2 0.1"/></geometry><material'}),
+        base(),
+    ),
+    "S007": (robot(MATERIAL, B, name=""), robot(MATERIAL, B)),
+    "G001": (
+        base(
+            **{
+                '<cylinder radius="0.02" length="0.3"/></geometry></collision>': '<cylinder radius="0" length="0.3"/></geometry></collision>'
+            }
+        ),
+        base(),
+    ),
     "S001": (robot(MATERIAL, B, link("arm")), base()),
     "S002": (
         robot(
@@ -118,6 +140,7 @@ CASES = {
         ),
     ),
     "J011": (base(**{'type="revolute"': 'type="ball"'}), base()),
+    "J013": (base(**{'lower="-1" upper="1"': 'lower="0.5" upper="0.5"'}), base()),
     "J012": (
         robot(MATERIAL, B, link("arm"), link("a2"), S, joint("j2", "arm", "a2", "floating")),
         robot(MATERIAL, B, link("arm"), link("a2"), S, joint("j2", "base_link", "a2", "floating")),
