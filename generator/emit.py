@@ -14,6 +14,7 @@ from collections.abc import Iterator
 from lxml import etree
 
 from .gcpause import collector_paused
+from .kinematics import dh_body_end
 from .model import (
     Arm,
     Box,
@@ -217,12 +218,11 @@ def _arm(robot: Robot, prefix: str, arm: Arm) -> Iterator[etree._Element]:
             _sub(joint, "dynamics", damping=num(row.dynamics.damping), friction=num(row.dynamics.friction))
         yield joint
         following = rows[index + 1] if index + 1 < len(rows) else None
-        end_screw = row if arm.convention == "standard" else following
-        end_a = end_screw.a if end_screw is not None else 0.0
-        end_alpha = end_screw.alpha if end_screw is not None else 0.0
-        end_d = following.d if following is not None else 0.0
+        end = dh_body_end(
+            arm.convention, row.a, row.alpha, (following.a, following.alpha, following.d) if following else None
+        )
         link = etree.Element("link", name=prefix + row.link)
-        _dh_body(robot, link, row, (end_a, -math.sin(end_alpha) * end_d, math.cos(end_alpha) * end_d))
+        _dh_body(robot, link, row, end)
         yield link
         parent = prefix + row.link
     last = rows[-1]

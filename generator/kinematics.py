@@ -2,11 +2,23 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 
 import numpy as np
 
 from .model import DHRow, Origin
+
+
+def dh_body_end(
+    convention: str, a: float, alpha: float, following: tuple[float, float, float] | None
+) -> tuple[float, float, float]:
+    """Where a DH row's link body ends, in the row's link frame: the next joint's frame origin (the tool frame's for
+    the last row, less the tool's own offset). ``following`` is the next row's (a, alpha, d), None for the last row.
+    Standard DH puts the row's own a along x; modified DH the next row's a and alpha (the next joint's screw)."""
+    end_a, end_alpha = (a, alpha) if convention == "standard" else following[:2] if following else (0.0, 0.0)
+    end_d = following[2] if following else 0.0
+    return (end_a, -math.sin(end_alpha) * end_d, math.cos(end_alpha) * end_d)
 
 
 def rot_x(angle: float) -> np.ndarray:

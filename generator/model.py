@@ -26,6 +26,7 @@ DHRowType = Literal["revolute", "continuous", "prismatic", "fixed"]
 Convention = Literal["standard", "modified"]
 InertiaKind = Literal["box", "cylinder", "sphere", "explicit"]
 Axle = Literal["x", "y", "z"]
+DEFAULT_ROW_RADIUS = 0.03  # m: a DH row's body (a cylinder between its joint frames) when the spec gives none
 DEFAULT_TOOL = "tool0"  # an arm's tool frame when the spec names none (ROS-Industrial's name)
 
 
@@ -186,7 +187,7 @@ class DHRow:
     limit: Limit | None = None
     dynamics: Dynamics | None = None
     mass: float | None = None
-    radius: float = 0.03
+    radius: float = DEFAULT_ROW_RADIUS
     material: str | None = None
 
 

@@ -207,8 +207,26 @@ def generate(
     files = render_package(robot, macros=macros, spec_name=Path(spec_path).name)
     progress("expanding with xacro" if via_xacro else "emitting the URDF")
     files.append(expand_package(robot, files) if via_xacro else emitted_urdf(robot.name, emit_urdf(robot)))
+    said = spec.warnings + _check_warnings(files[-1].content, Path(spec_path), raw, robot)
+    warnings = tuple(sorted(said, key=lambda w: (w.line or 0, w.column or 0)))
     root, actions = _write(files, output, robot.package, force=force, dry_run=dry_run, progress=progress)
-    return GenerateResult(model=robot, output=root, actions=actions, files=tuple(files), warnings=spec.warnings)
+    return GenerateResult(model=robot, output=root, actions=actions, files=tuple(files), warnings=warnings)
+
+
+def _check_warnings(urdf: str, spec_path: Path, raw: RawSpec, robot: Robot) -> tuple[SpecError, ...]:
+    """What ``gen-robot check --strict SPEC`` would fail on in the URDF (its warnings, and the errors a valid spec
+    can still give, such as a mesh file that is not there), as warnings at the spec's lines."""
+    from .check.document_rules import generated_urdf_findings
+    from .check.rules import RULES
+
+    said = []
+    for finding in generated_urdf_findings(urdf, spec_path, _spec_lines(raw, robot)):
+        if finding.severity == "info":
+            continue
+        rule = f"{finding.rule} {RULES[finding.rule][0]} ({finding.severity} of gen-robot check)"
+        message = f"{rule}: {finding.element_kind} {finding.element!r}: {finding.message}"
+        said.append(SpecError(message, file=str(spec_path), line=finding.line))
+    return tuple(said)
 
 
 def _write(

@@ -11,6 +11,7 @@ from typing import Any
 from .gcpause import collector_paused
 from .model import (
     AXIAL,
+    DEFAULT_ROW_RADIUS,
     DEFAULT_TOOL,
     MOVING,
     Arm,
@@ -200,7 +201,7 @@ def _arm(name: str, data: dict[str, Any]) -> Arm:
                 limit=_limit(row, kind),
                 dynamics=_dynamics(row) if kind != "fixed" else None,
                 mass=_optional_float(row.get("mass")),
-                radius=float(row.get("radius", 0.03)),
+                radius=float(row.get("radius", DEFAULT_ROW_RADIUS)),
                 material=row.get("material"),
             )
         )

@@ -20,6 +20,7 @@ import tempfile
 import threading
 from collections.abc import Mapping, Sequence
 from pathlib import Path
+from typing import Any
 
 from ..errors import XacrokitError
 from .findings import ConsumerResult, Finding, rule_table, severity
@@ -212,7 +213,7 @@ def verdicts(
     from lxml import etree  # (here, not at the top: this module is also each Python consumer's process)
 
     # relative mesh paths are relative to the checked file: make them absolute before the URDF moves to a scratch folder
-    root = etree.fromstring(text.encode("utf-8"))
+    root = _read(text.encode("utf-8"))
     for mesh in root.iter("mesh"):
         filename = mesh.get("filename", "")
         if filename and "://" not in filename and not Path(filename).is_absolute():
@@ -221,6 +222,14 @@ def verdicts(
         urdf = Path(folder) / "robot.urdf"
         urdf.write_text(etree.tostring(root, encoding="unicode"), encoding="utf-8")
         return run_consumers(names, urdf, package_paths=package_paths)
+
+
+def _read(data: bytes) -> Any:
+    """The root element of a URDF our rules have read: leniently, as those rules do, for undeclared namespace prefixes
+    (U003), which consumers read past; the elements stay as written."""
+    from lxml import etree
+
+    return etree.fromstring(data, etree.XMLParser(recover=True, resolve_entities=False, no_network=True))
 
 
 def consumer_findings(results: Sequence[ConsumerResult], file: str) -> list[Finding]:
@@ -262,7 +271,7 @@ def _without_meshes_mujoco_cannot_read(urdf: str) -> tuple[str, str]:
     ('3 .dae and 1 ASCII STL meshes'; '' when nothing was)."""
     from lxml import etree
 
-    root = etree.fromstring(urdf.encode("utf-8"))
+    root = _read(urdf.encode("utf-8"))
     formats: dict[str, int] = {}
     for mesh in list(root.iter("mesh")):
         name = mesh.get("filename", "")
@@ -299,7 +308,7 @@ def _with_mesh_paths(path: str, packages: Mapping[str, str]) -> str:
 
     from ..expansion import find_package
 
-    root = etree.parse(path).getroot()
+    root = _read(Path(path).read_bytes())
     for mesh in root.iter("mesh"):
         filename = mesh.get("filename", "")
         if filename.startswith("package://"):

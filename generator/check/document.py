@@ -9,7 +9,7 @@ from typing import overload
 
 from lxml import etree
 
-from .findings import Finding, rule_table, severity
+from .findings import Finding, Severity, rule_table, severity
 
 RULES = rule_table(
     {
@@ -84,7 +84,17 @@ class Doc:
         self.link_names = {e.get("name", "") for e in self.links}
         self.joint_by_name = {e.get("name", ""): e for e in self.joints}
 
-    def finding(self, rule: str, kind: str, name: str, message: str, element: etree._Element | None = None) -> Finding:
+    def finding(
+        self,
+        rule: str,
+        kind: str,
+        name: str,
+        message: str,
+        element: etree._Element | None = None,
+        level: Severity | None = None,
+    ) -> Finding:
+        """A finding of ``rule`` (at the rule's severity, or ``level`` for a case the rule's table says is milder)
+        located at ``element``'s line."""
         line = None
         if self.spec_lines is not None:
             line = self.spec_lines.get((kind, name))
@@ -95,7 +105,7 @@ class Doc:
                 owner = owner.getparent()
         elif element is not None and self.source_lines:
             line = element.sourceline  # (an expanded xacro's lines are not the xacro file's: leave them out)
-        return Finding(rule, severity(rule), kind, name, message, self.file, line)
+        return Finding(rule, level or severity(rule), kind, name, message, self.file, line)
 
 
 @overload

@@ -4,7 +4,6 @@ one body."""
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Iterator
 
@@ -26,11 +25,25 @@ RULES = rule_table(
         "I002": (
             "inertia-positive-definite",
             "error",
-            "an inertia tensor is positive definite, or zero (a point mass) on a body whose other links give it one",
+            "every link's inertia tensor is positive definite (MuJoCo checks each link before it fuses fixed ones), or "
+            "all zero (a point mass) on a link fixed to one whose tensor is",
         ),
-        "I003": ("inertia-triangle", "error", "principal moments obey the triangle inequality"),
-        "I004": ("inertia-plausible", "warning", "inertia fits the collision geometry's size (within 100x)"),
-        "I005": ("inertia-placeholder", "warning", "the tensor is not an identity-like placeholder"),
+        "I003": (
+            "inertia-triangle",
+            "error",
+            "every link's principal moments obey the triangle inequality (MuJoCo rejects a link's that do not)",
+        ),
+        "I004": (
+            "inertia-plausible",
+            "warning",
+            "inertia fits the collision geometry's size (within 100x) on a link with a tenth of its rigid body's mass "
+            "or more (collisions of 5 mm or less are markers, not the body's shape)",
+        ),
+        "I005": (
+            "inertia-placeholder",
+            "warning",
+            "the tensor is not an identity-like placeholder, on a link with a tenth of its rigid body's mass or more",
+        ),
         "I006": (
             "inertia-present",
             "error",
@@ -64,6 +77,8 @@ def _geometry_extent(geometry: etree._Element | None) -> tuple[float, float, flo
     return None
 
 
+MARKER = 0.005  # m: a collision geometry no larger is a marker, not the body's shape (I004)
+SIGNIFICANT = 0.1  # of its rigid body's mass: a link below it is judged with its body, not on its own (I004, I005)
 ZERO_MOMENT = 1e-12  # kg*m^2: below it every principal moment is zero (a 1 g, 1 mm part has about 1e-10)
 
 
@@ -82,6 +97,10 @@ class _Bodies:
         for name in (link.get("name", "") for link in doc.links):  # (in the document's order: messages list them)
             self.members.setdefault(self.body(name), []).append(name)
         self.massive = {self.body(n) for n, m in masses.items() if m is not None and m > 0}
+        self.mass: dict[str, float] = {}  # body -> the sum of its links' masses
+        for n, m in masses.items():
+            if m is not None and m > 0 and math.isfinite(m):
+                self.mass[self.body(n)] = self.mass.get(self.body(n), 0.0) + m
         self.solid = {self.body(n) for n in solid}  # bodies with a link whose tensor is positive definite
 
     def body(self, name: str) -> str:
@@ -177,16 +196,16 @@ def inertia_rules(doc: Doc) -> Iterator[Finding]:
             continue
         problem = _tensor_problem(moments)
         if problem is not None:
-            rule, said, kind = problem
-            # the only inertia of a body a joint moves: impossible physics (MuJoCo rejects it); a part of a body whose
-            # other links have a proper tensor, or of the base: its numbers are wrong, the body may still be fine
-            alone = body in moved_bodies and body not in bodies.solid
-            degenerate = kind == "degenerate"
-            if alone or not degenerate:
-                finding = doc.finding(rule, "link", name, said, link)
-                yield finding if alone else dataclasses.replace(finding, severity="warning")
+            # per link, not per rigid body: MuJoCo reads each link's tensor before it fuses fixed links, and rejects
+            # any that is not all zero and not a rigid body's (a part's tensor fused into a solid body included)
+            rule, said = problem
+            yield doc.finding(rule, "link", name, said, link)
             continue
         ixx, ixy, ixz, iyy, iyz, izz = entry
+        # a link of a tenth of its body's mass or less (an IMU frame on a trunk) changes the body's dynamics by little:
+        # a placeholder or an odd size there is no mistake worth a warning
+        if not (mass and mass >= SIGNIFICANT * bodies.mass.get(body, 0.0)):
+            continue
         if ixy == ixz == iyz == 0 and ixx == iyy == izz and ixx in _PLACEHOLDERS:
             yield doc.finding(
                 "I005",
@@ -196,31 +215,29 @@ def inertia_rules(doc: Doc) -> Iterator[Finding]:
                 "compute it from the body (e.g. xacrokit's inertia macros)",
                 link,
             )
-        if mass and mass > 0:
-            yield from _plausibility(doc, link, name, mass, sum(moments))
+        yield from _plausibility(doc, link, name, mass, sum(moments))
 
 
-def _tensor_problem(moments: tuple[float, ...] | list[float]) -> tuple[str, str, str] | None:
-    """(rule, message, kind: triangle, negative or degenerate) for principal moments no rigid body has, or None.
-    Moments within rounding of zero (1e-9 of the largest) are zero: a rod's or a sheet's tensor, which no real part
-    has, is I002 like a negative moment."""
+def _tensor_problem(moments: tuple[float, ...] | list[float]) -> tuple[str, str] | None:
+    """(rule, message) for principal moments no rigid body has, or None. Moments within rounding of zero (1e-9 of the
+    largest) are zero: a rod's or a sheet's tensor, which no real part has, is I002 like a negative moment."""
     problem = moments_problem(moments)
     if problem is None:
         return None
     if problem == "triangle-inequality":
-        return "I003", describe_problem(problem, moments) + " (a real body's always are)", "triangle"
+        return "I003", describe_problem(problem, moments) + " (a real body's always are; MuJoCo rejects it)"
     shown = format_moments(moments)
     if min(moments) < -max(ZERO_MOMENT, TOLERANCE * max(abs(m) for m in moments)):
-        said = (
+        return "I002", (
             f"the inertia tensor has a negative principal moment ({shown} kg*m^2); every principal moment of a "
-            "body is > 0: the entries are wrong (a sign, or a product of inertia of the wrong frame?)"
+            "body is > 0 (MuJoCo rejects it): the entries are wrong (a sign, or products of inertia where zeros were "
+            "meant?)"
         )
-        return "I002", said, "negative"
-    said = (
+    return "I002", (
         f"the inertia tensor has a principal moment of zero ({shown} kg*m^2): a thin rod's or a flat sheet's, "
-        "which no real part has; simulators need every moment > 0 (MuJoCo rejects it): give the part its thickness"
+        "which no real part has; MuJoCo rejects it (write all six entries 0 for a point mass, or give the part its "
+        "thickness)"
     )
-    return "I002", said, "degenerate"
 
 
 def _mass(link: etree._Element) -> float | None:
@@ -243,6 +260,8 @@ def _plausibility(doc: Doc, link: etree._Element, name: str, mass: float, trace:
         extent = _geometry_extent(collision.find("geometry"))
         if extent is None or not all(math.isfinite(v) for v in extent):
             return  # (a mesh, or an unreadable size: the body's size is not known)
+        if max(extent) <= MARKER:
+            return  # (a dummy collision, a 1 mm sphere some exporters write: it says nothing of the body's size)
         origin = collision.find("origin")
         centre = read_triple(origin, "xyz")
         turned = any(v != 0 for v in read_triple(origin, "rpy")) if origin is not None else False

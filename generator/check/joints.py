@@ -11,14 +11,29 @@ from lxml import etree
 from ..model import AXIAL, JOINT_TYPES, LIMITED, MOVING
 from ..tree import cycles
 from .document import Doc, read_float, read_triple
-from .findings import Finding, rule_table
+from .findings import Finding, Severity, rule_table
 
 RULES = rule_table(
     {
-        "J001": ("limit-present", "error", "revolute and prismatic joints have <limit> with lower and upper"),
+        "J001": (
+            "limit-present",
+            "error",
+            "revolute and prismatic joints have <limit> (urdfdom rejects them without); a <limit> without lower and "
+            "upper is a warning (URDF reads them as 0: the joint cannot move)",
+        ),
         "J002": ("limit-order", "error", "lower <= upper"),
-        "J003": ("limit-effort", "error", "moving joints' effort limit is > 0"),
-        "J004": ("limit-velocity", "error", "moving joints' velocity limit is > 0"),
+        "J003": (
+            "limit-effort",
+            "error",
+            "a <limit> has an effort, not negative (urdfdom rejects it without, pinocchio a negative one); 0 is a "
+            "warning (Gazebo then applies no force)",
+        ),
+        "J004": (
+            "limit-velocity",
+            "error",
+            "a <limit> has a velocity, not negative (urdfdom rejects it without, pinocchio a negative one); 0 is a "
+            "warning (Gazebo then holds the joint still)",
+        ),
         "J005": (
             "continuous-limit",
             "error",
@@ -27,7 +42,12 @@ RULES = rule_table(
         ),
         "J006": ("axis-nonzero", "error", "a joint's axis is not the zero vector"),
         "J007": ("axis-unit", "warning", "a joint's axis has unit length"),
-        "J008": ("mimic-target", "error", "<mimic> names an existing moving joint of the same type, not itself"),
+        "J008": (
+            "mimic-target",
+            "error",
+            "<mimic> names an existing joint, not itself and not round a cycle; a target of another kind (a fixed "
+            "joint, or prismatic for revolute) is a warning",
+        ),
         "J009": (
             "dynamics-present",
             "info",
@@ -66,8 +86,10 @@ def joint_rules(doc: Doc) -> Iterator[Finding]:
     for joint in doc.joints:
         name, kind = joint.get("name", ""), joint.get("type", "")
 
-        def found(rule: str, message: str, name: str = name, joint: etree._Element = joint) -> Finding:
-            return doc.finding(rule, "joint", name, message, joint)
+        def found(
+            rule: str, message: str, name: str = name, joint: etree._Element = joint, level: Severity | None = None
+        ) -> Finding:
+            return doc.finding(rule, "joint", name, message, joint, level)
 
         if kind not in JOINT_TYPES:
             yield found("J011", f"type {kind!r} is not a URDF joint type ({', '.join(JOINT_TYPES)})")
@@ -75,8 +97,16 @@ def joint_rules(doc: Doc) -> Iterator[Finding]:
         limit = joint.find("limit")
         if kind in LIMITED:
             lower, upper = read_float(limit, "lower"), read_float(limit, "upper")
-            if limit is None or lower is None or upper is None:
-                yield found("J001", f"a {kind} joint needs <limit lower upper effort velocity>")
+            if limit is None:
+                yield found("J001", f"a {kind} joint needs <limit lower upper effort velocity>: urdfdom rejects it")
+            elif lower is None or upper is None:
+                missing = " and ".join(k for k, v in (("lower", lower), ("upper", upper)) if v is None)
+                yield found(
+                    "J001",
+                    f"<limit> has no {missing}; URDF reads a missing one as 0, so the joint's range is "
+                    f"[{lower or 0.0:g}, {upper or 0.0:g}]: give both (or make an endless joint continuous)",
+                    level="warning",
+                )
             elif not lower <= upper:
                 yield found("J002", f"limit lower ({lower}) is greater than upper ({upper}); swap them")
             elif lower == upper:
@@ -95,12 +125,23 @@ def joint_rules(doc: Doc) -> Iterator[Finding]:
                 "the <limit> out (a passive continuous joint needs none)",
             )
         if kind in MOVING and limit is not None:
-            for rule, key, unit in (("J003", "effort", "N*m or N"), ("J004", "velocity", "rad/s or m/s")):
+            for rule, key, unit, then in (
+                ("J003", "effort", "N*m or N", "Gazebo applies no force to the joint"),
+                ("J004", "velocity", "rad/s or m/s", "Gazebo holds the joint still"),
+            ):
                 value = read_float(limit, key)
-                if value is not None and not value > 0:
-                    yield found(rule, f"limit {key} is {value}; it must be > 0 ({unit})")
+                if value is not None and value < 0:  # pinocchio rejects it (its lower bound, -value, is above it)
+                    yield found(
+                        rule, f"limit {key} is {value:g}; pinocchio rejects a negative one: give one > 0 ({unit})"
+                    )
+                elif value == 0:
+                    yield found(
+                        rule,
+                        f"limit {key} is 0: {then} (a placeholder?); give the real one > 0 ({unit})",
+                        level="warning",
+                    )
                 elif value is None and kind != "continuous":
-                    yield found(rule, f"limit has no {key}; give one > 0 ({unit})")
+                    yield found(rule, f"<limit> has no {key}; urdfdom rejects it: give one > 0 ({unit})")
         if kind in AXIAL:
             axis = read_triple(joint.find("axis"), "xyz", "1 0 0")
             norm = math.hypot(*axis)
@@ -134,8 +175,9 @@ def joint_rules(doc: Doc) -> Iterator[Finding]:
             ):
                 yield found(
                     "J008",
-                    f"mimics {target!r} ({types[target]}) from a {kind} joint; both must move, "
-                    "and rotate (or slide) alike",
+                    f"mimics {target!r} ({types[target]}) from a {kind} joint; consumers ignore such a mimic (both "
+                    "must move, and rotate or slide alike): remove it, or fix the joint types",
+                    level="warning",
                 )
         safety = joint.find("safety_controller")
         if safety is not None and limit is not None and kind in LIMITED:

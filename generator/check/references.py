@@ -25,8 +25,9 @@ RULES = rule_table(
         ),
         "R002": (
             "material-defined",
-            "error",
-            "a material used by name without a colour is defined (at the top level, or with a colour in any visual)",
+            "warning",
+            "a material used by name without a colour is defined (at the top level, or with a colour in any visual); "
+            "consumers accept an undefined one and draw it in their default colour",
         ),
         "R003": ("mesh-resolves", "error", "mesh files resolve (package://, file:// or paths) and exist"),
         "P001": ("prefix", "error", "every link, joint, gazebo reference and ros2_control joint carries the prefix"),
@@ -64,7 +65,8 @@ def reference_rules(
                 "R002",
                 "material",
                 name,
-                f"material {name!r} is used but not defined; add <material name={name!r}><color rgba=.../></material>",
+                f"material {name!r} is used but not defined, so viewers draw it in their default colour; add "
+                f"<material name={name!r}><color rgba=.../></material>",
                 material,
             )
     # one finding per kind of problem: a file whose 180 mesh URIs all miss the package name says it once, with the

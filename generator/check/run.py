@@ -21,13 +21,9 @@ from ..guard import trusting
 from ..model import Robot
 from .consumers import chosen, consumer_findings, verdicts
 from .document import Doc, parse_robot
+from .document_rules import document_rules
 from .findings import CheckReport, Finding, InputKind
-from .inertia import inertia_rules
-from .joints import joint_rules
-from .numbers import geometry_rules, number_rules
-from .references import prefix_rules, reference_rules
 from .spec import kinematics_rules, spec_findings
-from .structure import name_rules, structure_rules, xacro_rules
 
 MAX_URDF_BYTES = 256 * 1024 * 1024  # a URDF with meshes inlined runs to megabytes; 256 MiB is far beyond any robot
 
@@ -133,16 +129,8 @@ def check(
         return CheckReport(str(path), kind, None, tuple(read))
     say("running our rules")
     doc = Doc(root, str(path), lines, source_lines=kind == "urdf")
-    findings = [*notes, *read, *xacro_rules(doc), *structure_rules(doc)]
+    findings = [*notes, *read, *document_rules(doc, packages, path.parent, prefix)]
     structural = any(f.rule.startswith("S") for f in findings)
-    findings += number_rules(doc)
-    findings += geometry_rules(doc)
-    findings += name_rules(doc)
-    findings += joint_rules(doc)
-    findings += inertia_rules(doc)
-    findings += reference_rules(doc, packages, path.parent)
-    if prefix is not None:
-        findings += prefix_rules(doc, prefix)
     if robot is not None and not structural and robot.arms:
         findings += kinematics_rules(doc, robot, text)
     if names and not structural:

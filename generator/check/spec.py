@@ -20,8 +20,9 @@ RULES = rule_table(
         "V001": (
             "spec-units",
             "warning",
-            "a spec's plain-number angles stay within a turn (joint limits two), and a mass in a shape gives a "
-            "density between air's and osmium's (else: degrees, grams or millimetres written without their unit?)",
+            "a spec's plain-number angles stay within a turn (joint limits two) and its plain-number lengths (origins, "
+            "sizes, DH a and d) within 10 m, and a mass in a shape, a wheel or a DH row's body gives a density between "
+            "air's and osmium's (else: degrees, grams or millimetres written without their unit?)",
         ),
         "V002": (
             "spec-valid",

@@ -116,5 +116,8 @@ def validate(raw: RawSpec) -> Spec:
     errors += unit_errors + semantic_errors(raw, data, every, physics=not unit_errors)
     if errors:
         raise SpecErrors(_unique(errors))
-    warnings = notes + list(density_warnings(raw, every))
+    dense = list(density_warnings(raw, every, data))
+    # a shape whose mass gives an impossible density says so once, at its mass, not also at each long size
+    said = tuple(w.path.removesuffix(".mass") + ".shape." for w in dense)
+    warnings = [n for n in notes if not n.path.startswith(said)] + dense
     return Spec(raw=raw, data=data, warnings=tuple(sorted(warnings, key=lambda w: (w.line or 0, w.column or 0))))

@@ -9,8 +9,9 @@ from collections.abc import Iterator, Sequence
 from typing import Any
 
 from ..errors import SpecError
+from ..kinematics import dh_body_end
 from ..load import PathKey, RawSpec
-from ..model import AXIAL, LIMITED
+from ..model import AXIAL, DEFAULT_ROW_RADIUS, LIMITED
 from ..physics import tensor, tensor_problem
 from .bodies import Body, BodyKind
 
@@ -203,13 +204,16 @@ def _mass_error(raw: RawSpec, mass: float, path: PathKey) -> Iterator[SpecError]
         yield raw.error(path, f"mass must be > 0 kg, got {mass!r}")
 
 
-def density_warnings(raw: RawSpec, bodies: Sequence[Body]) -> Iterator[SpecError]:
-    """Masses that no solid filling their shape could have: grams written as kilograms, millimetres as metres."""
+def density_warnings(raw: RawSpec, bodies: Sequence[Body], data: dict[str, Any]) -> Iterator[SpecError]:
+    """Masses that no solid filling their shape could have: grams written as kilograms, millimetres as metres. A DH
+    row's body is the cylinder (a sphere when it is shorter than a micrometre) gen-robot draws from its joint's frame
+    to the next one, with the row's radius."""
+    segments = _row_segments(data)
     for kind, _, path, item in bodies:
         mass = item.get("mass")
-        if mass is None or kind not in ("link", "wheel", "frame"):
-            continue  # (an arm row's mass is not checked against its body's radius)
-        found = _volume(kind, item)
+        if mass is None or kind not in ("link", "wheel", "frame", "row"):
+            continue
+        found = _volume(kind, item) if kind != "row" else segments.get(path)
         if found is None or not (found[1] > 0 and mass > 0):
             continue
         density = mass / found[1]
@@ -220,10 +224,33 @@ def density_warnings(raw: RawSpec, bodies: Sequence[Body]) -> Iterator[SpecError
             if density > DENSEST
             else "lighter than air; a size in mm written as m? e.g. '150 mm'"
         )
+        if kind == "row":  # (its body is drawn from the DH lengths and its radius: either may be what is off)
+            radius = item.get("radius", DEFAULT_ROW_RADIUS)
+            body = "a cylinder to the next joint frame" if found[0] == "cylinder" else "a sphere: its frames coincide"
+            fits = "too small" if density > DENSEST else "too large"
+            hint += f"; or its radius ({radius:g} m; the row's body is {body}) is {fits} for its mass"
         yield raw.error(
             (*path, "mass"),
             f"mass {mass:g} kg in a {found[1]:.3g} m^3 {found[0]} is {density:.3g} kg/m^3, {hint}",
         )
+
+
+def _row_segments(data: dict[str, Any]) -> dict[PathKey, tuple[str, float]]:
+    """(solid, volume) of every DH row's body, by the row's path: as emit draws it (kinematics.dh_body_end)."""
+    found: dict[PathKey, tuple[str, float]] = {}
+    for name, arm in data.get("arms", {}).items():
+        rows = arm["joints"]
+        for index, row in enumerate(rows):
+            after = rows[index + 1] if index + 1 < len(rows) else None
+            following = (after["a"], after["alpha"], after["d"]) if after else None
+            end = dh_body_end(arm.get("convention", "standard"), row["a"], row["alpha"], following)
+            length = math.dist((0.0, 0.0, 0.0), end)
+            radius = row.get("radius", DEFAULT_ROW_RADIUS)
+            if length >= 1e-6:
+                found[("arms", name, "joints", index)] = ("cylinder", math.pi * radius**2 * length)
+            else:
+                found[("arms", name, "joints", index)] = ("sphere", 4.0 / 3.0 * math.pi * radius**3)
+    return found
 
 
 def _volume(kind: BodyKind, item: dict[str, Any]) -> tuple[str, float] | None:

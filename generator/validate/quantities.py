@@ -1,5 +1,6 @@
 """The units pass: every length, angle and mass of a schema-valid spec converted to an SI float, each value that does
-not parse reported where it stands, and plain-number angles of many turns (degrees written without ``deg``) noted."""
+not parse reported where it stands, and plain-number angles of many turns (degrees written without ``deg``) and lengths
+beyond 10 m (millimetres written without ``mm``) noted."""
 
 from __future__ import annotations
 
@@ -14,6 +15,10 @@ from .bodies import bodies
 # A plain-number angle beyond this many turns is most likely degrees: one turn for an orientation, two for a joint's
 # range (multi-turn joints exist; a range beyond two turns written in radians is rarer than degrees left unmarked).
 _TURNS: dict[str | int, int] = {"lower": 2, "upper": 2, "soft_lower_limit": 2, "soft_upper_limit": 2}
+
+# A plain-number length beyond this is most likely millimetres: no link, offset or DH length of a robot is 10 m (a
+# length written with a unit, '12 m', is taken as meant).
+LONGEST = 10.0
 
 # The quantities held directly in the mapping of an arm row and of a wheel.
 _ROW: tuple[tuple[str, Kind], ...] = (
@@ -54,10 +59,18 @@ class Quantities:
         if isinstance(container, dict) and key not in container:
             return
         value = container[key]
-        if kind == "angle":
+        if kind in ("angle", "length"):
             plain = value if type(value) in (int, float) else plain_number(value) if isinstance(value, str) else None
-            if plain is not None and abs(plain) > _TURNS.get(key, 1) * math.tau:
+            if plain is not None and kind == "angle" and abs(plain) > _TURNS.get(key, 1) * math.tau:
                 self._turns(plain, key, (*path, key))
+            elif plain is not None and kind == "length" and abs(plain) > LONGEST:
+                self.warnings.append(
+                    self.raw.error(
+                        (*path, key),
+                        f"length {plain:g} m is longer than any part of a robot ({LONGEST:g} m); if you meant "
+                        f"millimetres, write '{plain:g} mm'",
+                    )
+                )
         if type(value) is float and math.isfinite(value) and (value != 0.0 or math.copysign(1.0, value) > 0):
             return  # already SI: what parse_quantity would return
         try:

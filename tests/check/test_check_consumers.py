@@ -149,3 +149,30 @@ def test_an_error_line_after_a_long_printout_is_a_rejection(tmp_path, monkeypatc
     monkeypatch.setattr(consumers, "_check_urdf_binary", lambda: str(fake))
     result = consumers.run_consumer("check_urdf", CORPUS / "J002_pass.urdf")
     assert result.status == "rejected" and "limit lower is not a number" in result.message, result
+
+
+def test_an_undeclared_namespace_prefix_reaches_every_consumer_as_written():
+    """Drake's exporters write drake: attributes without declaring the prefix; every consumer reads past them, and so
+    must the copy of the file check hands them (it crashed on it: a strict XML parse of the text)."""
+    report = check(CORPUS / "U003_fail.urdf")
+    assert [f.rule for f in report.findings] == ["U003"], [str(f) for f in report.findings]
+    assert report.consumers and all(c.status == "accepted" for c in report.consumers), report.consumers
+
+
+def test_mujoco_judges_a_robot_without_the_meshes_it_cannot_read(tmp_path):
+    """MuJoCo reads no .dae: the visual made of one is left out and the rest judged, which is said; a physics fault
+    elsewhere is still MuJoCo's rejection."""
+    (tmp_path / "part.dae").write_text("<COLLADA/>", encoding="utf-8")
+    text = (CORPUS / "I001_pass.urdf").read_text(encoding="utf-8")
+    mesh = '<visual><geometry><mesh filename="part.dae"/></geometry></visual></link>'
+    (tmp_path / "robot.urdf").write_text(text.replace("</link>", mesh, 1), encoding="utf-8")
+    result = run_consumer("mujoco", tmp_path / "robot.urdf")
+    assert (result.status, result.message.split(" (")[1]) == (
+        "accepted",
+        "1 .dae mesh left out: MuJoCo cannot read them)",
+    )
+    (tmp_path / "bad.urdf").write_text(
+        (CORPUS / "I001_fail.urdf").read_text(encoding="utf-8").replace("</link>", mesh, 1), encoding="utf-8"
+    )
+    bad = run_consumer("mujoco", tmp_path / "bad.urdf")
+    assert bad.status == "rejected" and "mass and inertia of moving bodies" in bad.message, bad

@@ -8,7 +8,8 @@ import yaml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from conftest import mesh_package_at
+import xacrokit
+from conftest import gen_robot, mesh_package_at
 from xacrokit.check import RULES, check
 from xacrokit.pipeline import build_robot, expand_package
 from xacrokit.render import render_package
@@ -81,3 +82,47 @@ def test_valid_specs_are_accepted_by_every_consumer(tmp_path_factory, mesh_packa
     assert not report.errors, [str(f) for f in report.errors]
     assert {c.name for c in report.consumers} >= {"check_urdf", "pinocchio", "yourdfpy"}
     assert all(c.status == "accepted" for c in report.consumers), report.consumers
+
+
+@settings(suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+@given(spec=valid_specs())
+def test_generating_says_everything_check_strict_would_fail_on(tmp_path_factory, spec):
+    """gen-robot SPEC writes no package that `check --strict SPEC` then fails without having said why: each warning
+    and error of check (the spec's own V001 and the rules on the URDF) is one of the generator's warnings."""
+    folder = tmp_path_factory.mktemp("said")
+    path = folder / "spec.yaml"
+    path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
+    said = [w.message for w in xacrokit.generate(path, folder / "out", dry_run=True).warnings]
+    failing = [f for f in check(path, consumers=[]).findings if f.severity != "info"]
+    for finding in failing:
+        if finding.rule == "V001":
+            assert any(finding.message in m for m in said), (finding.message, said)
+        else:
+            expected = f"{finding.rule} {RULES[finding.rule][0]} ({finding.severity} of gen-robot check): "
+            expected += f"{finding.element_kind} {finding.element!r}: {finding.message}"
+            assert expected in said, (expected, said)
+    assert len(said) == len(failing), (said, [str(f) for f in failing])
+
+
+def test_generating_says_a_warning_check_strict_fails_on(tmp_path):
+    spec = tmp_path / "w.yaml"
+    spec.write_text(
+        """robot: w
+links:
+  base_link: {shape: {box: {size: [0.2, 0.2, 0.1]}}, mass: 2.0}
+  arm: {shape: {box: {size: [0.05, 0.05, 0.3]}}, mass: 1.0, inertia: {ixx: 0.01, iyy: 0.01, izz: 0.01}}
+joints:
+  shoulder: {type: revolute, parent: base_link, child: arm, axis: [0, 1, 0],
+             limit: {lower: 0, upper: 0, effort: 10, velocity: 1}, dynamics: {damping: 0.1}}
+""",
+        encoding="utf-8",
+    )
+    result = gen_robot(spec, "-o", tmp_path / "pkg")
+    assert result.returncode == 0
+    assert result.stderr.splitlines() == [
+        f"gen-robot: warning: {spec}:4: I005 inertia-placeholder (warning of gen-robot check): link 'arm': inertia is "
+        "0.01 * identity, a common placeholder; compute it from the body (e.g. xacrokit's inertia macros)",
+        f"gen-robot: warning: {spec}:6: J013 limit-range (warning of gen-robot check): joint 'shoulder': limit lower "
+        "and upper are both 0.0: the joint cannot move; make it a fixed joint",
+    ]
+    assert gen_robot("check", spec, "--consumers", "none", "--strict").returncode == 1  # (what was said)

@@ -3,6 +3,7 @@ say."""
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import pytest
@@ -119,6 +120,45 @@ def test_v001_names_values_that_look_like_units_left_out(tmp_path):
     assert "V001" not in rules_of(clean)
 
 
+DH_UNITS_SPEC = """robot: arm
+links:
+  base_link: {shape: {box: {size: [0.1, 0.1, 0.1]}}, mass: 1.0}
+  plate: {shape: {box: {size: [0.05, 0.05, 0.01]}}, mass: 0.1}
+joints:
+  mount: {type: fixed, parent: base_link, child: plate, origin: {xyz: [0, 0, 450]}}
+arms:
+  arm:
+    parent: base_link
+    joints:
+      - {name: j1, link: l1, a: 0, d: 0.3, alpha: pi/2, mass: 4.0, radius: 0.06, LIMIT}
+      - {name: j2, link: l2, a: 455, d: 0, alpha: 0, mass: 8.0, radius: 0.05, LIMIT}
+      - {name: j3, link: l3, a: 0.4, d: 0, alpha: 0, mass: 2275, radius: 0.04, LIMIT}
+      - {name: j4, link: l4, a: 0.39, d: 0, alpha: 0, mass: "2.275 kg", radius: 0.04, LIMIT}
+""".replace("LIMIT", "limit: {lower: -pi, upper: pi, effort: 10, velocity: 1}, dynamics: {damping: 0, friction: 0}")
+
+
+def test_v001_covers_dh_rows_and_origins_as_it_does_links(tmp_path):
+    """A DH table in millimetres written as metres (a 455 m upper arm), a row mass in grams (2275 for 2.275 kg) and an
+    origin 450 m up: each a V001 warning at its value, worded as for links; the rows written right stay quiet."""
+    spec = tmp_path / "arm.yaml"
+    spec.write_text(DH_UNITS_SPEC, encoding="utf-8")
+    notes = {f.element: f.message for f in check(spec, consumers=[]).findings if f.rule == "V001"}
+    assert set(notes) == {
+        "$.joints.mount.origin.xyz[2]",
+        "$.arms.arm.joints[1].a",
+        "$.arms.arm.joints[2].mass",
+    }, notes
+    assert notes["$.arms.arm.joints[1].a"].startswith("length 455 m is longer than any part of a robot")
+    assert "write '455 mm'" in notes["$.arms.arm.joints[1].a"]
+    assert "write '450 mm'" in notes["$.joints.mount.origin.xyz[2]"]
+    # j3's body: a cylinder from its frame to j4's, 0.39 m long (standard DH: the next row's d is 0, its own a 0.4)
+    volume = math.pi * 0.04**2 * 0.4
+    assert notes["$.arms.arm.joints[2].mass"].startswith(f"mass 2275 kg in a {volume:.3g} m^3 cylinder is")
+    assert "grams written as kilograms? e.g. '500 g'" in notes["$.arms.arm.joints[2].mass"]
+    spec.write_text(DH_UNITS_SPEC.replace("a: 455,", 'a: "455 m",'), encoding="utf-8")  # a unit says it is meant
+    assert "$.arms.arm.joints[1].a" not in {f.element for f in check(spec, consumers=[]).findings}
+
+
 @pytest.mark.parametrize(
     ("element", "bad"),
     [
@@ -191,3 +231,46 @@ def test_rigid_bodies_are_judged_as_simulators_fuse_them(tmp_path):
     path.write_text(alone, encoding="utf-8")
     (finding,) = check(path, consumers=[]).errors
     assert (finding.rule, finding.element) == ("I002", "l1") and "no rotational inertia" in finding.message
+
+
+@pytest.mark.parametrize(
+    ("rule", "change", "said"),
+    [  # what consumers accept but is likely a mistake: a warning of the same rule (the failing fixtures are errors)
+        ("J001", ('lower="-1" upper="1" ', ""), "<limit> has no lower and upper; URDF reads a missing one as 0"),
+        ("J003", ('effort="10"', 'effort="0"'), "limit effort is 0: Gazebo applies no force to the joint"),
+        ("J004", ('velocity="1"', 'velocity="0"'), "limit velocity is 0: Gazebo holds the joint still"),
+    ],
+)
+def test_limits_consumers_accept_but_mean_no_motion_are_warnings(tmp_path, rule, change, said):
+    urdf = tmp_path / "robot.urdf"
+    urdf.write_text((CORPUS / f"{rule}_pass.urdf").read_text(encoding="utf-8").replace(*change), encoding="utf-8")
+    report = check(urdf)
+    (finding,) = [f for f in report.findings if f.rule == rule]
+    assert finding.severity == "warning" and finding.message.startswith(said), finding
+    assert [c.status for c in report.consumers] == ["accepted"] * len(report.consumers)  # (why it is no error)
+
+
+@pytest.mark.parametrize("key", ["effort", "velocity"])
+def test_a_negative_effort_or_velocity_is_an_error_pinocchio_agrees(tmp_path, key):
+    urdf = tmp_path / "robot.urdf"
+    text = (CORPUS / "J004_pass.urdf").read_text(encoding="utf-8")
+    urdf.write_text(text.replace(f'{key}="', f'{key}="-'), encoding="utf-8")
+    report = check(urdf, consumers=["pinocchio"])
+    assert [(f.rule, f.severity) for f in report.findings] == [
+        ("J003" if key == "effort" else "J004", "error"),
+        ("C001", "error"),
+    ], report.findings
+    assert f"min_{key} are greater than max_{key}" in report.consumers[0].message
+
+
+def test_a_mimic_consumers_ignore_is_a_warning(tmp_path):
+    """A fixed joint that mimics a revolute one (Talos' reduced models keep the <mimic> of the gripper joints they
+    fixed): nothing follows anything, consumers accept it, an expert would remove it."""
+    text = (CORPUS / "J008_pass.urdf").read_text(encoding="utf-8")
+    urdf = tmp_path / "robot.urdf"
+    urdf.write_text(
+        text.replace('<joint name="j2" type="revolute">', '<joint name="j2" type="fixed">'), encoding="utf-8"
+    )
+    report = check(urdf)
+    assert [(f.rule, f.severity) for f in report.findings] == [("J008", "warning")], report.findings
+    assert [c.status for c in report.consumers] == ["accepted"] * len(report.consumers)

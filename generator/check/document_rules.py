@@ -1,0 +1,46 @@
+"""Our rules that read a URDF document alone (all but a spec's DH kinematics and the consumers): what ``gen-robot
+check`` runs on every input, and what ``gen-robot SPEC`` runs on the URDF it writes (this module imports no part of
+the generator, which imports it)."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from pathlib import Path
+
+from .document import Doc, parse_robot
+from .findings import Finding
+from .inertia import inertia_rules
+from .joints import joint_rules
+from .numbers import geometry_rules, number_rules
+from .references import prefix_rules, reference_rules
+from .structure import name_rules, structure_rules, xacro_rules
+
+
+def document_rules(
+    doc: Doc,
+    packages: Mapping[str, str | os.PathLike[str]] | None,
+    base_dir: Path,
+    prefix: str | None = None,
+) -> list[Finding]:
+    """Our rules that read the URDF alone (all but a spec's DH kinematics and the consumers)."""
+    findings = [*xacro_rules(doc), *structure_rules(doc)]
+    findings += number_rules(doc)
+    findings += geometry_rules(doc)
+    findings += name_rules(doc)
+    findings += joint_rules(doc)
+    findings += inertia_rules(doc)
+    findings += reference_rules(doc, packages, base_dir)
+    if prefix is not None:
+        findings += prefix_rules(doc, prefix)
+    return findings
+
+
+def generated_urdf_findings(urdf: str, spec_path: Path, lines: dict[tuple[str, str], int]) -> list[Finding]:
+    """What ``gen-robot check SPEC`` would say of the URDF a spec generates (its rules on the URDF, with the spec's
+    lines; not the DH kinematics, which the generator's own tests hold, nor the consumers): ``gen-robot SPEC`` says
+    its warnings and errors when it writes the package, so that ``check --strict`` holds no surprise."""
+    root, read = parse_robot(urdf, str(spec_path))
+    if root is None:
+        return read
+    return [*read, *document_rules(Doc(root, str(spec_path), lines, source_lines=False), None, spec_path.parent)]
