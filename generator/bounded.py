@@ -21,6 +21,7 @@ unbounded.
 from __future__ import annotations
 
 import contextlib
+import faulthandler
 import io
 import json
 import math
@@ -77,54 +78,93 @@ def run_bounded(
         OutOfBounds: the work went past a bound (it was stopped).
         ChildFailed: the child ended without a result.
     """
-    if not hasattr(os, "fork"):  # (no fork, no bounds: the work runs here)
-        try:
-            return work(), None
-        except BaseException as exc:
-            data = errors(exc)
-            if data is None:
-                raise
-            return None, data
+    return start_bounded(work, bounds, errors=errors)()
+
+
+def start_bounded(
+    work: Callable[[], str],
+    bounds: Bounds,
+    *,
+    errors: Callable[[BaseException], dict[str, Any] | None],
+    quiet: bool = False,
+) -> Callable[[], tuple[str | None, dict[str, Any] | None]]:
+    """:func:`run_bounded`, started: the child runs while the caller goes on, and the function returned waits for
+    its result (the time bound counts from now). Start every child before starting any thread: a fork copies only
+    the thread that forks, and a lock another thread holds stays held in the child. With ``quiet``, what the work
+    prints (C libraries included: file descriptors 1 and 2) goes nowhere instead of to the parent's stderr."""
+    if not hasattr(os, "fork"):  # (no fork, no bounds: the work runs here, when its result is asked for)
+
+        def here() -> tuple[str | None, dict[str, Any] | None]:
+            try:
+                return work(), None
+            except BaseException as exc:
+                data = errors(exc)
+                if data is None:
+                    raise
+                return None, data
+
+        return here
     for stream in (sys.stdout, sys.stderr):  # (else the child would print the parent's buffered output again)
         with contextlib.suppress(Exception):
             stream.flush()
+    deadline = time.monotonic() + bounds.seconds
     reader, writer = os.pipe()
     pid = os.fork()
     if pid == 0:  # the child: never returns
         os.close(reader)
+        if quiet:
+            _silence()
         _child(work, bounds, errors, writer)
     os.close(writer)
-    try:
-        received, overflowed, timed_out = _collect(reader, bounds)
-    finally:
-        os.close(reader)
-        with contextlib.suppress(ProcessLookupError):
-            os.kill(pid, signal.SIGKILL)  # (a no-op for a child that has already exited and waits to be reaped)
-        _, status = os.waitpid(pid, 0)
-    if timed_out:
-        raise OutOfBounds("seconds", bounds)
-    if overflowed:
-        raise OutOfBounds("output", bounds)
-    try:
-        message = json.loads(received.decode("utf-8"))
-    except ValueError:
-        raise ChildFailed(_status_words(status)) from None
-    with contextlib.suppress(Exception):
-        sys.stderr.write(message.get("stderr", ""))
-    kind = message.get("kind")
-    if kind == "result":
-        return str(message["text"]), None
-    if kind == "error":
-        return None, dict(message["error"])
-    if kind in ("memory", "output"):
-        raise OutOfBounds(kind, bounds)
-    raise ChildFailed(str(message.get("detail", "no result")))
+
+    def wait() -> tuple[str | None, dict[str, Any] | None]:
+        try:
+            received, overflowed, timed_out = _collect(reader, bounds, deadline)
+        finally:
+            os.close(reader)
+            with contextlib.suppress(ProcessLookupError):
+                os.kill(pid, signal.SIGKILL)  # (a no-op for a child that has already exited and waits to be reaped)
+            _, status = os.waitpid(pid, 0)
+        if timed_out:
+            raise OutOfBounds("seconds", bounds)
+        if overflowed:
+            raise OutOfBounds("output", bounds)
+        try:
+            message = json.loads(received.decode("utf-8"))
+        except ValueError:
+            raise ChildFailed(_status_words(status)) from None
+        if not quiet:
+            with contextlib.suppress(Exception):
+                sys.stderr.write(message.get("stderr", ""))
+        kind = message.get("kind")
+        if kind == "result":
+            return str(message["text"]), None
+        if kind == "error":
+            return None, dict(message["error"])
+        if kind in ("memory", "output"):
+            raise OutOfBounds(kind, bounds)
+        raise ChildFailed(str(message.get("detail", "no result")))
+
+    return wait
 
 
-def _collect(reader: int, bounds: Bounds) -> tuple[bytes, bool, bool]:
-    """What the child sends, until it closes the pipe: (bytes, more than the output bound, out of time)."""
+def _silence() -> None:
+    """The child's standard output and error, to nowhere: the file descriptors (what C code prints) and Python's
+    streams (new objects: the parent's may have been locked by another thread at the fork)."""
+    faulthandler.disable()  # (a crash is the child's verdict; faulthandler, on in a test run, would print it)
+    with contextlib.suppress(OSError):
+        nowhere = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(nowhere, 1)
+        os.dup2(nowhere, 2)
+        os.close(nowhere)
+        sys.stdout = open(os.devnull, "w")  # noqa: SIM115  (the child's for good: it ends with os._exit)
+        sys.stderr = open(os.devnull, "w")  # noqa: SIM115
+
+
+def _collect(reader: int, bounds: Bounds, deadline: float) -> tuple[bytes, bool, bool]:
+    """What the child sends, until it closes the pipe or ``deadline`` (a monotonic time) passes: (bytes, more than
+    the output bound, out of time)."""
     limit = 4 * bounds.output + 64 * 1024  # characters to UTF-8 bytes, escaped in JSON: a generous ceiling
-    deadline = time.monotonic() + bounds.seconds
     chunks: list[bytes] = []
     size = 0
     poller = select.poll()  # (not select.select: it refuses descriptors above 1023, which a busy process may hold)

@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, NoReturn
 
 from . import __version__
-from .cliargs import fleet_count, parse_packages, require_plain_output, spacing
+from .cliargs import fleet_count, parse_mappings, parse_packages, require_plain_output, spacing
 from .errors import XacrokitError
 from .guard import trusting
 from .progress import Progress
@@ -30,7 +30,7 @@ if TYPE_CHECKING:
 
 
 def _cmd_expand(args: argparse.Namespace) -> int:
-    from .expansion import expand_file, parse_mappings
+    from .expansion import expand_file
 
     if args.output is not None:
         require_plain_output(args.output, folder=False)
@@ -165,7 +165,6 @@ def _cmd_check(args: argparse.Namespace) -> int:
 
     from .check import check
     from .check.report import format_text
-    from .expansion import parse_mappings
 
     if args.consumers in ("all", None):
         consumers = None

@@ -7,7 +7,7 @@ import argparse
 import os
 import re
 
-from .errors import XacrokitError
+from .errors import ExpandError, XacrokitError
 
 
 def require_plain_output(output: str, *, folder: bool) -> None:
@@ -61,3 +61,14 @@ def spacing(text: str) -> float:
     if not spacing > 0:
         raise argparse.ArgumentTypeError(f"must be > 0 m, got {text!r}")
     return spacing
+
+
+def parse_mappings(words: list[str]) -> dict[str, str]:
+    """Turn command-line words ``name:=value`` into a mapping; reject anything else with a clear message."""
+    result: dict[str, str] = {}
+    for word in words:
+        name, sep, value = word.partition(":=")
+        if not sep or not name.isidentifier():
+            raise ExpandError(f"expected an argument as name:=value, got {word!r}", file="<command line>")
+        result[name] = value
+    return result

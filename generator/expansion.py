@@ -13,9 +13,7 @@ its own are done here:
 from __future__ import annotations
 
 import contextlib
-import itertools
 import os
-import sys
 import xml.parsers.expat
 from collections.abc import Iterator, Mapping
 from pathlib import Path
@@ -28,9 +26,8 @@ from .bounded import Bounds, ChildFailed, OutOfBounds, run_bounded
 from .errors import ExpandError
 from .fileio import require_regular_file
 from .guard import HOW_TO_TRUST, NAMESPACE_REMOVED, guarded, trusted_by_default
-from .resources import package_share_dir
+from .packages import find_package, nearby_packages
 
-PACKAGE_NAME = "xacrokit"
 MAX_DOCUMENT_BYTES = 64 * 1024 * 1024  # a xacro document (the file expanded; its includes are read by xacro)
 # an untrusted document's expansion: wall time, memory beyond the parent's, size of the URDF (xacrokit.bounded). The
 # largest description we write, a 1,000-Panda fleet, took xacro 2 min 48 s, 370 MB and gave 10.4 MB (2026-11-24).
@@ -52,90 +49,6 @@ class _DeclaredArgs(dict):
         if isinstance(name, str):
             self.declared.add(name)
         return super().__contains__(name)
-
-
-def _package_name(folder: Path) -> str | None:
-    """The <name> in ``folder``/package.xml, or None when there is none (or it is unreadable)."""
-    from lxml import etree
-
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False)  # a file of someone else's
-    try:
-        name = etree.parse(str(folder / "package.xml"), parser).getroot().findtext("name")
-    except (OSError, etree.XMLSyntaxError):
-        return None
-    return name.strip() if name and name.strip() else None
-
-
-def nearby_packages(path: str | os.PathLike[str]) -> dict[str, Path]:
-    """The ROS packages a file most likely refers to: the package it lies in (the nearest folder above it with a
-    package.xml) and that package's siblings, as in a workspace's ``src/``. Name -> folder."""
-    folder = Path(path).resolve().parent
-    own = next((f for f in (folder, *folder.parents) if (f / "package.xml").is_file()), None)
-    if own is None:
-        return {}
-    found: dict[str, Path] = {}
-    siblings: list[Path] = []
-    with contextlib.suppress(OSError):
-        siblings = sorted(itertools.islice(own.parent.iterdir(), 1000))  # (a workspace's src/, not a huge folder)
-    for sibling in siblings:
-        with contextlib.suppress(OSError):  # one unreadable folder does not hide the others
-            if sibling != own and (sibling / "package.xml").is_file() and (name := _package_name(sibling)):
-                found.setdefault(name, sibling)
-    if name := _package_name(own):
-        found[name] = own  # its own package wins over a sibling of the same name
-    return found
-
-
-def with_nearby_packages(
-    path: str | os.PathLike[str], package_paths: Mapping[str, str | os.PathLike[str]] | None = None
-) -> dict[str, str | os.PathLike[str]]:
-    """``package_paths`` plus the :func:`nearby_packages` of ``path`` that :func:`find_package` finds nowhere else
-    (so a sourced workspace or an explicit folder still wins, as ``$(find)`` in :func:`expand_file` does)."""
-    extra: dict[str, str | os.PathLike[str]] = {}
-    for name, folder in nearby_packages(path).items():
-        try:
-            find_package(name, package_paths)
-        except LookupError:
-            extra[name] = folder
-    return {**extra, **(package_paths or {})}
-
-
-def find_package(name: str, package_paths: Mapping[str, str | os.PathLike[str]] | None = None) -> str:
-    """Resolve ``$(find name)`` the way ROS would, without needing ROS.
-
-    Args:
-        name: the package name.
-        package_paths: explicit package folders, consulted first.
-
-    Returns:
-        The package's share folder, as a string (xacro splices it into a path).
-
-    Raises:
-        ExpandError-compatible ``LookupError`` when the package is nowhere to be found.
-    """
-    if package_paths and name in package_paths:
-        return str(Path(package_paths[name]).resolve())
-    if name == PACKAGE_NAME:
-        return str(package_share_dir())
-    with contextlib.suppress(ImportError):
-        from ament_index_python.packages import (  # type: ignore[import-not-found]
-            PackageNotFoundError,
-            get_package_share_directory,
-        )
-
-        with contextlib.suppress(PackageNotFoundError):
-            return get_package_share_directory(name)
-    # ROS prefixes, then the ament-style prefix that pip's cmeel packages (pinocchio's family) install into
-    prefixes = [p for p in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p]
-    prefixes += [str(Path(entry, "cmeel.prefix")) for entry in sys.path if entry]
-    for prefix in prefixes:
-        candidate = Path(prefix, "share", name)
-        if (candidate / "package.xml").is_file():
-            return str(candidate)
-    raise LookupError(
-        f"$(find {name}): package {name!r} is not known here; pass its folder with --package {name}=PATH "
-        f"(or package_paths={{{name!r}: PATH}} in Python), or source a ROS workspace that has it"
-    )
 
 
 @contextlib.contextmanager
@@ -347,14 +260,3 @@ def _expand(
         while document.firstChild is not None and document.firstChild.nodeType == document.COMMENT_NODE:
             document.removeChild(document.firstChild)
     return document.toprettyxml(indent="  ")
-
-
-def parse_mappings(words: list[str]) -> dict[str, str]:
-    """Turn command-line words ``name:=value`` into a mapping; reject anything else with a clear message."""
-    result: dict[str, str] = {}
-    for word in words:
-        name, sep, value = word.partition(":=")
-        if not sep or not name.isidentifier():
-            raise ExpandError(f"expected an argument as name:=value, got {word!r}", file="<command line>")
-        result[name] = value
-    return result

@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .model import DHRow, Origin
+if TYPE_CHECKING:
+    from .model import DHRow, Origin
 
 
 def dh_body_end(

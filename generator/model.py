@@ -13,15 +13,11 @@ from pathlib import Path
 from typing import Literal
 
 from .errors import SpecError
+from .joint_types import AXIAL, JOINT_TYPES, LIMITED, MOVING, JointType  # noqa: F401  (part of the model)
 
 Vec3 = tuple[float, float, float]
 ZERO: Vec3 = (0.0, 0.0, 0.0)
 
-JointType = Literal["revolute", "continuous", "prismatic", "fixed", "floating", "planar"]
-JOINT_TYPES: tuple[JointType, ...] = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
-MOVING: tuple[JointType, ...] = ("revolute", "continuous", "prismatic")  # one degree of freedom, driven by a motor
-LIMITED: tuple[JointType, ...] = ("revolute", "prismatic")  # need lower and upper limits
-AXIAL: tuple[JointType, ...] = ("revolute", "continuous", "prismatic", "planar")  # have an <axis> (planar: the normal)
 DHRowType = Literal["revolute", "continuous", "prismatic", "fixed"]
 Convention = Literal["standard", "modified"]
 InertiaKind = Literal["box", "cylinder", "sphere", "explicit"]

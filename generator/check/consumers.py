@@ -18,10 +18,11 @@ import subprocess
 import sys
 import tempfile
 import threading
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+from ..bounded import Bounds, ChildFailed, OutOfBounds, start_bounded
 from ..errors import XacrokitError
 from .findings import ConsumerResult, Finding, rule_table, severity
 
@@ -181,6 +182,17 @@ def run_consumers(
     package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
 ) -> list[ConsumerResult]:
     """Run the named consumers side by side; results in the order asked."""
+    return _started(names, urdf_path, timeout, package_paths)()
+
+
+def _started(
+    names: list[str],
+    urdf_path: Path,
+    timeout: float = TIMEOUT_S,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
+) -> Callable[[], list[ConsumerResult]]:
+    """Start the named consumers side by side (a thread each, waiting on its process); the function returned waits
+    for them and gives their results in the order asked."""
     results: dict[str, ConsumerResult] = {}
 
     def run(name: str) -> None:
@@ -189,9 +201,13 @@ def run_consumers(
     threads = [threading.Thread(target=run, args=(n,)) for n in names]
     for thread in threads:
         thread.start()
-    for thread in threads:
-        thread.join()
-    return [results[n] for n in names]
+
+    def collect() -> list[ConsumerResult]:
+        for thread in threads:
+            thread.join()
+        return [results[n] for n in names]
+
+    return collect
 
 
 def verdicts(
@@ -204,12 +220,26 @@ def verdicts(
 ) -> list[ConsumerResult]:
     """The named consumers' verdicts on a URDF text checked as the file in ``base_dir``; skipped when the structure is
     broken (``structural``)."""
+    return start_verdicts(names, text, structural=structural, package_paths=package_paths, base_dir=base_dir)()
+
+
+def start_verdicts(
+    names: list[str],
+    text: str,
+    *,
+    structural: bool,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None,
+    base_dir: Path,
+) -> Callable[[], list[ConsumerResult]]:
+    """:func:`verdicts`, started: the consumers run while the caller goes on (check runs its other rules meanwhile),
+    and the function returned waits for their verdicts."""
     if not names:
-        return []
+        return list
     if structural:  # a tree that is not a tree hangs check_urdf and crashes others; our finding says it all
-        return [
+        skipped = [
             ConsumerResult(n, "skipped", "not run: the structure errors above make the URDF unusable") for n in names
         ]
+        return lambda: skipped
     from lxml import etree  # (here, not at the top: this module is also each Python consumer's process)
 
     # relative mesh paths are relative to the checked file: make them absolute before the URDF moves to a scratch folder
@@ -218,10 +248,69 @@ def verdicts(
         filename = mesh.get("filename", "")
         if filename and "://" not in filename and not Path(filename).is_absolute():
             mesh.set("filename", str(base_dir.resolve() / filename))
-    with tempfile.TemporaryDirectory(prefix="xacrokit-check-") as folder:
-        urdf = Path(folder) / "robot.urdf"
+    folder = tempfile.TemporaryDirectory(prefix="xacrokit-check-")
+    try:
+        urdf = Path(folder.name) / "robot.urdf"
         urdf.write_text(etree.tostring(root, encoding="unicode"), encoding="utf-8")
-        return run_consumers(names, urdf, package_paths=package_paths)
+        # the Python consumers in children forked from this process, which has numpy and lxml loaded already (a
+        # process of their own would start Python and import them again: a third of the time it takes); started
+        # before the thread that runs check_urdf (a fork copies one thread only)
+        forked = {n: _forked(n, urdf, package_paths) for n in names if n != "check_urdf" and available(n)}
+        others = _started([n for n in names if n not in forked], urdf, package_paths=package_paths)
+    except BaseException:
+        folder.cleanup()
+        raise
+
+    def collect() -> list[ConsumerResult]:
+        try:
+            results = {name: wait() for name, wait in forked.items()}
+            results.update((r.name, r) for r in others())
+            return [results[n] for n in names]
+        finally:
+            folder.cleanup()
+
+    return collect
+
+
+CONSUMER_BOUNDS = Bounds(seconds=TIMEOUT_S, memory=4 * 2**30, output=64 * 1024)
+
+
+def _forked(
+    name: str, urdf: Path, package_paths: Mapping[str, str | os.PathLike[str]] | None
+) -> Callable[[], ConsumerResult]:
+    """Start one Python consumer on ``urdf`` in a forked child (quiet, bounded in time, memory and output: a consumer
+    that crashes, hangs or floods takes only its child with it); the function returned waits for its verdict."""
+    packages = {k: str(v) for k, v in (package_paths or {}).items()}
+
+    def work() -> str:
+        os.chdir(urdf.parent)  # (MuJoCo writes MUJOCO_LOG.TXT where it runs: into the scratch folder)
+        return _load(name, str(urdf), packages)
+
+    def described(exc: BaseException) -> dict[str, str] | None:
+        return {"message": _one_line(exc)} if isinstance(exc, Exception) else None
+
+    wait = start_bounded(work, CONSUMER_BOUNDS, errors=described, quiet=True)
+
+    def verdict() -> ConsumerResult:
+        try:
+            text, error = wait()
+        except OutOfBounds as exc:
+            if exc.which == "seconds":
+                return ConsumerResult(name, "timeout", f"no verdict within {TIMEOUT_S:g} s; stopped")
+            return ConsumerResult(name, "rejected", f"went past its {exc.which} bound; stopped")
+        except ChildFailed as exc:
+            return ConsumerResult(name, "crashed", exc.detail)
+        if error is not None:
+            return ConsumerResult(name, "rejected", str(error["message"]))
+        return ConsumerResult(name, "accepted", text or "")
+
+    return verdict
+
+
+def _one_line(exc: BaseException) -> str:
+    """A consumer's complaint as check reports it: the exception's type and text on one line, at most 2,000
+    characters."""
+    return " ".join(f"{type(exc).__name__}: {exc}".split())[:2000]
 
 
 def _read(data: bytes) -> Any:
@@ -306,7 +395,7 @@ def _ascii_stl(path: Path) -> bool:
 def _with_mesh_paths(path: str, packages: Mapping[str, str]) -> str:
     from lxml import etree
 
-    from ..expansion import find_package
+    from ..packages import find_package
 
     root = _read(Path(path).read_bytes())
     for mesh in root.iter("mesh"):
@@ -330,8 +419,7 @@ def main(argv: list[str] | None = None) -> int:
         seen = _load(name, path, packages)
         print(json.dumps({"status": "accepted", "message": seen}))
     except Exception as exc:  # a consumer's own complaint is its verdict
-        message = " ".join(f"{type(exc).__name__}: {exc}".split())  # one line
-        print(json.dumps({"status": "rejected", "message": message[:2000]}))
+        print(json.dumps({"status": "rejected", "message": _one_line(exc)}))
     return 0
 
 

@@ -24,8 +24,23 @@ def document_rules(
     prefix: str | None = None,
 ) -> list[Finding]:
     """Our rules that read the URDF alone (all but a spec's DH kinematics and the consumers)."""
-    findings = [*xacro_rules(doc), *structure_rules(doc)]
-    findings += number_rules(doc)
+    return [*first_rules(doc), *other_rules(doc, packages, base_dir, prefix)]
+
+
+def first_rules(doc: Doc) -> list[Finding]:
+    """The rules that say whether the document is a robot at all (xacro left in it, its tree): run first, since the
+    consumers are not run on a broken tree (a rooted cycle hangs check_urdf)."""
+    return [*xacro_rules(doc), *structure_rules(doc)]
+
+
+def other_rules(
+    doc: Doc,
+    packages: Mapping[str, str | os.PathLike[str]] | None,
+    base_dir: Path,
+    prefix: str | None = None,
+) -> list[Finding]:
+    """The rest of :func:`document_rules`: numbers, geometry, names, joints, inertia, references, prefix."""
+    findings = list(number_rules(doc))
     findings += geometry_rules(doc)
     findings += name_rules(doc)
     findings += joint_rules(doc)

@@ -9,7 +9,7 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from ..model import MOVING
+from ..joint_types import MOVING
 from ..physics import TOLERANCE, describe_problem, format_moments, moments_problem, principal_moments
 from .document import Doc, read_float, read_triple
 from .findings import Finding, rule_table

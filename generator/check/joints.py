@@ -8,7 +8,7 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from ..model import AXIAL, JOINT_TYPES, LIMITED, MOVING
+from ..joint_types import AXIAL, JOINT_TYPES, LIMITED, MOVING
 from ..tree import cycles
 from .document import Doc, read_float, read_triple
 from .findings import Finding, Severity, rule_table

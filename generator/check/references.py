@@ -11,7 +11,7 @@ from pathlib import Path
 
 from lxml import etree
 
-from ..expansion import find_package
+from ..packages import find_package
 from .document import Doc
 from .findings import Finding, Severity, rule_table
 
@@ -72,9 +72,10 @@ def reference_rules(
     # one finding per kind of problem: a file whose 180 mesh URIs all miss the package name says it once, with the
     # count (a missing folder, an unknown package and a malformed URI are each one mistake, not one per mesh)
     groups: dict[tuple[str, str], list[tuple[etree._Element, str, str, Severity]]] = {}
+    folders: dict[str, str | None] = {}  # package -> its folder (None: not known), looked up once
     for mesh in doc.root.iter("mesh"):
         filename = mesh.get("filename", "")
-        problem, severity, group = _mesh_problem(filename, package_paths, base_dir)
+        problem, severity, group = _mesh_problem(filename, package_paths, base_dir, folders)
         if problem:
             groups.setdefault(group, []).append((mesh, filename, problem, severity))
     for same in groups.values():
@@ -88,7 +89,10 @@ def reference_rules(
 
 
 def _mesh_problem(
-    filename: str, package_paths: Mapping[str, str | os.PathLike[str]] | None, base_dir: Path | None
+    filename: str,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None,
+    base_dir: Path | None,
+    folders: dict[str, str | None],
 ) -> tuple[str | None, Severity, tuple[str, str]]:
     """What is wrong with a mesh file name (None when nothing), its severity, and the group of like mistakes."""
     if filename.startswith("package://"):
@@ -100,16 +104,20 @@ def _mesh_problem(
                 "error",
                 ("malformed", ""),
             )
-        try:
-            folder = Path(find_package(package, package_paths))
-        except LookupError:
+        if package not in folders:
+            try:
+                folders[package] = find_package(package, package_paths)
+            except LookupError:
+                folders[package] = None
+        known = folders[package]
+        if known is None:
             return (
                 f"package {package!r} is not known here, so {filename!r} cannot be checked; pass "
                 f"--package {package}=PATH",
                 "warning",
                 ("package", package),
             )
-        path = folder / rest
+        path = Path(known) / rest
     elif filename.startswith("file://"):
         path = Path(filename[len("file://") :])
     elif re.match(r"^[a-z][a-z0-9+.-]*://", filename):

@@ -12,18 +12,20 @@ import os
 import re
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..errors import SpecErrors, XacrokitError
-from ..expansion import expand_file, with_nearby_packages
 from ..fileio import read_input, require_regular_file
 from ..gcpause import collector_paused
 from ..guard import trusting
-from ..model import Robot
-from .consumers import chosen, consumer_findings, verdicts
+from ..packages import with_nearby_packages
+from .consumers import chosen, consumer_findings, start_verdicts
 from .document import Doc, parse_robot
-from .document_rules import document_rules
+from .document_rules import first_rules, other_rules
 from .findings import CheckReport, Finding, InputKind
-from .spec import kinematics_rules, spec_findings
+
+if TYPE_CHECKING:
+    from ..model import Robot
 
 MAX_URDF_BYTES = 256 * 1024 * 1024  # a URDF with meshes inlined runs to megabytes; 256 MiB is far beyond any robot
 
@@ -57,12 +59,16 @@ def _load_urdf(
 ) -> tuple[str, Robot | None, dict[tuple[str, str], int] | None, tuple[Finding, ...]]:
     """URDF text, and for spec input the robot model, the spec lines and the spec's warnings."""
     if kind == "spec":
+        from ..model import Robot
         from ..pipeline import spec_urdf  # (the whole generator: loaded for spec input only)
+        from .spec import spec_findings
 
         described = spec_urdf(path)
         robot = described.model if isinstance(described.model, Robot) else None  # (only a robot has DH arms)
         return described.urdf, robot, described.lines, spec_findings(described.warnings)
     if kind == "xacro":
+        from ..expansion import expand_file  # (xacro: loaded for xacro input only)
+
         return expand_file(path, mappings, package_paths=package_paths), None, None, ()
     try:
         return read_input(path, MAX_URDF_BYTES).decode("utf-8"), None, None, ()
@@ -123,19 +129,26 @@ def check(
     except SpecErrors as exc:
         if all(e.line is None for e in exc.errors):  # the file itself cannot be read: no report to give
             raise
+        from .spec import spec_findings
+
         return CheckReport(str(path), kind, None, spec_findings(exc.errors, "V002"))
     root, read = parse_robot(text, str(path))
     if root is None:  # U001: not a URDF, nothing more to read
         return CheckReport(str(path), kind, None, tuple(read))
     say("running our rules")
     doc = Doc(root, str(path), lines, source_lines=kind == "urdf")
-    findings = [*notes, *read, *document_rules(doc, packages, path.parent, prefix)]
+    findings = [*notes, *read, *first_rules(doc)]
     structural = any(f.rule.startswith("S") for f in findings)
-    if robot is not None and not structural and robot.arms:
-        findings += kinematics_rules(doc, robot, text)
+    # the consumers run while our other rules do (each in its own process): check takes about as long as the slowest
     if names and not structural:
-        say(f"running {', '.join(names)}")
-    results = verdicts(names, text, structural=structural, package_paths=packages, base_dir=path.parent)
+        say(f"running {', '.join(names)} (and our other rules meanwhile)")
+    pending = start_verdicts(names, text, structural=structural, package_paths=packages, base_dir=path.parent)
+    findings += other_rules(doc, packages, path.parent, prefix)
+    if robot is not None and not structural and robot.arms:
+        from .spec import kinematics_rules
+
+        findings += kinematics_rules(doc, robot, text)
+    results = pending()
     findings += consumer_findings(results, str(path))
     unique = tuple(dict.fromkeys(findings))  # (a spec's visual and collision share a mesh: one finding, not two)
     return CheckReport(str(path), kind, root.get("name"), unique, tuple(results))

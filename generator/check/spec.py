@@ -5,14 +5,17 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Iterator
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import SpecError
 from ..kinematics import dh_chain
-from ..model import Robot
 from .document import Doc
 from .findings import Finding, rule_table, severity
+
+if TYPE_CHECKING:
+    from ..model import Robot
 
 RULES = rule_table(
     {

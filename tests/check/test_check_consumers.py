@@ -3,6 +3,10 @@ said in one line, and nothing left behind."""
 
 from __future__ import annotations
 
+import dataclasses
+import os
+import signal
+import sys
 import time
 from pathlib import Path
 
@@ -176,3 +180,47 @@ def test_mujoco_judges_a_robot_without_the_meshes_it_cannot_read(tmp_path):
     )
     bad = run_consumer("mujoco", tmp_path / "bad.urdf")
     assert bad.status == "rejected" and "mass and inertia of moving bodies" in bad.message, bad
+
+
+def _stand_in(behaviour):
+    """A Python consumer that behaves as told, for the forked children (a fork copies the patched module)."""
+
+    def load(name, path, packages=None):
+        if behaviour == "crash":
+            os.kill(os.getpid(), signal.SIGSEGV)
+        if behaviour == "hang":
+            time.sleep(60)
+        if behaviour == "noise":
+            os.write(1, b"noise on stdout\n")
+            os.write(2, b"noise on stderr\n")
+            print("more noise", file=sys.stderr)
+        if behaviour == "refuse":
+            raise ValueError("no such\njoint")
+        return f"{name} saw it"
+
+    return load
+
+
+@pytest.mark.skipif(not hasattr(os, "fork"), reason="consumers run in forked children where os.fork exists")
+@pytest.mark.parametrize(
+    ("behaviour", "status", "message"),
+    [
+        ("crash", "crashed", "killed by SIGSEGV"),
+        ("hang", "timeout", "no verdict within 30 s; stopped"),
+        ("noise", "accepted", "pinocchio saw it"),
+        ("refuse", "rejected", "ValueError: no such joint"),
+    ],
+)
+def test_forked_consumers_are_isolated_bounded_and_quiet(monkeypatch, capfd, behaviour, status, message):
+    """A Python consumer runs in a child forked from check's process: its crash, hang or output stays there."""
+    from xacrokit.check import consumers
+
+    monkeypatch.setattr(consumers, "_load", _stand_in(behaviour))
+    monkeypatch.setattr(consumers, "CONSUMER_BOUNDS", dataclasses.replace(consumers.CONSUMER_BOUNDS, seconds=1.0))
+    started = time.monotonic()
+    report = check(CORPUS / "J002_pass.urdf", consumers=["pinocchio"])
+    assert time.monotonic() - started < 20
+    assert [(c.name, c.status) for c in report.consumers] == [("pinocchio", status)]
+    assert report.consumers[0].message == message.replace("30 s", f"{consumers.TIMEOUT_S:g} s")
+    out, err = capfd.readouterr()
+    assert "noise" not in out + err

@@ -1,0 +1,12 @@
+"""URDF's joint types and the groups the generator and check ask about (a module of its own: check reads a URDF
+without loading the robot model's classes)."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+JointType = Literal["revolute", "continuous", "prismatic", "fixed", "floating", "planar"]
+JOINT_TYPES: tuple[JointType, ...] = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
+MOVING: tuple[JointType, ...] = ("revolute", "continuous", "prismatic")  # one degree of freedom, driven by a motor
+LIMITED: tuple[JointType, ...] = ("revolute", "prismatic")  # need lower and upper limits
+AXIAL: tuple[JointType, ...] = ("revolute", "continuous", "prismatic", "planar")  # have an <axis> (planar: the normal)
