@@ -31,3 +31,19 @@ def test_benchmark_stage_measurement_runs(tmp_path, monkeypatch):
     assert set(row) == stages | {"touch"}  # (touch: the reference walk, not a stage)
     assert all(value > 0 for value in row.values())
     assert touch({"a": [1, {"b": 2.0}], "c": {}}) == 4  # it reaches every mapping and list
+
+
+def test_check_speed_script_runs():
+    """benchmarks/check_speed.py: gen-robot check against its consumers alone, on three real robots (one run)."""
+    result = subprocess.run(
+        [sys.executable, str(REPO / "benchmarks" / "check_speed.py"), "1"],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert result.returncode == 0, result.stderr
+    rows = [line for line in result.stdout.splitlines() if "(slowest: " in line]
+    assert [row.split()[0] for row in rows] == ["xarm7.urdf", "g1_29dof_with_hand_rev_1_0.urdf", "tiago_dual.urdf"]
+    for row in rows:
+        ratio = float(row.split("-> ")[1].split()[0])
+        assert 0.5 < ratio < 10  # (a ratio, measured: not a timing target, which RESULTS.md records)
