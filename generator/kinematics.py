@@ -23,6 +23,27 @@ def dh_body_end(
     return (end_a, -math.sin(end_alpha) * end_d, math.cos(end_alpha) * end_d)
 
 
+def rotation_rpy(
+    *,
+    quaternion: tuple[float, float, float, float] | None = None,
+    axis: tuple[float, float, float] | None = None,
+    angle: float = 0.0,
+) -> tuple[float, float, float]:
+    """URDF's roll, pitch, yaw of a rotation given as a unit quaternion (x, y, z, w: ROS's order) or as a unit axis and
+    an angle (right-handed), with pinocchio's conversions (Eigen's quaternion and angle-axis; ``matrixToRpy`` gives
+    pitch in [-pi/2, pi/2], as URDF reads it)."""
+    import pinocchio  # (loaded only for an origin given this way: it takes a quarter of a second)
+
+    if quaternion is not None:
+        matrix = pinocchio.Quaternion(np.array(quaternion, dtype=float)).toRotationMatrix()
+    elif axis is not None:
+        matrix = pinocchio.AngleAxis(angle, np.array(axis, dtype=float)).matrix()
+    else:
+        raise ValueError("a quaternion, or an axis and an angle")
+    roll, pitch, yaw = (float(v) + 0.0 for v in pinocchio.rpy.matrixToRpy(matrix))
+    return (roll, pitch, yaw)
+
+
 def rot_x(angle: float) -> np.ndarray:
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])

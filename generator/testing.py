@@ -75,9 +75,22 @@ def _origin(draw) -> dict[str, Any]:
     origin: dict[str, Any] = {}
     if draw(st.booleans()):
         origin["xyz"] = [draw(_length(_coord)) for _ in range(3)]
-    if draw(st.booleans()):
+    way = draw(st.sampled_from(["none", "rpy", "rpy", "quat", "axis_angle"]))  # (one way at a time)
+    if way == "rpy":
         origin["rpy"] = [draw(_angle_value()) for _ in range(3)]
+    elif way == "quat":  # a unit quaternion [x, y, z, w], as a calibration gives it
+        values = draw(st.lists(st.floats(-1, 1, allow_nan=False), min_size=4, max_size=4).filter(_long_enough))
+        norm = math.sqrt(sum(v * v for v in values))
+        origin["quat"] = [v / norm for v in values]
+    elif way == "axis_angle":
+        axis = draw(st.lists(st.floats(-1, 1, allow_nan=False), min_size=3, max_size=3).filter(_long_enough))
+        origin["axis_angle"] = {"axis": axis, "angle": draw(_angle_value())}
     return origin
+
+
+def _long_enough(values: list[float]) -> bool:
+    """A direction that normalising keeps (well away from the zero vector)."""
+    return math.sqrt(sum(v * v for v in values)) > 0.1
 
 
 @st.composite

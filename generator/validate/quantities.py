@@ -8,13 +8,18 @@ import math
 from typing import Any
 
 from ..errors import SpecError
+from ..kinematics import rotation_rpy
 from ..load import PathKey, RawSpec
 from ..units import Kind, UnitError, parse_quantity, plain_number
 from .bodies import bodies
+from .physics import AXIS_LENGTHS
 
 # A plain-number angle beyond this many turns is most likely degrees: one turn for an orientation, two for a joint's
 # range (multi-turn joints exist; a range beyond two turns written in radians is rarer than degrees left unmarked).
 _TURNS: dict[str | int, int] = {"lower": 2, "upper": 2, "soft_lower_limit": 2, "soft_upper_limit": 2}
+
+ORIENTATIONS = ("rpy", "quat", "axis_angle")  # the ways an origin may give its orientation (one at a time)
+QUATERNION_LENGTHS = (1e-6, 1e6)  # a quaternion's length that can be normalised without losing its direction
 
 # A plain-number length beyond this is most likely millimetres: no link, offset or DH length of a robot is 10 m (a
 # length written with a unit, '12 m', is taken as meant).
@@ -44,7 +49,7 @@ class Quantities:
         self.raw = raw
         self.errors: list[SpecError] = []
         self.warnings: list[SpecError] = []
-        self._changes: dict[PathKey, dict[str | int, float]] = {}  # container path -> key -> SI value
+        self._changes: dict[PathKey, dict[str | int, Any]] = {}  # container path -> key -> SI value (an rpy: a list)
         self._count = 0
         self._built: tuple[int, Any] = (0, raw.data)
 
@@ -99,6 +104,66 @@ class Quantities:
             self.convert(origin["xyz"], index, (*path, key, "xyz"), "length")
         for index in range(len(origin.get("rpy", []))):
             self.convert(origin["rpy"], index, (*path, key, "rpy"), "angle")
+        given = [name for name in ORIENTATIONS if name in origin]
+        if len(given) > 1:
+            self.errors.append(
+                self.raw.error(
+                    (*path, key, given[1]),
+                    f"an origin gives one orientation: {given[0]} or {given[1]}, not both ({', '.join(ORIENTATIONS)} "
+                    "each say it whole)",
+                )
+            )
+        elif given == ["quat"]:
+            self._quaternion(origin["quat"], (*path, key))
+        elif given == ["axis_angle"]:
+            self._axis_angle(origin["axis_angle"], (*path, key))
+
+    def _quaternion(self, quat: list[float], path: PathKey) -> None:
+        """``quat: [x, y, z, w]`` (ROS's order) to the rpy URDF writes; one not of unit length is normalised, with a
+        warning beyond 1e-6 (a quaternion rounded to a few digits is 1e-4 off: quiet), a zero one refused."""
+        norm = math.sqrt(math.fsum(v * v for v in quat))
+        if not QUATERNION_LENGTHS[0] <= norm <= QUATERNION_LENGTHS[1]:
+            self.errors.append(
+                self.raw.error(
+                    (*path, "quat"),
+                    f"quat {quat} has length {norm:.3g}: a rotation's quaternion [x, y, z, w] has length 1 (the "
+                    "identity is [0, 0, 0, 1])",
+                )
+            )
+            return
+        if abs(norm - 1.0) > 1e-6:
+            self.warnings.append(
+                self.raw.error(
+                    (*path, "quat"),
+                    f"quat {quat} has length {norm:.9g}, not 1; normalised (ROS's order is [x, y, z, w]: is w last?)",
+                )
+            )
+        self._set_rpy(path, rotation_rpy(quaternion=(quat[0] / norm, quat[1] / norm, quat[2] / norm, quat[3] / norm)))
+
+    def _axis_angle(self, given: dict[str, Any], path: PathKey) -> None:
+        """``axis_angle: {axis, angle}`` (right-handed, about the unit axis) to rpy; the axis' length is as for a
+        joint axis."""
+        self.convert(given, "angle", (*path, "axis_angle"), "angle")
+        angle = self._changes.get((*path, "axis_angle"), {}).get("angle", given["angle"])
+        if not isinstance(angle, float):
+            return  # (the angle did not parse: its error is said)
+        axis = given["axis"]
+        norm = math.sqrt(math.fsum(v * v for v in axis))
+        if not AXIS_LENGTHS[0] <= norm <= AXIS_LENGTHS[1]:
+            self.errors.append(
+                self.raw.error(
+                    (*path, "axis_angle", "axis"),
+                    f"axis {axis} has length {norm:.3g}; give a direction of length {AXIS_LENGTHS[0]:g} to "
+                    f"{AXIS_LENGTHS[1]:g} (e.g. [0, 0, 1])",
+                )
+            )
+            return
+        self._set_rpy(path, rotation_rpy(axis=(axis[0] / norm, axis[1] / norm, axis[2] / norm), angle=angle))
+
+    def _set_rpy(self, origin_path: PathKey, rpy: tuple[float, float, float]) -> None:
+        """The origin's rpy, as URDF writes it, computed from another way of giving its orientation."""
+        self._changes.setdefault(origin_path, {})["rpy"] = list(rpy)
+        self._count += 1
 
     def shape(self, holder: dict[str, Any], path: PathKey) -> None:
         shape = holder.get("shape")
@@ -153,7 +218,7 @@ class Quantities:
         return self.data, self.errors
 
 
-def _with_changes(root: Any, changes: dict[PathKey, dict[str | int, float]]) -> Any:
+def _with_changes(root: Any, changes: dict[PathKey, dict[str | int, Any]]) -> Any:
     """``root`` with the values set in the containers at the given paths, copying only the containers on those paths
     (``root`` itself is not changed)."""
     if not changes:

@@ -1,0 +1,134 @@
+"""Orientations given as a quaternion or an axis and an angle: converted to the rpy URDF writes, checked against an
+independent library (scipy's Rotation; the conversion itself uses pinocchio), and refused or noted where they are
+not rotations."""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+import pytest
+import yaml
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.spatial.transform import Rotation
+
+from conftest import REPO, gen_robot
+from xacrokit.errors import SpecErrors
+from xacrokit.kinematics import rpy_matrix
+from xacrokit.pipeline import build_robot
+
+SPEC = {
+    "robot": "rot",
+    "links": {
+        "base_link": {"shape": {"box": {"size": [0.2, 0.2, 0.1]}}, "mass": 2.0},
+        "camera": {"shape": {"box": {"size": [0.02, 0.08, 0.02]}}, "mass": 0.1},
+    },
+    "joints": {"camera_joint": {"type": "fixed", "parent": "base_link", "child": "camera", "origin": {}}},
+}
+
+
+def camera_rpy(tmp_path, origin):
+    spec = yaml.safe_load(yaml.safe_dump(SPEC))
+    spec["joints"]["camera_joint"]["origin"] = origin
+    path = tmp_path / "rot.yaml"
+    path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
+    (joint,) = build_robot(path).joints
+    return joint.origin.rpy
+
+
+# a direction not too close to zero (normalising it is then well conditioned); any length within the accepted range
+directions = st.lists(st.floats(-10, 10, allow_nan=False), min_size=3, max_size=3).filter(
+    lambda v: math.hypot(*v) > 1e-3
+)
+quaternions = st.lists(st.floats(-10, 10, allow_nan=False), min_size=4, max_size=4).filter(
+    lambda q: abs(math.sqrt(sum(v * v for v in q)) - 1.0) <= 1e-6 or math.sqrt(sum(v * v for v in q)) > 1e-3
+)
+
+
+@settings(max_examples=60, deadline=None)
+@given(quat=quaternions)
+def test_a_quaternion_gives_the_rotation_scipy_gives(tmp_path_factory, quat):
+    rpy = camera_rpy(tmp_path_factory.mktemp("q"), {"quat": quat})
+    expected = Rotation.from_quat(quat).as_matrix()  # scipy's order is ROS's: [x, y, z, w]; it normalises too
+    assert np.allclose(rpy_matrix(*rpy), expected, rtol=0, atol=1e-12)
+    assert -math.pi / 2 <= rpy[1] <= math.pi / 2  # (the pitch URDF reads back)
+
+
+@settings(max_examples=60, deadline=None)
+@given(axis=directions, angle=st.floats(-4 * math.pi, 4 * math.pi, allow_nan=False))
+def test_an_axis_and_angle_give_the_rotation_scipy_gives(tmp_path_factory, axis, angle):
+    rpy = camera_rpy(tmp_path_factory.mktemp("a"), {"axis_angle": {"axis": axis, "angle": angle}})
+    unit = np.array(axis) / np.linalg.norm(axis)
+    expected = Rotation.from_rotvec(unit * angle).as_matrix()
+    assert np.allclose(rpy_matrix(*rpy), expected, rtol=0, atol=1e-12)
+
+
+def test_units_and_the_written_urdf(tmp_path):
+    assert camera_rpy(tmp_path, {"axis_angle": {"axis": [0, 0, 2], "angle": "90 deg"}}) == (0.0, 0.0, math.pi / 2)
+    spec = yaml.safe_load(yaml.safe_dump(SPEC))
+    half = math.sqrt(0.5)
+    spec["joints"]["camera_joint"]["origin"] = {"xyz": [0.1, 0, 0.05], "quat": [0, half, 0, half]}  # pitch 90 deg
+    path = tmp_path / "rot.yaml"
+    path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
+    assert gen_robot(path, "-o", tmp_path / "pkg").returncode == 0
+    urdf = (tmp_path / "pkg" / "urdf" / "rot.urdf").read_text(encoding="utf-8")
+    line = next(line for line in urdf.splitlines() if 'xyz="0.1 0.0 0.05"' in line)
+    roll, pitch, yaw = (float(v) for v in line.split('rpy="')[1].split('"')[0].split())
+    assert np.allclose(rpy_matrix(roll, pitch, yaw), Rotation.from_quat([0, half, 0, half]).as_matrix(), atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("origin", "where", "said"),
+    [
+        ({"rpy": [0, 0, 1], "quat": [0, 0, 0, 1]}, "origin.quat", "an origin gives one orientation: rpy or quat"),
+        ({"quat": [0, 0, 0, 1], "axis_angle": {"axis": [0, 0, 1], "angle": 1}}, "origin.axis_angle", "not both"),
+        ({"quat": [0, 0, 0, 0]}, "origin.quat", "quat [0, 0, 0, 0] has length 0: a rotation's quaternion"),
+        ({"axis_angle": {"axis": [0, 0, 0], "angle": 1}}, "origin.axis_angle.axis", "axis [0, 0, 0] has length 0"),
+        ({"axis_angle": {"axis": [0, 0, 1], "angle": "90 m"}}, "origin.axis_angle.angle", "angle"),
+        ({"quat": [0, 0, 1]}, "origin.quat", ""),  # (the schema: four numbers)
+    ],
+)
+def test_what_is_not_a_rotation_is_refused_where_it_stands(tmp_path, origin, where, said):
+    with pytest.raises(SpecErrors) as caught:
+        camera_rpy(tmp_path, origin)
+    (error,) = caught.value.errors
+    assert error.path == f"$.joints.camera_joint.{where}" and said in error.message, error
+    lines = (tmp_path / "rot.yaml").read_text(encoding="utf-8").splitlines()
+    key = f"{where.rsplit('.', 1)[-1]}:"  # located at the value: on its key's line, or the next (a block list)
+    assert key in lines[error.line - 1] or key in lines[error.line - 2], (error.line, lines)
+
+
+def test_a_quaternion_not_of_unit_length_is_normalised_with_a_warning(tmp_path):
+    spec = yaml.safe_load(yaml.safe_dump(SPEC))
+    spec["joints"]["camera_joint"]["origin"] = {"quat": [0, 1, 0, 1]}
+    path = tmp_path / "rot.yaml"
+    path.write_text(yaml.safe_dump(spec, sort_keys=False, default_flow_style=None), encoding="utf-8")
+    result = gen_robot(path, "-o", tmp_path / "pkg")
+    assert result.returncode == 0
+    assert "$.joints.camera_joint.origin.quat: quat [0, 1, 0, 1] has length 1.41421356, not 1; normalised" in (
+        result.stderr
+    )
+    (joint,) = build_robot(path).joints
+    assert np.allclose(joint.origin.rpy, (0.0, math.pi / 2, 0.0), atol=1e-12)
+    spec["joints"]["camera_joint"]["origin"] = {"quat": [0, 0, 0.0000001, 1]}  # 5e-15 off: quiet
+    path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
+    assert "warning" not in gen_robot(path, "--dry-run").stderr
+
+
+def test_the_docs_example_generates_what_it_says(tmp_path):
+    docs = (REPO / "docs" / "spec.md").read_text(encoding="utf-8")
+    (block,) = [b for b in re.findall(r"```yaml\n(.*?)\n```", docs, flags=re.S) if "quat:" in b]
+    links = """robot: rot
+links:
+  base_link: {shape: {box: {size: [0.2, 0.2, 0.1]}}, mass: 2.0}
+  camera: {shape: {box: {size: [0.02, 0.08, 0.02]}}, mass: 0.1}
+  lidar: {shape: {cylinder: {radius: 0.03, length: 0.04}}, mass: 0.2}
+joints:
+"""
+    path = tmp_path / "rot.yaml"
+    path.write_text(links + block, encoding="utf-8")
+    joints = {joint.name: joint.origin.rpy for joint in build_robot(path).joints}
+    assert np.allclose(joints["camera_joint"], (0.0, math.pi / 4, 0.0), atol=1e-7)  # (the docs' 7 digits)
+    assert joints["lidar_joint"] == (0.0, 0.0, math.pi / 2)
