@@ -132,3 +132,21 @@ joints:
     joints = {joint.name: joint.origin.rpy for joint in build_robot(path).joints}
     assert np.allclose(joints["camera_joint"], (0.0, math.pi / 4, 0.0), atol=1e-7)  # (the docs' 7 digits)
     assert joints["lidar_joint"] == (0.0, 0.0, math.pi / 2)
+
+
+def test_scene_instances_take_the_same_orientations(tmp_path):
+    arm = REPO / "examples" / "robots" / "two_dof_arm.yaml"
+    scene = tmp_path / "cell.yaml"
+    scene.write_text(
+        f"""scene: cell
+instances:
+  a: {{spec: {arm}, prefix: a_, parent: world, origin: {{quat: [0, 0, 0.7071067811865476, 0.7071067811865476]}}}}
+  b: {{spec: {arm}, prefix: b_, parent: world,
+      origin: {{xyz: [1, 0, 0], axis_angle: {{axis: [0, 0, 1], angle: 180 deg}}}}}}
+""",
+        encoding="utf-8",
+    )
+    assert gen_robot(scene, "-o", tmp_path / "pkg").returncode == 0
+    urdf = (tmp_path / "pkg" / "urdf" / "cell.urdf").read_text(encoding="utf-8")
+    assert '<origin xyz="0.0 0.0 0.0" rpy="0.0 0.0 1.5707963267948968"/>' in urdf  # (pinocchio's last bit)
+    assert '<origin xyz="1.0 0.0 0.0" rpy="0.0 0.0 3.141592653589793"/>' in urdf

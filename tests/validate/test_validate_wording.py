@@ -21,8 +21,8 @@ CASES = {
     "a scalar for an origin": (
         ARM.replace("    origin: {xyz: [0, 0, 0.15]}", "    origin: 5", 1),
         "$.links.upper_arm.origin",
-        "expected a mapping here (xyz:, rpy:, quat:, axis_angle: ...), got 5; if the lines below belong to it, indent them "
-        "further",
+        "expected a mapping here (xyz:, rpy:, quat:, axis_angle: ...), got 5; if the lines below belong to it, indent "
+        "them further",
     ),
     "a key indented too far": (
         ARM.replace("    mass: 1.0\n", "     mass: 1.0\n", 1),
