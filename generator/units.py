@@ -7,7 +7,8 @@ Grammar (no ``eval``; nothing but these tokens is accepted)::
     term     := factor (('*' | '/') factor)*
     factor   := ('+' | '-') factor | NUMBER | 'pi' | '(' expr ')'
 
-The unit must belong to the field's kind; a bare number is already in SI (m, rad, kg).
+The unit must belong to the field's kind; a bare number is already in SI (m, rad, kg, rad/s, m/s, N*m, N). A unit
+written with ``*`` or ``/`` (``deg/s``, ``N*m``, ``kgf*cm``) ends the text and is read as one unit, not as arithmetic.
 
 Numbers and the metric and imperial factors are exact decimals, so the arithmetic is exact until ``pi`` or an angle
 unit enters: ``"9 mm"`` is the double nearest 0.009 (``9 * 1e-3`` in floats would be 0.009000000000000001), and
@@ -22,7 +23,7 @@ from decimal import MAX_EMAX, MIN_EMIN, Context, Decimal
 from fractions import Fraction
 from typing import Literal
 
-Kind = Literal["length", "angle", "mass", "number"]
+Kind = Literal["length", "angle", "mass", "number", "angular_velocity", "linear_velocity", "torque", "force"]
 Value = Fraction | float  # exact while no pi is involved
 
 # A decimal literal as specs (JSON, YAML 1.2) and URDF files write one: sign, digits, point, exponent.
@@ -39,8 +40,27 @@ UNITS: dict[str, dict[str, Value]] = {
         "ft": Fraction("0.3048"),
     },
     "angle": {"rad": Fraction(1), "deg": math.pi / 180.0, "degree": math.pi / 180.0, "degrees": math.pi / 180.0},
-    "mass": {"kg": Fraction(1), "g": Fraction(1, 1000)},
+    "mass": {
+        "kg": Fraction(1),
+        "g": Fraction(1, 1000),
+        "lb": Fraction("0.45359237"),  # the international avoirdupois pound (1959), exactly
+        "oz": Fraction("0.45359237") / 16,
+    },
     "number": {},
+    # a joint's velocity limit: angular for revolute and continuous joints, linear for prismatic ones
+    "angular_velocity": {"rad/s": Fraction(1), "deg/s": math.pi / 180.0, "rpm": math.pi / 30.0},
+    "linear_velocity": {"m/s": Fraction(1), "mm/s": Fraction(1, 1000), "cm/s": Fraction(1, 100)},
+    # a joint's effort limit: torque for revolute and continuous joints, force for prismatic ones; kgf is the
+    # standard gravity's 9.80665 N (hobby servos give their torque in kgf*cm)
+    "torque": {
+        "N*m": Fraction(1),
+        "Nm": Fraction(1),
+        "N*cm": Fraction(1, 100),
+        "N*mm": Fraction(1, 1000),
+        "kgf*cm": Fraction("9.80665") / 100,
+        "kgf*m": Fraction("9.80665"),
+    },
+    "force": {"N": Fraction(1), "kN": Fraction(1000), "kgf": Fraction("9.80665")},
 }
 _EXACT_EXPONENT = 400  # beyond 1e±400 a number is no double anyway: read it as a float (inf or 0), not as a huge int
 
@@ -133,6 +153,22 @@ def _bounded(value: Value) -> Value:
     return value
 
 
+# units written with '*' or '/' between words ('deg/s', 'N*m'): matched at the end of the text before the parser
+# runs (which would read 'deg / s' as a division)
+_COMPOUND_UNITS = {unit for table in UNITS.values() for unit in table if "*" in unit or "/" in unit}
+_COMPOUND = re.compile(r"(?P<unit>[A-Za-z_]+(?:\s*[*/]\s*[A-Za-z_]+)+)\s*$")
+
+
+def _expected(kind: str) -> str:
+    """'a torque (N*m, Nm, ... or a plain number in N*m)': what the field takes, with its units."""
+    return f"{_article(kind)} {_said(kind)} ({_unit_list(kind)})"
+
+
+def _said(kind: str) -> str:
+    """A kind as a message says it: 'angular velocity', not 'angular_velocity'."""
+    return kind.replace("_", " ")
+
+
 def _unit_kind(word: str) -> str | None:
     return next((kind for kind, table in UNITS.items() if word in table), None)
 
@@ -209,14 +245,26 @@ def _parsed(value: str, kind: Kind) -> float:
     ):  # (radius: pi/2 is an angle written where a length goes)
         raise UnitError(f"{value!r} holds pi, which belongs to angles; a {kind} is written as {_example(kind)!r}")
     scale: Value = Fraction(1)
-    if len(tokens) > 1 and tokens[-1][0] == "word" and tokens[-1][1] != "pi":
+    compound = _COMPOUND.search(value)
+    if compound and set(re.findall(r"[A-Za-z_]+", compound["unit"])) != {"pi"}:  # 'deg/s', 'N*m' end the text
+        unit = re.sub(r"\s+", "", compound["unit"])
+        unit_kind = _unit_kind(unit)
+        if unit_kind is None:
+            raise UnitError(f"unknown unit {unit!r} in {value!r}; {_said(kind)} units: {_unit_list(kind)}")
+        if unit_kind != kind:
+            raise UnitError(f"{value!r} is {_article(unit_kind)} {_said(unit_kind)}, expected {_expected(kind)}")
+        tokens = _tokens(value[: compound.start("unit")])
+        scale = UNITS[kind][unit]
+    elif len(tokens) > 1 and tokens[-1][0] == "word" and tokens[-1][1] != "pi":
         unit = tokens.pop()[1]
         unit_kind = _unit_kind(unit)
         if unit_kind is None:
-            raise UnitError(f"unknown unit {unit!r} in {value!r}; {kind} units: {_unit_list(kind)}")
+            raise UnitError(f"unknown unit {unit!r} in {value!r}; {_said(kind)} units: {_unit_list(kind)}")
         if unit_kind != kind:
-            raise UnitError(f"{value!r} is {_article(unit_kind)} {unit_kind}, expected {_article(kind)} {kind}")
+            raise UnitError(f"{value!r} is {_article(unit_kind)} {_said(unit_kind)}, expected {_expected(kind)}")
         scale = UNITS[kind][unit]
+    if not tokens:
+        raise UnitError(f"{value!r} has a unit but no number; write it as {_example(kind)!r}")
     parser = _Parser(tokens, value)
     try:
         exact = parser.expr()
@@ -236,4 +284,13 @@ def _unit_list(kind: str) -> str:
 
 
 def _example(kind: str) -> str:
-    return {"length": "150 mm", "angle": "90 deg", "mass": "500 g", "number": "1.5"}[kind]
+    return {
+        "length": "150 mm",
+        "angle": "90 deg",
+        "mass": "500 g",
+        "number": "1.5",
+        "angular_velocity": "60 rpm",
+        "linear_velocity": "250 mm/s",
+        "torque": "15 kgf*cm",
+        "force": "200 N",
+    }[kind]

@@ -183,11 +183,28 @@ class Quantities:
         for key in ("lower", "upper"):
             if isinstance(holder.get("limit"), dict):
                 self.convert(holder["limit"], key, (*path, "limit"), kind)
+        if isinstance(holder.get("limit"), dict):
+            self.rates(holder["limit"], (*path, "limit"), joint_type)
         if isinstance(holder.get("mimic"), dict):
             self.convert(holder["mimic"], "offset", (*path, "mimic"), kind)
         if isinstance(holder.get("safety_controller"), dict):
             for key in ("soft_lower_limit", "soft_upper_limit"):
                 self.convert(holder["safety_controller"], key, (*path, "safety_controller"), kind)
+
+    def rates(self, limit: dict[str, Any], path: PathKey, joint_type: str) -> None:
+        """A limit's velocity (rad/s, or m/s for a prismatic joint: 'deg/s', 'rpm', 'mm/s' ...) and effort (N*m or N:
+        'kgf*cm' ...), each > 0."""
+        prismatic = joint_type == "prismatic"
+        speed: Kind = "linear_velocity" if prismatic else "angular_velocity"
+        effort: Kind = "force" if prismatic else "torque"
+        for key, kind in (("velocity", speed), ("effort", effort)):
+            if key not in limit:
+                continue
+            errors = len(self.errors)
+            self.convert(limit, key, path, kind)
+            value = self._changes.get(path, {}).get(key, limit[key])
+            if len(self.errors) == errors and isinstance(value, (int, float)) and not value > 0:
+                self.errors.append(self.raw.error((*path, key), f"{key} must be > 0, got {limit[key]!r}"))
 
     def run(self) -> tuple[dict[str, Any], list[SpecError]]:
         """Convert the whole spec: the converted data and the errors (the warnings are in ``warnings``)."""
@@ -205,6 +222,8 @@ class Quantities:
             if kind == "wheel":
                 for key, quantity in _WHEEL:
                     self.convert(item, key, path, quantity)
+                if isinstance(item.get("limit"), dict):
+                    self.rates(item["limit"], (*path, "limit"), "continuous")
             elif kind in ("link", "frame"):
                 self.shape(item, path)
                 self.convert(item, "mass", path, "mass")

@@ -84,13 +84,34 @@ def test_numbers_pass_through_exactly_and_as_text(value):
             ("g", "mass"),
             ("m", "length"),
             ("kg", "mass"),
+            ("lb", "mass"),
+            ("oz", "mass"),
+            ("kgf*cm", "torque"),
+            ("N*cm", "torque"),
+            ("kgf", "force"),
+            ("mm/s", "linear_velocity"),
         ]
     ),
 )
 def test_metric_and_imperial_units_give_the_nearest_double(number, unit):
-    """'9 mm' is 0.009, not 9 * 1e-3 = 0.009000000000000001: the number and the factor are exact decimals."""
+    """'9 mm' is 0.009, not 9 * 1e-3 = 0.009000000000000001: the number and the factor are exact decimals. The factors
+    here are the definitions (NIST SP 811): the pound is 0.45359237 kg, the ounce a 16th of it, the kilogram-force
+    9.80665 N (standard gravity)."""
     name, kind = unit
-    factor = {"mm": "0.001", "cm": "0.01", "km": "1000", "in": "0.0254", "ft": "0.3048", "g": "0.001"}.get(name, "1")
+    factor = {
+        "mm": "0.001",
+        "cm": "0.01",
+        "km": "1000",
+        "in": "0.0254",
+        "ft": "0.3048",
+        "g": "0.001",
+        "lb": "0.45359237",
+        "oz": "0.028349523125",
+        "kgf*cm": "0.0980665",
+        "N*cm": "0.01",
+        "kgf": "9.80665",
+        "mm/s": "0.001",
+    }.get(name, "1")
     assert parse_quantity(f"{number} {name}", kind) == float(Fraction(number) * Fraction(factor))
 
 
@@ -108,6 +129,41 @@ def test_metric_and_imperial_units_give_the_nearest_double(number, unit):
 )
 def test_exact_arithmetic_cases(text, kind, value):
     assert parse_quantity(text, kind) == value  # exactly, not approximately
+
+
+@pytest.mark.parametrize(
+    ("text", "kind", "value"),
+    [
+        ("60 rpm", "angular_velocity", 2 * math.pi),  # a turn a second
+        ("180 deg/s", "angular_velocity", math.pi),
+        ("pi/2 rad/s", "angular_velocity", math.pi / 2),
+        ("15 kgf*cm", "torque", 1.4709975),  # a hobby servo's datasheet torque
+        ("1.5 N*m", "torque", 1.5),
+        ("1.5 N * m", "torque", 1.5),
+        ("(1 + 2) Nm", "torque", 3.0),
+        ("2 kN", "force", 2000.0),
+        ("250 mm/s", "linear_velocity", 0.25),
+        ("2*pi", "angle", 2 * math.pi),  # (no unit: 'pi' is a number)
+    ],
+)
+def test_datasheet_units_of_speed_and_effort(text, kind, value):
+    assert parse_quantity(text, kind) == value
+
+
+@pytest.mark.parametrize(
+    ("text", "kind", "words"),
+    [
+        ("10 deg/s", "torque", "'10 deg/s' is an angular velocity, expected a torque (N*m, Nm, N*cm, N*mm, kgf*cm"),
+        ("3 kg*m", "torque", "unknown unit 'kg*m' in '3 kg*m'; torque units: N*m, Nm"),
+        ("N*m", "torque", "'N*m' has a unit but no number"),
+        ("5 m", "force", "'5 m' is a length, expected a force (N, kN, kgf)"),
+        ("5 kg", "length", "'5 kg' is a mass, expected a length (m, mm, cm, km, in, ft)"),
+    ],
+)
+def test_a_refusal_names_the_accepted_units(text, kind, words):
+    with pytest.raises(UnitError) as caught:
+        parse_quantity(text, kind)
+    assert words in str(caught.value)
 
 
 def test_huge_exact_products_stay_cheap_and_are_not_finite():

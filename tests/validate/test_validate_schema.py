@@ -35,10 +35,10 @@ CASES = [
     ("arms.dh.joints", [], "$.arms.dh.joints", "expected at least 1 entry, got 0"),
     ("materials.gray", [128, 128, 128, 1], "$.materials.gray[0]", "must be <= 1, got 128 (colours are 0..1"),
     (
-        "joints.shoulder.limit",
-        {"lower": -1.0, "upper": 1.0, "effort": "10 Nm", "velocity": 1.0},
-        "$.joints.shoulder.limit.effort",
-        "expected a plain number in SI units, got '10 Nm'",
+        "joints.shoulder.dynamics",
+        {"damping": "0.1 N*m*s/rad", "friction": 0.0},  # (a limit's effort takes units: '10 Nm'; damping does not)
+        "$.joints.shoulder.dynamics.damping",
+        "expected a plain number in SI units, got '0.1 N*m*s/rad'",
     ),
     (
         "links.base_link.shape",
