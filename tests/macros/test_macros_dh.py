@@ -129,9 +129,10 @@ def test_dh_arm_names_frames_as_documented(expand, tmp_path_factory):
         includes=("dh",),
     )
     root = expand(doc)
-    assert sorted(e.get("name") for e in root.iter("link")) == ["p_base", "p_l1", "p_tool0", "world"]
+    # (the default base is arm_base: 'base' would make base_joint, a mobile base's footprint joint name)
+    assert sorted(e.get("name") for e in root.iter("link")) == ["p_arm_base", "p_l1", "p_tool0", "world"]
     joints = {e.get("name"): e for e in root.iter("joint")}
-    assert sorted(joints) == ["p_base_joint", "p_j1", "p_tool0_joint"]
+    assert sorted(joints) == ["p_arm_base_joint", "p_j1", "p_tool0_joint"]
     assert joints["p_j1"].get("type") == "revolute"
     assert floats(joints["p_j1"].find("axis").get("xyz")) == [0.0, 0.0, 1.0]
     limit = joints["p_j1"].find("limit")
