@@ -196,6 +196,17 @@ def _cmd_schema(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_materials(args: argparse.Namespace) -> int:
+    from .materials import ALIASES, MATERIALS
+
+    width = max(len(name) for name in MATERIALS)
+    for name, material in MATERIALS.items():
+        print(f"{name:<{width}}  {material.density:>7g} kg/m^3  {material.grade}; {material.source}")
+    if ALIASES:
+        print("also: " + ", ".join(f"{alias} = {name}" for alias, name in ALIASES.items()))
+    return 0
+
+
 def _cmd_macros(args: argparse.Namespace) -> int:
     from .resources import PUBLIC_MACRO_FILES, macros_dir
 
@@ -384,10 +395,17 @@ def build_parser() -> argparse.ArgumentParser:
     macros.add_argument("-v", "--verbose", action="store_true", help="also list each public macro file")
     macros.add_argument("--reference", action="store_true", help="print the Markdown macro reference instead")
     macros.set_defaults(handler=_cmd_macros)
+
+    materials = commands.add_parser(
+        "materials",
+        help="list the materials a spec's density may name",
+        description="Print the built-in materials a body's `density:` may name: density (kg/m^3), grade, source.",
+    )
+    materials.set_defaults(handler=_cmd_materials)
     return parser
 
 
-COMMANDS = ("generate", "new", "check", "fleet", "schema", "expand", "macros")
+COMMANDS = ("generate", "new", "check", "fleet", "schema", "expand", "macros", "materials")
 
 
 def _shorthand(words: list[str]) -> bool:

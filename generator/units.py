@@ -23,7 +23,7 @@ from decimal import MAX_EMAX, MIN_EMIN, Context, Decimal
 from fractions import Fraction
 from typing import Literal
 
-Kind = Literal["length", "angle", "mass", "number", "angular_velocity", "linear_velocity", "torque", "force"]
+Kind = Literal["length", "angle", "mass", "number", "angular_velocity", "linear_velocity", "torque", "force", "density"]
 Value = Fraction | float  # exact while no pi is involved
 
 # A decimal literal as specs (JSON, YAML 1.2) and URDF files write one: sign, digits, point, exponent.
@@ -61,6 +61,7 @@ UNITS: dict[str, dict[str, Value]] = {
         "kgf*m": Fraction("9.80665"),
     },
     "force": {"N": Fraction(1), "kN": Fraction(1000), "kgf": Fraction("9.80665")},
+    "density": {"kg/m3": Fraction(1), "g/cm3": Fraction(1000), "g/cc": Fraction(1000), "kg/L": Fraction(1000)},
 }
 _EXACT_EXPONENT = 400  # beyond 1e±400 a number is no double anyway: read it as a float (inf or 0), not as a huge int
 
@@ -156,7 +157,7 @@ def _bounded(value: Value) -> Value:
 # units written with '*' or '/' between words ('deg/s', 'N*m'): matched at the end of the text before the parser
 # runs (which would read 'deg / s' as a division)
 _COMPOUND_UNITS = {unit for table in UNITS.values() for unit in table if "*" in unit or "/" in unit}
-_COMPOUND = re.compile(r"(?P<unit>[A-Za-z_]+(?:\s*[*/]\s*[A-Za-z_]+)+)\s*$")
+_COMPOUND = re.compile(r"(?P<unit>[A-Za-z_][A-Za-z0-9_]*(?:\s*[*/]\s*[A-Za-z_][A-Za-z0-9_]*)+)\s*$")
 
 
 def _expected(kind: str) -> str:
@@ -293,4 +294,5 @@ def _example(kind: str) -> str:
         "linear_velocity": "250 mm/s",
         "torque": "15 kgf*cm",
         "force": "200 N",
+        "density": "2.7 g/cm3",
     }[kind]

@@ -31,8 +31,8 @@ from .names import (
     robot_name_errors,
     tree_errors,
 )
-from .physics import density_warnings, physics_errors
-from .quantities import Quantities
+from .physics import density_warnings, masses_from_density, physics_errors
+from .quantities import Quantities, with_values
 from .schema import (
     SchemaValidator,
     inline_refs,
@@ -113,11 +113,15 @@ def validate(raw: RawSpec) -> Spec:
     notes = quantities.warnings
     del quantities  # (its table of changes is garbage now: not kept through the checks below)
     every = list(bodies(data))
-    errors += unit_errors + semantic_errors(raw, data, every, physics=not unit_errors)
+    masses, density_errors, density_notes = masses_from_density(raw, data, every) if not unit_errors else ({}, [], [])
+    if masses:  # (the bodies that gave a density: their mass, before the checks that want one)
+        data = with_values(data, {path: {"mass": mass} for path, mass in masses.items()})
+        every = list(bodies(data))
+    errors += unit_errors + density_errors + semantic_errors(raw, data, every, physics=not unit_errors)
     if errors:
         raise SpecErrors(_unique(errors))
     dense = list(density_warnings(raw, every, data))
     # a shape whose mass gives an impossible density says so once, at its mass, not also at each long size
     said = tuple(w.path.removesuffix(".mass") + ".shape." for w in dense)
-    warnings = [n for n in notes if not n.path.startswith(said)] + dense
+    warnings = [n for n in notes if not n.path.startswith(said)] + dense + density_notes
     return Spec(raw=raw, data=data, warnings=tuple(sorted(warnings, key=lambda w: (w.line or 0, w.column or 0))))

@@ -34,7 +34,10 @@ def physics_errors(
             for key in ("radius", "width"):
                 if not item[key] > 0:
                     yield raw.error((*path, key), f"{key} must be > 0 m, got {item[key]!r}")
-            yield from _mass_error(raw, item["mass"], (*path, "mass"))
+            if "mass" in item:
+                yield from _mass_error(raw, item["mass"], (*path, "mass"))
+            elif "density" not in item:
+                yield raw.error(path, "a wheel needs a mass (kg) or a density (its cylinder's volume gives the mass)")
         elif kind == "frame":
             yield from _frame_errors(raw, item, path)
     for name, joint in data.get("joints", {}).items():
@@ -45,10 +48,10 @@ def _link_errors(raw: RawSpec, link: dict[str, Any], path: PathKey) -> Iterator[
     yield from _shape_errors(raw, link, path)
     if isinstance(link.get("collision"), dict):
         yield from _shape_errors(raw, link["collision"], (*path, "collision"))
-    if "shape" in link and "mass" not in link:
+    if "shape" in link and "mass" not in link and "density" not in link:  # (a density's own error is said)
         yield raw.error(
             path,
-            "a link with a shape needs a mass (kg): simulators drop bodies without one; "
+            "a link with a shape needs a mass (kg) or a density: simulators drop bodies without one; "
             "for a pure frame, leave the shape out",
             key=True,
         )
@@ -71,7 +74,7 @@ def _row_errors(raw: RawSpec, row: dict[str, Any], path: PathKey) -> Iterator[Sp
     yield from _limit_errors(raw, row, path, row.get("type", "revolute"))
     if "mass" in row:
         yield from _mass_error(raw, row["mass"], (*path, "mass"))
-    elif row.get("type", "revolute") != "fixed":
+    elif row.get("type", "revolute") != "fixed" and "density" not in row:
         yield raw.error(
             path,
             f"row {row['name']!r} moves link {row['link']!r}, which has no mass; give the row a mass (kg) for its body",
@@ -82,8 +85,10 @@ def _row_errors(raw: RawSpec, row: dict[str, Any], path: PathKey) -> Iterator[Sp
 
 def _frame_errors(raw: RawSpec, frame: dict[str, Any], path: PathKey) -> Iterator[SpecError]:
     yield from _shape_errors(raw, frame, path)
-    if "shape" in frame and "mass" not in frame:
-        yield raw.error(path, "a frame with a shape needs a mass (kg); for a bare frame, leave the shape out", key=True)
+    if "shape" in frame and "mass" not in frame and "density" not in frame:
+        yield raw.error(
+            path, "a frame with a shape needs a mass (kg) or a density; for a bare frame, leave the shape out", key=True
+        )
     if "mass" in frame:
         yield from _mass_error(raw, frame["mass"], (*path, "mass"))
         if "mesh" in frame.get("shape", {"mesh": None}):
@@ -101,7 +106,7 @@ def _joint_errors(
             "simulators such as MuJoCo reject deeper ones",
         )
     child = data.get("links", {}).get(joint["child"])
-    if joint["type"] != "fixed" and isinstance(child, dict) and "mass" not in child:
+    if joint["type"] != "fixed" and isinstance(child, dict) and "mass" not in child and "density" not in child:
         yield raw.error(
             (*path, "child"),
             f"link {joint['child']!r} is moved by this {joint['type']} joint but "
@@ -233,6 +238,53 @@ def density_warnings(raw: RawSpec, bodies: Sequence[Body], data: dict[str, Any])
             (*path, "mass"),
             f"mass {mass:g} kg in a {found[1]:.3g} m^3 {found[0]} is {density:.3g} kg/m^3, {hint}",
         )
+
+
+# A body given both a mass and a density: its mass may be below the solid's (pockets, shells, a 3D print's infill) but
+# a part keeping less than a quarter of its envelope's material, or weighing more than the solid (beyond 10%: the
+# shape is an approximation), is more likely a wrong number than a real part.
+MASS_TO_SOLID = (0.25, 1.1)
+
+
+def masses_from_density(
+    raw: RawSpec, data: dict[str, Any], every: Sequence[Body]
+) -> tuple[dict[PathKey, float], list[SpecError], list[SpecError]]:
+    """The mass of every body that gives a density and no mass (density times the volume of its shape: exact for a
+    box, cylinder or sphere; a DH row's body as gen-robot draws it), by the body's path; the errors (a density with
+    no volume to fill) and the warnings (a mass far from what its density gives)."""
+    segments = _row_segments(data)
+    masses: dict[PathKey, float] = {}
+    errors: list[SpecError] = []
+    warnings: list[SpecError] = []
+    for kind, _, path, item in every:
+        density = item.get("density")
+        if density is None or kind not in ("link", "wheel", "frame", "row"):
+            continue
+        found = _volume(kind, item) if kind != "row" else segments.get(path)
+        if found is None:
+            errors.append(
+                raw.error(
+                    (*path, "density"),
+                    "a density gives a mass only with a box, cylinder or sphere shape (a mesh's volume is not read "
+                    "yet); give mass: instead",
+                )
+            )
+            continue
+        solid = density * found[1]
+        if "mass" not in item:
+            if found[1] > 0:
+                masses[path] = solid
+            continue
+        if found[1] > 0 and not MASS_TO_SOLID[0] <= item["mass"] / solid <= MASS_TO_SOLID[1]:
+            warnings.append(
+                raw.error(
+                    (*path, "mass"),
+                    f"mass {item['mass']:g} kg is {item['mass'] / solid:.3g} times that of a solid {found[0]} of "
+                    f"density {density:g} kg/m^3 ({solid:.3g} kg); a part keeps between a quarter and all of its "
+                    "solid's mass: is the mass, the density or the size wrong?",
+                )
+            )
+    return masses, errors, warnings
 
 
 def _row_segments(data: dict[str, Any]) -> dict[PathKey, tuple[str, float]]:

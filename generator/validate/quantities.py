@@ -10,6 +10,8 @@ from typing import Any
 from ..errors import SpecError
 from ..kinematics import rotation_rpy
 from ..load import PathKey, RawSpec
+from ..materials import MATERIALS, find_material, material_key
+from ..text import did_you_mean
 from ..units import Kind, UnitError, parse_quantity, plain_number
 from .bodies import bodies
 from .physics import AXIS_LENGTHS
@@ -57,7 +59,7 @@ class Quantities:
     def data(self) -> Any:
         """The spec with the quantities converted so far."""
         if self._built[0] != self._count:
-            self._built = (self._count, _with_changes(self.raw.data, self._changes))
+            self._built = (self._count, with_values(self.raw.data, self._changes))
         return self._built[1]
 
     def convert(self, container: Any, key: str | int, path: PathKey, kind: Kind) -> None:
@@ -191,6 +193,33 @@ class Quantities:
             for key in ("soft_lower_limit", "soft_upper_limit"):
                 self.convert(holder["safety_controller"], key, (*path, "safety_controller"), kind)
 
+    def density(self, item: dict[str, Any], path: PathKey) -> None:
+        """A body's ``density``: kg/m^3, a string with a unit ('2.7 g/cm3'), or the name of a material of
+        :mod:`xacrokit.materials` ('aluminium_6061'); > 0."""
+        if "density" not in item:
+            return
+        value = item["density"]
+        material = find_material(value) if isinstance(value, str) else None
+        if material is not None:
+            self._changes.setdefault(path, {})["density"] = material.density
+            self._count += 1
+            return
+        if isinstance(value, str) and plain_number(value) is None and not any(c.isdigit() for c in value):
+            near = did_you_mean(material_key(value), MATERIALS)
+            self.errors.append(
+                self.raw.error(
+                    (*path, "density"),
+                    f"unknown material {value!r}{near}; give a density in kg/m^3 ('2700', '2.7 g/cm3') or a material "
+                    f"of the table (gen-robot materials lists them: {', '.join(list(MATERIALS)[:6])} ...)",
+                )
+            )
+            return
+        errors = len(self.errors)
+        self.convert(item, "density", path, "density")
+        converted = self._changes.get(path, {}).get("density", value)
+        if len(self.errors) == errors and isinstance(converted, (int, float)) and not converted > 0:
+            self.errors.append(self.raw.error((*path, "density"), f"density must be > 0 kg/m^3, got {value!r}"))
+
     def rates(self, limit: dict[str, Any], path: PathKey, joint_type: str) -> None:
         """A limit's velocity (rad/s, or m/s for a prismatic joint: 'deg/s', 'rpm', 'mm/s' ...) and effort (N*m or N:
         'kgf*cm' ...), each > 0."""
@@ -213,6 +242,8 @@ class Quantities:
             self.origin(joint, "origin", ("joints", name))
             self.limits(joint, ("joints", name), joint["type"])
         for kind, _, path, item in bodies(data):
+            if kind in ("link", "frame", "wheel", "row"):
+                self.density(item, path)
             if kind == "row":  # (a row's pose is its DH parameters, not an origin)
                 for key, quantity in _ROW:
                     self.convert(item, key, path, quantity)
@@ -237,7 +268,7 @@ class Quantities:
         return self.data, self.errors
 
 
-def _with_changes(root: Any, changes: dict[PathKey, dict[str | int, Any]]) -> Any:
+def with_values(root: Any, changes: dict[PathKey, dict[str | int, Any]]) -> Any:
     """``root`` with the values set in the containers at the given paths, copying only the containers on those paths
     (``root`` itself is not changed)."""
     if not changes:
