@@ -17,9 +17,25 @@ class Material:
     source: str  # where the number is published
 
 
-MATERIALS: dict[str, Material] = {}
+_ASM = "ASM Aerospace Specification Metals, asm.matweb.com"
 
-ALIASES: dict[str, str] = {}
+MATERIALS: dict[str, Material] = {
+    "steel_s355": Material(7850.0, "structural steel (EN 10025 S235 to S355)", "EN 1993-1-1 (Eurocode 3) 3.2.6"),
+    "aluminium_6061": Material(2700.0, "6061-T6", _ASM),
+    "aluminium_7075": Material(2810.0, "7075-T6", _ASM),
+    "titanium_ti6al4v": Material(4430.0, "Ti-6Al-4V (grade 5), annealed", _ASM),
+    "copper": Material(8960.0, "pure copper at 20 C", "CRC Handbook of Chemistry and Physics"),
+    "pla": Material(1240.0, "PLA (Ingeo 4043D)", "NatureWorks Ingeo 4043D technical data sheet (ASTM D792)"),
+}
+
+# family names and common spellings -> the grade they stand for
+ALIASES: dict[str, str] = {
+    "steel": "steel_s355",
+    "structural_steel": "steel_s355",
+    "aluminium": "aluminium_6061",
+    "titanium": "titanium_ti6al4v",
+    "ti6al4v": "titanium_ti6al4v",
+}
 
 
 def material_key(text: str) -> str:

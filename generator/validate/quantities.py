@@ -204,7 +204,7 @@ class Quantities:
             self._changes.setdefault(path, {})["density"] = material.density
             self._count += 1
             return
-        if isinstance(value, str) and plain_number(value) is None and not any(c.isdigit() for c in value):
+        if isinstance(value, str) and value.strip()[:1].isalpha() and not value.strip().startswith("pi"):
             near = did_you_mean(material_key(value), MATERIALS)
             self.errors.append(
                 self.raw.error(

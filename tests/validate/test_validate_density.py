@@ -5,13 +5,14 @@ known or the material is not in the table."""
 from __future__ import annotations
 
 import math
+import re
 
 import pytest
 import yaml
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from conftest import gen_robot
+from conftest import REPO, gen_robot
 from xacrokit.errors import SpecErrors
 from xacrokit.materials import MATERIALS, find_material
 from xacrokit.pipeline import build_robot
@@ -139,3 +140,39 @@ def test_material_names_are_read_loosely_and_have_a_source():
     for name, material in MATERIALS.items():
         assert find_material(name.upper().replace("_", " ")) is material
         assert 1.0 < material.density < 22_590.0 and material.grade and len(material.source) > 10, name
+
+
+def test_a_material_name_gives_its_tabled_density(tmp_path):
+    spec = {
+        "robot": "d",
+        "links": {
+            "chassis": {"shape": {"box": {"size": [0.3, 0.2, 0.05]}}, "density": "Aluminum 6061"},
+            "plate": {"shape": {"box": {"size": [0.1, 0.1, 0.01]}}, "density": "steel"},
+        },
+        "joints": {"j": {"type": "fixed", "parent": "chassis", "child": "plate"}},
+    }
+    got = masses(robot_of(tmp_path, spec))
+    assert got["chassis"] == pytest.approx(2700 * 0.3 * 0.2 * 0.05, rel=1e-12)  # ASM: 6061-T6 is 2.70 g/cc
+    assert got["plate"] == pytest.approx(7850 * 0.1 * 0.1 * 0.01, rel=1e-12)  # Eurocode 3: steel is 7850 kg/m^3
+    with pytest.raises(SpecErrors) as caught:
+        robot_of(tmp_path, {"robot": "d", "links": {"l": {"shape": BALL, "density": "aluminium 6016"}}})
+    assert "unknown material 'aluminium 6016' (did you mean 'aluminium_6061'?)" in caught.value.errors[0].message
+
+
+def test_the_docs_density_example_gives_the_masses_it_says(tmp_path):
+    docs = (REPO / "docs" / "spec.md").read_text(encoding="utf-8")
+    (block,) = [b for b in re.findall(r"```yaml\n(.*?)\n```", docs, flags=re.S) if "density: aluminium_6061" in b]
+    path = tmp_path / "d.yaml"
+    joints = "\njoints:\n  j: {type: fixed, parent: chassis, child: mast}\n"
+    path.write_text("robot: d\n" + block + joints, encoding="utf-8")
+    got = masses(build_robot(path))
+    assert round(got["chassis"], 9) == 8.1 and round(got["mast"], 4) == 0.1558  # as its comments say
+
+
+def test_gen_robot_materials_lists_the_table_with_sources():
+    result = gen_robot("materials")
+    assert result.returncode == 0
+    lines = result.stdout.splitlines()
+    for name, material in MATERIALS.items():
+        (line,) = [line for line in lines if line.split()[0] == name]
+        assert f"{material.density:g} kg/m^3" in line and material.source in line
