@@ -255,7 +255,8 @@ def start_verdicts(
         # the Python consumers in children forked from this process, which has numpy and lxml loaded already (a
         # process of their own would start Python and import them again: a third of the time it takes); started
         # before the thread that runs check_urdf (a fork copies one thread only)
-        forked = {n: _forked(n, urdf, package_paths) for n in names if n != "check_urdf" and available(n)}
+        forkable = hasattr(os, "fork")  # (elsewhere each runs as a process of its own, as check_urdf does)
+        forked = {n: _forked(n, urdf, package_paths) for n in names if forkable and n != "check_urdf" and available(n)}
         others = _started([n for n in names if n not in forked], urdf, package_paths=package_paths)
     except BaseException:
         folder.cleanup()
