@@ -157,7 +157,9 @@ def _bounded(value: Value) -> Value:
 # units written with '*' or '/' between words ('deg/s', 'N*m'): matched at the end of the text before the parser
 # runs (which would read 'deg / s' as a division)
 _COMPOUND_UNITS = {unit for table in UNITS.values() for unit in table if "*" in unit or "/" in unit}
-_COMPOUND = re.compile(r"(?P<unit>[A-Za-z_][A-Za-z0-9_]*(?:\s*[*/]\s*[A-Za-z_][A-Za-z0-9_]*)+)\s*$")
+_COMPOUND = re.compile(
+    r"(?P<unit>(?<![A-Za-z_])(?!pi\b)[A-Za-z_][A-Za-z0-9_]*(?:\s*[*/]\s*[A-Za-z_][A-Za-z0-9_]*)+)\s*$"
+)  # (a whole word first, not pi: '2*pi*rad/s' ends with the unit 'rad/s')
 
 
 def _expected(kind: str) -> str:
@@ -247,7 +249,7 @@ def _parsed(value: str, kind: Kind) -> float:
         raise UnitError(f"{value!r} holds pi, which belongs to angles; a {kind} is written as {_example(kind)!r}")
     scale: Value = Fraction(1)
     compound = _COMPOUND.search(value)
-    if compound and set(re.findall(r"[A-Za-z_]+", compound["unit"])) != {"pi"}:  # 'deg/s', 'N*m' end the text
+    if compound:  # 'deg/s', 'N*m' end the text
         unit = re.sub(r"\s+", "", compound["unit"])
         unit_kind = _unit_kind(unit)
         if unit_kind is None:
