@@ -52,6 +52,10 @@ class FileAction:
     reason: str = ""
 
 
+class WriterBusy(XacrokitError):
+    """Another gen-robot holds the package folder (see :func:`package_lock`); this run wrote nothing."""
+
+
 class ConflictError(XacrokitError):
     """Files were edited since they were generated; nothing was written."""
 
@@ -240,13 +244,24 @@ def write(files: list[RenderedFile], root: Path, *, force: bool = False, dry_run
         return plan(files, root, force=force, manifest=_read_manifest(root))
     made = _first_missing(root)  # the topmost folder this run makes (the package, maybe folders above it)
     written: list[Path] = []
+    fresh = made is not None
     try:
         with package_lock(root):
-            return _write_planned(files, root, force=force, fresh=made is not None, written=written)
+            # a run that waited for another writer of a new folder finds that run's package: an update, not ours to
+            # undo (undoing would delete the files of it that this run had replaced, its manifest among them)
+            fresh = fresh and _empty(root)
+            return _write_planned(files, root, force=force, fresh=fresh, written=written)
+    except WriterBusy:  # never held the folder: what is in it (maybe just made, still empty) is the other run's
+        raise
     except BaseException:
-        if made is not None:  # a fresh package that could not be written leaves nothing behind
+        if fresh and made is not None:  # a fresh package that could not be written leaves nothing behind
             _undo_fresh(root, made, written)
         raise
+
+
+def _empty(folder: Path) -> bool:
+    with os.scandir(folder) as entries:
+        return next(entries, None) is None
 
 
 def _undo_fresh(root: Path, made: Path, written: list[Path]) -> None:
@@ -299,7 +314,7 @@ def package_lock(root: Path, wait: float | None = None) -> Iterator[None]:
                 break
             except BlockingIOError:
                 if time.monotonic() > deadline:
-                    raise XacrokitError(
+                    raise WriterBusy(
                         f"another gen-robot is writing {root} (waited {wait:g} s); run again when it is done"
                     ) from None
                 time.sleep(0.05)

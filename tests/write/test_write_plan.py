@@ -3,10 +3,12 @@ run writes nothing; nothing lands outside the package."""
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 
 import pytest
+from write_helpers import contents, two_specs
 
 import xacrokit
 from conftest import REPO, gen_robot, snapshot
@@ -195,6 +197,51 @@ def test_a_failed_fresh_package_removes_only_its_own_files(tmp_path, monkeypatch
     with pytest.raises(XacrokitError, match="what this run wrote is removed"):
         xacrokit.generate(SPEC, out / "b")
     assert not (out / "b").exists() and snapshot(out / "a") == before
+
+
+def test_a_run_that_waited_for_another_writer_of_a_new_folder_does_not_undo_its_package(
+    tmp_path, monkeypatch, full_disk
+):
+    """B starts when the folder does not exist, waits for the lock while A writes a package there, then fails: A's
+    package is updated, not B's new one, so nothing of it is removed (the files of it that B replaced, the manifest
+    among them, were deleted, and the next run of B found 11 conflicts)."""
+    import xacrokit.write as write_stage
+
+    spec, clean = two_specs(tmp_path)
+    out = tmp_path / "pkg"
+    real_lock = write_stage.package_lock
+
+    @contextlib.contextmanager
+    def lock_after_a(root, wait=None):
+        monkeypatch.setattr(write_stage, "package_lock", real_lock)
+        xacrokit.generate(spec["a"], root)  # (A, the first writer, done while B waited)
+        full_disk()
+        with real_lock(root, wait):
+            yield
+
+    monkeypatch.setattr(write_stage, "package_lock", lock_after_a)
+    with pytest.raises(XacrokitError, match=r"No space left on device; 1 file\(s\) were written before it, each whole"):
+        xacrokit.generate(spec["b"], out)
+    monkeypatch.undo()
+    assert (out / MANIFEST).is_file() and (out / "CMakeLists.txt").is_file()
+    xacrokit.generate(spec["b"], out)  # (no conflict)
+    assert contents(out) == clean["b"]
+
+
+def test_a_writer_that_finds_the_folder_busy_removes_nothing_of_it(tmp_path, monkeypatch):
+    """A second writer that gives up waiting never held the folder: it does not undo it as a package it made (it
+    removed the empty folders the first writer had just made, the package folder too, the first writer's lock on it)."""
+    import xacrokit.write as write_stage
+    from xacrokit.write import package_lock
+
+    out = tmp_path / "pkg"
+    monkeypatch.setattr(write_stage, "_first_missing", lambda root: out)  # (missing when the second run began)
+    monkeypatch.setenv("XACROKIT_LOCK_WAIT", "0")
+    with package_lock(out):  # the first writer, which has just made its first folder
+        (out / "urdf").mkdir()
+        with pytest.raises(XacrokitError, match="another gen-robot is writing"):
+            xacrokit.generate(SPEC, out)
+        assert (out / "urdf").is_dir()
 
 
 @pytest.mark.parametrize("value", ["abc", "nan", "-1", "1e9"])
