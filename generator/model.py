@@ -211,7 +211,7 @@ class Arm:
 
 @dataclass(frozen=True)
 class Wheel:
-    """A wheel link ``name`` on the continuous joint ``name``_joint; SI units throughout."""
+    """A wheel link ``name`` on a continuous joint (``joint``, by default ``name``_joint); SI units throughout."""
 
     name: str
     parent: str
@@ -227,10 +227,11 @@ class Wheel:
     friction: float = 0.0
     mu1: float = 1.0
     mu2: float = 1.0
+    joint: str | None = None  # the spec's name for its joint (``joint:``), else NAME_joint
 
     @property
     def joint_name(self) -> str:
-        return attach_joint_name(self.name)
+        return self.joint or attach_joint_name(self.name)
 
 
 @dataclass(frozen=True)

@@ -136,8 +136,9 @@ def _spec_lines(raw: RawSpec, robot: Robot) -> dict[tuple[str, str], int]:
     for name in raw.data.get("joints", {}):
         lines[("joint", name)] = at(("joints", name))
     for section in ("wheels", "frames"):
-        for name in raw.data.get(section, {}):
-            lines[("link", name)] = lines[("joint", attach_joint_name(name))] = at((section, name))
+        for name, item in raw.data.get(section, {}).items():
+            joint = item.get("joint", attach_joint_name(name)) if isinstance(item, dict) else attach_joint_name(name)
+            lines[("link", name)] = lines[("joint", joint)] = at((section, name))
     for arm in robot.arms:
         lines[("link", arm.base)] = lines[("joint", attach_joint_name(arm.base))] = at(("arms", arm.name))
         lines[("link", arm.tool)] = lines[("joint", attach_joint_name(arm.tool))] = at(("arms", arm.name))

@@ -235,13 +235,18 @@ def _wheel(name: str, data: dict[str, Any]) -> Wheel:
         friction=float(dynamics.get("friction", 0.0)),
         mu1=float(data.get("mu1", 1.0)),
         mu2=float(data.get("mu2", 1.0)),
+        joint=data.get("joint"),
     )
 
 
 def _frame(name: str, data: dict[str, Any]) -> tuple[Link, Joint]:
     body: dict[str, Any] = {k: data[k] for k in ("shape", "mass", "material") if k in data}
     joint = Joint(
-        name=attach_joint_name(name), type="fixed", parent=data["parent"], child=name, origin=origin(data.get("origin"))
+        name=data.get("joint", attach_joint_name(name)),
+        type="fixed",
+        parent=data["parent"],
+        child=name,
+        origin=origin(data.get("origin")),
     )
     return _link(name, body), joint
 

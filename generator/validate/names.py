@@ -44,6 +44,9 @@ def link_and_joint_names(data: dict[str, Any], bodies: Sequence[Body]) -> tuple[
             where = (*path, "name") if named else path[:2]
             links.append(Named(name, where, not named))
             joints.append(Named(attach_joint_name(name), where, not named))
+        elif kind in ("wheel", "frame") and "joint" in item:  # its joint named in the spec (joint: NAME)
+            links.append(Named(name, path, True))
+            joints.append(Named(item["joint"], (*path, "joint"), False))
         else:  # an arm's base, a wheel, a frame: a link and the joint that attaches it
             links.append(Named(name, path, True))
             joints.append(Named(attach_joint_name(name), path, True))
@@ -58,9 +61,9 @@ def joint_types(data: dict[str, Any], bodies: Sequence[Body]) -> dict[str, str]:
         if kind == "row":
             types[item["name"]] = item.get("type", "revolute")
         elif kind == "wheel":
-            types[attach_joint_name(name)] = "continuous"
+            types[item.get("joint", attach_joint_name(name))] = "continuous"
         elif kind == "frame":
-            types[attach_joint_name(name)] = "fixed"
+            types[item.get("joint", attach_joint_name(name))] = "fixed"
     return types
 
 
