@@ -89,16 +89,16 @@ def _stored_inertial(parent: etree._Element, inertia: Inertia) -> None:
 def link_element(robot: Robot, prefix: str, link: Link) -> etree._Element:
     """A spec link (or frame) as URDF, its name glued to ``prefix``."""
     element = etree.Element("link", name=prefix + link.name)
-    if link.visual is not None:
+    for drawn in link.visuals:
         visual = _sub(element, "visual")
-        _origin(visual, link.visual.origin)
-        _geometry(visual, link.visual.shape)
-        if link.visual.material:
-            _sub(visual, "material", name=material_name(robot, link.visual.material))
-    if link.collision is not None:
+        _origin(visual, drawn.origin)
+        _geometry(visual, drawn.shape)
+        if drawn.material:
+            _sub(visual, "material", name=material_name(robot, drawn.material))
+    for touched in link.collisions:
         collision = _sub(element, "collision")
-        _origin(collision, link.collision.origin)
-        _geometry(collision, link.collision.shape)
+        _origin(collision, touched.origin)
+        _geometry(collision, touched.shape)
     if link.inertial is not None:
         _stored_inertial(element, link.inertial)
     return element

@@ -20,7 +20,7 @@ ZERO: Vec3 = (0.0, 0.0, 0.0)
 
 DHRowType = Literal["revolute", "continuous", "prismatic", "fixed"]
 Convention = Literal["standard", "modified"]
-InertiaKind = Literal["box", "cylinder", "sphere", "explicit"]
+InertiaKind = Literal["box", "cylinder", "sphere", "capsule", "tube", "mesh", "parts", "explicit"]
 Axle = Literal["x", "y", "z"]
 DEFAULT_ROW_RADIUS = 0.03  # m: a DH row's body (a cylinder between its joint frames) when the spec gives none
 DEFAULT_TOOL = "tool0"  # an arm's tool frame when the spec names none (ROS-Industrial's name)
@@ -81,7 +81,8 @@ Shape = Box | Cylinder | Sphere | Mesh
 class Inertia:
     """Mass (kg) and tensor about the centre of mass (kg*m^2) in the frame ``origin`` places in the link frame.
 
-    ``kind`` says where the tensor came from: ``box``, ``cylinder``, ``sphere`` (computed from the shape) or
+    ``kind`` says where the tensor came from: ``box``, ``cylinder``, ``sphere``, ``capsule``, ``tube`` (computed from
+    the shape's closed form), ``mesh`` (from the mesh's surface), ``parts`` (the sum of a composite link's parts) or
     ``explicit`` (given in the spec).
     """
 
@@ -111,10 +112,22 @@ class Collision:
 
 @dataclass(frozen=True)
 class Link:
+    """A link with its visuals and collisions (one each for a shape; several for a capsule, written as a cylinder and
+    two spheres, or for a composite link's parts)."""
+
     name: str
-    visual: Visual | None = None
-    collision: Collision | None = None
+    visuals: tuple[Visual, ...] = ()
+    collisions: tuple[Collision, ...] = ()
     inertial: Inertia | None = None
+
+
+@dataclass(frozen=True)
+class PackageFile:
+    """A file the package carries besides what the templates write: a mesh copied from the spec's folder (bytes) or
+    made from a shape URDF has no element for (a tube's OBJ text). ``path`` is relative to the package root."""
+
+    path: str
+    content: bytes | str
 
 
 @dataclass(frozen=True)
@@ -270,6 +283,7 @@ class Robot:
     wheels: tuple[Wheel, ...] = ()
     ros2_control: tuple[ControlledJoint, ...] | None = None
     surfaces: tuple[Surface, ...] = ()
+    files: tuple[PackageFile, ...] = ()
     source: str = field(default="", compare=False)
 
     @property
@@ -287,6 +301,12 @@ class Robot:
             names += arm.joint_names
         names += [wheel.joint_name for wheel in self.wheels]
         return tuple(names)
+
+    @property
+    def carried_files(self) -> dict[str, tuple[PackageFile, ...]]:
+        """The files (meshes) the package carries besides its templates', by the package their ``package://`` URIs
+        name: what a check of the URDF before the package is written must find there."""
+        return {self.package: self.files} if self.files else {}
 
     @property
     def mock_integrates(self) -> bool:
@@ -355,6 +375,11 @@ class Scene:
     @property
     def link_names(self) -> tuple[str, ...]:
         return (self.world, *(n for i in self.instances for n in i.links))
+
+    @property
+    def carried_files(self) -> dict[str, tuple[PackageFile, ...]]:
+        """The meshes its robots carry, by the package their ``package://`` URIs name (see Robot.carried_files)."""
+        return {name: files for robot in self.robots for name, files in robot.carried_files.items()}
 
     @property
     def joint_names(self) -> tuple[str, ...]:

@@ -2,12 +2,14 @@
 physical.
 
 The xacro macro library mirrors the formulas (``macros/inertia.xacro``: box_inertial, cylinder_inertial,
-sphere_inertial; ``macros/_inc/checks.xacro``: the tensor checks) operation for operation, so that the direct emitter
-and xacro write the same bits; a change here is a change there.
+sphere_inertial, capsule_inertial, tube_inertial; ``macros/_inc/checks.xacro``: the tensor checks) operation for
+operation, so that the direct emitter and xacro write the same bits; a change here is a change there. The sum of
+parts (:func:`combine`) has no twin: composite links are written as plain XML.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Sequence
 from typing import Literal
 
@@ -31,6 +33,53 @@ def cylinder_moments(mass: float, radius: float, length: float) -> tuple[float, 
 def sphere_moment(mass: float, radius: float) -> float:
     """The moment of a solid sphere about any axis through its centre: 2 m r^2 / 5."""
     return 2.0 * mass * radius * radius / 5.0
+
+
+def capsule_volume(radius: float, length: float) -> float:
+    """A capsule's volume: a cylinder of ``length`` between the centres of two hemispheres, pi r^2 l + 4/3 pi r^3."""
+    return math.pi * radius * radius * length + 4.0 / 3.0 * math.pi * radius**3
+
+
+def capsule_moments(mass: float, radius: float, length: float) -> tuple[float, float]:
+    """(axial, transverse) moments of a solid capsule about its centre, its mass shared by volume between the
+    cylinder (m_c) and the two hemispheres (m_s, a sphere's worth):
+    axial m_c r^2 / 2 + 2 m_s r^2 / 5; transverse m_c (l^2 / 12 + r^2 / 4) + m_s (2 r^2 / 5 + l^2 / 4 + 3 l r / 8)
+    (each hemisphere's moment about its flat face's diameter is 2 (m_s / 2) r^2 / 5; its centre of mass lies 3 r / 8
+    from that face, so moving it to the capsule's centre adds (m_s / 2) ((l / 2 + 3 r / 8)^2 - (3 r / 8)^2))."""
+    cylinder = math.pi * radius * radius * length
+    sphere = 4.0 / 3.0 * math.pi * radius**3
+    m_c = mass * cylinder / (cylinder + sphere)
+    m_s = mass * sphere / (cylinder + sphere)
+    r2, l2 = radius * radius, length * length
+    axial = m_c * r2 / 2.0 + 2.0 * m_s * r2 / 5.0
+    transverse = m_c * (l2 / 12.0 + r2 / 4.0) + m_s * (2.0 * r2 / 5.0 + l2 / 4.0 + 3.0 * length * radius / 8.0)
+    return axial, transverse
+
+
+def tube_volume(inner: float, outer: float, length: float) -> float:
+    """A hollow cylinder's volume: pi (R^2 - r^2) l."""
+    return math.pi * (outer * outer - inner * inner) * length
+
+
+def tube_moments(mass: float, inner: float, outer: float, length: float) -> tuple[float, float]:
+    """(axial, transverse) moments of a hollow cylinder about its centre: m (R^2 + r^2) / 2 and
+    m (3 (R^2 + r^2) + l^2) / 12."""
+    squares = outer * outer + inner * inner
+    return mass * squares / 2.0, mass * (3.0 * squares + length * length) / 12.0
+
+
+def combine(parts: Sequence[tuple[float, np.ndarray, np.ndarray, np.ndarray]]) -> tuple[float, np.ndarray, np.ndarray]:
+    """The mass, centre of mass and inertia tensor (about that centre, in the common frame's axes) of rigidly joined
+    parts, each (mass, centre of mass in the common frame, rotation of its tensor's axes into the common frame,
+    tensor about its own centre of mass): each tensor rotated (R I R^T), then moved to the common centre of mass by
+    the parallel-axis theorem (m (|d|^2 E - d d^T), d from the common centre to the part's)."""
+    total = math.fsum(mass for mass, _, _, _ in parts)
+    center = sum((mass * np.asarray(com, dtype=float) for mass, com, _, _ in parts), np.zeros(3)) / total
+    result = np.zeros((3, 3))
+    for mass, com, rotation, inertia in parts:
+        offset = np.asarray(com, dtype=float) - center
+        result += rotation @ inertia @ rotation.T + mass * (offset @ offset * np.eye(3) - np.outer(offset, offset))
+    return total, center, (result + result.T) / 2.0
 
 
 def tensor(ixx: float, ixy: float, ixz: float, iyy: float, iyz: float, izz: float) -> np.ndarray:

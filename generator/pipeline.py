@@ -15,7 +15,7 @@ from . import __version__
 from .emit import emit_scene_urdf, emit_urdf
 from .errors import SpecError
 from .expansion import expand_file
-from .fileio import write_text_atomic
+from .fileio import staged_packages, write_text_atomic
 from .guard import trusting
 from .load import RawSpec, load_file
 from .model import Robot, Scene, attach_joint_name
@@ -113,12 +113,10 @@ def spec_urdf(spec_path: str | Path) -> SpecURDF:
     raw = load_file(path)
     if is_scene(raw):  # generated in memory as a whole
         scene = build_scene(raw)
-        return SpecURDF(
-            expand_package(scene, render_scene(scene, spec_name=path.name)).content, scene, {}, scene.warnings
-        )
+        return SpecURDF(expand_package(scene, render_scene(scene, spec_name=path.name)).text, scene, {}, scene.warnings)
     spec = validate(raw)
     robot = resolve(spec)
-    urdf = expand_package(robot, render_package(robot, spec_name=path.name)).content
+    urdf = expand_package(robot, render_package(robot, spec_name=path.name)).text
     return SpecURDF(urdf, robot, _spec_lines(raw, robot), spec.warnings)
 
 
@@ -208,7 +206,7 @@ def generate(
     files = render_package(robot, macros=macros, spec_name=Path(spec_path).name)
     progress("expanding with xacro" if via_xacro else "emitting the URDF")
     files.append(expand_package(robot, files) if via_xacro else emitted_urdf(robot.name, emit_urdf(robot)))
-    said = spec.warnings + _check_warnings(files[-1].content, Path(spec_path), raw, robot)
+    said = spec.warnings + _check_warnings(files[-1].text, Path(spec_path), raw, robot)
     warnings = tuple(sorted(said, key=lambda w: (w.line or 0, w.column or 0)))
     root, actions = _write(files, output, robot.package, force=force, dry_run=dry_run, progress=progress)
     return GenerateResult(model=robot, output=root, actions=actions, files=tuple(files), warnings=warnings)
@@ -221,7 +219,9 @@ def _check_warnings(urdf: str, spec_path: Path, raw: RawSpec, robot: Robot) -> t
     from .check.rules import RULES
 
     said = []
-    for finding in generated_urdf_findings(urdf, spec_path, _spec_lines(raw, robot)):
+    with staged_packages(robot.carried_files) as staged:  # (its meshes, where the package will carry them)
+        found = generated_urdf_findings(urdf, spec_path, _spec_lines(raw, robot), staged or None)
+    for finding in found:
         if finding.severity == "info":
             continue
         rule = f"{finding.rule} {RULES[finding.rule][0]} ({finding.severity} of gen-robot check)"

@@ -1,14 +1,21 @@
 """The resolve stage: a validated spec becomes the frozen :class:`~xacrokit.model.Robot` (SI, defaults filled in).
 
-Pure: no I/O and no errors of its own (validation already guarantees what this relies on).
+No errors of its own (validation already guarantees what this relies on) and no output; its only input besides the
+spec is the mesh files a spec names by a relative path, read to be carried in the model (``Robot.files``) into the
+package's meshes/ (validation saw them there).
 """
 
 from __future__ import annotations
 
 import math
+from pathlib import Path, PurePosixPath
 from typing import Any
 
+import numpy as np
+
 from .gcpause import collector_paused
+from .kinematics import rpy_matrix
+from .meshes import MESH_FOLDER, is_relative, tube_obj
 from .model import (
     AXIAL,
     DEFAULT_ROW_RADIUS,
@@ -30,6 +37,7 @@ from .model import (
     Mesh,
     Mimic,
     Origin,
+    PackageFile,
     Robot,
     SafetyController,
     Shape,
@@ -41,7 +49,7 @@ from .model import (
     arm_base_name,
     attach_joint_name,
 )
-from .physics import box_moments, cylinder_moments, sphere_moment
+from .physics import box_moments, capsule_moments, combine, cylinder_moments, sphere_moment, tensor, tube_moments
 from .validate import Spec
 
 DEFAULT_INTERFACES = Interfaces(command=("position",), state=("position", "velocity"))
@@ -60,53 +68,130 @@ def origin(data: dict[str, Any] | None) -> Origin:
     return Origin(xyz=_vec3(data.get("xyz")), rpy=_vec3(data.get("rpy")))
 
 
-def shape(data: dict[str, Any]) -> Shape:
+class _Package:
+    """What resolving a robot adds to its package besides the model: the files its shapes need (copied meshes, made
+    tube meshes), by path in the package, and the package's name for their ``package://`` URIs."""
+
+    def __init__(self, robot: str, spec_file: str) -> None:
+        self.name = f"{robot}_description"
+        self.spec_folder = Path(spec_file).parent
+        self.files: dict[str, bytes | str] = {}
+
+
+def shape(data: dict[str, Any], package: _Package | None = None, label: str = "") -> Shape:
+    """The URDF geometry of a spec shape that has one: a box, cylinder, sphere or mesh (a relative mesh path becomes
+    a copy in the package's meshes/), or, for a tube, a mesh made into the package (``label`` names its file)."""
     if "box" in data:
         return Box(size=_vec3(data["box"]["size"]))
     if "cylinder" in data:
         return Cylinder(radius=float(data["cylinder"]["radius"]), length=float(data["cylinder"]["length"]))
     if "sphere" in data:
         return Sphere(radius=float(data["sphere"]["radius"]))
+    if "tube" in data and package is not None:
+        tube = data["tube"]
+        path = f"{MESH_FOLDER}/xacrokit/{label}.tube.obj"
+        package.files[path] = tube_obj(float(tube["inner_radius"]), float(tube["outer_radius"]), float(tube["length"]))
+        return Mesh(filename=f"package://{package.name}/{path}")
     mesh = data["mesh"]
-    return Mesh(filename=mesh["filename"], scale=_vec3(mesh.get("scale"), (1.0, 1.0, 1.0)))
+    filename = mesh["filename"]
+    if package is not None and is_relative(filename):  # (validate saw the file there)
+        path = f"{MESH_FOLDER}/{PurePosixPath(filename).name}"
+        package.files[path] = (package.spec_folder / filename).read_bytes()
+        filename = f"package://{package.name}/{path}"
+    return Mesh(filename=filename, scale=_vec3(mesh.get("scale"), (1.0, 1.0, 1.0)))
 
 
-def shape_inertia(body: Shape, mass: float, frame: Origin) -> Inertia:
-    """The closed-form tensor of a solid primitive about its centre, in the primitive's own axes."""
+def pieces(data: dict[str, Any], where: Origin, package: _Package, label: str) -> list[tuple[Shape, Origin]]:
+    """The URDF geometries that draw a spec shape at ``where``: one, or for a capsule its cylinder and the two spheres
+    at its ends (URDF has no capsule; every consumer reads these, as visual and as collision)."""
+    if "capsule" not in data:
+        return [(shape(data, package, label), where)]
+    radius, length = float(data["capsule"]["radius"]), float(data["capsule"]["length"])
+    half = rpy_matrix(*where.rpy)[:, 2] * (length / 2.0)  # (the capsule's z axis in the link frame)
+    x, y, z = where.xyz
+    ends = [Origin(xyz=(x + s * half[0] + 0.0, y + s * half[1] + 0.0, z + s * half[2] + 0.0)) for s in (1.0, -1.0)]
+    return [(Cylinder(radius, length), where), *((Sphere(radius), end) for end in ends)]
+
+
+def shape_inertia(body: dict[str, Any], mass: float, frame: Origin) -> Inertia:
+    """The closed-form tensor of a spec's solid shape (box, cylinder, sphere, capsule, tube) about its centre, in the
+    shape's own axes."""
     kind: InertiaKind
-    if isinstance(body, Box):
-        xx, yy, zz = box_moments(mass, *body.size)
+    if "box" in body:
+        xx, yy, zz = box_moments(mass, *_vec3(body["box"]["size"]))
         kind = "box"
-    elif isinstance(body, Cylinder):
-        zz, xx = cylinder_moments(mass, body.radius, body.length)
-        yy = xx
-        kind = "cylinder"
-    elif isinstance(body, Sphere):
-        xx = yy = zz = sphere_moment(mass, body.radius)
+    elif "cylinder" in body:
+        zz, xx = cylinder_moments(mass, float(body["cylinder"]["radius"]), float(body["cylinder"]["length"]))
+        yy, kind = xx, "cylinder"
+    elif "sphere" in body:
+        xx = yy = zz = sphere_moment(mass, float(body["sphere"]["radius"]))
         kind = "sphere"
-    else:  # validation guarantees meshes come with an explicit tensor
+    elif "capsule" in body:
+        zz, xx = capsule_moments(mass, float(body["capsule"]["radius"]), float(body["capsule"]["length"]))
+        yy, kind = xx, "capsule"
+    elif "tube" in body:
+        tube = body["tube"]
+        zz, xx = tube_moments(mass, float(tube["inner_radius"]), float(tube["outer_radius"]), float(tube["length"]))
+        yy, kind = xx, "tube"
+    else:  # validation guarantees a mesh comes with a tensor (given, or computed from its surface)
         raise TypeError(f"no closed-form inertia for {body!r}")
     return Inertia(mass=mass, ixx=xx, ixy=0.0, ixz=0.0, iyy=yy, iyz=0.0, izz=zz, origin=frame, kind=kind)
 
 
-def _link(name: str, data: dict[str, Any]) -> Link:
+def _link(name: str, data: dict[str, Any], package: _Package) -> Link:
+    if "parts" in data:
+        return _composite(name, data, package)
     if "shape" not in data:
         inertial = _explicit_inertia(data, origin(data.get("com") or data.get("origin")))
         return Link(name=name, inertial=inertial)
-    body, where = shape(data["shape"]), origin(data.get("origin"))
-    visual = Visual(shape=body, origin=where, material=data.get("material"))
+    where = origin(data.get("origin"))
+    drawn = pieces(data["shape"], where, package, name)
+    material = data.get("material")
+    visuals = tuple(Visual(shape=body, origin=at, material=material) for body, at in drawn)
     collision_spec = data.get("collision", "same")
     if collision_spec == "same":
-        collision: Collision | None = Collision(shape=body, origin=where)
+        collisions = tuple(Collision(shape=body, origin=at) for body, at in drawn)
     elif collision_spec == "none":
-        collision = None
+        collisions = ()
     else:
-        collision = Collision(shape=shape(collision_spec["shape"]), origin=origin(collision_spec.get("origin")))
+        other = pieces(collision_spec["shape"], origin(collision_spec.get("origin")), package, f"{name}.collision")
+        collisions = tuple(Collision(shape=body, origin=at) for body, at in other)
     frame = origin(data["com"]) if "com" in data else where
     inertial = _explicit_inertia(data, frame)
     if inertial is None and "mass" in data:
-        inertial = shape_inertia(body, float(data["mass"]), frame)
-    return Link(name=name, visual=visual, collision=collision, inertial=inertial)
+        inertial = shape_inertia(data["shape"], float(data["mass"]), frame)
+    return Link(name=name, visuals=visuals, collisions=collisions, inertial=inertial)
+
+
+def _composite(name: str, data: dict[str, Any], package: _Package) -> Link:
+    """A link of parts: each part's geometries, and the exact sum of the parts' inertias (physics.combine) about the
+    common centre of mass, in the link's axes."""
+    visuals: list[Visual] = []
+    collisions: list[Collision] = []
+    bodies: list[tuple[float, np.ndarray, np.ndarray, np.ndarray]] = []
+    for index, part in enumerate(data["parts"]):
+        where = origin(part.get("origin"))
+        drawn = pieces(part["shape"], where, package, f"{name}.part{index}")
+        material = part.get("material", data.get("material"))
+        visuals += [Visual(shape=body, origin=at, material=material) for body, at in drawn]
+        if part.get("collision", "same") == "same":
+            collisions += [Collision(shape=body, origin=at) for body, at in drawn]
+        own = _explicit_inertia(part, where) or shape_inertia(part["shape"], float(part["mass"]), where)
+        matrix = tensor(own.ixx, own.ixy, own.ixz, own.iyy, own.iyz, own.izz)
+        bodies.append((own.mass, np.array(own.origin.xyz), rpy_matrix(*own.origin.rpy), matrix))
+    mass, center, total = combine(bodies)
+    inertial = Inertia(
+        mass=mass,
+        ixx=float(total[0, 0]),
+        ixy=float(total[0, 1]) + 0.0,
+        ixz=float(total[0, 2]) + 0.0,
+        iyy=float(total[1, 1]),
+        iyz=float(total[1, 2]) + 0.0,
+        izz=float(total[2, 2]),
+        origin=Origin(xyz=(float(center[0]) + 0.0, float(center[1]) + 0.0, float(center[2]) + 0.0)),
+        kind="parts",
+    )
+    return Link(name=name, visuals=tuple(visuals), collisions=tuple(collisions), inertial=inertial)
 
 
 def _explicit_inertia(data: dict[str, Any], default_frame: Origin) -> Inertia | None:
@@ -123,7 +208,7 @@ def _explicit_inertia(data: dict[str, Any], default_frame: Origin) -> Inertia | 
         iyz=float(tensor.get("iyz", 0.0)),
         izz=float(tensor["izz"]),
         origin=frame,
-        kind="explicit",
+        kind=tensor.get("kind", "explicit"),
     )
 
 
@@ -239,8 +324,8 @@ def _wheel(name: str, data: dict[str, Any]) -> Wheel:
     )
 
 
-def _frame(name: str, data: dict[str, Any]) -> tuple[Link, Joint]:
-    body: dict[str, Any] = {k: data[k] for k in ("shape", "mass", "material") if k in data}
+def _frame(name: str, data: dict[str, Any], package: _Package) -> tuple[Link, Joint]:
+    body: dict[str, Any] = {k: data[k] for k in ("shape", "mass", "material", "inertia") if k in data}
     joint = Joint(
         name=data.get("joint", attach_joint_name(name)),
         type="fixed",
@@ -248,7 +333,7 @@ def _frame(name: str, data: dict[str, Any]) -> tuple[Link, Joint]:
         child=name,
         origin=origin(data.get("origin")),
     )
-    return _link(name, body), joint
+    return _link(name, body, package), joint
 
 
 def _controlled(
@@ -278,10 +363,11 @@ def _controlled(
 def resolve(spec: Spec) -> Robot:
     """Build the model of a validated spec."""
     data = spec.data
-    links = [_link(name, link) for name, link in data.get("links", {}).items()]
+    package = _Package(data["robot"], spec.raw.file)
+    links = [_link(name, link, package) for name, link in data.get("links", {}).items()]
     joints = [_joint(name, joint) for name, joint in data.get("joints", {}).items()]
     for name, frame in data.get("frames", {}).items():
-        link, joint = _frame(name, frame)
+        link, joint = _frame(name, frame, package)
         links.append(link)
         joints.append(joint)
     arms = tuple(_arm(name, arm) for name, arm in data.get("arms", {}).items())
@@ -307,5 +393,6 @@ def resolve(spec: Spec) -> Robot:
         wheels=wheels,
         ros2_control=_controlled(data, moving),
         surfaces=surfaces,
+        files=tuple(PackageFile(path, content) for path, content in sorted(package.files.items())),
         source=spec.raw.file,
     )

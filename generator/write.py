@@ -130,8 +130,9 @@ def plan(
             # even --force does not replace a folder with a file
             actions.append(FileAction(file.path, "conflict", "a folder stands in its place"))
             continue
+        current: str | bytes | None
         try:
-            current = target.read_text(encoding="utf-8")
+            current = target.read_bytes() if isinstance(file.content, bytes) else target.read_text(encoding="utf-8")
         except (OSError, UnicodeDecodeError):
             current = None
         if current == file.content:

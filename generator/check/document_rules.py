@@ -51,11 +51,17 @@ def other_rules(
     return findings
 
 
-def generated_urdf_findings(urdf: str, spec_path: Path, lines: dict[tuple[str, str], int]) -> list[Finding]:
+def generated_urdf_findings(
+    urdf: str,
+    spec_path: Path,
+    lines: dict[tuple[str, str], int],
+    packages: Mapping[str, str | os.PathLike[str]] | None = None,
+) -> list[Finding]:
     """What ``gen-robot check SPEC`` would say of the URDF a spec generates (its rules on the URDF, with the spec's
     lines; not the DH kinematics, which the generator's own tests hold, nor the consumers): ``gen-robot SPEC`` says
-    its warnings and errors when it writes the package, so that ``check --strict`` holds no surprise."""
+    its warnings and errors when it writes the package, so that ``check --strict`` holds no surprise. ``packages``:
+    where the package's own meshes are before it is written."""
     root, read = parse_robot(urdf, str(spec_path))
     if root is None:
         return read
-    return [*read, *document_rules(Doc(root, str(spec_path), lines, source_lines=False), None, spec_path.parent)]
+    return [*read, *document_rules(Doc(root, str(spec_path), lines, source_lines=False), packages, spec_path.parent)]

@@ -12,10 +12,10 @@ import os
 import re
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from ..errors import SpecErrors, XacrokitError
-from ..fileio import read_input, require_regular_file
+from ..fileio import read_input, require_regular_file, staged_packages
 from ..gcpause import collector_paused
 from ..guard import trusting
 from ..packages import with_nearby_packages
@@ -56,8 +56,10 @@ def _load_urdf(
     kind: InputKind,
     mappings: Mapping[str, str] | None,
     package_paths: Mapping[str, str | os.PathLike[str]] | None,
+    carried: dict[str, Any],
 ) -> tuple[str, Robot | None, dict[tuple[str, str], int] | None, tuple[Finding, ...]]:
-    """URDF text, and for spec input the robot model, the spec lines and the spec's warnings."""
+    """URDF text, and for spec input the robot model, the spec lines and the spec's warnings; a spec's package files
+    (meshes its package will carry) are added to ``carried``, by package."""
     if kind == "spec":
         from ..model import Robot
         from ..pipeline import spec_urdf  # (the whole generator: loaded for spec input only)
@@ -65,6 +67,7 @@ def _load_urdf(
 
         described = spec_urdf(path)
         robot = described.model if isinstance(described.model, Robot) else None  # (only a robot has DH arms)
+        carried.update(described.model.carried_files)
         return described.urdf, robot, described.lines, spec_findings(described.warnings)
     if kind == "xacro":
         from ..expansion import expand_file  # (xacro: loaded for xacro input only)
@@ -123,15 +126,34 @@ def check(
     if kind != "spec":  # a file inside a package finds that package (and its workspace siblings) by itself
         packages = with_nearby_packages(path, package_paths)
     say(f"reading {path.name}")
+    carried: dict[str, Any] = {}
     try:
         with trusting(trust):
-            text, robot, lines, notes = _load_urdf(path, kind, mappings, packages)
+            text, robot, lines, notes = _load_urdf(path, kind, mappings, packages, carried)
     except SpecErrors as exc:
         if all(e.line is None for e in exc.errors):  # the file itself cannot be read: no report to give
             raise
         from .spec import spec_findings
 
         return CheckReport(str(path), kind, None, spec_findings(exc.errors, "V002"))
+    with staged_packages(carried) as staged:  # (a spec's meshes, where its package will carry them)
+        packages = {**staged, **(packages or {})} if staged else packages
+        return _judge(path, kind, text, robot, lines, notes, names, packages, prefix, say)
+
+
+def _judge(
+    path: Path,
+    kind: InputKind,
+    text: str,
+    robot: Robot | None,
+    lines: dict[tuple[str, str], int] | None,
+    notes: tuple[Finding, ...],
+    names: list[str],
+    packages: Mapping[str, str | os.PathLike[str]] | None,
+    prefix: str | None,
+    say: Callable[[str], None],
+) -> CheckReport:
+    """The rest of :func:`check`, once the URDF text is read: our rules, and the consumers while they run."""
     root, read = parse_robot(text, str(path))
     if root is None:  # U001: not a URDF, nothing more to read
         return CheckReport(str(path), kind, None, tuple(read))

@@ -24,10 +24,16 @@ MacroMode = Literal["copy", "find", "inline"]
 
 @dataclass(frozen=True)
 class RenderedFile:
-    """One file of the package: a POSIX path relative to the package root and its full text."""
+    """One file of the package: a POSIX path relative to the package root and its full text (bytes for a binary file,
+    such as a mesh copied from the spec's folder)."""
 
     path: str
-    content: str
+    content: str | bytes
+
+    @property
+    def text(self) -> str:
+        """The content as text (a binary file's bytes read as UTF-8)."""
+        return self.content if isinstance(self.content, str) else self.content.decode("utf-8")
 
 
 def indent_block(text: str, width: int) -> Markup:

@@ -35,11 +35,14 @@ PREFIX = "${prefix}"  # what the robot macro glues in front of every name (xacro
 
 def simple_shape_link(link: Link) -> str | None:
     """The links.xacro macro that makes exactly this link (visual, same collision, shape inertia), if there is one."""
-    visual, collision, inertial = link.visual, link.collision, link.inertial
-    if visual is None or inertial is None or isinstance(visual.shape, Mesh):
+    inertial = link.inertial
+    if len(link.visuals) != 1 or len(link.collisions) != 1 or inertial is None:
         return None
-    same_collision = collision is not None and collision.shape == visual.shape and collision.origin == visual.origin
-    computed_here = inertial.kind != "explicit" and inertial.origin == visual.origin
+    (visual,), (collision,) = link.visuals, link.collisions
+    if isinstance(visual.shape, Mesh):
+        return None
+    same_collision = collision.shape == visual.shape and collision.origin == visual.origin
+    computed_here = inertial.kind in ("box", "cylinder", "sphere") and inertial.origin == visual.origin
     if not (same_collision and computed_here):
         return None
     return {Box: "box_link", Cylinder: "cylinder_link", Sphere: "sphere_link"}[type(visual.shape)]
@@ -150,6 +153,7 @@ def render_package(robot: Robot, *, macros: MacroMode = "inline", spec_name: str
         files += [RenderedFile(f"config/{a.name}.dh.yaml", dh_table_yaml(robot, i)) for i, a in enumerate(robot.arms)]
     if macros == "copy":
         files += _copied_macros(macro_files)
+    files += [RenderedFile(file.path, file.content) for file in robot.files]  # (meshes copied or made)
     for file in files:  # generated paths come from validated names; keep it that way
         parts = PurePosixPath(file.path).parts
         assert not PurePosixPath(file.path).is_absolute() and ".." not in parts, file.path

@@ -20,7 +20,7 @@ from typing import Any
 from ..errors import SpecError, SpecErrors
 from ..gcpause import collector_paused
 from ..load import RawSpec
-from .bodies import Body, bodies
+from .bodies import Body, bodies, parts
 from .names import (
     duplicate_errors,
     edges,
@@ -31,7 +31,7 @@ from .names import (
     robot_name_errors,
     tree_errors,
 )
-from .physics import density_warnings, masses_from_density, physics_errors
+from .physics import physics_errors
 from .quantities import Quantities, with_values
 from .schema import (
     SchemaValidator,
@@ -42,6 +42,7 @@ from .schema import (
     schema_errors,
     structure_intact,
 )
+from .solids import body_solids, density_warnings, masses_from_density, mesh_files_errors, mesh_inertias
 
 __all__ = [
     "Quantities",
@@ -113,15 +114,24 @@ def validate(raw: RawSpec) -> Spec:
     notes = quantities.warnings
     del quantities  # (its table of changes is garbage now: not kept through the checks below)
     every = list(bodies(data))
-    masses, density_errors, density_notes = masses_from_density(raw, data, every) if not unit_errors else ({}, [], [])
+    items = every + list(parts(data))  # (a composite link's parts are bodies too, though not links)
+    solids, solid_errors, solid_notes = body_solids(raw, data, items) if not unit_errors else ({}, [], [])
+    masses, density_errors, density_notes = masses_from_density(raw, items, solids) if not unit_errors else ({}, [], [])
     if masses:  # (the bodies that gave a density: their mass, before the checks that want one)
         data = with_values(data, {path: {"mass": mass} for path, mass in masses.items()})
         every = list(bodies(data))
-    errors += unit_errors + density_errors + semantic_errors(raw, data, every, physics=not unit_errors)
+        items = every + list(parts(data))
+    inertias = mesh_inertias(items, solids)
+    if inertias:  # (a mesh body's tensor, computed from its surface, as an explicit one)
+        data = with_values(data, inertias)
+        every = list(bodies(data))
+        items = every + list(parts(data))
+    errors += unit_errors + mesh_files_errors(raw, data) + solid_errors + density_errors
+    errors += semantic_errors(raw, data, every, physics=not unit_errors)
     if errors:
         raise SpecErrors(_unique(errors))
-    dense = list(density_warnings(raw, every, data))
+    dense = list(density_warnings(raw, items, solids))
     # a shape whose mass gives an impossible density says so once, at its mass, not also at each long size
     said = tuple(w.path.removesuffix(".mass") + ".shape." for w in dense)
-    warnings = [n for n in notes if not n.path.startswith(said)] + dense + density_notes
+    warnings = [n for n in notes if not n.path.startswith(said)] + dense + density_notes + solid_notes
     return Spec(raw=raw, data=data, warnings=tuple(sorted(warnings, key=lambda w: (w.line or 0, w.column or 0))))

@@ -15,7 +15,7 @@ from typing import Any, Literal
 from ..load import PathKey
 from ..model import DEFAULT_TOOL, arm_base_name
 
-BodyKind = Literal["link", "arm", "row", "tool", "wheel", "frame"]
+BodyKind = Literal["link", "arm", "row", "tool", "wheel", "frame", "part"]
 
 # One body of a spec: (kind, name, path, mapping). A plain tuple, and validate lists the bodies once for all the passes
 # after the units: an object per body, or a walk per pass, made validation measurably slower on big robots.
@@ -42,3 +42,11 @@ def bodies(data: dict[str, Any]) -> Iterator[Body]:
         yield ("wheel", name, ("wheels", name), wheel)
     for name, frame in data.get("frames", {}).items():
         yield ("frame", name, ("frames", name), frame)
+
+
+def parts(data: dict[str, Any]) -> Iterator[Body]:
+    """Every part of a composite link (``links.NAME.parts``), as ("part", link name, path, mapping): bodies of the
+    link, not links of their own (so not among :func:`bodies`)."""
+    for name, link in data.get("links", {}).items():
+        for index, part in enumerate(link.get("parts", ())):
+            yield ("part", name, ("links", name, "parts", index), part)

@@ -1,6 +1,7 @@
 """The physics pass, on SI values: sizes and masses > 0, a mass wherever a body moves or has a shape, physical inertia
-tensors, joint limits that suit the joint type, non-zero axes, floating joints only at the root; and the density
-warnings (a mass no solid of its shape could have: grams written as kilograms, millimetres as metres)."""
+tensors, composite links whose parts each have a shape and a mass, joint limits that suit the joint type, non-zero
+axes, floating joints only at the root. (What follows from a shape's volume, densities and meshes, is in
+:mod:`.solids`.)"""
 
 from __future__ import annotations
 
@@ -9,16 +10,12 @@ from collections.abc import Iterator, Sequence
 from typing import Any
 
 from ..errors import SpecError
-from ..kinematics import dh_body_end
 from ..load import PathKey, RawSpec
-from ..model import AXIAL, DEFAULT_ROW_RADIUS, LIMITED
+from ..model import AXIAL, LIMITED
 from ..physics import tensor, tensor_problem
-from .bodies import Body, BodyKind
+from .bodies import Body
 
 AXIS_LENGTHS = (1e-9, 1e9)  # what an axis may measure before it is normalised (resolve divides by its length)
-
-DENSEST = 22_590.0  # kg/m^3: osmium, the densest element
-LIGHTEST = 1.0  # kg/m^3: less than air (1.2); no solid body in a robot is lighter
 
 
 def physics_errors(
@@ -45,6 +42,9 @@ def physics_errors(
 
 
 def _link_errors(raw: RawSpec, link: dict[str, Any], path: PathKey) -> Iterator[SpecError]:
+    if "parts" in link:
+        yield from _composite_errors(raw, link, path)
+        return
     yield from _shape_errors(raw, link, path)
     if isinstance(link.get("collision"), dict):
         yield from _shape_errors(raw, link["collision"], (*path, "collision"))
@@ -55,19 +55,49 @@ def _link_errors(raw: RawSpec, link: dict[str, Any], path: PathKey) -> Iterator[
             "for a pure frame, leave the shape out",
             key=True,
         )
+    computed = isinstance(link.get("inertia"), dict) and link["inertia"].get("kind") == "mesh"
     if "mass" in link:
         yield from _mass_error(raw, link["mass"], (*path, "mass"))
-        shape = link.get("shape", {})
-        if "inertia" not in link and ("mesh" in shape or not shape):
-            what = "a mesh" if "mesh" in shape else "no shape"
+        if "inertia" not in link and not link.get("shape"):
             yield raw.error(
                 (*path, "mass"),
-                f"link has a mass but {what}, so its inertia cannot be computed; give inertia: {{ixx, iyy, izz, ...}}",
+                "link has a mass but no shape, so its inertia cannot be computed; give inertia: {ixx, iyy, izz, ...}",
+            )
+        if computed and "com" in link:
+            yield raw.error(
+                (*path, "com"),
+                "a mesh's centre of mass is computed from its surface; leave com out, or give inertia: (with its "
+                "origin) to state both",
             )
     elif "inertia" in link:
         yield raw.error((*path, "inertia"), "inertia needs a mass")
-    if "inertia" in link:
+    if "inertia" in link and not computed:
         yield from _inertia_errors(raw, link["inertia"], (*path, "inertia"))
+
+
+# What a composite link takes from its parts instead of giving it itself.
+_PART_KEYS = ("shape", "origin", "mass", "density", "inertia", "com", "collision")
+
+
+def _composite_errors(raw: RawSpec, link: dict[str, Any], path: PathKey) -> Iterator[SpecError]:
+    for key in _PART_KEYS:
+        if key in link:
+            yield raw.error(
+                (*path, key),
+                f"a link with parts takes its shape, mass and inertia from them: move {key} into a part (each part "
+                "gives its own shape, origin and mass or density)",
+                key=True,
+            )
+    for index, part in enumerate(link["parts"]):
+        where = (*path, "parts", index)
+        yield from _shape_errors(raw, part, where)
+        if "mass" in part:
+            yield from _mass_error(raw, part["mass"], (*path, "parts", index, "mass"))
+        elif "density" not in part:
+            yield raw.error(where, "a part needs a mass (kg) or a density (its shape's volume gives the mass)")
+        inertia = part.get("inertia")
+        if isinstance(inertia, dict) and inertia.get("kind") != "mesh":
+            yield from _inertia_errors(raw, inertia, (*where, "inertia"))
 
 
 def _row_errors(raw: RawSpec, row: dict[str, Any], path: PathKey) -> Iterator[SpecError]:
@@ -91,8 +121,8 @@ def _frame_errors(raw: RawSpec, frame: dict[str, Any], path: PathKey) -> Iterato
         )
     if "mass" in frame:
         yield from _mass_error(raw, frame["mass"], (*path, "mass"))
-        if "mesh" in frame.get("shape", {"mesh": None}):
-            yield raw.error((*path, "mass"), "a frame's mass needs a box, cylinder or sphere shape")
+        if "shape" not in frame:
+            yield raw.error((*path, "mass"), "a frame's mass needs a shape (its inertia is computed from it)")
 
 
 def _joint_errors(
@@ -106,7 +136,8 @@ def _joint_errors(
             "simulators such as MuJoCo reject deeper ones",
         )
     child = data.get("links", {}).get(joint["child"])
-    if joint["type"] != "fixed" and isinstance(child, dict) and "mass" not in child and "density" not in child:
+    massless = isinstance(child, dict) and not {"mass", "density", "parts"} & set(child)
+    if joint["type"] != "fixed" and massless:
         yield raw.error(
             (*path, "child"),
             f"link {joint['child']!r} is moved by this {joint['type']} joint but "
@@ -169,12 +200,20 @@ def _shape_errors(raw: RawSpec, holder: dict[str, Any], path: PathKey) -> Iterat
     values: list[tuple[PathKey, float]] = []
     if "box" in shape:
         values = [((*path, "shape", "box", "size", i), v) for i, v in enumerate(shape["box"]["size"])]
-    for name in ("cylinder", "sphere"):
+    for name in ("cylinder", "sphere", "capsule", "tube"):
         if name in shape:
             values = [((*path, "shape", name, k), v) for k, v in shape[name].items()]
     for where, value in values:
         if isinstance(value, float) and not value > 0:
             yield raw.error(where, f"sizes must be > 0 m, got {value!r}")
+    tube = shape.get("tube")
+    if isinstance(tube, dict) and all(isinstance(tube[k], float) for k in ("inner_radius", "outer_radius")):
+        if tube["inner_radius"] > 0 and not tube["inner_radius"] < tube["outer_radius"]:
+            yield raw.error(
+                (*path, "shape", "tube", "inner_radius"),
+                f"inner_radius ({tube['inner_radius']!r} m) must be less than outer_radius "
+                f"({tube['outer_radius']!r} m); for a solid bar use cylinder",
+            )
     filename = shape.get("mesh", {}).get("filename") if isinstance(shape.get("mesh"), dict) else None
     bad = next((ch for ch in filename or "" if not _xml_character(ch)), None)
     if bad is not None:
@@ -207,116 +246,3 @@ def _inertia_errors(raw: RawSpec, inertia: dict[str, Any], path: PathKey) -> Ite
 def _mass_error(raw: RawSpec, mass: float, path: PathKey) -> Iterator[SpecError]:
     if not (isinstance(mass, float) and mass > 0 and math.isfinite(mass)):
         yield raw.error(path, f"mass must be > 0 kg, got {mass!r}")
-
-
-def density_warnings(raw: RawSpec, bodies: Sequence[Body], data: dict[str, Any]) -> Iterator[SpecError]:
-    """Masses that no solid filling their shape could have: grams written as kilograms, millimetres as metres. A DH
-    row's body is the cylinder (a sphere when it is shorter than a micrometre) gen-robot draws from its joint's frame
-    to the next one, with the row's radius."""
-    segments = _row_segments(data)
-    for kind, _, path, item in bodies:
-        mass = item.get("mass")
-        if mass is None or kind not in ("link", "wheel", "frame", "row"):
-            continue
-        found = _volume(kind, item) if kind != "row" else segments.get(path)
-        if found is None or not (found[1] > 0 and mass > 0):
-            continue
-        density = mass / found[1]
-        if LIGHTEST <= density <= DENSEST:
-            continue
-        hint = (
-            "denser than osmium (22,590 kg/m^3); grams written as kilograms? e.g. '500 g'"
-            if density > DENSEST
-            else "lighter than air; a size in mm written as m? e.g. '150 mm'"
-        )
-        if kind == "row":  # (its body is drawn from the DH lengths and its radius: either may be what is off)
-            radius = item.get("radius", DEFAULT_ROW_RADIUS)
-            body = "a cylinder to the next joint frame" if found[0] == "cylinder" else "a sphere: its frames coincide"
-            fits = "too small" if density > DENSEST else "too large"
-            hint += f"; or its radius ({radius:g} m; the row's body is {body}) is {fits} for its mass"
-        yield raw.error(
-            (*path, "mass"),
-            f"mass {mass:g} kg in a {found[1]:.3g} m^3 {found[0]} is {density:.3g} kg/m^3, {hint}",
-        )
-
-
-# A body given both a mass and a density: its mass may be below the solid's (pockets, shells, a 3D print's infill) but
-# a part keeping less than a quarter of its envelope's material, or weighing more than the solid (beyond 10%: the
-# shape is an approximation), is more likely a wrong number than a real part.
-MASS_TO_SOLID = (0.25, 1.1)
-
-
-def masses_from_density(
-    raw: RawSpec, data: dict[str, Any], every: Sequence[Body]
-) -> tuple[dict[PathKey, float], list[SpecError], list[SpecError]]:
-    """The mass of every body that gives a density and no mass (density times the volume of its shape: exact for a
-    box, cylinder or sphere; a DH row's body as gen-robot draws it), by the body's path; the errors (a density with
-    no volume to fill) and the warnings (a mass far from what its density gives)."""
-    segments = _row_segments(data)
-    masses: dict[PathKey, float] = {}
-    errors: list[SpecError] = []
-    warnings: list[SpecError] = []
-    for kind, _, path, item in every:
-        density = item.get("density")
-        if density is None or kind not in ("link", "wheel", "frame", "row"):
-            continue
-        found = _volume(kind, item) if kind != "row" else segments.get(path)
-        if found is None:
-            errors.append(
-                raw.error(
-                    (*path, "density"),
-                    "a density gives a mass only with a box, cylinder or sphere shape (a mesh's volume is not read "
-                    "yet); give mass: instead",
-                )
-            )
-            continue
-        solid = density * found[1]
-        if "mass" not in item:
-            if found[1] > 0:
-                masses[path] = solid
-            continue
-        if found[1] > 0 and not MASS_TO_SOLID[0] <= item["mass"] / solid <= MASS_TO_SOLID[1]:
-            warnings.append(
-                raw.error(
-                    (*path, "mass"),
-                    f"mass {item['mass']:g} kg is {item['mass'] / solid:.3g} times that of a solid {found[0]} of "
-                    f"density {density:g} kg/m^3 ({solid:.3g} kg); a part keeps between a quarter and all of its "
-                    "solid's mass: is the mass, the density or the size wrong?",
-                )
-            )
-    return masses, errors, warnings
-
-
-def _row_segments(data: dict[str, Any]) -> dict[PathKey, tuple[str, float]]:
-    """(solid, volume) of every DH row's body, by the row's path: as emit draws it (kinematics.dh_body_end)."""
-    found: dict[PathKey, tuple[str, float]] = {}
-    for name, arm in data.get("arms", {}).items():
-        rows = arm["joints"]
-        for index, row in enumerate(rows):
-            after = rows[index + 1] if index + 1 < len(rows) else None
-            following = (after["a"], after["alpha"], after["d"]) if after else None
-            end = dh_body_end(arm.get("convention", "standard"), row["a"], row["alpha"], following)
-            length = math.dist((0.0, 0.0, 0.0), end)
-            radius = row.get("radius", DEFAULT_ROW_RADIUS)
-            if length >= 1e-6:
-                found[("arms", name, "joints", index)] = ("cylinder", math.pi * radius**2 * length)
-            else:
-                found[("arms", name, "joints", index)] = ("sphere", 4.0 / 3.0 * math.pi * radius**3)
-    return found
-
-
-def _volume(kind: BodyKind, item: dict[str, Any]) -> tuple[str, float] | None:
-    """(solid, volume in m^3) of a link's or frame's shape, or of a wheel (a cylinder); None for a mesh or no shape."""
-    if kind == "wheel":
-        return "cylinder", math.pi * item["radius"] ** 2 * item["width"]
-    shape = item.get("shape")
-    if not shape:
-        return None
-    if "box" in shape:
-        x, y, z = shape["box"]["size"]
-        return "box", x * y * z
-    if "cylinder" in shape:
-        return "cylinder", math.pi * shape["cylinder"]["radius"] ** 2 * shape["cylinder"]["length"]
-    if "sphere" in shape:
-        return "sphere", 4.0 / 3.0 * math.pi * shape["sphere"]["radius"] ** 3
-    return None

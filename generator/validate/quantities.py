@@ -13,7 +13,7 @@ from ..load import PathKey, RawSpec
 from ..materials import MATERIALS, find_material, material_key
 from ..text import did_you_mean
 from ..units import Kind, UnitError, parse_quantity, plain_number
-from .bodies import bodies
+from .bodies import bodies, parts
 from .physics import AXIS_LENGTHS
 
 # A plain-number angle beyond this many turns is most likely degrees: one turn for an orientation, two for a joint's
@@ -37,6 +37,13 @@ _ROW: tuple[tuple[str, Kind], ...] = (
     ("radius", "length"),
 )
 _WHEEL: tuple[tuple[str, Kind], ...] = (("radius", "length"), ("width", "length"), ("mass", "mass"))
+# The lengths of the shapes other than a box (whose size is a list) and a mesh (whose scale is a plain factor).
+_SHAPE_LENGTHS = (
+    ("cylinder", ("radius", "length")),
+    ("sphere", ("radius",)),
+    ("capsule", ("radius", "length")),
+    ("tube", ("inner_radius", "outer_radius", "length")),
+)
 
 
 class Quantities:
@@ -175,9 +182,9 @@ class Quantities:
         if "box" in shape:
             for index in range(3):
                 self.convert(shape["box"]["size"], index, (*path, "box", "size"), "length")
-        for name in ("cylinder", "sphere"):
-            for key in ("radius", "length"):
-                if name in shape:
+        for name, keys in _SHAPE_LENGTHS:
+            if name in shape:
+                for key in keys:
                     self.convert(shape[name], key, (*path, name), "length")
 
     def limits(self, holder: dict[str, Any], path: PathKey, joint_type: str) -> None:
@@ -265,6 +272,13 @@ class Quantities:
                     self.origin(item["collision"], "origin", (*path, "collision"))
                 if isinstance(item.get("inertia"), dict):
                     self.origin(item["inertia"], "origin", (*path, "inertia"))
+        for _, _, path, part in parts(data):
+            self.density(part, path)
+            self.origin(part, "origin", path)
+            self.shape(part, path)
+            self.convert(part, "mass", path, "mass")
+            if isinstance(part.get("inertia"), dict):
+                self.origin(part["inertia"], "origin", (*path, "inertia"))
         return self.data, self.errors
 
 

@@ -60,7 +60,7 @@ def robot() -> Robot:
 
 def test_quantities_arrive_in_si_and_the_root_is_found(robot):
     base = next(link for link in robot.links if link.name == "base")
-    assert base.visual == Visual(Box((0.4, 0.3, 0.1)), Origin(), "gray")
+    assert base.visuals == (Visual(Box((0.4, 0.3, 0.1)), Origin(), "gray"),)
     assert base.inertial is not None and base.inertial.mass == 2.0
     assert robot.root == "base"
     assert robot.materials == (("gray", (0.5, 0.5, 0.5, 1.0)),)
@@ -75,7 +75,7 @@ def test_shape_inertia_is_the_closed_form_in_the_shapes_frame(robot):
     cylinder = links["arm"].inertial
     assert cylinder is not None and cylinder.kind == "cylinder"
     assert cylinder.izz == pytest.approx(1.0 * 0.05**2 / 2) and cylinder.ixx == pytest.approx((3 * 0.05**2 + 0.09) / 12)
-    assert cylinder.origin == links["arm"].visual.origin  # about the cylinder's own axis, where the shape sits
+    assert cylinder.origin == links["arm"].visuals[0].origin  # about the cylinder's own axis, where the shape sits
     sphere = links["ball"].inertial
     assert sphere is not None and sphere.kind == "sphere" and sphere.ixx == pytest.approx(2 * 0.5 * 0.01 / 5)
     assert sphere.origin == Origin(xyz=(0.0, 0.0, 0.02))  # com moves the inertial frame, not the shape
@@ -83,11 +83,11 @@ def test_shape_inertia_is_the_closed_form_in_the_shapes_frame(robot):
 
 def test_collision_same_none_or_its_own(robot):
     links = {link.name: link for link in robot.links}
-    assert links["base"].collision == Collision(Box((0.4, 0.3, 0.1)), Origin())
-    assert links["arm"].collision is None
-    assert links["ball"].collision == Collision(Box((0.2, 0.2, 0.2)), Origin(xyz=(0.0, 0.0, 0.01)))
-    assert links["ball"].visual is not None and isinstance(links["ball"].visual.shape, Sphere)
-    assert isinstance(links["arm"].visual.shape, Cylinder)  # type: ignore[union-attr]
+    assert links["base"].collisions == (Collision(Box((0.4, 0.3, 0.1)), Origin()),)
+    assert links["arm"].collisions == ()
+    assert links["ball"].collisions == (Collision(Box((0.2, 0.2, 0.2)), Origin(xyz=(0.0, 0.0, 0.01))),)
+    assert len(links["ball"].visuals) == 1 and isinstance(links["ball"].visuals[0].shape, Sphere)
+    assert isinstance(links["arm"].visuals[0].shape, Cylinder)
 
 
 def test_joint_axes_are_unit_vectors_and_fixed_joints_have_none(robot):

@@ -97,10 +97,10 @@ BALL = {"sphere": {"radius": 0.1}}
     [
         (
             {"shape": {"mesh": {"filename": "m.stl"}}, "density": 1000},
-            "links.l.density",
-            "a density gives a mass only with a box",
+            "links.l.shape.mesh.filename",
+            "mesh file 'm.stl' is not there",
         ),
-        ({"density": 1000}, "links.l.density", "a density gives a mass only with a box"),
+        ({"density": 1000}, "links.l.density", "a density gives a mass only with a shape"),
         (
             {"shape": BALL, "density": "unobtainium"},
             "links.l.density",
