@@ -2,9 +2,9 @@
 physical.
 
 The xacro macro library mirrors the formulas (``macros/inertia.xacro``: box_inertial, cylinder_inertial,
-sphere_inertial, capsule_inertial, tube_inertial; ``macros/_inc/checks.xacro``: the tensor checks) operation for
-operation, so that the direct emitter and xacro write the same bits; a change here is a change there. The sum of
-parts (:func:`combine`) has no twin: composite links are written as plain XML.
+sphere_inertial, capsule_inertial, hollow_cylinder_inertial; ``macros/_inc/checks.xacro``: the tensor checks)
+operation for operation, so that the direct emitter and xacro write the same bits; a change here is a change there.
+The sum of parts (:func:`combine`) has no twin: composite links are written as plain XML.
 """
 
 from __future__ import annotations
@@ -50,7 +50,7 @@ def capsule_moments(mass: float, radius: float, length: float) -> tuple[float, f
     sphere = 4.0 / 3.0 * math.pi * radius**3
     m_c = mass * cylinder / (cylinder + sphere)
     m_s = mass * sphere / (cylinder + sphere)
-    r2, l2 = radius * radius, length * length
+    r2, l2 = radius * radius, length * length  # (the macro writes (radius * radius): the same operations)
     axial = m_c * r2 / 2.0 + 2.0 * m_s * r2 / 5.0
     transverse = m_c * (l2 / 12.0 + r2 / 4.0) + m_s * (2.0 * r2 / 5.0 + l2 / 4.0 + 3.0 * length * radius / 8.0)
     return axial, transverse

@@ -18,6 +18,7 @@ PUBLIC_MACROS = (
     "cylinder_inertial",
     "sphere_inertial",
     "hollow_cylinder_inertial",
+    "capsule_inertial",
     "inertial",
     "box_link",
     "cylinder_link",

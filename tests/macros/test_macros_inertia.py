@@ -13,7 +13,7 @@ from lxml import etree
 
 import xacrokit
 from conftest import assert_physical_tensor, link_inertial, rpy_matrix, xacro_doc
-from xacrokit.physics import tensor_problem
+from xacrokit.physics import capsule_moments, tensor_problem
 
 positive = st.floats(min_value=1e-3, max_value=1e3, allow_nan=False, allow_infinity=False)
 length = st.floats(min_value=1e-3, max_value=10.0, allow_nan=False, allow_infinity=False)
@@ -38,17 +38,21 @@ def _closed_form(kind: str, p: dict) -> np.ndarray:
     if kind == "hollow_cylinder":
         ri, ro, h = p["inner_radius"], p["outer_radius"], p["length"]
         return _axis_diag(m * (ri**2 + ro**2) / 2, m * (3 * (ri**2 + ro**2) + h**2) / 12, p["axis"])
+    if kind == "capsule":  # pinocchio's closed form (a cylinder and two hemispheres), lying along z
+        r, h = p["radius"], p["length"]
+        moments = np.diag(pin.Inertia.FromCapsule(m, r, h).inertia)
+        return _axis_diag(moments[2], moments[0], p["axis"])
     assert kind == "sphere"
     return np.eye(3) * (2 * m * p["radius"] ** 2 / 5)
 
 
 @st.composite
 def inertia_call(draw):
-    kind = draw(st.sampled_from(["box", "cylinder", "hollow_cylinder", "sphere"]))
+    kind = draw(st.sampled_from(["box", "cylinder", "hollow_cylinder", "capsule", "sphere"]))
     p: dict = {"mass": draw(positive)}
     if kind == "box":
         p.update(x=draw(length), y=draw(length), z=draw(length))
-    elif kind == "cylinder":
+    elif kind in ("cylinder", "capsule"):
         p.update(radius=draw(length), length=draw(length), axis=draw(axis_name))
     elif kind == "hollow_cylinder":
         outer = draw(length)
@@ -143,6 +147,7 @@ GOOD = {
     "cylinder_inertial": {"mass": "1", "radius": "0.1", "length": "0.3"},
     "hollow_cylinder_inertial": {"mass": "1", "inner_radius": "0.05", "outer_radius": "0.1", "length": "0.3"},
     "sphere_inertial": {"mass": "1", "radius": "0.1"},
+    "capsule_inertial": {"mass": "1", "radius": "0.05", "length": "0.2"},
     "inertial": {"mass": "1", "ixx": "0.1", "ixy": "0", "ixz": "0", "iyy": "0.1", "iyz": "0", "izz": "0.1"},
 }
 
@@ -162,6 +167,9 @@ BAD = [
     ("hollow_cylinder_inertial", "outer_radius", "-0.1", "must be > 0"),
     ("hollow_cylinder_inertial", "axis", "q", "must be one of x, y, z"),
     ("sphere_inertial", "radius", "0", "must be > 0"),
+    ("capsule_inertial", "radius", "-0.1", "must be > 0"),
+    ("capsule_inertial", "length", "0", "must be > 0"),
+    ("capsule_inertial", "axis", "v", "must be one of x, y, z"),
     ("sphere_inertial", "mass", "-0.5", "must be > 0"),
     ("inertial", "mass", "0", "must be > 0"),
     ("inertial", "ixx", "-0.1", "must be > 0"),
@@ -304,3 +312,14 @@ def test_explicit_inertial_agrees_with_check_near_the_thresholds(expand, moments
     tensor = _rotated([scale * m for m in moments], angles)
     assert (tensor_problem(tensor) is None) == accepted
     assert (_macro_verdict(expand, tensor) is None) == accepted
+
+
+@given(radius=st.floats(1e-3, 2.0), length=st.floats(1e-3, 2.0), mass=st.floats(1e-3, 100.0))
+def test_capsule_inertial_writes_the_generators_bits(expand, radius, length, mass):
+    """The macro is physics.capsule_moments' twin: the same operations, so the same doubles (gen-robot's emitter
+    writes composite and capsule links from Python; a hand-written xacro gets the same numbers)."""
+    call = f'<xacro:capsule_inertial mass="{mass!r}" radius="{radius!r}" length="{length!r}"/>'
+    root = expand(xacro_doc(f'<link name="body">{call}</link>'))
+    _, tensor, _, _ = link_inertial(root, "body")
+    axial, transverse = capsule_moments(mass, radius, length)
+    assert (tensor[0, 0], tensor[1, 1], tensor[2, 2]) == (transverse, transverse, axial)
