@@ -25,7 +25,8 @@ from hypothesis import strategies as st
 
 from .model import AXIAL, JOINT_TYPES, LIMITED, MOVING
 
-SHAPES = ("box", "cylinder", "sphere", "mesh", "none")
+SHAPES = ("box", "cylinder", "sphere", "capsule", "tube", "mesh", "parts", "none")
+SOLIDS = ("box", "cylinder", "sphere", "capsule", "tube")  # the shapes whose inertia has a closed form
 FAULTS = (
     "negative_mass",
     "swapped_limits",
@@ -43,6 +44,8 @@ FAULTS = (
     "not_finite",
     "extreme_axis",
     "deep_quantity",
+    "tube_inside_out",
+    "composite_with_mass",
 )
 
 # mesh file names the strategies use (package://some_pkg/meshes/NAME.stl): xacro must write them verbatim
@@ -101,6 +104,12 @@ def _shape(draw, kind: str) -> dict[str, Any]:
         return {"cylinder": {"radius": draw(_length()), "length": draw(_length())}}
     if kind == "sphere":
         return {"sphere": {"radius": draw(_length())}}
+    if kind == "capsule":
+        return {"capsule": {"radius": draw(_length()), "length": draw(_length())}}
+    if kind == "tube":
+        inner = draw(_size)
+        outer = inner * draw(st.floats(1.05, 4.0))
+        return {"tube": {"inner_radius": inner, "outer_radius": outer, "length": draw(_length())}}
     weird = draw(st.sampled_from(MESH_NAMES))
     return {"mesh": {"filename": f"package://some_pkg/meshes/{weird}.stl", "scale": [1.0, 1.0, 1.0]}}
 
@@ -112,6 +121,37 @@ def _physical_tensor(draw) -> dict[str, float]:
     return {"ixx": a * 0.01, "iyy": b * 0.01, "izz": c * 0.01}
 
 
+# densities as a spec may give them: kg/m^3, a string with a unit, or a material of the table
+_density = st.one_of(
+    st.floats(100.0, 20_000.0),
+    st.floats(0.1, 20.0).map(lambda d: f"{d!r} g/cm3"),
+    st.sampled_from(["steel", "aluminium_6061", "pla", "Stainless Steel", "oak", "abs", "aluminum"]),
+)
+
+
+@st.composite
+def _mass_or_density(draw) -> dict[str, Any]:
+    """A body's mass (kg or grams) or its density."""
+    if draw(st.booleans()):
+        return {"density": draw(_density)}
+    return {"mass": draw(st.one_of(_mass, _mass.map(lambda m: f"{m * 1000!r} g")))}
+
+
+@st.composite
+def _parts(draw, materials: list[str]) -> list[dict[str, Any]]:
+    """The parts of a composite link: closed-form solids, each placed, with a mass or a density."""
+    parts = []
+    for _ in range(draw(st.integers(1, 3))):
+        part: dict[str, Any] = {"shape": draw(_shape(draw(st.sampled_from(SOLIDS)))), "origin": draw(_origin())}
+        part.update(draw(_mass_or_density()))
+        if materials and draw(st.booleans()):
+            part["material"] = draw(st.sampled_from(materials))
+        if draw(st.integers(0, 3)) == 0:
+            part["collision"] = "none"
+        parts.append(part)
+    return parts
+
+
 @st.composite
 def _link(draw, materials: list[str]) -> dict[str, Any]:
     kind = draw(st.sampled_from(SHAPES))
@@ -120,15 +160,20 @@ def _link(draw, materials: list[str]) -> dict[str, Any]:
         if draw(st.booleans()):
             link.update(mass=draw(_mass), inertia=draw(_physical_tensor()))
         return link
+    if kind == "parts":
+        link["parts"] = draw(_parts(materials))
+        if materials and draw(st.booleans()):
+            link["material"] = draw(st.sampled_from(materials))
+        return link
     link["shape"] = draw(_shape(kind))
     if draw(st.booleans()):
         link["origin"] = draw(_origin())
     if materials and draw(st.booleans()):
         link["material"] = draw(st.sampled_from(materials))
     if kind == "mesh":  # a body with a shape has a mass (gen-robot check requires it); a mesh, a tensor too
-        link.update(mass=draw(_mass), inertia=draw(_physical_tensor()))
+        link.update(mass=draw(_mass), inertia=draw(_physical_tensor()))  # (these name no real file to read)
     else:
-        link["mass"] = draw(st.one_of(_mass, _mass.map(lambda m: f"{m * 1000!r} g")))
+        link.update(draw(_mass_or_density()))
     collision = draw(st.sampled_from(["default", "same", "none", "other"]))
     if collision == "other":
         link["collision"] = {
@@ -213,7 +258,7 @@ def valid_specs(draw, max_links: int = 5) -> dict[str, Any]:
             joint["parent"] = links[0]
     for joint in spec["joints"].values():  # a moved link has a mass (and, without a shape, an inertia)
         child = spec["links"][joint["child"]]
-        if joint["type"] != "fixed" and "mass" not in child:
+        if joint["type"] != "fixed" and not {"mass", "density", "parts"} & set(child):
             child.update(mass=draw(_mass), inertia=draw(_physical_tensor()))
     moving = [n for n, j in spec["joints"].items() if j["type"] in MOVING]
     if len(moving) >= 2 and draw(st.booleans()):
@@ -234,16 +279,20 @@ def valid_specs(draw, max_links: int = 5) -> dict[str, Any]:
             "origin": draw(_origin()),
             "radius": draw(_length()),
             "width": draw(_length()),
-            "mass": draw(_mass),
             "axis": draw(st.sampled_from(["x", "y", "z"])),
+            **draw(_mass_or_density()),
         }
+        if draw(st.booleans()):  # its joint named, as real robots name them
+            wheels[f"wheel_{k}"]["joint"] = f"drive_{k}"
     if wheels:
         spec["wheels"] = wheels
     frames = {}
     for k in range(draw(st.integers(0, 2))):
         frame: dict[str, Any] = {"parent": draw(st.sampled_from(links)), "origin": draw(_origin())}
         if draw(st.booleans()):
-            frame.update(shape=draw(_shape("box")), mass=draw(_mass))
+            frame.update(shape=draw(_shape(draw(st.sampled_from(SOLIDS)))), **draw(_mass_or_density()))
+        if draw(st.booleans()):
+            frame["joint"] = f"mount_{k}"
         frames[f"frame_{k}"] = frame
     if frames:
         spec["frames"] = frames
@@ -320,6 +369,12 @@ def invalid_specs(draw, faults: tuple[str, ...] = FAULTS) -> tuple[dict[str, Any
     elif fault == "deep_quantity":  # thousands of parentheses once exhausted the parser's recursion
         depth = draw(st.integers(150, 3000))
         links[name] = {"shape": {"sphere": {"radius": "(" * depth + "0.1" + ")" * depth}}, "mass": 1.0}
+    elif fault == "tube_inside_out":  # its bore as wide as the tube
+        radius = draw(_size)
+        tube = {"inner_radius": radius * draw(st.floats(1.0, 2.0)), "outer_radius": radius, "length": 0.1}
+        links[name] = {"shape": {"tube": tube}, "mass": 1.0}
+    elif fault == "composite_with_mass":  # a composite's mass is its parts'
+        links[name] = {"parts": [{"shape": {"sphere": {"radius": 0.1}}, "mass": 1.0}], "mass": 1.0}
     return spec, fault
 
 

@@ -199,5 +199,15 @@ def parse_generated(path: str, content: str) -> object:
         return etree.tostring(etree.fromstring(content.encode("utf-8"), parser))
     if path.endswith((".yaml", ".rviz")):
         return yaml.safe_load(content)
+    if path.endswith((".obj", ".stl")):  # a mesh made (a tube's) or copied: a closed surface
+        import io
+
+        import trimesh
+
+        kind = path.rsplit(".", 1)[1]
+        data = io.BytesIO(content if isinstance(content, bytes) else content.encode("utf-8"))
+        mesh = trimesh.load(data, file_type=kind, force="mesh")
+        assert mesh.is_watertight and mesh.volume > 0, path
+        return mesh.vertices.round(12).tolist()
     assert path.endswith(".md"), path
     return None  # Markdown: anything parses

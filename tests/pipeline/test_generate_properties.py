@@ -33,6 +33,8 @@ FAULT_WORDS = {
     "not_finite": ["is not a finite number"],
     "extreme_axis": ["has length"],
     "deep_quantity": ["at most 200"],
+    "tube_inside_out": ["must be less than outer_radius"],
+    "composite_with_mass": ["move mass into a part"],
 }
 
 

@@ -6,6 +6,7 @@ closed shapes' cross-sections (scipy)."""
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pinocchio as pin
@@ -17,7 +18,7 @@ from hypothesis import strategies as st
 from lxml import etree
 from scipy.integrate import quad
 
-from conftest import gen_robot, link_inertial, rpy_matrix
+from conftest import REPO, gen_robot, link_inertial, rpy_matrix
 from xacrokit.emit import emit_urdf
 from xacrokit.errors import SpecErrors
 from xacrokit.pipeline import build_robot
@@ -290,3 +291,17 @@ def test_composite_and_shape_mistakes_are_located_and_write_nothing(tmp_path, li
     assert caught.value.errors[0].line is not None
     result = gen_robot(spec_path, "-o", tmp_path / "out")
     assert result.returncode == 2 and not (tmp_path / "out").exists()
+
+
+def test_the_docs_composite_example_sums_its_parts(tmp_path):
+    docs = (REPO / "docs" / "spec.md").read_text(encoding="utf-8")
+    (block,) = [b for b in re.findall(r"```yaml\n(.*?)\n```", docs, flags=re.S) if "parts:" in b and "mast" in b]
+    path = tmp_path / "doc.yaml"
+    path.write_text("robot: d\nmaterials: {grey: [0.5, 0.5, 0.5, 1]}\nlinks:\n" + block + "\n", encoding="utf-8")
+    (link,) = build_robot(path).links
+    plate = 2700.0 * 0.30 * 0.20 * 0.004
+    mast = 7850.0 * math.pi * (0.01**2 - 0.008**2) * 0.12
+    assert link.inertial.mass == pytest.approx(plate + 0.6 + mast, rel=1e-12)
+    centre_z = (0.6 * 0.022 + mast * 0.062) / (plate + 0.6 + mast)
+    assert link.inertial.origin.xyz[2] == pytest.approx(centre_z, rel=1e-12)
+    assert len(link.visuals) == 3 and len(link.collisions) == 3

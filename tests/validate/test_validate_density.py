@@ -161,7 +161,7 @@ def test_a_material_name_gives_its_tabled_density(tmp_path):
 
 def test_the_docs_density_example_gives_the_masses_it_says(tmp_path):
     docs = (REPO / "docs" / "spec.md").read_text(encoding="utf-8")
-    (block,) = [b for b in re.findall(r"```yaml\n(.*?)\n```", docs, flags=re.S) if "density: aluminium_6061" in b]
+    (block,) = [b for b in re.findall(r"```yaml\n(.*?)\n```", docs, flags=re.S) if "chassis: {shape" in b]
     path = tmp_path / "d.yaml"
     joints = "\njoints:\n  j: {type: fixed, parent: chassis, child: mast}\n"
     path.write_text("robot: d\n" + block + joints, encoding="utf-8")

@@ -91,7 +91,7 @@ def test_a_box_mesh_equals_the_box(tmp_path_factory, extents, offset, scale, xyz
 
 
 def test_a_curved_mesh_is_its_solid_within_its_discretisation(tmp_path):
-    """An icosphere of 2,562 vertices: its inscribed polyhedron's volume is 0.27% below the sphere's; the mass is
+    """An icosphere of 2,562 vertices: its inscribed polyhedron's volume is 0.22% below the sphere's; the mass is
     given, so the tensor differs by the shape's distribution only (within 0.5%)."""
     (tmp_path / "cad").mkdir()
     trimesh.creation.icosphere(subdivisions=4, radius=0.1).export(tmp_path / "cad" / "ball.stl")
