@@ -78,9 +78,10 @@ class _Package:
         self.files: dict[str, bytes | str] = {}
 
 
-def shape(data: dict[str, Any], package: _Package | None = None, label: str = "") -> Shape:
+def shape(data: dict[str, Any], package: _Package | None = None) -> Shape:
     """The URDF geometry of a spec shape that has one: a box, cylinder, sphere or mesh (a relative mesh path becomes
-    a copy in the package's meshes/), or, for a tube, a mesh made into the package (``label`` names its file)."""
+    a copy in the package's meshes/), or, for a tube, a mesh made into the package (named by its sizes: tubes of the
+    same sizes share one file)."""
     if "box" in data:
         return Box(size=_vec3(data["box"]["size"]))
     if "cylinder" in data:
@@ -88,9 +89,9 @@ def shape(data: dict[str, Any], package: _Package | None = None, label: str = ""
     if "sphere" in data:
         return Sphere(radius=float(data["sphere"]["radius"]))
     if "tube" in data and package is not None:
-        tube = data["tube"]
-        path = f"{MESH_FOLDER}/xacrokit/{label}.tube.obj"
-        package.files[path] = tube_obj(float(tube["inner_radius"]), float(tube["outer_radius"]), float(tube["length"]))
+        inner, outer, length = (float(data["tube"][k]) for k in ("inner_radius", "outer_radius", "length"))
+        path = f"{MESH_FOLDER}/xacrokit/tube_{inner!r}_{outer!r}_{length!r}.obj"
+        package.files[path] = tube_obj(inner, outer, length)
         return Mesh(filename=f"package://{package.name}/{path}")
     mesh = data["mesh"]
     filename = mesh["filename"]
@@ -101,11 +102,11 @@ def shape(data: dict[str, Any], package: _Package | None = None, label: str = ""
     return Mesh(filename=filename, scale=_vec3(mesh.get("scale"), (1.0, 1.0, 1.0)))
 
 
-def pieces(data: dict[str, Any], where: Origin, package: _Package, label: str) -> list[tuple[Shape, Origin]]:
+def pieces(data: dict[str, Any], where: Origin, package: _Package) -> list[tuple[Shape, Origin]]:
     """The URDF geometries that draw a spec shape at ``where``: one, or for a capsule its cylinder and the two spheres
     at its ends (URDF has no capsule; every consumer reads these, as visual and as collision)."""
     if "capsule" not in data:
-        return [(shape(data, package, label), where)]
+        return [(shape(data, package), where)]
     radius, length = float(data["capsule"]["radius"]), float(data["capsule"]["length"])
     half = rpy_matrix(*where.rpy)[:, 2] * (length / 2.0)  # (the capsule's z axis in the link frame)
     x, y, z = where.xyz
@@ -145,7 +146,7 @@ def _link(name: str, data: dict[str, Any], package: _Package) -> Link:
         inertial = _explicit_inertia(data, origin(data.get("com") or data.get("origin")))
         return Link(name=name, inertial=inertial)
     where = origin(data.get("origin"))
-    drawn = pieces(data["shape"], where, package, name)
+    drawn = pieces(data["shape"], where, package)
     material = data.get("material")
     visuals = tuple(Visual(shape=body, origin=at, material=material) for body, at in drawn)
     collision_spec = data.get("collision", "same")
@@ -154,7 +155,7 @@ def _link(name: str, data: dict[str, Any], package: _Package) -> Link:
     elif collision_spec == "none":
         collisions = ()
     else:
-        other = pieces(collision_spec["shape"], origin(collision_spec.get("origin")), package, f"{name}.collision")
+        other = pieces(collision_spec["shape"], origin(collision_spec.get("origin")), package)
         collisions = tuple(Collision(shape=body, origin=at) for body, at in other)
     frame = origin(data["com"]) if "com" in data else where
     inertial = _explicit_inertia(data, frame)
@@ -169,9 +170,9 @@ def _composite(name: str, data: dict[str, Any], package: _Package) -> Link:
     visuals: list[Visual] = []
     collisions: list[Collision] = []
     bodies: list[tuple[float, np.ndarray, np.ndarray, np.ndarray]] = []
-    for index, part in enumerate(data["parts"]):
+    for part in data["parts"]:
         where = origin(part.get("origin"))
-        drawn = pieces(part["shape"], where, package, f"{name}.part{index}")
+        drawn = pieces(part["shape"], where, package)
         material = part.get("material", data.get("material"))
         visuals += [Visual(shape=body, origin=at, material=material) for body, at in drawn]
         if part.get("collision", "same") == "same":

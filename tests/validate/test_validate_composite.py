@@ -135,8 +135,8 @@ def test_capsule_is_drawn_as_a_cylinder_and_two_spheres_and_a_tube_as_a_mesh_of_
     assert np.allclose(centres[1], [0.1, 0.2, 0.3] - 0.05 * axis, atol=1e-15)
     assert len(root.findall("link/collision")) == 4
     uri = visuals[3].find("geometry/mesh").get("filename")
-    assert uri == "package://c_description/meshes/xacrokit/body.part1.tube.obj"
-    made = trimesh.load(tmp_path / "out" / "meshes" / "xacrokit" / "body.part1.tube.obj", force="mesh")
+    assert uri == "package://c_description/meshes/xacrokit/tube_0.01_0.02_0.2.obj"
+    made = trimesh.load(tmp_path / "out" / "meshes" / "xacrokit" / "tube_0.01_0.02_0.2.obj", force="mesh")
     assert made.is_watertight and made.is_winding_consistent
     exact = math.pi * (0.02**2 - 0.01**2) * 0.2
     sides = 64  # (a 64-gon's area is sin(2 pi / 64) 64 / (2 pi) of its circle's)
@@ -305,3 +305,20 @@ def test_the_docs_composite_example_sums_its_parts(tmp_path):
     centre_z = (0.6 * 0.022 + mast * 0.062) / (plate + 0.6 + mast)
     assert link.inertial.origin.xyz[2] == pytest.approx(centre_z, rel=1e-12)
     assert len(link.visuals) == 3 and len(link.collisions) == 3
+
+
+def test_the_rover_example_chassis_is_the_sum_of_its_parts():
+    """examples/robots/rover.yaml: its base_link's mass from the parts' formulas written out here, and its bracket
+    STL the extruded L profile its script says (201 mm^2 x 20 mm)."""
+    bracket = trimesh.load(REPO / "examples" / "robots" / "cad" / "motor_bracket.stl", force="mesh")
+    assert bracket.is_watertight and bracket.volume == pytest.approx(201.0 * 20.0, rel=1e-6)  # mm^3 (32-bit STL)
+    robot = build_robot(REPO / "examples" / "robots" / "rover.yaml")
+    base = next(link for link in robot.links if link.name == "base_link")
+    decks = 2 * 2700.0 * 0.160 * 0.140 * 0.004  # ASM 6061-T6
+    standoffs = 4 * 8500.0 * math.pi * (0.003**2 - 0.0015**2) * 0.056  # C36000 brass
+    brackets = 2 * 1240.0 * 4.02e-6  # PLA
+    assert base.inertial.kind == "parts"
+    assert base.inertial.mass == pytest.approx(decks + standoffs + 2 * 0.0572 + 0.180 + brackets, rel=1e-6)
+    assert len(base.visuals) == 2 + 4 + 2 + 1 + 2
+    assert {w.joint_name for w in robot.wheels} == {"wheel_left_joint", "wheel_right_joint"}
+    assert "scan_joint" in robot.joint_names
