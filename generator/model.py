@@ -378,8 +378,10 @@ class Scene:
 
     @property
     def carried_files(self) -> dict[str, tuple[PackageFile, ...]]:
-        """The meshes its robots carry, by the package their ``package://`` URIs name (see Robot.carried_files)."""
-        return {name: files for robot in self.robots for name, files in robot.carried_files.items()}
+        """The meshes its robots carry (moved into this package, under robots/ROBOT_description/: resolve's
+        carried_into), by the package their ``package://`` URIs name (see Robot.carried_files)."""
+        files = tuple(file for robot in self.robots for file in robot.files)
+        return {self.package: files} if files else {}
 
     @property
     def joint_names(self) -> tuple[str, ...]:

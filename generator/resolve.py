@@ -7,6 +7,7 @@ package's meshes/ (validation saw them there).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from pathlib import Path, PurePosixPath
 from typing import Any
@@ -397,3 +398,29 @@ def resolve(spec: Spec) -> Robot:
         files=tuple(PackageFile(path, content) for path, content in sorted(package.files.items())),
         source=spec.raw.file,
     )
+
+
+def carried_into(robot: Robot, package: str) -> Robot:
+    """``robot`` with the files it carries (copied and made meshes) moved into the package ``package``, under
+    ``robots/ROBOT_description/``, and the URIs that name them rewritten: a scene package carries its robots' meshes,
+    so that it is the one package to build and install."""
+    if not robot.files:
+        return robot
+    folder = f"robots/{robot.package}"
+    own, carried = f"package://{robot.package}/", {file.path for file in robot.files}
+
+    def moved(body: Shape) -> Shape:
+        if isinstance(body, Mesh) and body.filename.startswith(own) and body.filename[len(own) :] in carried:
+            return dataclasses.replace(body, filename=f"package://{package}/{folder}/{body.filename[len(own) :]}")
+        return body
+
+    links = tuple(
+        dataclasses.replace(
+            link,
+            visuals=tuple(dataclasses.replace(v, shape=moved(v.shape)) for v in link.visuals),
+            collisions=tuple(dataclasses.replace(c, shape=moved(c.shape)) for c in link.collisions),
+        )
+        for link in robot.links
+    )
+    files = tuple(PackageFile(f"{folder}/{file.path}", file.content) for file in robot.files)
+    return dataclasses.replace(robot, links=links, files=files)

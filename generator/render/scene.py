@@ -1,8 +1,9 @@
 """The render stage for a scene: the scene package's files, beside the robot packages' (:mod:`.package`).
 
-A scene package carries the macro files of each robot of ours under ``robots/NAME_description/`` (rendered by the
-robot renderer), its own entry ``urdf/SCENE.urdf.xacro`` (the world link and one macro call per instance), a launch
-file, an RViz configuration and one controllers file per instance with ros2_control.
+A scene package carries the macro files and meshes of each robot of ours under ``robots/NAME_description/`` (rendered
+by the robot renderer; the meshes' URIs name the scene package), its own entry ``urdf/SCENE.urdf.xacro`` (the world
+link and one macro call per instance), a launch file, an RViz configuration and one controllers file per instance
+with ros2_control.
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ def render_scene(scene: Scene, *, spec_name: str = "scene.yaml", macros: MacroMo
         for file in render_package(robot, macros=macros, spec_name=spec_name):
             if file.path.startswith(ROBOT_FILES) and not file.path.endswith("_controllers.yaml"):
                 files.append(RenderedFile(f"robots/{robot.package}/{file.path}", file.content))
+        files += [RenderedFile(file.path, file.content) for file in robot.files]  # (its meshes, moved here)
     has_control = any(i.robot is not None and i.robot.ros2_control is not None for i in scene.instances)
     context = {
         "scene": scene,

@@ -15,6 +15,7 @@ from pathlib import Path
 from ..errors import SpecError, SpecErrors
 from ..load import PathKey, RawSpec
 from ..model import Instance, Origin, Robot, Scene, ThirdPartyMacro, mount_joint_name
+from ..resolve import carried_into
 from ..text import did_you_mean
 from .probe import probe_names
 
@@ -88,7 +89,7 @@ def resolve_plan(
             origin=plan.origin,
             links=names[plan.name][0],
             joints=names[plan.name][1],
-            robot=plan.robot,
+            robot=None if plan.robot is None else carried_into(plan.robot, f"{name}_description"),
             spec_file=plan.spec_file,
             macro=plan.macro,
             parent_instance=mounts[plan.name].instance,

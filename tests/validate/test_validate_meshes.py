@@ -16,7 +16,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from lxml import etree
 
-from conftest import gen_robot, link_inertial, rpy_matrix, snapshot
+from conftest import REPO, gen_robot, link_inertial, rpy_matrix, snapshot
 from xacrokit.emit import emit_urdf
 from xacrokit.errors import SpecErrors
 from xacrokit.load import load_file
@@ -244,3 +244,31 @@ def test_a_relative_mesh_is_copied_into_the_package_and_checks_clean(tmp_path):
         .get("value")
     )
     assert mass == pytest.approx(8960.0 * 0.1 * 0.06 * 0.04, rel=1e-6)  # (binary STL: 32-bit floats)
+
+
+@pytest.mark.parametrize("mode", [[], ["--via-xacro", "--macros", "copy"]])
+def test_a_scene_carries_its_robots_meshes_in_its_own_package(tmp_path, mode):
+    """A scene of robots whose specs copy and make meshes: the scene package carries them (under
+    robots/ROBOT_description/) and names them by its own package, so that it is the one package to install."""
+    scene = tmp_path / "yard.yaml"
+    rover = (REPO / "examples" / "robots" / "rover.yaml").as_posix()
+    scene.write_text(
+        "scene: yard\ninstances:\n"
+        f"  a: {{spec: {rover}, prefix: a_, parent: world}}\n"
+        f"  b: {{spec: {rover}, prefix: b_, parent: world, origin: {{xyz: [1, 0, 0]}}}}\n",
+        encoding="utf-8",
+    )
+    out = tmp_path / "yard_description"
+    result = gen_robot(scene, "-o", out, *mode)
+    assert result.returncode == 0, result.stderr
+    root = etree.parse(str(out / "urdf" / "yard.urdf")).getroot()
+    uris = {m.get("filename") for m in root.iter("mesh")}
+    prefix = "package://yard_description/robots/rover_description/meshes/"
+    assert uris == {prefix + "motor_bracket.stl", prefix + "xacrokit/tube_0.0015_0.003_0.056.obj"}
+    for uri in uris:
+        assert (out / uri.removeprefix("package://yard_description/")).is_file()
+    bracket = out / "robots" / "rover_description" / "meshes" / "motor_bracket.stl"
+    assert bracket.read_bytes() == (REPO / "examples" / "robots" / "cad" / "motor_bracket.stl").read_bytes()
+    for checked in (out / "urdf" / "yard.urdf", scene):  # (the written package; the spec, its meshes staged)
+        report = gen_robot("check", "--strict", checked)
+        assert report.returncode == 0, report.stdout
