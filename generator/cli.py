@@ -24,6 +24,7 @@ from .cliargs import fleet_count, parse_mappings, parse_packages, require_plain_
 from .errors import XacrokitError
 from .guard import trusting
 from .progress import Progress
+from .size_command import add_size_command
 
 if TYPE_CHECKING:
     from .pipeline import GenerateResult
@@ -366,13 +367,17 @@ def build_parser() -> argparse.ArgumentParser:
     _add_xacro_options(chk)
     chk.set_defaults(handler=_cmd_check)
 
+    add_size_command(commands, _add_xacro_options)
+
     schema = commands.add_parser(
         "schema",
         help="print a JSON Schema",
         description="Print the JSON Schema (2020-12) of robot specs (default), "
         "scene specs, or gen-robot check's JSON report.",
     )
-    schema.add_argument("--kind", choices=("robot", "scene", "check-report"), default="robot", help="which schema")
+    schema.add_argument(
+        "--kind", choices=("robot", "scene", "check-report", "size-report"), default="robot", help="which schema"
+    )
     schema.set_defaults(handler=_cmd_schema)
 
     expand = commands.add_parser(
@@ -405,7 +410,7 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-COMMANDS = ("generate", "new", "check", "fleet", "schema", "expand", "macros", "materials")
+COMMANDS = ("generate", "new", "check", "size", "fleet", "schema", "expand", "macros", "materials")
 
 
 def _shorthand(words: list[str]) -> bool:

@@ -51,7 +51,7 @@ def input_kind(path: Path) -> InputKind:
     return "xacro" if re.search(r"xmlns:xacro\s*=|<xacro:", text) else "urdf"
 
 
-def _load_urdf(
+def load_urdf(
     path: Path,
     kind: InputKind,
     mappings: Mapping[str, str] | None,
@@ -129,7 +129,7 @@ def check(
     carried: dict[str, Any] = {}
     try:
         with trusting(trust):
-            text, robot, lines, notes = _load_urdf(path, kind, mappings, packages, carried)
+            text, robot, lines, notes = load_urdf(path, kind, mappings, packages, carried)
     except SpecErrors as exc:
         if all(e.line is None for e in exc.errors):  # the file itself cannot be read: no report to give
             raise

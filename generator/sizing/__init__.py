@@ -1,0 +1,87 @@
+"""``gen-robot size``: what each joint's motor must deliver, computed on the description (pinocchio).
+
+One module per part: :mod:`.robot` (the model, its moving joints and loads, and the conventions), :mod:`.static` (the
+worst static torque of each joint over its range), :mod:`.report` (the table and the JSON report).
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+from ..errors import XacrokitError
+from ..units import UnitError, parse_quantity
+from .report import SizeReport, format_text
+from .robot import GRAVITY, Load, Payload, load_robot
+from .static import StaticPeak, static_peaks
+
+__all__ = [
+    "GRAVITY",
+    "Load",
+    "Payload",
+    "SizeReport",
+    "StaticPeak",
+    "format_text",
+    "parse_load",
+    "parse_payload",
+    "size",
+]
+
+
+def size(
+    path: str | os.PathLike[str],
+    mappings: Mapping[str, str] | None = None,
+    *,
+    payloads: Sequence[Payload] = (),
+    loads: Sequence[Load] = (),
+    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
+) -> SizeReport:
+    """Size the joints of a URDF, xacro document or spec: the worst static torque of each over the joints' ranges,
+    with the payloads and loads given.
+
+    Raises:
+        XacrokitError: unreadable input, an unknown frame, or a robot with nothing to size.
+        SpecErrors: an invalid spec.
+    """
+    if mappings and not str(path).endswith(".xacro"):
+        from ..check.run import input_kind
+
+        if input_kind(Path(path)) != "xacro":
+            raise XacrokitError("name:=value arguments only apply to xacro input")
+    robot = load_robot(path, mappings, package_paths=package_paths, payloads=payloads, loads=loads)
+    return SizeReport.of(str(path), robot, static_peaks(robot), tuple(payloads), tuple(loads))
+
+
+def parse_payload(text: str) -> Payload:
+    """``MASS@FRAME`` ('5 kg@tool0', '500 g@tool0'): a point mass at the frame's origin."""
+    mass_text, frame = _at(text, "--payload", "MASS@FRAME, e.g. '5 kg@tool0'")
+    try:
+        mass = parse_quantity(mass_text, "mass")
+    except UnitError as exc:
+        raise XacrokitError(f"--payload {text!r}: {exc}") from None
+    if not mass > 0:
+        raise XacrokitError(f"--payload {text!r}: the mass must be > 0 kg")
+    return Payload(frame=frame, mass=mass)
+
+
+def parse_load(text: str) -> Load:
+    """``FX,FY,FZ@FRAME`` ('0,0,-50 N@tool0'; each component a force, N by default): the force the environment
+    applies to the robot at the frame's origin, in world axes."""
+    vector, frame = _at(text, "--force", "FX,FY,FZ@FRAME in N, world axes, e.g. '0,0,-50@tool0'")
+    parts = [p.strip() for p in vector.split(",")]
+    unit = parts[-1].split()[-1] if parts and len(parts[-1].split()) == 2 else ""
+    if len(parts) != 3:
+        raise XacrokitError(f"--force {text!r}: give three components FX,FY,FZ (N, world axes), e.g. '0,0,-50@tool0'")
+    try:
+        force = tuple(parse_quantity(p if len(p.split()) == 2 or not unit else f"{p} {unit}", "force") for p in parts)
+    except UnitError as exc:
+        raise XacrokitError(f"--force {text!r}: {exc}") from None
+    return Load(frame=frame, force=(force[0], force[1], force[2]))
+
+
+def _at(text: str, option: str, form: str) -> tuple[str, str]:
+    value, sep, frame = text.rpartition("@")
+    if not sep or not value.strip() or not frame.strip():
+        raise XacrokitError(f"{option} {text!r}: expected {form}")
+    return value.strip(), frame.strip()

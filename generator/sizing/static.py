@@ -1,0 +1,130 @@
+"""The static part of ``gen-robot size``: for every moving joint, the largest torque its motor must produce to hold the
+robot still anywhere in the joints' ranges, and the pose where it is needed.
+
+tau(q) = g(q) - J(q)^T w: the generalized gravity (pinocchio's computeGeneralizedGravity, the payload included) and
+the joint torques of the loads (each load's frame Jacobian in world axes at the frame's origin, transposed, times its
+force and moment; written apart, so that a user sees what the tool force costs).
+
+The worst case of joint i is a search, not a formula: |tau_i| over the box of the joints' ranges is sampled (a
+scrambled Sobol sequence, the box's corners and centre, every joint at its range's ends and middle) and the best
+samples are refined by bounded quasi-Newton steps (scipy's L-BFGS-B). A pose in the interior is a stationary point of
+tau_i; the search finds the global one when a sample lands in its basin, which the tests check against dense grids.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .robot import SizingRobot
+
+SAMPLES_PER_JOINT = 256  # Sobol samples per moving joint (2^k: the sequence's balance), capped by MAX_SAMPLES
+MAX_SAMPLES = 8192
+STARTS = 6  # best samples refined per joint
+STEP = 1e-6  # rad or m: the central differences' step
+ZERO = 1e-12  # a peak below this fraction of the largest torque sampled is rounding (a vertical axis): said as 0
+
+
+@dataclass(frozen=True)
+class StaticPeak:
+    """The worst static case of one joint: its torque there (signed: what the motor produces), the pose (every moving
+    joint's value) and the loads' share of the torque (-J^T w)."""
+
+    joint: str
+    torque: float
+    pose: dict[str, float]
+    gravity_torque: float
+    load_torque: float
+
+
+def torques(robot: SizingRobot, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(gravity, loads) joint torques of the moving joints at ``values``: g(q) and -J(q)^T w."""
+    import pinocchio as pin
+
+    model, data = robot.model, robot.data
+    q = robot.configuration(values)
+    rows = [j.v_index for j in robot.joints]
+    gravity = pin.computeGeneralizedGravity(model, data, q)[rows]
+    loads = np.zeros(len(rows))
+    if robot.loads:
+        pin.computeJointJacobians(model, data, q)
+        pin.updateFramePlacements(model, data)
+        for frame, force in robot.loads:
+            jacobian = pin.getFrameJacobian(model, data, frame, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+            loads -= (jacobian.T @ force.vector)[rows]
+    return gravity, loads
+
+
+def static_peaks(robot: SizingRobot, *, seed: int = 0) -> list[StaticPeak]:
+    """The worst static torque of every moving joint over the joints' ranges (see the module's notes)."""
+    from scipy.optimize import minimize  # type: ignore[import-untyped]
+    from scipy.stats import qmc  # type: ignore[import-untyped]
+
+    joints = robot.joints
+    lower = np.array([j.lower for j in joints])
+    upper = np.array([j.upper for j in joints])
+    count = min(MAX_SAMPLES, SAMPLES_PER_JOINT * len(joints))
+    unit = qmc.Sobol(len(joints), scramble=True, seed=seed).random(1 << max(count - 1, 1).bit_length())
+    samples = [*(lower + unit * (upper - lower)), *_landmarks(lower, upper)]
+    table = np.array([np.add(*torques(robot, s)) for s in samples])
+    peaks = []
+    for index, joint in enumerate(joints):
+
+        def cost(values: np.ndarray, index: int = index) -> tuple[float, np.ndarray]:
+            """-|tau_i| and its gradient by central differences (exact to O(h^2) = 1e-12: the search stops on
+            the true maximum, where a one-sided difference leaves it a milliradian off)."""
+            value = float(np.add(*torques(robot, values))[index])
+            gradient = np.empty(len(values))
+            for k in range(len(values)):
+                step = np.zeros(len(values))
+                step[k] = STEP
+                ahead = float(np.add(*torques(robot, values + step))[index])
+                behind = float(np.add(*torques(robot, values - step))[index])
+                gradient[k] = (ahead - behind) / (2 * STEP)
+            return -abs(value), -math.copysign(1.0, value) * gradient
+
+        best = np.argsort(-np.abs(table[:, index]))[:STARTS]
+        found = [samples[k] for k in best]
+        for start in list(found):
+            result = minimize(
+                cost,
+                start,
+                jac=True,
+                method="L-BFGS-B",
+                bounds=list(zip(lower, upper, strict=True)),
+                options={"ftol": 1e-15, "gtol": 1e-12},
+            )
+            found.append(np.clip(result.x, lower, upper))
+        pose = max(found, key=lambda values: -cost(values)[0])
+        gravity, loads = torques(robot, pose)
+        scale = max(float(np.abs(table).max()), 1e-300)
+        if abs(gravity[index] + loads[index]) <= ZERO * scale:  # (a joint gravity never loads: rounding, not torque)
+            gravity[index] = loads[index] = 0.0
+        peaks.append(
+            StaticPeak(
+                joint=joint.name,
+                torque=float(gravity[index] + loads[index]),
+                pose={j.name: float(v) for j, v in zip(joints, pose, strict=True)},
+                gravity_torque=float(gravity[index]),
+                load_torque=float(loads[index]),
+            )
+        )
+    return peaks
+
+
+def _landmarks(lower: np.ndarray, upper: np.ndarray) -> list[np.ndarray]:
+    """The centre of the range box, each joint at its ends and middle with the others centred, and the corners (all
+    of them up to 10 joints): where gravity torques of arms often peak (links stretched out at a limit)."""
+    centre = (lower + upper) / 2
+    points = [centre]
+    for k in range(len(lower)):
+        for value in (lower[k], upper[k]):
+            point = centre.copy()
+            point[k] = value
+            points.append(point)
+    if len(lower) <= 10:
+        points += [np.array(c) for c in itertools.product(*zip(lower, upper, strict=True))]
+    return points

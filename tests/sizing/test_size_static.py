@@ -1,0 +1,227 @@
+"""gen-robot size, static part: joint torques against closed forms written out here (a two-link planar arm with a
+payload), the loads' J^T w against pinocchio's inverse dynamics with external forces, the worst-case search against
+dense grids, and the command line's report, exit codes and errors."""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+
+import jsonschema
+import numpy as np
+import pinocchio as pin
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from conftest import REPO, gen_robot
+from xacrokit.errors import XacrokitError
+from xacrokit.sizing import GRAVITY, Load, Payload, parse_load, parse_payload, size
+from xacrokit.sizing.robot import load_robot
+from xacrokit.sizing.static import torques
+
+# the course's two-link arm: links of 0.6 m and 0.4 m, each a uniform bar (its centre of mass at its middle)
+L1, L2, M1, M2 = 0.6, 0.4, 2.0, 1.2
+
+
+def planar_arm(lower1=-math.pi, upper1=math.pi, lower2=-math.pi, upper2=math.pi, effort=100.0) -> str:
+    """Two revolute joints about y in the x-z plane, the links along x at q = 0 (horizontal), a tool frame at the
+    tip; inertials of thin bars (their tensors do not enter static torques)."""
+
+    def bar(name, mass, length):
+        i = mass * length**2 / 12
+        return (
+            f'<link name="{name}"><inertial><origin xyz="{length / 2} 0 0"/><mass value="{mass}"/>'
+            f'<inertia ixx="1e-6" ixy="0" ixz="0" iyy="{i}" iyz="0" izz="{i}"/></inertial>'
+            f'<visual><origin xyz="{length / 2} 0 0"/><geometry><box size="{length} 0.02 0.02"/></geometry></visual>'
+            "</link>"
+        )
+
+    def joint(name, parent, child, x, lower, upper):
+        return (
+            f'<joint name="{name}" type="revolute"><parent link="{parent}"/><child link="{child}"/>'
+            f'<origin xyz="{x} 0 0"/><axis xyz="0 1 0"/>'
+            f'<limit lower="{lower!r}" upper="{upper!r}" effort="{effort}" velocity="1"/></joint>'
+        )
+
+    return (
+        '<robot name="planar"><link name="base"/>'
+        + bar("upper", M1, L1)
+        + bar("fore", M2, L2)
+        + '<link name="tool"/>'
+        + joint("shoulder", "base", "upper", 0.0, lower1, upper1)
+        + joint("elbow", "upper", "fore", L1, lower2, upper2)
+        + '<joint name="tool_joint" type="fixed"><parent link="fore"/><child link="tool"/>'
+        + f'<origin xyz="{L2} 0 0"/></joint></robot>'
+    )
+
+
+def closed_form(q1, q2, payload=0.0):
+    """The torques the motors produce to hold the arm: a point at distance r along a link at angle a about y sits at
+    x = r cos a, so gravity's moment about y is m g r cos a, and the motor's is its opposite."""
+    far = M2 * L2 / 2 + payload * L2
+    near = M1 * L1 / 2 + (M2 + payload) * L1
+    return (
+        -GRAVITY * (near * np.cos(q1) + far * np.cos(q1 + q2)),
+        -GRAVITY * far * np.cos(q1 + q2),
+    )
+
+
+@pytest.fixture
+def arm_file(tmp_path):
+    def write(**limits):
+        path = tmp_path / "planar.urdf"
+        path.write_text(planar_arm(**limits), encoding="utf-8")
+        return path
+
+    return write
+
+
+angles = st.floats(-math.pi, math.pi)
+
+
+@settings(max_examples=30, deadline=None)
+@given(q1=angles, q2=angles, payload=st.floats(0.0, 10.0))
+def test_torques_equal_the_closed_form_two_link_arm(tmp_path_factory, q1, q2, payload):
+    path = tmp_path_factory.mktemp("arm") / "planar.urdf"
+    path.write_text(planar_arm(), encoding="utf-8")
+    robot = load_robot(path, payloads=[Payload("tool", payload)] if payload else [])
+    gravity, loads = torques(robot, np.array([q1, q2]))
+    want = closed_form(q1, q2, payload)
+    scale = GRAVITY * (M1 * L1 + (M2 + payload) * (L1 + L2))
+    assert np.abs(gravity - want).max() <= 1e-12 * scale and not loads.any()
+
+
+def test_the_worst_case_of_a_full_range_is_the_arm_stretched_out(arm_file):
+    report = size(arm_file(), payloads=[Payload("tool", 3.0)])
+    shoulder, elbow = report.peaks
+    assert abs(shoulder.torque) == pytest.approx(-closed_form(0.0, 0.0, 3.0)[0], rel=1e-9)
+    assert abs(elbow.torque) == pytest.approx(-closed_form(0.0, 0.0, 3.0)[1], rel=1e-9)
+    q1, q2 = shoulder.pose["shoulder"], shoulder.pose["elbow"]
+    assert abs(math.cos(q1)) == pytest.approx(1.0, abs=1e-9) and math.cos(q2) == pytest.approx(1.0, abs=1e-9)
+
+
+@pytest.mark.parametrize(
+    "limits",
+    [
+        {"lower1": 0.3, "upper1": 1.2, "lower2": -0.5, "upper2": 0.4},
+        {"lower1": -2.5, "upper1": -1.9, "lower2": 1.0, "upper2": 2.9},
+        {"lower1": 1.4, "upper1": 1.7, "lower2": -0.1, "upper2": 0.1},  # (the maximum in the interior: q1 + q2 = pi/2)
+    ],
+)
+def test_the_search_finds_the_dense_grids_maximum_within_the_limits(arm_file, limits):
+    report = size(arm_file(**limits))
+    grid1 = np.linspace(limits["lower1"], limits["upper1"], 801)
+    grid2 = np.linspace(limits["lower2"], limits["upper2"], 801)
+    a, b = np.meshgrid(grid1, grid2, indexing="ij")
+    for index, peak in enumerate(report.peaks):
+        values = (
+            np.abs(closed_form(a, b)[index])
+            if False
+            else np.abs(np.vectorize(lambda x, y, k=index: closed_form(x, y)[k])(a, b))
+        )
+        assert abs(peak.torque) >= values.max() * (1 - 1e-9)  # (at least the grid's best)
+        pose = (peak.pose["shoulder"], peak.pose["elbow"])
+        assert limits["lower1"] <= pose[0] <= limits["upper1"] and limits["lower2"] <= pose[1] <= limits["upper2"]
+        assert peak.torque == pytest.approx(closed_form(*pose)[index], rel=1e-12)  # (and true where it says)
+
+
+@settings(max_examples=20, deadline=None)
+@given(
+    q=st.lists(st.floats(-3.0, 3.0), min_size=6, max_size=6),
+    force=st.lists(st.floats(-100.0, 100.0), min_size=3, max_size=3),
+)
+def test_loads_are_pinocchios_inverse_dynamics_with_external_forces(tmp_path_factory, q, force):
+    """-J^T w (the frame Jacobian in world axes) against rnea(q, 0, 0, fext): w moved to the parent joint's frame
+    as a spatial force (the moment of the force about the joint's origin added)."""
+    spec = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
+    robot = load_robot(spec, payloads=[Payload("tool0", 2.0)], loads=[Load("tool0", tuple(force))])
+    values = np.array(q)
+    gravity, loads = torques(robot, values)
+    model, data = robot.model, robot.model.createData()
+    configuration = robot.configuration(values)
+    pin.forwardKinematics(model, data, configuration)
+    pin.updateFramePlacements(model, data)
+    frame = model.frames[model.getFrameId("tool0")]
+    point = data.oMf[model.getFrameId("tool0")].translation
+    world = pin.Force(np.array(force), np.cross(point, np.array(force)))  # (about the world's origin)
+    fext = [pin.Force.Zero() for _ in range(model.njoints)]
+    fext[frame.parentJoint] = data.oMi[frame.parentJoint].actInv(world)
+    zero = np.zeros(model.nv)
+    tau = pin.rnea(model, data, configuration, zero, zero, fext)[[j.v_index for j in robot.joints]]
+    scale = max(np.abs(tau).max(), 1.0)
+    assert np.abs(gravity + loads - tau).max() <= 1e-9 * scale
+
+
+def test_the_command_line_reports_json_by_its_schema_and_fails_on_a_margin(arm_file, tmp_path):
+    path = arm_file(effort=5.0)  # (the stretched-out shoulder needs ~ 28 N*m)
+    result = gen_robot("size", path, "--payload", "1 kg@tool", "--json")
+    assert result.returncode == 1, result.stderr
+    report = json.loads(result.stdout)
+    schema = json.loads((REPO / "schemas" / "size-report.schema.json").read_text(encoding="utf-8"))
+    jsonschema.validate(report, schema)
+    shoulder = report["joints"][0]
+    assert shoulder["name"] == "shoulder" and not shoulder["static"]["pass"]
+    # (stretched out either way: q1 = 0 or pi, the sign of the torque with it)
+    assert abs(shoulder["static"]["peak_torque"]) == pytest.approx(-closed_form(0, 0, 1.0)[0], rel=1e-9)
+    assert set(shoulder["static"]["pose"]) == {"shoulder", "elbow"}
+    assert report["failed"] == ["shoulder", "elbow"]  # (the elbow needs 9.80665 * 0.64 = 6.3 N*m)
+    table = gen_robot("size", arm_file(effort=500.0), "--payload", "1 kg@tool")
+    assert table.returncode == 0 and "OK: every margin >= 1" in table.stdout
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        (["--payload", "5 kg@toool"], "no frame 'toool' (did you mean 'tool'?)"),
+        (["--payload", "5 parsecs@tool"], "--payload '5 parsecs@tool'"),
+        (["--payload", "5 kg"], "expected MASS@FRAME"),
+        (["--payload", "-1 kg@tool"], "must be > 0"),
+        (["--force", "0,0@tool"], "three components"),
+        (["--force", "0,0,-5 kg@tool"], "--force '0,0,-5 kg@tool'"),
+        (["x:=1"], "only apply to xacro input"),
+    ],
+)
+def test_bad_sizing_input_is_a_clear_error_with_exit_2(arm_file, args, words):
+    result = gen_robot("size", arm_file(), *args)
+    assert result.returncode == 2 and words in result.stderr, result.stderr
+    assert "Traceback" not in result.stderr
+
+
+def test_a_urdf_without_inertials_says_which_links(tmp_path):
+    text = planar_arm()
+    bare = re.sub(r"<inertial>.*?</inertial>", "", text)
+    path = tmp_path / "bare.urdf"
+    path.write_text(bare, encoding="utf-8")
+    result = gen_robot("size", path)
+    assert result.returncode == 2 and "upper, fore" in result.stderr and "<inertial>" in result.stderr
+
+
+def test_flag_parsers():
+    assert parse_payload("500 g@tool0") == Payload("tool0", 0.5)
+    assert parse_load("0, 0, -50@tool0") == Load("tool0", (0.0, 0.0, -50.0))
+    assert parse_load("1,2,3 kN@flange").force == (1000.0, 2000.0, 3000.0)
+    with pytest.raises(XacrokitError):
+        parse_payload("@tool0")
+
+
+def test_a_base_axis_gravity_never_loads_is_zero_not_rounding():
+    report = size(REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml", payloads=[Payload("tool0", 5.0)])
+    pan = report.peaks[0]
+    assert pan.joint == "shoulder_pan_joint" and pan.torque == 0.0 and report.margin(pan) is None
+
+
+def test_the_docs_starter_arm_example_says_what_size_finds(tmp_path):
+    """docs/size.md: the arm starter with 1 kg and 20 N pressing down fails joints 2 and 3 (margins 0.76, 0.99)."""
+    assert gen_robot("new", "my_arm", "--kind", "arm", cwd=tmp_path).returncode == 0
+    result = gen_robot(
+        "size", "my_arm.yaml", "--payload", "1 kg@tool0", "--force", "0,0,-20@tool0", "--json", cwd=tmp_path
+    )
+    assert result.returncode == 1
+    report = json.loads(result.stdout)
+    assert report["failed"] == ["joint_2", "joint_3"]
+    margins = [round(j["static"]["margin"], 2) for j in report["joints"][1:]]
+    assert margins == [0.76, 0.99]
+    docs = (REPO / "docs" / "size.md").read_text(encoding="utf-8")
+    assert "margins 0.76 and 0.99" in docs
