@@ -376,7 +376,10 @@ def build_parser() -> argparse.ArgumentParser:
         "scene specs, or gen-robot check's JSON report.",
     )
     schema.add_argument(
-        "--kind", choices=("robot", "scene", "check-report", "size-report"), default="robot", help="which schema"
+        "--kind",
+        choices=("robot", "scene", "check-report", "size-report", "sizing"),
+        default="robot",
+        help="which schema",
     )
     schema.set_defaults(handler=_cmd_schema)
 

@@ -40,6 +40,11 @@ def add_size_command(commands: Any, add_xacro_options: Callable[[argparse.Argume
         help="a force (N, world axes) the "
         "environment applies at a frame's origin, e.g. '0,0,-50@tool0' (pressing down on the tool); repeatable",
     )
+    sz.add_argument(
+        "--sizing",
+        metavar="FILE",
+        help="a sizing file (YAML, schemas/sizing.schema.json): payloads, loads, a motion through waypoints, drives",
+    )
     sz.add_argument("--json", action="store_true", help="print the report as JSON (schemas/size-report.schema.json)")
     add_xacro_options(sz)
     sz.set_defaults(handler=_cmd_size)
@@ -55,6 +60,7 @@ def _cmd_size(args: argparse.Namespace) -> int:
         parse_mappings(args.mappings),
         payloads=payloads,
         loads=loads,
+        sizing=args.sizing,
         package_paths=parse_packages(args.package),
     )
     if args.json:

@@ -10,14 +10,17 @@ import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
-from ..errors import XacrokitError
+from ..errors import SpecErrors, XacrokitError
 from ..units import UnitError, parse_quantity
+from .file import Drive, Sizing, motion_of, name_errors, read_sizing
+from .motion import inverse_dynamics, joint_motions, trajectory
 from .report import SizeReport, format_text
-from .robot import GRAVITY, Load, Payload, load_robot
+from .robot import GRAVITY, Load, Payload, add_loads, load_robot
 from .static import StaticPeak, static_peaks
 
 __all__ = [
     "GRAVITY",
+    "Drive",
     "Load",
     "Payload",
     "SizeReport",
@@ -35,22 +38,35 @@ def size(
     *,
     payloads: Sequence[Payload] = (),
     loads: Sequence[Load] = (),
+    sizing: str | os.PathLike[str] | None = None,
     package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
 ) -> SizeReport:
     """Size the joints of a URDF, xacro document or spec: the worst static torque of each over the joints' ranges,
-    with the payloads and loads given.
+    with the payloads and loads given (and those of the ``sizing`` file); with the sizing file's motion, the torques,
+    speeds and power along it; with its drives, the motor side.
 
     Raises:
         XacrokitError: unreadable input, an unknown frame, or a robot with nothing to size.
-        SpecErrors: an invalid spec.
+        SpecErrors: an invalid spec or sizing file (located).
     """
     if mappings and not str(path).endswith(".xacro"):
         from ..check.run import input_kind
 
         if input_kind(Path(path)) != "xacro":
             raise XacrokitError("name:=value arguments only apply to xacro input")
-    robot = load_robot(path, mappings, package_paths=package_paths, payloads=payloads, loads=loads)
-    return SizeReport.of(str(path), robot, static_peaks(robot), tuple(payloads), tuple(loads))
+    asked = read_sizing(sizing) if sizing is not None else Sizing()
+    robot = load_robot(path, mappings, package_paths=package_paths)
+    problems = name_errors(asked, robot)
+    if problems:
+        raise SpecErrors(problems)
+    payloads, loads = (*payloads, *asked.payloads), (*loads, *asked.loads)
+    add_loads(robot, payloads, loads)
+    motion = motion_of(asked, robot)
+    moved = None
+    if motion is not None:
+        path_samples = trajectory(motion)
+        moved = joint_motions(robot, path_samples, inverse_dynamics(robot, path_samples))
+    return SizeReport.of(str(path), robot, static_peaks(robot), payloads, loads, moved, asked.drives)
 
 
 def parse_payload(text: str) -> Payload:

@@ -116,12 +116,7 @@ def load_robot(
     joints = _moving_joints(model, root)
     massless = _massless_moving_links(model, root)
     robot = SizingRobot(name=root.get("name", where.stem), model=model, joints=joints, massless=massless)
-    for payload in payloads:
-        _attach(robot, payload)
-    for load in loads:
-        frame = _frame_id(robot, load.frame, "--force")
-        robot.loads.append((frame, pin.Force(np.array(load.force, dtype=float), np.array(load.moment, dtype=float))))
-    robot.data = model.createData()
+    add_loads(robot, payloads, loads)
     if not joints:
         raise XacrokitError(f"{where}: the robot has no revolute, continuous or prismatic joint to size")
     if all(model.inertias[j].mass == 0.0 for j in range(1, model.njoints)):
@@ -130,6 +125,24 @@ def load_robot(
             f"{', '.join(_moved_links(model, root)[:10])} ..."
         )
     return robot
+
+
+def add_loads(robot: SizingRobot, payloads: Sequence[Payload] = (), loads: Sequence[Load] = ()) -> None:
+    """Attach payloads to the bodies that carry their frames and register the loads (then make the model's data
+    anew). Raises XacrokitError for a frame the robot lacks."""
+    import pinocchio as pin
+
+    for payload in payloads:
+        _attach(robot, payload)
+    for load in loads:
+        frame = _frame_id(robot, load.frame, "--force")
+        robot.loads.append((frame, pin.Force(np.array(load.force, dtype=float), np.array(load.moment, dtype=float))))
+    robot.data = robot.model.createData()
+
+
+def frame_names(robot: SizingRobot) -> list[str]:
+    """The frames payloads and loads may name (links and joints)."""
+    return [f.name for f in robot.model.frames if f.name != "universe"]
 
 
 def _moving_joints(model: Any, root: Any) -> list[MovingJoint]:
@@ -198,8 +211,7 @@ def _moved_links(model: Any, root: Any) -> list[str]:
 def _frame_id(robot: SizingRobot, name: str, option: str) -> int:
     model = robot.model
     if not model.existFrame(name):
-        known = [f.name for f in model.frames if f.name != "universe"]
-        raise XacrokitError(f"{option}: the robot has no frame {name!r}{did_you_mean(name, known)}")
+        raise XacrokitError(f"{option}: the robot has no frame {name!r}{did_you_mean(name, frame_names(robot))}")
     return int(model.getFrameId(name))
 
 

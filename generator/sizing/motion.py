@@ -1,0 +1,235 @@
+"""The motion part of ``gen-robot size``: a joint-space trajectory through waypoints, time-scaled within velocity and
+acceleration limits, and the joint torques along it by inverse dynamics (pinocchio's rnea, payloads and loads
+included): per joint the peak and RMS torque, peak speed and acceleration, peak and regenerative power, and energy.
+
+Each segment between two waypoints is a straight line in joint space, q(t) = q_a + s(t) (q_b - q_a), at rest at both
+ends, and every joint arrives together. The path parameter s follows
+
+- ``quintic``: s = 10 u^3 - 15 u^4 + 6 u^5 (u = t / T): peak speed 15/8 |dq| / T, peak acceleration
+  (10 / sqrt 3) |dq| / T^2; T the shortest that keeps every joint within its limits;
+- ``trapezoid``: constant acceleration, cruise, constant deceleration (a triangle when the segment is too short to
+  reach the speed limit); T likewise the shortest.
+
+A dwell (the robot held still at each waypoint, default 0) is part of the cycle: the RMS torque counts it, as sizing
+guides ask.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from .robot import SizingRobot
+
+QUINTIC_SPEED = 15.0 / 8.0  # peak ds/du of 10u^3 - 15u^4 + 6u^5
+QUINTIC_ACCELERATION = 10.0 / math.sqrt(3.0)  # peak |d2s/du2|
+
+
+@dataclass(frozen=True)
+class Motion:
+    """Waypoints (one value per moving joint, in the robot's joint order), the time scaling, the joints' speed and
+    acceleration limits (rad/s, rad/s^2 or m/s, m/s^2), the dwell at each waypoint (s) and the sampling step (s)."""
+
+    waypoints: tuple[tuple[float, ...], ...]
+    velocity: tuple[float, ...]
+    acceleration: tuple[float, ...]
+    scaling: str = "quintic"
+    dwell: float = 0.0
+    step: float = 1e-3
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """Samples of the whole cycle: times (s), positions, velocities, accelerations (one row per sample)."""
+
+    t: np.ndarray
+    q: np.ndarray
+    v: np.ndarray
+    a: np.ndarray
+
+
+@dataclass(frozen=True)
+class JointMotion:
+    """One joint along the cycle: torques (N*m or N), speeds, accelerations, power (W), energy (J)."""
+
+    joint: str
+    peak_torque: float
+    rms_torque: float
+    peak_speed: float
+    peak_acceleration: float
+    peak_power: float  # the largest tau * qdot (motoring)
+    peak_regenerative_power: float  # the most negative tau * qdot, as a positive number (0 if never)
+    energy: float  # the integral of tau * qdot over the cycle (net)
+    motoring_energy: float  # the integral of its positive part
+    peak_load_inertia: float  # the largest diagonal entry M_ii(q) of the mass matrix along the cycle (kg*m^2 or kg)
+
+
+def _quintic(duration: float, times: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """s, ds/dt, d2s/dt2 at ``times`` (0..duration) of a rest-to-rest quintic segment of length 1."""
+    u = np.clip(times / duration, 0.0, 1.0)
+    s = u**3 * (10 - 15 * u + 6 * u * u)
+    ds = 30 * u * u * (1 - u) ** 2 / duration
+    dds = 60 * u * (1 - u) * (1 - 2 * u) / duration**2
+    return s, ds, dds
+
+
+def _trapezoid(
+    speed: float, acceleration: float, times: np.ndarray
+) -> tuple[float, np.ndarray, np.ndarray, np.ndarray]:
+    """(duration, s, ds, dds) of a rest-to-rest trapezoid of length 1 with the path's speed and acceleration limits
+    (a triangle when the cruise speed is not reached)."""
+    ramp = speed / acceleration
+    if ramp * speed >= 1.0:  # (a triangle: accelerate to the middle, decelerate)
+        ramp = math.sqrt(1.0 / acceleration)
+        speed = acceleration * ramp
+        duration = 2.0 * ramp
+    else:
+        duration = 1.0 / speed + ramp
+    t = np.clip(times, 0.0, duration)
+    rising, falling = t < ramp, t > duration - ramp
+    tail = duration - t
+    s = np.where(rising, acceleration * t * t / 2, np.where(falling, 1.0 - acceleration * tail * tail / 2, 0.0))
+    cruise = ~(rising | falling)
+    s = np.where(cruise, acceleration * ramp * ramp / 2 + speed * (t - ramp), s)
+    ds = np.where(rising, acceleration * t, np.where(falling, acceleration * tail, speed))
+    dds = np.where(rising, acceleration, np.where(falling, -acceleration, 0.0))
+    return duration, s, ds, dds
+
+
+def segment_duration(motion: Motion, delta: np.ndarray) -> float:
+    """The shortest duration of a segment that keeps every joint within its speed and acceleration limits."""
+    moving = np.abs(delta) > 0
+    if not moving.any():
+        return 0.0
+    speed = float(np.min(np.array(motion.velocity)[moving] / np.abs(delta[moving])))  # the path's, per unit s
+    acceleration = float(np.min(np.array(motion.acceleration)[moving] / np.abs(delta[moving])))
+    if motion.scaling == "quintic":
+        return max(QUINTIC_SPEED / speed, math.sqrt(QUINTIC_ACCELERATION / acceleration))
+    return _trapezoid(speed, acceleration, np.zeros(1))[0]
+
+
+def trajectory(motion: Motion) -> Trajectory:
+    """The sampled cycle: each segment at its shortest duration, a dwell at every waypoint (the first included)."""
+    times: list[np.ndarray] = []
+    positions: list[np.ndarray] = []
+    speeds: list[np.ndarray] = []
+    accelerations: list[np.ndarray] = []
+    clock = 0.0
+    points = [np.array(w, dtype=float) for w in motion.waypoints]
+    n = len(points[0])
+
+    def hold(point: np.ndarray, duration: float) -> None:
+        nonlocal clock
+        count = max(int(math.ceil(duration / motion.step)), 1) if duration > 0 else 0
+        if count:
+            local = np.linspace(0.0, duration, count + 1)[1:]
+            times.append(clock + local)
+            positions.append(np.tile(point, (count, 1)))
+            speeds.append(np.zeros((count, n)))
+            accelerations.append(np.zeros((count, n)))
+            clock += duration
+
+    times.append(np.zeros(1))
+    positions.append(points[0][None, :])
+    speeds.append(np.zeros((1, n)))
+    accelerations.append(np.zeros((1, n)))
+    hold(points[0], motion.dwell)
+    for start, end in zip(points, points[1:], strict=False):
+        delta = end - start
+        duration = segment_duration(motion, delta)
+        if duration > 0:
+            count = max(int(math.ceil(duration / motion.step)), 2)
+            local = np.linspace(0.0, duration, count + 1)[1:]
+            if motion.scaling == "quintic":
+                s, ds, dds = _quintic(duration, local)
+            else:
+                moving = np.abs(delta) > 0
+                speed = float(np.min(np.array(motion.velocity)[moving] / np.abs(delta[moving])))
+                acceleration = float(np.min(np.array(motion.acceleration)[moving] / np.abs(delta[moving])))
+                _, s, ds, dds = _trapezoid(speed, acceleration, local)
+            times.append(clock + local)
+            positions.append(start + s[:, None] * delta)
+            speeds.append(ds[:, None] * delta)
+            accelerations.append(dds[:, None] * delta)
+            clock += duration
+        hold(end, motion.dwell)
+    return Trajectory(
+        t=np.concatenate(times),
+        q=np.concatenate(positions),
+        v=np.concatenate(speeds),
+        a=np.concatenate(accelerations),
+    )
+
+
+def inverse_dynamics(robot: SizingRobot, path: Trajectory) -> np.ndarray:
+    """The moving joints' torques at every sample: rnea(q, v, a) with the loads as external forces (each load's
+    force and moment moved to its frame's parent joint), one row per sample."""
+    import pinocchio as pin
+
+    model, data = robot.model, robot.data
+    rows = [j.v_index for j in robot.joints]
+    result = np.empty((len(path.t), len(rows)))
+    for k in range(len(path.t)):
+        q = robot.configuration(path.q[k])
+        v, a = np.zeros(model.nv), np.zeros(model.nv)
+        v[rows], a[rows] = path.v[k], path.a[k]
+        fext = None
+        if robot.loads:
+            pin.forwardKinematics(model, data, q)
+            pin.updateFramePlacements(model, data)
+            fext = [pin.Force.Zero() for _ in range(model.njoints)]
+            for frame_id, force in robot.loads:
+                frame = model.frames[frame_id]
+                point = data.oMf[frame_id].translation
+                world = pin.Force(force.linear, force.angular + np.cross(point, force.linear))
+                fext[frame.parentJoint] += data.oMi[frame.parentJoint].actInv(world)
+        tau = pin.rnea(model, data, q, v, a) if fext is None else pin.rnea(model, data, q, v, a, fext)
+        result[k] = tau[rows]
+    return result
+
+
+def joint_motions(robot: SizingRobot, path: Trajectory, torque: np.ndarray) -> list[JointMotion]:
+    """Per joint: the peaks, the RMS torque over the whole cycle and the energies (trapezoidal rule in time), and the
+    largest inertia the joint moves (the mass matrix's diagonal, pinocchio's crba)."""
+    import pinocchio as pin
+
+    rows = [j.v_index for j in robot.joints]
+    inertia = np.zeros(len(rows))
+    for k in range(len(path.t)):
+        diagonal = np.diag(pin.crba(robot.model, robot.data, robot.configuration(path.q[k])))[rows]
+        inertia = np.maximum(inertia, diagonal)
+    power = torque * path.v
+    duration = float(path.t[-1] - path.t[0])
+    result = []
+    for index, joint in enumerate(robot.joints):
+        squared = np.trapezoid(torque[:, index] ** 2, path.t) if duration > 0 else 0.0
+        result.append(
+            JointMotion(
+                joint=joint.name,
+                peak_torque=float(torque[np.argmax(np.abs(torque[:, index])), index]),
+                rms_torque=float(math.sqrt(squared / duration)) if duration > 0 else float(abs(torque[0, index])),
+                peak_speed=float(np.abs(path.v[:, index]).max()),
+                peak_acceleration=float(np.abs(path.a[:, index]).max()),
+                peak_power=float(max(power[:, index].max(), 0.0)),
+                peak_regenerative_power=float(max(-power[:, index].min(), 0.0)) + 0.0,
+                energy=float(np.trapezoid(power[:, index], path.t)),
+                motoring_energy=float(np.trapezoid(np.maximum(power[:, index], 0.0), path.t)),
+                peak_load_inertia=float(inertia[index]),
+            )
+        )
+    return result
+
+
+def waypoint_errors(robot: SizingRobot, waypoints: Sequence[Sequence[float]]) -> list[str]:
+    """Waypoint values outside their joint's range, said as 'waypoint k: joint value outside [lower, upper]'."""
+    problems = []
+    for k, point in enumerate(waypoints):
+        for joint, value in zip(robot.joints, point, strict=True):
+            if joint.kind != "continuous" and not joint.lower - 1e-12 <= value <= joint.upper + 1e-12:
+                problems.append(
+                    f"waypoint {k}: {joint.name} = {value:g} is outside its range [{joint.lower:g}, {joint.upper:g}]"
+                )
+    return problems

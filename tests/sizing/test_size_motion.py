@@ -1,0 +1,237 @@
+"""gen-robot size along a motion: inverse dynamics against the closed-form two-link arm (mass matrix, Coriolis and
+gravity terms written out) and MuJoCo's mj_inverse; the energy balance of every rest-to-rest segment against the
+closed-form potential energy; time scaling within the limits; the sizing file's drives and its located errors."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import jsonschema
+import numpy as np
+import pytest
+import yaml
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.integrate import simpson
+from test_size_static import GRAVITY, L1, L2, M1, M2, planar_arm
+
+from conftest import REPO, gen_robot
+from xacrokit.errors import SpecErrors
+from xacrokit.sizing import Payload, size
+from xacrokit.sizing.motion import Motion, Trajectory, inverse_dynamics, trajectory
+from xacrokit.sizing.robot import load_robot
+
+I1, I2 = M1 * L1**2 / 12, M2 * L2**2 / 12  # (the bars' tensors about y, as planar_arm writes them)
+
+
+def closed_form_dynamics(q, v, a, payload=0.0):
+    """tau = M(q) qdd + C(q, qd) qd + g(q) of the planar two-link arm, the payload a point mass at the tip: the
+    textbook terms with the second link's mass, centre and inertia including it."""
+    m2 = M2 + payload
+    c2 = (M2 * L2 / 2 + payload * L2) / m2
+    i2 = I2 + M2 * (L2 / 2 - c2) ** 2 + payload * (L2 - c2) ** 2
+    c1 = L1 / 2
+    cos2, sin2 = math.cos(q[1]), math.sin(q[1])
+    m11 = I1 + i2 + M1 * c1**2 + m2 * (L1**2 + c2**2 + 2 * L1 * c2 * cos2)
+    m12 = i2 + m2 * (c2**2 + L1 * c2 * cos2)
+    m22 = i2 + m2 * c2**2
+    h = m2 * L1 * c2 * sin2
+    # (angles grow from x towards -z, so a point's height is -r sin(angle) and gravity's terms carry cosines)
+    g1 = -GRAVITY * ((M1 * c1 + m2 * L1) * math.cos(q[0]) + m2 * c2 * math.cos(q[0] + q[1]))
+    g2 = -GRAVITY * m2 * c2 * math.cos(q[0] + q[1])
+    return np.array(
+        [
+            m11 * a[0] + m12 * a[1] - h * (2 * v[0] * v[1] + v[1] ** 2) + g1,
+            m12 * a[0] + m22 * a[1] + h * v[0] ** 2 + g2,
+        ]
+    )
+
+
+def potential(q, payload=0.0):
+    return -GRAVITY * (
+        (M1 * L1 / 2 + (M2 + payload) * L1) * math.sin(q[0]) + (M2 * L2 / 2 + payload * L2) * math.sin(q[0] + q[1])
+    )
+
+
+@pytest.fixture(scope="module")
+def arm_path(tmp_path_factory):
+    path = tmp_path_factory.mktemp("arm") / "planar.urdf"
+    path.write_text(planar_arm(effort=1000.0), encoding="utf-8")
+    return path
+
+
+values = st.floats(-3.0, 3.0)
+
+
+@settings(max_examples=40, deadline=None)
+@given(state=st.lists(values, min_size=6, max_size=6), payload=st.floats(0.0, 5.0))
+def test_inverse_dynamics_equal_the_closed_form_arm(arm_path, state, payload):
+    robot = load_robot(arm_path, payloads=[Payload("tool", payload)] if payload else [])
+    q, v, a = np.array(state[:2]), np.array(state[2:4]), np.array(state[4:])
+    tau = inverse_dynamics(robot, Trajectory(np.zeros(1), q[None], v[None], a[None]))[0]
+    want = closed_form_dynamics(q, v, a, payload)
+    assert np.abs(tau - want).max() <= 1e-9 * max(np.abs(want).max(), 1.0)
+
+
+def test_inverse_dynamics_equal_mujocos(arm_path):
+    mujoco = pytest.importorskip("mujoco")
+    model = mujoco.MjModel.from_xml_string(arm_path.read_text(encoding="utf-8"))
+    model.opt.gravity[:] = [0.0, 0.0, -GRAVITY]
+    data = mujoco.MjData(model)
+    robot = load_robot(arm_path)
+    for q, v, a in np.random.default_rng(7).uniform(-3, 3, (50, 3, 2)):
+        data.qpos[:], data.qvel[:], data.qacc[:] = q, v, a
+        mujoco.mj_inverse(model, data)
+        tau = inverse_dynamics(robot, Trajectory(np.zeros(1), q[None], v[None], a[None]))[0]
+        assert np.abs(tau - data.qfrc_inverse).max() <= 1e-9 * max(np.abs(tau).max(), 1.0)
+
+
+@settings(max_examples=15, deadline=None)
+@given(
+    start=st.lists(st.floats(-1.5, 1.5), min_size=2, max_size=2),
+    end=st.lists(st.floats(-1.5, 1.5), min_size=2, max_size=2),
+    payload=st.floats(0.0, 3.0),
+)
+def test_energy_balance_of_a_rest_to_rest_segment(arm_path, start, end, payload):
+    """The integral of tau . qdot over a segment at rest at both ends is the potential energy gained (frictionless:
+    the kinetic energy is 0 at both ends), Simpson's rule on the quintic's uniform samples."""
+    if max(abs(s - e) for s, e in zip(start, end, strict=True)) < 1e-3:
+        return
+    robot = load_robot(arm_path, payloads=[Payload("tool", payload)] if payload else [])
+    motion = Motion(waypoints=(tuple(start), tuple(end)), velocity=(2.0, 3.0), acceleration=(4.0, 6.0), step=2e-4)
+    path = trajectory(motion)
+    tau = inverse_dynamics(robot, path)
+    work = simpson(np.sum(tau * path.v, axis=1), x=path.t)
+    gained = potential(end, payload) - potential(start, payload)
+    scale = GRAVITY * (M1 * L1 + (M2 + payload) * (L1 + L2))
+    assert work == pytest.approx(gained, abs=1e-9 * scale)
+
+
+@pytest.mark.parametrize("scaling", ["quintic", "trapezoid"])
+def test_each_segment_is_as_fast_as_the_limits_allow_and_within_them(scaling):
+    motion = Motion(
+        waypoints=((0.0, 0.0), (1.0, -0.2), (1.0, 0.3), (0.2, 0.3)),
+        velocity=(1.0, 0.5),
+        acceleration=(2.0, 3.0),
+        scaling=scaling,
+        step=1e-4,
+    )
+    path = trajectory(motion)
+    assert np.all(np.abs(path.v) <= np.array(motion.velocity) * (1 + 1e-9))
+    assert np.all(np.abs(path.a) <= np.array(motion.acceleration) * (1 + 1e-9))
+    assert path.v[0].tolist() == [0.0, 0.0] and abs(path.v[-1]).max() < 1e-9
+    np.testing.assert_allclose(path.q[-1], motion.waypoints[-1], atol=1e-12)
+    # every segment reaches one of its limits (else it could have been faster), within the sampling
+    bounds = np.searchsorted(path.t, np.cumsum([0.0, *(_durations(motion))]))
+    for lo, hi in zip(bounds, bounds[1:], strict=False):
+        used = max((np.abs(path.v[lo:hi]) / motion.velocity).max(), (np.abs(path.a[lo:hi]) / motion.acceleration).max())
+        assert used == pytest.approx(1.0, abs=1e-3)
+
+
+def _durations(motion):
+    from xacrokit.sizing.motion import segment_duration
+
+    points = [np.array(w) for w in motion.waypoints]
+    return [segment_duration(motion, b - a) for a, b in zip(points, points[1:], strict=False)]
+
+
+def test_a_held_pose_has_its_static_torque_as_rms(arm_path, tmp_path):
+    sizing = tmp_path / "hold.yaml"
+    sizing.write_text(
+        yaml.safe_dump(
+            {
+                "motion": {
+                    "waypoints": [{"shoulder": 0.3, "elbow": -0.4}, {"shoulder": 0.3, "elbow": -0.4}],
+                    "acceleration": 1.0,
+                    "dwell": 1.0,
+                }
+            }
+        ),
+        encoding="utf-8",
+    )
+    report = size(arm_path, sizing=sizing)
+    want = closed_form_dynamics([0.3, -0.4], [0, 0], [0, 0])
+    for moved, torque in zip(report.motions, want, strict=True):
+        assert moved.rms_torque == pytest.approx(abs(torque), rel=1e-12) and moved.peak_speed == 0.0
+
+
+SIZING = {
+    "payloads": [{"frame": "tool0", "mass": "5 kg", "com": [0, 0, "50 mm"]}],
+    "motion": {
+        "scaling": "trapezoid",
+        "dwell": 0.2,
+        "velocity": "90 deg/s",
+        "acceleration": 4.0,
+        "waypoints": [
+            {"shoulder_lift_joint": "-90 deg", "elbow_joint": "90 deg"},
+            {"shoulder_pan_joint": "90 deg", "shoulder_lift_joint": "-45 deg", "elbow_joint": "45 deg"},
+        ],
+    },
+    "drives": {
+        "shoulder_lift_joint": {
+            "gear_ratio": 101,
+            "efficiency": 0.8,
+            "rotor_inertia": 3.3e-5,
+            "rated_torque": "1.2 N*m",
+            "peak_torque": "3.5 N*m",
+            "max_speed": "3000 rpm",
+        }
+    },
+}
+
+
+def test_drives_give_the_motor_side_and_fail_the_motor_that_is_too_small(tmp_path):
+    ur5 = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
+    sizing = tmp_path / "ur5.sizing.yaml"
+    sizing.write_text(yaml.safe_dump(SIZING), encoding="utf-8")
+    result = gen_robot("size", ur5, "--sizing", sizing, "--json")
+    assert result.returncode == 0, result.stdout + result.stderr
+    report = json.loads(result.stdout)
+    jsonschema.validate(report, json.loads((REPO / "schemas" / "size-report.schema.json").read_text()))
+    lift = next(j for j in report["joints"] if j["name"] == "shoulder_lift_joint")
+    drive, moved = lift["drive"], lift["motion"]
+    peak = max(abs(moved["peak_torque"]), abs(lift["static"]["peak_torque"]))
+    assert drive["motor_peak_torque"] == pytest.approx(peak / (101 * 0.8), rel=1e-12)
+    # the pan turns 90 deg at its 90 deg/s limit while the lift turns 45 deg: the lift peaks at 45 deg/s
+    assert moved["peak_speed"] == pytest.approx(math.pi / 4, rel=1e-9)
+    assert drive["motor_peak_speed"] == pytest.approx(math.pi / 4 * 101, rel=1e-9)
+    assert drive["reflected_inertia"] == pytest.approx(3.3e-5 * 101**2, rel=1e-12)
+    assert drive["speed_margin"] == pytest.approx(3000 * 2 * math.pi / 60 / (math.pi / 4 * 101), rel=1e-9)
+    SIZING["drives"]["shoulder_lift_joint"]["peak_torque"] = "0.5 N*m"
+    sizing.write_text(yaml.safe_dump(SIZING), encoding="utf-8")
+    failing = gen_robot("size", ur5, "--sizing", sizing)
+    SIZING["drives"]["shoulder_lift_joint"]["peak_torque"] = "3.5 N*m"
+    assert failing.returncode == 1
+    assert "FAIL shoulder_lift_joint: motor peak torque over the motor's peak torque" in failing.stdout
+
+
+@pytest.mark.parametrize(
+    ("change", "path", "words"),
+    [
+        (
+            {"motion": {"waypoints": [{"elbow_jiont": 0}, {"elbow_joint": 1}], "acceleration": 1}},
+            "$.motion.waypoints[0].elbow_jiont",
+            "did you mean 'elbow_joint'",
+        ),
+        (
+            {"motion": {"waypoints": [{"elbow_joint": "400 deg"}, {"elbow_joint": 0}], "acceleration": 1}},
+            "$.motion.waypoints",
+            "outside its range",
+        ),
+        ({"motion": {"waypoints": [{"elbow_joint": 0}, {"elbow_joint": 1}]}}, "$.motion", "needs a acceleration limit"),
+        ({"payloads": [{"frame": "tool9", "mass": 1}]}, "$.payloads[0].frame", "did you mean 'tool0'"),
+        ({"drives": {"elbow_joint": {"gear_ratio": -5}}}, "$.drives.elbow_joint.gear_ratio", "> 0"),
+        ({"drives": {"elbo_joint": {"gear_ratio": 5}}}, "$.drives.elbo_joint", "did you mean 'elbow_joint'"),
+        ({"payloads": [{"frame": "tool0", "mass": "5 parsecs"}]}, "$.payloads[0].mass", "unknown unit"),
+    ],
+)
+def test_bad_sizing_files_are_located_errors(tmp_path, change, path, words):
+    sizing = tmp_path / "bad.yaml"
+    sizing.write_text(yaml.safe_dump(change), encoding="utf-8")
+    with pytest.raises(SpecErrors) as caught:
+        size(REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml", sizing=sizing)
+    errors = caught.value.errors
+    assert any(e.path == path and words in e.message and e.line is not None for e in errors), [str(e) for e in errors]
+    result = gen_robot("size", REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml", "--sizing", sizing)
+    assert result.returncode == 2 and "Traceback" not in result.stderr and str(sizing) in result.stderr
