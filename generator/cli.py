@@ -24,7 +24,7 @@ from .cliargs import fleet_count, parse_mappings, parse_packages, require_plain_
 from .errors import XacrokitError
 from .guard import trusting
 from .progress import Progress
-from .size_command import add_size_command
+from .size_command import add_report_command, add_size_command
 
 if TYPE_CHECKING:
     from .pipeline import GenerateResult
@@ -368,19 +368,15 @@ def build_parser() -> argparse.ArgumentParser:
     chk.set_defaults(handler=_cmd_check)
 
     add_size_command(commands, _add_xacro_options)
+    add_report_command(commands)
 
     schema = commands.add_parser(
         "schema",
         help="print a JSON Schema",
-        description="Print the JSON Schema (2020-12) of robot specs (default), "
-        "scene specs, or gen-robot check's JSON report.",
+        description="Print the JSON Schema (2020-12) of robot specs (default), scene specs, gen-robot check's or "
+        "size's JSON report, or size's sizing file.",
     )
-    schema.add_argument(
-        "--kind",
-        choices=("robot", "scene", "check-report", "size-report", "sizing"),
-        default="robot",
-        help="which schema",
-    )
+    schema.add_argument("--kind", choices=SCHEMA_KINDS, default="robot", help="which schema")
     schema.set_defaults(handler=_cmd_schema)
 
     expand = commands.add_parser(
@@ -413,7 +409,8 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-COMMANDS = ("generate", "new", "check", "size", "fleet", "schema", "expand", "macros", "materials")
+SCHEMA_KINDS = ("robot", "scene", "check-report", "size-report", "sizing")
+COMMANDS = ("generate", "new", "check", "size", "report", "fleet", "schema", "expand", "macros", "materials")
 
 
 def _shorthand(words: list[str]) -> bool:

@@ -1,5 +1,6 @@
-"""The ``gen-robot size`` command: its options and what it prints (a shell over :func:`xacrokit.sizing.size`, imported
-when the command runs: the CLI starts without numpy)."""
+"""The digital-twin commands, ``gen-robot size`` and ``gen-robot report``: their options and what they print (shells
+over :func:`xacrokit.sizing.size` and :func:`xacrokit.design.design_report`, imported when the command runs: the CLI
+starts without numpy)."""
 
 from __future__ import annotations
 
@@ -68,3 +69,31 @@ def _cmd_size(args: argparse.Namespace) -> int:
     else:
         sys.stdout.write(format_text(report))
     return report.exit_code
+
+
+def add_report_command(commands: Any) -> None:
+    """Add ``report`` to the CLI's subcommands."""
+    report = commands.add_parser(
+        "report",
+        help="the design report of a spec: per link shapes, volume, density, mass, centre of mass, inertia, formula",
+        description="Print (or write with -o) the design report of SPEC as Markdown: per link its shapes and "
+        "dimensions, volume, density, mass, centre of mass and inertia tensor with its principal moments and the "
+        "formula it comes from (primitive, composite, mesh or given), and the robot's mass and centre of mass.",
+    )
+    report.add_argument("spec", help="the robot spec (.yaml)")
+    report.add_argument("-o", "--output", help="write the Markdown here (atomically) instead of to standard output")
+    report.set_defaults(handler=_cmd_report)
+
+
+def _cmd_report(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from .design import design_report, to_markdown
+    from .fileio import write_text_atomic
+
+    text = to_markdown(design_report(args.spec))
+    if args.output:
+        write_text_atomic(Path(args.output), text)
+    else:
+        sys.stdout.write(text)
+    return 0

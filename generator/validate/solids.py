@@ -71,7 +71,8 @@ def body_solids(
             continue
         where = (*path, "shape", "mesh", "filename")
         filename = shape["mesh"]["filename"]
-        wanted = ("mass" in item or "density" in item) and "inertia" not in item
+        given = isinstance(item.get("inertia"), dict) and item["inertia"].get("kind") != "mesh"  # (not computed)
+        wanted = ("mass" in item or "density" in item) and not given
         if not wanted:  # (a relative file that is not there: mesh_files_errors says so)
             continue
         try:
