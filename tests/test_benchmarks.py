@@ -47,3 +47,17 @@ def test_check_speed_script_runs():
     for row in rows:
         ratio = float(row.split("-> ")[1].split()[0])
         assert 0.5 < ratio < 10  # (a ratio, measured: not a timing target, which RESULTS.md records)
+
+
+def test_size_speed_script_runs():
+    """benchmarks/size_speed.py: the static search's time and the motion analysis against bare pinocchio (one run)."""
+    result = subprocess.run(
+        [sys.executable, str(REPO / "benchmarks" / "size_speed.py"), "1"],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert result.returncode == 0, result.stderr
+    assert "static worst-case search, 6-axis UR5 with 5 kg:" in result.stdout
+    ratio = float(result.stdout.split("ratio ")[1].split()[0])
+    assert 0.5 < ratio < 20  # (a ratio, measured: not a timing target, which RESULTS.md records)

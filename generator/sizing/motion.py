@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .robot import SizingRobot
+from .robot import SizingRobot, configurations
 
 QUINTIC_SPEED = 15.0 / 8.0  # peak ds/du of 10u^3 - 15u^4 + 6u^5
 QUINTIC_ACCELERATION = 10.0 / math.sqrt(3.0)  # peak |d2s/du2|
@@ -171,14 +171,13 @@ def inverse_dynamics(robot: SizingRobot, path: Trajectory) -> np.ndarray:
 
     model, data = robot.model, robot.data
     rows = [j.v_index for j in robot.joints]
+    qs = configurations(robot, path.q)
+    vs, accelerations = np.zeros((len(path.t), model.nv)), np.zeros((len(path.t), model.nv))
+    vs[:, rows], accelerations[:, rows] = path.v, path.a
     result = np.empty((len(path.t), len(rows)))
     for k in range(len(path.t)):
-        q = robot.configuration(path.q[k])
-        v, a = np.zeros(model.nv), np.zeros(model.nv)
-        v[rows], a[rows] = path.v[k], path.a[k]
-        fext = None
         if robot.loads:
-            pin.forwardKinematics(model, data, q)
+            pin.forwardKinematics(model, data, qs[k])
             pin.updateFramePlacements(model, data)
             fext = [pin.Force.Zero() for _ in range(model.njoints)]
             for frame_id, force in robot.loads:
@@ -186,8 +185,9 @@ def inverse_dynamics(robot: SizingRobot, path: Trajectory) -> np.ndarray:
                 point = data.oMf[frame_id].translation
                 world = pin.Force(force.linear, force.angular + np.cross(point, force.linear))
                 fext[frame.parentJoint] += data.oMi[frame.parentJoint].actInv(world)
-        tau = pin.rnea(model, data, q, v, a) if fext is None else pin.rnea(model, data, q, v, a, fext)
-        result[k] = tau[rows]
+            result[k] = pin.rnea(model, data, qs[k], vs[k], accelerations[k], fext)[rows]
+        else:
+            result[k] = pin.rnea(model, data, qs[k], vs[k], accelerations[k])[rows]
     return result
 
 
@@ -197,10 +197,11 @@ def joint_motions(robot: SizingRobot, path: Trajectory, torque: np.ndarray) -> l
     import pinocchio as pin
 
     rows = [j.v_index for j in robot.joints]
-    inertia = np.zeros(len(rows))
+    qs = configurations(robot, path.q)
+    diagonals = np.empty((len(path.t), robot.model.nv))
     for k in range(len(path.t)):
-        diagonal = np.diag(pin.crba(robot.model, robot.data, robot.configuration(path.q[k])))[rows]
-        inertia = np.maximum(inertia, diagonal)
+        diagonals[k] = np.diagonal(pin.crba(robot.model, robot.data, qs[k]))
+    inertia = diagonals[:, rows].max(axis=0)
     power = torque * path.v
     duration = float(path.t[-1] - path.t[0])
     result = []

@@ -83,6 +83,21 @@ class SizingRobot:
         return q
 
 
+def configurations(robot: SizingRobot, values: np.ndarray) -> np.ndarray:
+    """pinocchio's q for many rows of joint values at once (one row per sample): what
+    :meth:`SizingRobot.configuration` makes for one, without a Python loop over the samples."""
+    import pinocchio as pin
+
+    result = np.tile(pin.neutral(robot.model), (len(values), 1))
+    for column, joint in enumerate(robot.joints):
+        if joint.kind == "continuous":
+            result[:, joint.q_index] = np.cos(values[:, column])
+            result[:, joint.q_index + 1] = np.sin(values[:, column])
+        else:
+            result[:, joint.q_index] = values[:, column]
+    return result
+
+
 def load_robot(
     path: str | os.PathLike[str],
     mappings: Mapping[str, str] | None = None,

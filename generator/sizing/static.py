@@ -5,8 +5,8 @@ tau(q) = g(q) - J(q)^T w: the generalized gravity (pinocchio's computeGeneralize
 the joint torques of the loads (each load's frame Jacobian in world axes at the frame's origin, transposed, times its
 force and moment; written apart, so that a user sees what the tool force costs).
 
-The worst case of joint i is a search, not a formula: |tau_i| over the box of the joints' ranges is sampled (a
-scrambled Sobol sequence, the box's corners and centre, every joint at its range's ends and middle) and the best
+The worst case of joint i is a search, not a formula: |tau_i| over the box of the joints' ranges is sampled (uniform
+random samples from a fixed seed, the box's corners and centre, every joint at its range's ends and middle) and the best
 samples are refined by bounded quasi-Newton steps (scipy's L-BFGS-B). A pose in the interior is a stationary point of
 tau_i; the search finds the global one when a sample lands in its basin, which the tests check against dense grids.
 """
@@ -21,7 +21,7 @@ import numpy as np
 
 from .robot import SizingRobot
 
-SAMPLES_PER_JOINT = 256  # Sobol samples per moving joint (2^k: the sequence's balance), capped by MAX_SAMPLES
+SAMPLES_PER_JOINT = 256  # uniform random samples per moving joint (seeded: the same search every run), capped
 MAX_SAMPLES = 8192
 STARTS = 6  # best samples refined per joint
 STEP = 1e-6  # rad or m: the central differences' step
@@ -58,32 +58,44 @@ def torques(robot: SizingRobot, values: np.ndarray) -> tuple[np.ndarray, np.ndar
     return gravity, loads
 
 
+def gravity_gradient(robot: SizingRobot, values: np.ndarray) -> np.ndarray:
+    """d g / d q of the moving joints at ``values`` (row: the torque, column: the joint), pinocchio's
+    computeGeneralizedGravityDerivatives (for a continuous joint, along its angle)."""
+    import pinocchio as pin
+
+    rows = [j.v_index for j in robot.joints]
+    derivative = pin.computeGeneralizedGravityDerivatives(robot.model, robot.data, robot.configuration(values))
+    return np.asarray(derivative)[np.ix_(rows, rows)]
+
+
 def static_peaks(robot: SizingRobot, *, seed: int = 0) -> list[StaticPeak]:
     """The worst static torque of every moving joint over the joints' ranges (see the module's notes)."""
     from scipy.optimize import minimize  # type: ignore[import-untyped]
-    from scipy.stats import qmc  # type: ignore[import-untyped]
 
     joints = robot.joints
     lower = np.array([j.lower for j in joints])
     upper = np.array([j.upper for j in joints])
     count = min(MAX_SAMPLES, SAMPLES_PER_JOINT * len(joints))
-    unit = qmc.Sobol(len(joints), scramble=True, seed=seed).random(1 << max(count - 1, 1).bit_length())
+    unit = np.random.default_rng(seed).random((count, len(joints)))
     samples = [*(lower + unit * (upper - lower)), *_landmarks(lower, upper)]
     table = np.array([np.add(*torques(robot, s)) for s in samples])
     peaks = []
     for index, joint in enumerate(joints):
 
         def cost(values: np.ndarray, index: int = index) -> tuple[float, np.ndarray]:
-            """-|tau_i| and its gradient by central differences (exact to O(h^2) = 1e-12: the search stops on
-            the true maximum, where a one-sided difference leaves it a milliradian off)."""
+            """-|tau_i| and its gradient: pinocchio's derivatives of the generalized gravity without loads, central
+            differences with them (exact to O(h^2) = 1e-12: the search stops on the true maximum)."""
             value = float(np.add(*torques(robot, values))[index])
-            gradient = np.empty(len(values))
-            for k in range(len(values)):
-                step = np.zeros(len(values))
-                step[k] = STEP
-                ahead = float(np.add(*torques(robot, values + step))[index])
-                behind = float(np.add(*torques(robot, values - step))[index])
-                gradient[k] = (ahead - behind) / (2 * STEP)
+            if robot.loads:
+                gradient = np.empty(len(values))
+                for k in range(len(values)):
+                    step = np.zeros(len(values))
+                    step[k] = STEP
+                    ahead = float(np.add(*torques(robot, values + step))[index])
+                    behind = float(np.add(*torques(robot, values - step))[index])
+                    gradient[k] = (ahead - behind) / (2 * STEP)
+            else:
+                gradient = gravity_gradient(robot, values)[index]
             return -abs(value), -math.copysign(1.0, value) * gradient
 
         best = np.argsort(-np.abs(table[:, index]))[:STARTS]
