@@ -6,6 +6,8 @@ worst static torque of each joint over its range), :mod:`.report` (the table and
 
 from __future__ import annotations
 
+import dataclasses
+import math
 import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -13,6 +15,7 @@ from pathlib import Path
 from ..errors import SpecErrors, XacrokitError
 from ..units import UnitError, parse_quantity
 from .file import Drive, Sizing, motion_of, name_errors, read_sizing
+from .mobile import base_of
 from .motion import inverse_dynamics, joint_motions, trajectory
 from .report import SizeReport, format_text
 from .robot import GRAVITY, Load, Payload, add_loads, load_robot
@@ -66,7 +69,14 @@ def size(
     if motion is not None:
         path_samples = trajectory(motion)
         moved = joint_motions(robot, path_samples, inverse_dynamics(robot, path_samples))
-    return SizeReport.of(str(path), robot, static_peaks(robot), payloads, loads, moved, asked.drives)
+    base = None
+    if asked.mobile is not None and asked.raw is not None:
+        found = base_of(robot, asked.mobile, math.fsum(p.mass for p in payloads))
+        if isinstance(found, str):
+            raise SpecErrors([asked.raw.error(("mobile",), found, key=True)])
+        base = found
+    report = SizeReport.of(str(path), robot, static_peaks(robot), payloads, loads, moved, asked.drives)
+    return dataclasses.replace(report, base=base, base_motion=asked.mobile)
 
 
 def parse_payload(text: str) -> Payload:

@@ -17,6 +17,7 @@ from ..resources import schemas_dir
 from ..text import did_you_mean
 from ..units import Kind, UnitError, parse_quantity
 from ..validate.schema import SchemaValidator, inline_refs, schema_errors
+from .mobile import BaseMotion
 from .motion import Motion, waypoint_errors
 from .robot import Load, Payload, SizingRobot, frame_names
 
@@ -43,6 +44,7 @@ class Sizing:
     motion: dict[str, Any] | None = None
     drives: dict[str, Drive] = field(default_factory=dict)
     raw: RawSpec | None = None
+    mobile: BaseMotion | None = None
 
 
 @cache
@@ -100,9 +102,19 @@ def read_sizing(path: str | os.PathLike[str]) -> Sizing:
             peak_torque=_optional(read, item, "peak_torque", "torque", where),
             max_speed=_optional(read, item, "max_speed", "angular_velocity", where),
         )
+    mobile = None
+    if "mobile" in data:
+        item, where = data["mobile"], ("mobile",)
+        mobile = BaseMotion(
+            speed=read.quantity(item["speed"], "linear_velocity", (*where, "speed"), positive=True),
+            acceleration=float(item["acceleration"]),
+            slope=read.quantity(item.get("slope", 0.0), "angle", (*where, "slope")),
+            rolling_resistance=float(item.get("rolling_resistance", 0.0)),
+            wheels=tuple(item.get("wheels", ())),
+        )
     if read.errors:
         raise SpecErrors(read.errors)
-    return Sizing(tuple(payloads), tuple(loads), data.get("motion"), drives, raw)
+    return Sizing(tuple(payloads), tuple(loads), data.get("motion"), drives, raw, mobile)
 
 
 def _optional(read: _Reader, item: dict[str, Any], key: str, kind: Kind, where: PathKey) -> float | None:
@@ -187,6 +199,10 @@ def name_errors(sizing: Sizing, robot: SizingRobot) -> list[SpecError]:
             if item["frame"] not in frames:
                 message = f"the robot has no frame {item['frame']!r}{did_you_mean(item['frame'], frames)}"
                 errors.append(raw.error((section, index, "frame"), message))
+    for index, name in enumerate(data.get("mobile", {}).get("wheels", [])):
+        if name not in joints:
+            message = f"{name!r} is not a moving joint{did_you_mean(name, joints)}"
+            errors.append(raw.error(("mobile", "wheels", index), message))
     for name in data.get("drives", {}):
         if name not in joints:
             message = f"{name!r} is not a moving joint{did_you_mean(name, joints)}"

@@ -12,9 +12,11 @@ the motion.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from .mobile import BaseMotion, BaseSizing
 from .motion import JointMotion
 from .robot import GRAVITY, Load, Payload, SizingRobot
 from .static import StaticPeak
@@ -46,6 +48,8 @@ class SizeReport:
     massless: tuple[str, ...] = ()
     motions: tuple[JointMotion, ...] | None = None
     drives: dict[str, Drive] = field(default_factory=dict)
+    base: BaseSizing | None = None
+    base_motion: BaseMotion | None = None
 
     @staticmethod
     def of(
@@ -122,6 +126,14 @@ class SizeReport:
                     ("motor speed over the motor's maximum speed", side["speed_margin"]),
                 ]
             found += [(peak.joint, what) for what, margin in checks if margin is not None and margin < 1.0]
+        if self.base is not None:
+            for wheel, torque, speed in zip(self.base.wheels, self.base.torques, self.base.speeds, strict=True):
+                for what, margin in (
+                    ("wheel torque over the effort limit", ratio(wheel.effort, torque)),
+                    ("wheel speed over the velocity limit", ratio(wheel.velocity, speed)),
+                ):
+                    if margin is not None and margin < 1.0:
+                        found.append((wheel.joint, what))
         return found
 
     @property
@@ -150,6 +162,33 @@ class SizeReport:
             "joints": [self._joint(p) for p in self.peaks],
             "failed": self.failed,
             "failures": [{"joint": joint, "what": what} for joint, what in self.failures],
+            **({"mobile": self._base()} if self.base is not None and self.base_motion is not None else {}),
+        }
+
+    def _base(self) -> dict[str, Any]:
+        base, asked = self.base, self.base_motion
+        assert base is not None and asked is not None  # (to_dict asks only then)
+        return {
+            "speed": asked.speed,
+            "acceleration": asked.acceleration,
+            "slope": asked.slope,
+            "rolling_resistance": asked.rolling_resistance,
+            "mass": base.mass,
+            "traction_force": base.force,
+            "power": base.power,
+            "wheels": [
+                {
+                    "joint": wheel.joint,
+                    "radius": wheel.radius,
+                    "inertia": wheel.inertia,
+                    "torque": torque,
+                    "speed": speed,
+                    "power": power,
+                    "effort_margin": ratio(wheel.effort, torque),
+                    "velocity_margin": ratio(wheel.velocity, speed),
+                }
+                for wheel, torque, speed, power in zip(base.wheels, base.torques, base.speeds, base.powers, strict=True)
+            ],
         }
 
     def _joint(self, peak: StaticPeak) -> dict[str, Any]:
@@ -224,6 +263,18 @@ def format_text(report: SizeReport) -> str:
                     f"  {joint:<24} {side['motor_peak_torque']:>12.4g} {side['motor_rms_torque']:>11.4g} "
                     f"{side['motor_peak_speed']:>9.4g} {_num(side['inertia_ratio'], '.3g'):>14}"
                 )
+    if report.base is not None and report.base_motion is not None:
+        base, asked = report.base, report.base_motion
+        lines.append(
+            f"  mobile base: {base.mass:.4g} kg at {asked.speed:g} m/s, {asked.acceleration:g} m/s^2, slope "
+            f"{math.degrees(asked.slope):.3g} deg, C_rr {asked.rolling_resistance:g}: traction {base.force:.4g} N, "
+            f"power {base.power:.4g} W"
+        )
+        for wheel, torque, speed in zip(base.wheels, base.torques, base.speeds, strict=True):
+            lines.append(
+                f"  {wheel.joint:<24} torque {torque:.4g} N*m (limit {_num(wheel.effort)}), speed {speed:.4g} rad/s "
+                f"(limit {_num(wheel.velocity)}), radius {wheel.radius:g} m"
+            )
     lines.append(
         "  N*m (N for prismatic joints), rad/s, rad/s^2, W, J; the motors produce these torques; margin = limit / need"
     )

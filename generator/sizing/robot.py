@@ -69,6 +69,7 @@ class SizingRobot:
     massless: list[str] = field(default_factory=list)  # moving links without an <inertial>
     loads: list[tuple[int, Any]] = field(default_factory=list)  # (frame id, pinocchio.Force in world axes)
     data: Any = None  # pinocchio.Data of the model with its payloads (load_robot makes it)
+    text: str = ""  # the URDF it was read from
 
     def configuration(self, values: Sequence[float] | np.ndarray) -> np.ndarray:
         """pinocchio's q with the moving joints at ``values`` (continuous joints as cos, sin) and others neutral."""
@@ -130,7 +131,7 @@ def load_robot(
     model.gravity = pin.Motion(np.array([0.0, 0.0, -GRAVITY, 0.0, 0.0, 0.0]))  # (pinocchio's default: 9.81)
     joints = _moving_joints(model, root)
     massless = _massless_moving_links(model, root)
-    robot = SizingRobot(name=root.get("name", where.stem), model=model, joints=joints, massless=massless)
+    robot = SizingRobot(name=root.get("name", where.stem), model=model, joints=joints, massless=massless, text=text)
     add_loads(robot, payloads, loads)
     if not joints:
         raise XacrokitError(f"{where}: the robot has no revolute, continuous or prismatic joint to size")

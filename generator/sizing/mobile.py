@@ -1,0 +1,121 @@
+"""The mobile-base part of ``gen-robot size``: what each driven wheel's motor must deliver for the robot to reach a
+speed and an acceleration up a slope, with rolling resistance.
+
+The closed form (every driven wheel sharing the effort equally, rolling without slip):
+
+- traction force F = m a + m g sin(theta) + C_rr m g cos(theta), m the whole robot's mass (payloads included);
+- each wheel's torque tau = F r / n + I_w a / r (its share of F at its radius, and its own spin-up: I_w its inertia
+  about the axle);
+- each wheel's speed omega = v / r, its power tau omega at the top speed (the acceleration still applied: the
+  conservative corner of the speed-torque plane), and the whole drive's power n tau omega.
+
+Wheels are the continuous joints whose child link is drawn with a cylinder (its radius is the wheel's), unless the
+sizing file names them.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from .robot import GRAVITY, SizingRobot
+
+
+@dataclass(frozen=True)
+class BaseMotion:
+    """What the sizing file asks of a mobile base: speed (m/s), acceleration (m/s^2), slope (rad), rolling
+    resistance coefficient, and the wheels (joint names; empty: found)."""
+
+    speed: float
+    acceleration: float
+    slope: float = 0.0
+    rolling_resistance: float = 0.0
+    wheels: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class Wheel:
+    joint: str
+    radius: float  # m
+    inertia: float  # kg*m^2 about the axle
+    effort: float | None
+    velocity: float | None
+
+
+@dataclass(frozen=True)
+class BaseSizing:
+    """The base's figures: the robot's mass, the traction force, and per wheel torque, speed and power."""
+
+    mass: float
+    force: float
+    wheels: tuple[Wheel, ...]
+    torques: tuple[float, ...]
+    speeds: tuple[float, ...]
+    powers: tuple[float, ...]
+
+    @property
+    def power(self) -> float:
+        return math.fsum(self.powers)
+
+
+def find_wheels(robot: SizingRobot, text: str, named: Sequence[str] = ()) -> list[Wheel]:
+    """The wheels: continuous joints whose child link has a cylinder (or those ``named``), with radius, inertia about
+    the axle (pinocchio's body inertia, moved to the joint's axis) and limits."""
+    from lxml import etree
+
+    root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+    radii = {}
+    for link in root.findall("link"):
+        cylinder = link.find("collision/geometry/cylinder")
+        cylinder = cylinder if cylinder is not None else link.find("visual/geometry/cylinder")
+        if cylinder is not None and cylinder.get("radius"):
+            radii[link.get("name")] = float(cylinder.get("radius"))
+    children = {
+        j.get("name"): j.find("child").get("link") for j in root.findall("joint") if j.find("child") is not None
+    }
+
+    axes = {j.get("name"): j.find("axis") for j in root.findall("joint")}
+    found = []
+    for joint in robot.joints:
+        child = children.get(joint.name)
+        wanted = joint.name in named if named else joint.kind == "continuous" and child in radii
+        if not wanted or child not in radii:
+            continue
+        axis_element = axes.get(joint.name)
+        axis = np.array([float(v) for v in (axis_element.get("xyz") if axis_element is not None else "1 0 0").split()])
+        axis = axis / np.linalg.norm(axis)
+        body = robot.model.inertias[robot.model.getJointId(joint.name)]
+        lever = np.asarray(body.lever)
+        about_origin = np.asarray(body.inertia) + body.mass * (lever @ lever * np.eye(3) - np.outer(lever, lever))
+        found.append(Wheel(joint.name, radii[child], float(axis @ about_origin @ axis), joint.effort, joint.velocity))
+    return found
+
+
+def whole_mass(text: str, extra: float) -> float:
+    """The robot's mass: every link's (a free-flyer root, so that the root link counts) plus ``extra``."""
+    import pinocchio as pin
+
+    return float(pin.computeTotalMass(pin.buildModelFromXML(text, pin.JointModelFreeFlyer()))) + extra
+
+
+def size_base(drive: BaseMotion, wheels: Sequence[Wheel], mass: float) -> BaseSizing:
+    """The closed form of the module's notes."""
+    force = mass * drive.acceleration + mass * GRAVITY * (
+        math.sin(drive.slope) + drive.rolling_resistance * math.cos(drive.slope)
+    )
+    share = force / len(wheels)
+    torques = tuple(share * w.radius + w.inertia * drive.acceleration / w.radius for w in wheels)
+    speeds = tuple(drive.speed / w.radius for w in wheels)
+    powers = tuple(t * s for t, s in zip(torques, speeds, strict=True))
+    return BaseSizing(mass, force, tuple(wheels), torques, speeds, powers)
+
+
+def base_of(robot: SizingRobot, drive: BaseMotion, payload_mass: float) -> BaseSizing | str:
+    """The base sizing of the robot, or why there is none (no wheels found)."""
+    wheels = find_wheels(robot, robot.text, drive.wheels)
+    if not wheels:
+        return "no wheels found (continuous joints whose child link is drawn as a cylinder); name them in mobile.wheels"
+    return size_base(drive, wheels, whole_mass(robot.text, payload_mass))
