@@ -47,6 +47,9 @@ def add_size_command(commands: Any, add_xacro_options: Callable[[argparse.Argume
         help="a sizing file (YAML, schemas/sizing.schema.json): payloads, loads, a motion through waypoints, drives",
     )
     sz.add_argument("--json", action="store_true", help="print the report as JSON (schemas/size-report.schema.json)")
+    sz.add_argument(
+        "--report", metavar="DIR", help="also write DIR/size_report.md with PNG plots of the motion and the drives"
+    )
     add_xacro_options(sz)
     sz.set_defaults(handler=_cmd_size)
 
@@ -64,6 +67,10 @@ def _cmd_size(args: argparse.Namespace) -> int:
         sizing=args.sizing,
         package_paths=parse_packages(args.package),
     )
+    if args.report:
+        from .sizing.document import write_report
+
+        write_report(report, args.report)
     if args.json:
         sys.stdout.write(json.dumps(report.to_dict(), indent=2) + "\n")
     else:

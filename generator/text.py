@@ -81,6 +81,17 @@ def _escape_dollars(match: re.Match[str]) -> str:
     return "${'$'}" * (len(run) - 1) + "$"
 
 
+_MARKDOWN = re.compile(r"([\\`*_{}\[\]<>()#+\-.!|~])")
+
+
+def markdown_text(value: object) -> str:
+    """Text shown as it is in Markdown (a report's names, which come from a URDF): every character Markdown reads as
+    markup backslash-escaped (GitHub's and CommonMark's set, ``|`` for tables, ``<`` for HTML), line breaks and other
+    control characters as spaces."""
+    text = "".join(" " if ord(ch) < 0x20 or ord(ch) == 0x7F else ch for ch in str(value))
+    return _MARKDOWN.sub(r"\\\1", text)
+
+
 def did_you_mean(name: str, known: Iterable[str]) -> str:
     """`` (did you mean 'base_link'?)`` when one of ``known`` is close to the mistyped ``name`` (difflib), else ''."""
     import difflib  # (only when a name is wrong)

@@ -65,10 +65,11 @@ def size(
     payloads, loads = (*payloads, *asked.payloads), (*loads, *asked.loads)
     add_loads(robot, payloads, loads)
     motion = motion_of(asked, robot)
-    moved = None
+    moved, samples = None, None
     if motion is not None:
         path_samples = trajectory(motion)
-        moved = joint_motions(robot, path_samples, inverse_dynamics(robot, path_samples))
+        torque = inverse_dynamics(robot, path_samples)
+        moved, samples = joint_motions(robot, path_samples, torque), (path_samples, torque)
     base = None
     if asked.mobile is not None and asked.raw is not None:
         found = base_of(robot, asked.mobile, math.fsum(p.mass for p in payloads))
@@ -76,7 +77,7 @@ def size(
             raise SpecErrors([asked.raw.error(("mobile",), found, key=True)])
         base = found
     report = SizeReport.of(str(path), robot, static_peaks(robot), payloads, loads, moved, asked.drives)
-    return dataclasses.replace(report, base=base, base_motion=asked.mobile)
+    return dataclasses.replace(report, base=base, base_motion=asked.mobile, samples=samples)
 
 
 def parse_payload(text: str) -> Payload:

@@ -16,8 +16,10 @@ import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
 from .mobile import BaseMotion, BaseSizing
-from .motion import JointMotion
+from .motion import JointMotion, Trajectory
 from .robot import GRAVITY, Load, Payload, SizingRobot
 from .static import StaticPeak
 
@@ -50,6 +52,7 @@ class SizeReport:
     drives: dict[str, Drive] = field(default_factory=dict)
     base: BaseSizing | None = None
     base_motion: BaseMotion | None = None
+    samples: tuple[Trajectory, np.ndarray] | None = field(default=None, compare=False)  # (for the plots)
 
     @staticmethod
     def of(
