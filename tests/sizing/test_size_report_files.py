@@ -66,3 +66,14 @@ def test_the_docs_picture_is_the_ur5_examples_report(tmp_path):
     made = matplotlib.image.imread(out / "motion.png")
     shown = matplotlib.image.imread(REPO / "docs" / "images" / "ur5_motion.png")
     assert made.shape == shown.shape and np.abs(made - shown).mean() < 0.01
+
+
+def test_every_sizing_example_runs_the_command_its_header_gives():
+    examples = sorted((REPO / "examples" / "sizing").glob("*.yaml"))
+    assert len(examples) == 3
+    for example in examples:
+        (line,) = [t for t in example.read_text(encoding="utf-8").splitlines() if "#   gen-robot size " in t]
+        words = line.split("#   gen-robot ", 1)[1].split()[:4]  # size ROBOT --sizing FILE (not --report)
+        result = gen_robot(*words, cwd=REPO)
+        assert result.returncode == 0, (example.name, result.stdout, result.stderr)
+        assert "OK: every margin >= 1" in result.stdout
