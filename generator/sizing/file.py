@@ -18,7 +18,7 @@ from ..text import did_you_mean
 from ..units import Kind, UnitError, parse_quantity
 from ..validate.schema import SchemaValidator, inline_refs, schema_errors
 from .mobile import BaseMotion
-from .motion import Motion, waypoint_errors
+from .motion import Motion, reach, waypoint_errors
 from .robot import Load, Payload, SizingRobot, frame_names
 
 
@@ -133,7 +133,11 @@ def motion_of(sizing: Sizing, robot: SizingRobot) -> Motion | None:
     current = [0.0] * len(names)
     waypoints = []
     for index, point in enumerate(data["waypoints"]):
+        if "pose" in point:
+            current = _reached(read, robot, point["pose"], ("motion", "waypoints", index, "pose"), current)
         for name, value in point.items():
+            if name == "pose":
+                continue
             where: PathKey = ("motion", "waypoints", index, name)
             if name not in names:
                 read.errors.append(raw.error(where, f"{name!r} is not a moving joint{did_you_mean(name, names)}"))
@@ -155,6 +159,38 @@ def motion_of(sizing: Sizing, robot: SizingRobot) -> Motion | None:
         dwell=float(data.get("dwell", 0.0)),
         step=float(data.get("step", 1e-3)),
     )
+
+
+IK_REACHED = 1e-6  # m / rad: a pose error left above this is "unreachable"
+
+
+def _reached(
+    read: _Reader, robot: SizingRobot, pose: dict[str, Any], where: PathKey, start: list[float]
+) -> list[float]:
+    """The joint values inverse kinematics finds for a waypoint's pose, from the previous waypoint's."""
+    raw = read.raw
+    frames = frame_names(robot)
+    if pose["frame"] not in frames:
+        read.errors.append(
+            raw.error(
+                (*where, "frame"), f"the robot has no frame {pose['frame']!r}{did_you_mean(pose['frame'], frames)}"
+            )
+        )
+        return start
+    xyz = [read.quantity(v, "length", (*where, "xyz", k)) for k, v in enumerate(pose["xyz"])]
+    rpy = [read.quantity(v, "angle", (*where, "rpy", k)) for k, v in enumerate(pose["rpy"])] if "rpy" in pose else None
+    if read.errors:
+        return start
+    values, error = reach(robot, pose["frame"], xyz, rpy, start)
+    if error > IK_REACHED:
+        read.errors.append(
+            raw.error(
+                where,
+                f"inverse kinematics cannot put {pose['frame']!r} there within the joints' ranges (the pose "
+                f"it ends at is {error:.3g} away); move the point in reach, or give the joint values",
+            )
+        )
+    return values
 
 
 def _per_joint(read: _Reader, given: Any, robot: SizingRobot, what: str, where: PathKey) -> list[float]:

@@ -235,3 +235,39 @@ def test_bad_sizing_files_are_located_errors(tmp_path, change, path, words):
     assert any(e.path == path and words in e.message and e.line is not None for e in errors), [str(e) for e in errors]
     result = gen_robot("size", REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml", "--sizing", sizing)
     assert result.returncode == 2 and "Traceback" not in result.stderr and str(sizing) in result.stderr
+
+
+@settings(max_examples=10, deadline=None)
+@given(seed=st.integers(0, 10_000))
+def test_pose_waypoints_are_reached_by_inverse_kinematics(tmp_path_factory, seed):
+    """A pose the arm reaches at random joint values (pinocchio's forward kinematics of the file, rebuilt here) is
+    found again from the zero pose: the frame ends on it within 1e-9 (position and orientation)."""
+    import pinocchio as pin
+
+    from xacrokit.sizing.motion import reach
+
+    ur5 = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
+    robot = load_robot(ur5)
+    rng = np.random.default_rng(seed)
+    values = rng.uniform(-2.5, 2.5, len(robot.joints))
+    model = robot.model
+    data = model.createData()
+    pin.framesForwardKinematics(model, data, robot.configuration(values))
+    goal = data.oMf[model.getFrameId("tool0")]
+    rpy = pin.rpy.matrixToRpy(goal.rotation)
+    found, error = reach(robot, "tool0", goal.translation, rpy, values * 0.8)
+    pin.framesForwardKinematics(model, data, robot.configuration(np.array(found)))
+    reached = data.oMf[model.getFrameId("tool0")]
+    assert error < 1e-9
+    assert np.abs(reached.translation - goal.translation).max() < 1e-9
+    assert np.abs(reached.rotation - goal.rotation).max() < 1e-9
+
+
+def test_an_unreachable_pose_is_a_located_error(tmp_path):
+    sizing = tmp_path / "far.yaml"
+    far = {"acceleration": 2.0, "waypoints": [{"elbow_joint": 1.0}, {"pose": {"frame": "tool0", "xyz": [2.4, 0, 0.3]}}]}
+    sizing.write_text(yaml.safe_dump({"motion": far}), encoding="utf-8")
+    with pytest.raises(SpecErrors) as caught:
+        size(REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml", sizing=sizing)
+    (error,) = caught.value.errors
+    assert error.path == "$.motion.waypoints[1].pose" and "cannot put 'tool0' there" in error.message
