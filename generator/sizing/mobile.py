@@ -9,12 +9,17 @@ The closed form (every driven wheel sharing the effort equally, rolling without 
 - each wheel's speed omega = v / r, its power tau omega at the top speed (the acceleration still applied: the
   conservative corner of the speed-torque plane), and the whole drive's power n tau omega.
 
+Beside it, a check by dynamics: pinocchio's inverse dynamics of the whole robot on a free-flyer root, accelerated up
+the slope with gravity turned by it, needs m a + m g sin(theta) along the slope (``dynamics_force``; the report
+shows both).
+
 Wheels are the continuous joints whose child link is drawn with a cylinder (its radius is the wheel's), unless the
 sizing file names them.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -55,6 +60,7 @@ class BaseSizing:
     torques: tuple[float, ...]
     speeds: tuple[float, ...]
     powers: tuple[float, ...]
+    dynamics_force: float = math.nan  # the check: m a + m g sin(theta) from pinocchio's rnea on a free-flyer root
 
     @property
     def power(self) -> float:
@@ -113,9 +119,29 @@ def size_base(drive: BaseMotion, wheels: Sequence[Wheel], mass: float) -> BaseSi
     return BaseSizing(mass, force, tuple(wheels), torques, speeds, powers)
 
 
+def dynamics_force(text: str, drive: BaseMotion, extra: float) -> float:
+    """The check beside the closed form: the force along the slope that pinocchio's inverse dynamics needs on a
+    free-flyer root to accelerate the whole robot (joints still, ``extra`` kg of payload on the root) at ``a`` up
+    the slope, gravity turned by it: m a + m g sin(theta) when the closed form is right (rolling resistance is not a
+    body force: it is added after)."""
+    import pinocchio as pin
+
+    model = pin.buildModelFromXML(text, pin.JointModelFreeFlyer())
+    if extra:
+        model.appendBodyToJoint(1, pin.Inertia(extra, np.zeros(3), np.zeros((3, 3))), pin.SE3.Identity())
+    model.gravity = pin.Motion(
+        np.array([-GRAVITY * math.sin(drive.slope), 0.0, -GRAVITY * math.cos(drive.slope), 0.0, 0.0, 0.0])
+    )
+    acceleration = np.zeros(model.nv)
+    acceleration[0] = drive.acceleration
+    tau = pin.rnea(model, model.createData(), pin.neutral(model), np.zeros(model.nv), acceleration)
+    return float(tau[0])
+
+
 def base_of(robot: SizingRobot, drive: BaseMotion, payload_mass: float) -> BaseSizing | str:
     """The base sizing of the robot, or why there is none (no wheels found)."""
     wheels = find_wheels(robot, robot.text, drive.wheels)
     if not wheels:
         return "no wheels found (continuous joints whose child link is drawn as a cylinder); name them in mobile.wheels"
-    return size_base(drive, wheels, whole_mass(robot.text, payload_mass))
+    sized = size_base(drive, wheels, whole_mass(robot.text, payload_mass))
+    return dataclasses.replace(sized, dynamics_force=dynamics_force(robot.text, drive, payload_mass))

@@ -178,6 +178,10 @@ class SizeReport:
             "rolling_resistance": asked.rolling_resistance,
             "mass": base.mass,
             "traction_force": base.force,
+            "dynamics_check": {
+                "closed_form": base.mass * (asked.acceleration + GRAVITY * math.sin(asked.slope)),
+                "inverse_dynamics": base.dynamics_force,
+            },
             "power": base.power,
             "wheels": [
                 {
@@ -272,6 +276,11 @@ def format_text(report: SizeReport) -> str:
             f"  mobile base: {base.mass:.4g} kg at {asked.speed:g} m/s, {asked.acceleration:g} m/s^2, slope "
             f"{math.degrees(asked.slope):.3g} deg, C_rr {asked.rolling_resistance:g}: traction {base.force:.4g} N, "
             f"power {base.power:.4g} W"
+        )
+        closed = base.mass * (asked.acceleration + GRAVITY * math.sin(asked.slope))
+        lines.append(
+            f"  check: m a + m g sin(theta) = {closed:.6g} N closed form, {base.dynamics_force:.6g} N by pinocchio's "
+            "inverse dynamics of the whole robot"
         )
         for wheel, torque, speed in zip(base.wheels, base.torques, base.speeds, strict=True):
             lines.append(

@@ -40,10 +40,12 @@ def test_the_diff_drive_on_a_slope_by_hand(tmp_path):
     assert base.speeds == pytest.approx((0.5 / 0.065,) * 2, rel=1e-12)
     assert base.power == pytest.approx(2 * torque * 0.5 / 0.065, rel=1e-12)
     assert report.failed == []  # (the example's wheels: 5 N*m and 15 rad/s)
+    # the check beside it: pinocchio's inverse dynamics of the whole robot pushed up the slope
+    assert base.dynamics_force == pytest.approx(mass * (0.5 + 9.80665 * math.sin(slope)), rel=1e-12)
 
 
 def test_a_steep_slope_fails_the_wheels_and_the_json_follows_its_schema(tmp_path):
-    steep = {"mobile": {**ASKED["mobile"], "slope": "45 deg", "acceleration": 2.0, "speed": 1.2}}
+    steep = {"mobile": {**ASKED["mobile"], "slope": "45 deg", "acceleration": 2.0, "speed": 1.2}, "payloads": []}
     result = gen_robot("size", DIFF_DRIVE, "--sizing", write(tmp_path, steep), "--json")
     report = json.loads(result.stdout)
     jsonschema.validate(report, json.loads((REPO / "schemas" / "size-report.schema.json").read_text()))
@@ -65,3 +67,12 @@ def test_mobile_mistakes_are_located(tmp_path, robot, mobile, path, words):
     with pytest.raises(SpecErrors) as caught:
         size(REPO / "examples" / "robots" / f"{robot}.yaml", sizing=write(tmp_path, {"mobile": mobile}))
     assert any(e.path == path and words in e.message for e in caught.value.errors), caught.value.errors
+
+
+def test_a_payload_rides_in_the_mass_and_in_the_dynamics_check(tmp_path):
+    from xacrokit.sizing import Payload
+
+    report = size(DIFF_DRIVE, payloads=[Payload("base_link", 3.0)], sizing=write(tmp_path, ASKED))
+    mass = 7.04 + 3.0
+    assert report.base.mass == pytest.approx(mass, rel=1e-12)
+    assert report.base.dynamics_force == pytest.approx(mass * (0.5 + 9.80665 * math.sin(math.radians(10))), rel=1e-12)
