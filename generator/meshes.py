@@ -20,6 +20,7 @@ from .packages import find_package, with_nearby_packages
 
 MAX_MESH_BYTES = 256 * 1024 * 1024  # a CAD part's mesh is a few MB; a file this large is not one
 MESH_FOLDER = "meshes"  # where a package keeps the meshes gen-robot copies or makes
+MESH_SUFFIXES = (".stl", ".obj", ".ply", ".dae", ".glb", ".gltf", ".off")  # what a copied mesh file may be
 
 
 class MeshError(ValueError):

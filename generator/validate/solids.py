@@ -23,7 +23,7 @@ import numpy as np
 from ..errors import SpecError
 from ..kinematics import dh_body_end, rpy_matrix
 from ..load import PathKey, RawSpec
-from ..meshes import MeshError, MeshSolid, is_relative, mesh_path, mesh_solid
+from ..meshes import MESH_SUFFIXES, MeshError, MeshSolid, is_relative, mesh_path, mesh_solid
 from ..model import DEFAULT_ROW_RADIUS
 from ..physics import capsule_volume, tube_volume
 from .bodies import Body
@@ -75,10 +75,10 @@ def body_solids(
         wanted = ("mass" in item or "density" in item) and not given
         if not wanted:  # (a relative file that is not there: mesh_files_errors says so)
             continue
+        if is_relative(filename) and _not_copyable(raw, filename):
+            continue  # (mesh_files_errors says why)
         try:
             file = mesh_path(filename, raw.file)
-            if is_relative(filename) and not file.is_file():
-                raise MeshError(_not_there(filename, file))
             solid = mesh_solid(file, tuple(shape["mesh"].get("scale", (1.0, 1.0, 1.0))))
         except MeshError as exc:
             errors.append(raw.error(where, str(exc)))
@@ -100,6 +100,23 @@ def _not_there(filename: str, file: Path) -> str:
     return f"mesh file {filename!r} is not there ({file}); a relative path is read from the spec's folder"
 
 
+def _not_copyable(raw: RawSpec, filename: str) -> str | None:
+    """Why the relative mesh path ``filename`` cannot be copied into the package, or None: a file that is not there,
+    or one outside the spec's folder (through '..' or a symbolic link) or not a mesh file. (gen-robot copies it: a
+    spec from elsewhere must not carry any other file of yours into a package you may publish.)"""
+    folder = Path(raw.file).parent
+    file = folder / filename
+    if not file.is_file():
+        return _not_there(filename, file)
+    if not file.resolve().is_relative_to(folder.resolve()) or file.suffix.lower() not in MESH_SUFFIXES:
+        return (
+            f"a relative mesh path must name a mesh file ({', '.join(MESH_SUFFIXES)}) in the spec's folder or below "
+            f"it, since gen-robot copies it into the package; {filename!r} is not one (use package:// or file:// for "
+            "a mesh kept elsewhere)"
+        )
+    return None
+
+
 def mesh_files_errors(raw: RawSpec, data: dict[str, Any]) -> list[SpecError]:
     """The relative mesh paths gen-robot cannot copy into the package's meshes/: a file that is not there, or two
     files of the same name (both would be meshes/NAME)."""
@@ -110,8 +127,9 @@ def mesh_files_errors(raw: RawSpec, data: dict[str, Any]) -> list[SpecError]:
             continue
         file = Path(raw.file).parent / filename
         where = (*path, "filename")
-        if not file.is_file():
-            errors.append(raw.error(where, _not_there(filename, file)))
+        refused = _not_copyable(raw, filename)
+        if refused:
+            errors.append(raw.error(where, refused))
             continue
         name = PurePosixPath(filename).name
         first = copied.setdefault(name, file.resolve())

@@ -272,3 +272,24 @@ def test_a_scene_carries_its_robots_meshes_in_its_own_package(tmp_path, mode):
     for checked in (out / "urdf" / "yard.urdf", scene):  # (the written package; the spec, its meshes staged)
         report = gen_robot("check", "--strict", checked)
         assert report.returncode == 0, report.stdout
+
+
+@pytest.mark.parametrize("filename", ["../outside/part.stl", "cad/notes.txt", "cad/link.stl"])
+def test_a_relative_mesh_outside_the_spec_folder_or_not_a_mesh_is_refused(tmp_path, filename):
+    """gen-robot copies a relative mesh into the package: a spec from elsewhere must not carry another file there
+    (a key, a document) by naming it as a mesh, through '..' or a symbolic link."""
+    spec_folder = tmp_path / "spec"
+    (tmp_path / "outside").mkdir()
+    box_stl(tmp_path / "outside", [0.1, 0.1, 0.1])
+    (tmp_path / "outside" / "part.stl").write_bytes((tmp_path / "outside" / "cad" / "part.stl").read_bytes())
+    (spec_folder / "cad").mkdir(parents=True)
+    (spec_folder / "cad" / "notes.txt").write_text("secret", encoding="utf-8")
+    (spec_folder / "cad" / "link.stl").symlink_to(tmp_path / "outside" / "part.stl")
+    spec = {"robot": "m", "links": {"a": {"shape": {"mesh": {"filename": filename}}, "mass": 1.0}}}
+    spec_path = write(spec_folder, spec)
+    with pytest.raises(SpecErrors) as caught:
+        build_robot(spec_path)
+    (error,) = caught.value.errors
+    assert error.path == "$.links.a.shape.mesh.filename" and "in the spec's folder or below it" in error.message
+    result = gen_robot(spec_path, "-o", tmp_path / "out")
+    assert result.returncode == 2 and not (tmp_path / "out").exists()
