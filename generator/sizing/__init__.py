@@ -77,7 +77,9 @@ def size(
             raise SpecErrors([asked.raw.error(("mobile",), found, key=True)])
         base = found
     report = SizeReport.of(str(path), robot, static_peaks(robot), payloads, loads, moved, asked.drives)
-    return dataclasses.replace(report, base=base, base_motion=asked.mobile, samples=samples)
+    return dataclasses.replace(
+        report, base=base, base_motion=asked.mobile, samples=samples, safety_factor=asked.safety_factor
+    )
 
 
 def parse_payload(text: str) -> Payload:

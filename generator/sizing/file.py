@@ -45,6 +45,7 @@ class Sizing:
     drives: dict[str, Drive] = field(default_factory=dict)
     raw: RawSpec | None = None
     mobile: BaseMotion | None = None
+    safety_factor: float = 1.0
 
 
 @cache
@@ -114,7 +115,8 @@ def read_sizing(path: str | os.PathLike[str]) -> Sizing:
         )
     if read.errors:
         raise SpecErrors(read.errors)
-    return Sizing(tuple(payloads), tuple(loads), data.get("motion"), drives, raw, mobile)
+    factor = float(data.get("safety_factor", 1.0))
+    return Sizing(tuple(payloads), tuple(loads), data.get("motion"), drives, raw, mobile, factor)
 
 
 def _optional(read: _Reader, item: dict[str, Any], key: str, kind: Kind, where: PathKey) -> float | None:

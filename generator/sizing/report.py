@@ -2,12 +2,12 @@
 peak and RMS torque, speed, acceleration, power and energy; through a drive the motor's side; and every margin, as a
 table or as JSON (schemas/size-report.schema.json).
 
-A margin is a limit over what is needed (>= 1 passes): the URDF's effort limit over the static and the motion peak
-torque, its velocity limit over the peak speed, and a drive's motor limits over the motor's peak torque, RMS torque
-and peak speed. The motor side, through a gear ratio N and efficiency eta: torque tau / (N eta) (the gearbox's losses
-counted as when the motor drives, the conservative case), speed N qdot, reflected rotor inertia J_rotor N^2, and the
-load-to-motor inertia ratio J_load / (J_rotor N^2) with J_load the largest diagonal entry of the mass matrix along
-the motion.
+A margin is a limit over what is needed times the sizing file's safety factor (default 1); >= 1 passes. The URDF's
+effort limit over the static and the motion peak torque, its velocity limit over the peak speed, and a drive's motor
+limits over the motor's peak torque, RMS torque and peak speed. The motor side, through a gear ratio N and
+efficiency eta: torque tau / (N eta) (the gearbox's losses counted as when the motor drives, the conservative case),
+speed N qdot, reflected rotor inertia J_rotor N^2, and the load-to-motor inertia ratio J_load / (J_rotor N^2) with
+J_load the largest diagonal entry of the mass matrix along the motion.
 """
 
 from __future__ import annotations
@@ -53,6 +53,7 @@ class SizeReport:
     base: BaseSizing | None = None
     base_motion: BaseMotion | None = None
     samples: tuple[Trajectory, np.ndarray] | None = field(default=None, compare=False)  # (for the plots)
+    safety_factor: float = 1.0  # every need is multiplied by it before its margin is taken
 
     @staticmethod
     def of(
@@ -77,9 +78,13 @@ class SizeReport:
             drives=dict(drives or {}),
         )
 
+    def _ratio(self, limit: float | None, needed: float) -> float | None:
+        """A margin: the limit over the need times the safety factor."""
+        return ratio(limit, needed * self.safety_factor)
+
     def margin(self, peak: StaticPeak) -> float | None:
         """The URDF's effort limit over the static peak torque (>= 1 passes), None without a limit or a torque."""
-        return ratio(self.efforts.get(peak.joint), peak.torque)
+        return self._ratio(self.efforts.get(peak.joint), peak.torque)
 
     def motion_of(self, joint: str) -> JointMotion | None:
         return next((m for m in self.motions or () if m.joint == joint), None)
@@ -104,9 +109,9 @@ class SizeReport:
             "reflected_inertia": reflected,
             "inertia_ratio": moved.peak_load_inertia / reflected if moved and reflected > 0 else None,
         }
-        side["peak_torque_margin"] = ratio(drive.peak_torque, side["motor_peak_torque"])
-        side["rated_torque_margin"] = ratio(drive.rated_torque, side["motor_rms_torque"])
-        side["speed_margin"] = ratio(drive.max_speed, side["motor_peak_speed"])
+        side["peak_torque_margin"] = self._ratio(drive.peak_torque, side["motor_peak_torque"])
+        side["rated_torque_margin"] = self._ratio(drive.rated_torque, side["motor_rms_torque"])
+        side["speed_margin"] = self._ratio(drive.max_speed, side["motor_peak_speed"])
         return side
 
     @property
@@ -118,8 +123,11 @@ class SizeReport:
             moved = self.motion_of(peak.joint)
             if moved is not None:
                 checks += [
-                    ("motion torque over the effort limit", ratio(self.efforts.get(peak.joint), moved.peak_torque)),
-                    ("speed over the velocity limit", ratio(self.velocities.get(peak.joint), moved.peak_speed)),
+                    (
+                        "motion torque over the effort limit",
+                        self._ratio(self.efforts.get(peak.joint), moved.peak_torque),
+                    ),
+                    ("speed over the velocity limit", self._ratio(self.velocities.get(peak.joint), moved.peak_speed)),
                 ]
             side = self.drive_side(peak.joint)
             if side is not None:
@@ -132,8 +140,8 @@ class SizeReport:
         if self.base is not None:
             for wheel, torque, speed in zip(self.base.wheels, self.base.torques, self.base.speeds, strict=True):
                 for what, margin in (
-                    ("wheel torque over the effort limit", ratio(wheel.effort, torque)),
-                    ("wheel speed over the velocity limit", ratio(wheel.velocity, speed)),
+                    ("wheel torque over the effort limit", self._ratio(wheel.effort, torque)),
+                    ("wheel speed over the velocity limit", self._ratio(wheel.velocity, speed)),
                 ):
                     if margin is not None and margin < 1.0:
                         found.append((wheel.joint, what))
@@ -154,6 +162,7 @@ class SizeReport:
             "path": self.path,
             "robot": self.robot,
             "gravity": GRAVITY,
+            "safety_factor": self.safety_factor,
             "convention": "torque the joint's motor must produce: tau = M(q) qddot + C(q, qdot) qdot + g(q) "
             "- J(q)^T w, w the force and moment the environment applies at a load's frame origin, world axes",
             "payloads": [
@@ -191,8 +200,8 @@ class SizeReport:
                     "torque": torque,
                     "speed": speed,
                     "power": power,
-                    "effort_margin": ratio(wheel.effort, torque),
-                    "velocity_margin": ratio(wheel.velocity, speed),
+                    "effort_margin": self._ratio(wheel.effort, torque),
+                    "velocity_margin": self._ratio(wheel.velocity, speed),
                 }
                 for wheel, torque, speed, power in zip(base.wheels, base.torques, base.speeds, base.powers, strict=True)
             ],
@@ -224,8 +233,8 @@ class SizeReport:
                 "energy": moved.energy,
                 "motoring_energy": moved.motoring_energy,
                 "peak_load_inertia": moved.peak_load_inertia,
-                "effort_margin": ratio(self.efforts.get(peak.joint), moved.peak_torque),
-                "velocity_margin": ratio(self.velocities.get(peak.joint), moved.peak_speed),
+                "effort_margin": self._ratio(self.efforts.get(peak.joint), moved.peak_torque),
+                "velocity_margin": self._ratio(self.velocities.get(peak.joint), moved.peak_speed),
             }
         side = self.drive_side(peak.joint)
         if side is not None:

@@ -225,3 +225,13 @@ def test_the_docs_starter_arm_example_says_what_size_finds(tmp_path):
     assert margins == [0.76, 0.99]
     docs = (REPO / "docs" / "size.md").read_text(encoding="utf-8")
     assert "margins 0.76 and 0.99" in docs
+
+
+def test_a_safety_factor_divides_every_margin(arm_file, tmp_path):
+    sizing = tmp_path / "safe.yaml"
+    sizing.write_text("safety_factor: 1.5\n", encoding="utf-8")
+    plain = size(arm_file(effort=30.0), payloads=[Payload("tool", 1.0)])
+    safe = size(arm_file(effort=30.0), payloads=[Payload("tool", 1.0)], sizing=sizing)
+    for peak_plain, peak_safe in zip(plain.peaks, safe.peaks, strict=True):
+        assert safe.margin(peak_safe) == pytest.approx(plain.margin(peak_plain) / 1.5, rel=1e-12)
+    assert plain.failed == [] and safe.failed == ["shoulder"]  # (9.80665 x 2.56 = 25.1 N*m; x 1.5 = 37.7 > 30)
