@@ -77,3 +77,11 @@ def test_every_sizing_example_runs_the_command_its_header_gives():
         result = gen_robot(*words, cwd=REPO)
         assert result.returncode == 0, (example.name, result.stdout, result.stderr)
         assert "OK: every margin >= 1" in result.stdout
+
+
+def test_the_docs_two_link_example_is_real_output():
+    docs = (REPO / "docs" / "size.md").read_text(encoding="utf-8")
+    command = "gen-robot size examples/robots/planar_2dof.yaml --sizing examples/sizing/planar_2dof_payload.yaml"
+    shown = docs.split(f"$ {command}\n", 1)[1].split("```", 1)[0]
+    result = gen_robot(*command.split()[1:], cwd=REPO)
+    assert result.returncode == 0 and result.stdout == shown
