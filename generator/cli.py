@@ -25,6 +25,7 @@ from .errors import XacrokitError
 from .guard import trusting
 from .progress import Progress
 from .size_command import add_report_command, add_size_command
+from .view_commands import add_view_commands
 
 if TYPE_CHECKING:
     from .pipeline import GenerateResult
@@ -369,6 +370,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     add_size_command(commands, _add_xacro_options)
     add_report_command(commands)
+    add_view_commands(commands, _add_xacro_options)
 
     schema = commands.add_parser(
         "schema",
@@ -410,7 +412,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 SCHEMA_KINDS = ("robot", "scene", "check-report", "size-report", "sizing")
-COMMANDS = ("generate", "new", "check", "size", "report", "fleet", "schema", "expand", "macros", "materials")
+COMMANDS = ("generate", "new", "check", "size", "report", "graph", "fleet", "schema", "expand", "macros", "materials")
 
 
 def _shorthand(words: list[str]) -> bool:
