@@ -27,6 +27,25 @@ def add_view_commands(commands: Any, add_xacro_options: Callable[[argparse.Argum
     add_xacro_options(graph)
     graph.set_defaults(handler=_cmd_graph)
 
+    render = commands.add_parser(
+        "render",
+        help="a picture of the robot (PNG, matplotlib: no OpenGL, the same bytes every run)",
+        description="Draw PATH (a URDF, xacro document, spec or scene) at the joint values given (others at 0) into "
+        "a PNG, without OpenGL: its visuals placed by yourdfpy, drawn by matplotlib's Agg backend from a fixed view.",
+    )
+    render.add_argument("path", help="a .urdf, .xacro or .yaml spec")
+    render.add_argument("-o", "--output", required=True, help="the PNG to write (atomically)")
+    render.add_argument(
+        "--joint",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="a joint's value (rad or m, or with a unit: 'elbow_joint=90 deg'); repeatable",
+    )
+    render.add_argument("--size", default="800x600", metavar="WxH", help="pixels (default 800x600)")
+    add_xacro_options(render)
+    render.set_defaults(handler=_cmd_render)
+
 
 def _cmd_graph(args: argparse.Namespace) -> int:
     from .errors import XacrokitError
@@ -44,4 +63,39 @@ def _cmd_graph(args: argparse.Namespace) -> int:
         write_text_atomic(output, dot)
     else:
         raise XacrokitError(f"-o {args.output}: write FILE.dot (or .gv) or FILE.svg")
+    return 0
+
+
+def _cmd_render(args: argparse.Namespace) -> int:
+    from .errors import XacrokitError
+    from .fileio import write_text_atomic
+    from .render_png import render
+    from .units import UnitError, parse_quantity
+
+    joints = {}
+    for text in args.joint:
+        name, sep, value = text.partition("=")
+        if not sep or not name.strip():
+            raise XacrokitError(f"--joint {text!r}: expected NAME=VALUE, e.g. 'elbow_joint=90 deg'")
+        try:  # (an angle, or a length for a prismatic joint: '0.1 m', '50 mm')
+            joints[name.strip()] = parse_quantity(value.strip(), "angle")
+        except UnitError:
+            try:
+                joints[name.strip()] = parse_quantity(value.strip(), "length")
+            except UnitError as exc:
+                raise XacrokitError(f"--joint {text!r}: {exc}; give an angle or a length") from None
+    try:
+        width, height = (int(v) for v in args.size.lower().split("x"))
+    except ValueError:
+        raise XacrokitError(f"--size {args.size!r}: expected WIDTHxHEIGHT in pixels, e.g. 800x600") from None
+    if not (16 <= width <= 8000 and 16 <= height <= 8000):
+        raise XacrokitError(f"--size {args.size!r}: each side must be 16 to 8000 pixels")
+    picture = render(
+        args.path,
+        parse_mappings(args.mappings),
+        joints=joints,
+        package_paths=parse_packages(args.package),
+        size=(width, height),
+    )
+    write_text_atomic(Path(args.output), picture)
     return 0
