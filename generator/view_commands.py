@@ -1,6 +1,6 @@
-"""The commands that show a robot: ``gen-robot graph`` (its kinematic tree) and ``gen-robot render`` (a picture);
-their options and outputs (the work is :mod:`xacrokit.graph` and :mod:`xacrokit.render_png`, imported when a command
-runs)."""
+"""The commands that show a robot: ``gen-robot graph`` (its kinematic tree), ``gen-robot view`` (an offline page) and
+``gen-robot render`` (a picture); their options and outputs (the work is :mod:`xacrokit.graph`, :mod:`xacrokit.viewer`
+and :mod:`xacrokit.render_png`, imported when a command runs)."""
 
 from __future__ import annotations
 
@@ -26,6 +26,18 @@ def add_view_commands(commands: Any, add_xacro_options: Callable[[argparse.Argum
     graph.add_argument("-o", "--output", help="FILE.dot or FILE.svg (written atomically)")
     add_xacro_options(graph)
     graph.set_defaults(handler=_cmd_graph)
+
+    view = commands.add_parser(
+        "view",
+        help="an offline HTML page of the robot with a slider per joint (three.js, no network)",
+        description="Write one self-contained HTML page of PATH (a URDF, xacro document, spec or scene) that opens "
+        "offline from file://: the robot, a slider per moving joint (mimic joints follow), orbit with the mouse. "
+        "three.js comes from the npm registry's pinned tarball, downloaded once and cached.",
+    )
+    view.add_argument("path", help="a .urdf, .xacro or .yaml spec")
+    view.add_argument("-o", "--output", required=True, help="the HTML page to write (atomically)")
+    add_xacro_options(view)
+    view.set_defaults(handler=_cmd_view)
 
     render = commands.add_parser(
         "render",
@@ -98,4 +110,13 @@ def _cmd_render(args: argparse.Namespace) -> int:
         size=(width, height),
     )
     write_text_atomic(Path(args.output), picture)
+    return 0
+
+
+def _cmd_view(args: argparse.Namespace) -> int:
+    from .fileio import write_text_atomic
+    from .viewer import page
+
+    text = page(args.path, parse_mappings(args.mappings), package_paths=parse_packages(args.package))
+    write_text_atomic(Path(args.output), text)
     return 0

@@ -1,0 +1,222 @@
+"""``gen-robot view``: one self-contained HTML page that shows a robot (URDF, xacro document, spec or scene) and moves
+its joints, offline from ``file://``: no request of any kind leaves the page.
+
+three.js comes from the npm registry, not from this repository: the pinned release's tarball is downloaded once,
+checked against the registry's sha512 integrity, cached (``~/.cache/xacrokit/npm``, or ``XACROKIT_NPM_CACHE``), and
+its module build and OrbitControls are inlined into the page through an import map of data: URLs. The robot is
+embedded as JSON (every ``<`` escaped, so that no name can close the script element); meshes are read with trimesh
+(STL, OBJ, PLY, DAE when pycollada is there) and embedded as vertex and index arrays. The page's forward kinematics
+are the URDF's, in double precision (fixed-axis rpy, revolute, continuous, prismatic, mimic; floating and planar
+joints at their zero pose), and ``window.xacrokit`` exposes ``setJoints({name: value})``, ``linkPose(name)`` (the 4x4
+world transform, row-major) and ``joints()`` for tests.
+"""
+
+from __future__ import annotations
+
+import base64
+import hashlib
+import io
+import json
+import os
+import tarfile
+import urllib.request
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .errors import XacrokitError
+
+THREE_VERSION = "0.170.0"
+THREE_TARBALL = f"https://registry.npmjs.org/three/-/three-{THREE_VERSION}.tgz"
+THREE_INTEGRITY = "sha512-FQK+LEpYc0fBD+J8g6oSEyyNzjp+Q7Ks1C568WWaoMRLW+TkNNWmenWeGgJjV105Gd+p/2ql1ZcjYvNiPZBhuQ=="
+THREE_FILES = {"three": "package/build/three.module.min.js", "orbit": "package/examples/jsm/controls/OrbitControls.js"}
+
+
+def npm_cache() -> Path:
+    return Path(os.environ.get("XACROKIT_NPM_CACHE") or Path.home() / ".cache" / "xacrokit" / "npm")
+
+
+def three_sources() -> dict[str, str]:
+    """three.js's module build and OrbitControls, from the pinned npm tarball (downloaded once, integrity-checked)."""
+    tarball = npm_cache() / f"three-{THREE_VERSION}.tgz"
+    if not tarball.is_file():
+        try:
+            with urllib.request.urlopen(THREE_TARBALL, timeout=120) as response:  # noqa: S310  (a pinned https URL)
+                data = response.read()
+        except OSError as exc:
+            raise XacrokitError(
+                f"three.js {THREE_VERSION} is not cached and cannot be downloaded from the npm registry ({exc}); "
+                f"put {THREE_TARBALL} at {tarball}"
+            ) from None
+        _check(data)
+        tarball.parent.mkdir(parents=True, exist_ok=True)
+        partial = tarball.with_suffix(".part")
+        partial.write_bytes(data)
+        partial.replace(tarball)
+    data = tarball.read_bytes()
+    _check(data)
+    with tarfile.open(fileobj=io.BytesIO(data), mode="r:gz") as archive:
+        found = {}
+        for key, member in THREE_FILES.items():
+            handle = archive.extractfile(member)
+            if handle is None:
+                raise XacrokitError(f"{tarball} holds no {member}")
+            found[key] = handle.read().decode("utf-8")
+    return found
+
+
+def _check(data: bytes) -> None:
+    digest = "sha512-" + base64.b64encode(hashlib.sha512(data).digest()).decode("ascii")
+    if digest != THREE_INTEGRITY:
+        raise XacrokitError(f"the three.js tarball does not have the npm registry's integrity {THREE_INTEGRITY}")
+
+
+def robot_json(text: str, resolve: Any) -> dict[str, Any]:
+    """The robot as the page reads it: links with their visuals, joints with their origin, axis, limits, mimic."""
+    from lxml import etree
+
+    root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+    colours = {m.get("name"): m.find("color").get("rgba") for m in root.iter("material") if m.find("color") is not None}
+    links = []
+    for link in root.findall("link"):
+        visuals = []
+        for visual in link.findall("visual"):
+            geometry = visual.find("geometry")
+            if geometry is None or len(geometry) == 0:
+                continue
+            shape = geometry[0]
+            entry: dict[str, Any] = {"origin": _origin(visual.find("origin")), "kind": shape.tag}
+            material = visual.find("material")
+            rgba = None
+            if material is not None:
+                colour = material.find("color")
+                rgba = colour.get("rgba") if colour is not None else colours.get(material.get("name"))
+            entry["rgba"] = _floats(rgba, [0.62, 0.64, 0.68, 1.0])
+            if shape.tag == "box":
+                entry["size"] = _floats(shape.get("size"), [0.1, 0.1, 0.1])
+            elif shape.tag == "cylinder":
+                entry.update(radius=float(shape.get("radius", 0.05)), length=float(shape.get("length", 0.1)))
+            elif shape.tag == "sphere":
+                entry["radius"] = float(shape.get("radius", 0.05))
+            elif shape.tag == "mesh":
+                vertices, faces = _mesh(resolve, shape.get("filename", ""))
+                entry.update(
+                    scale=_floats(shape.get("scale"), [1.0, 1.0, 1.0]),
+                    vertices=base64.b64encode(vertices.astype("<f4").tobytes()).decode("ascii"),
+                    faces=base64.b64encode(faces.astype("<u4").tobytes()).decode("ascii"),
+                )
+            else:
+                continue
+            visuals.append(entry)
+        links.append({"name": link.get("name"), "visuals": visuals})
+    joints = []
+    for joint in root.findall("joint"):
+        limit, mimic, axis = joint.find("limit"), joint.find("mimic"), joint.find("axis")
+        entry = {
+            "name": joint.get("name"),
+            "type": joint.get("type"),
+            "parent": joint.find("parent").get("link"),
+            "child": joint.find("child").get("link"),
+            "origin": _origin(joint.find("origin")),
+            "axis": _floats(axis.get("xyz") if axis is not None else None, [1.0, 0.0, 0.0]),
+        }
+        if limit is not None and joint.get("type") in ("revolute", "prismatic"):
+            entry["lower"], entry["upper"] = float(limit.get("lower", 0)), float(limit.get("upper", 0))
+        if mimic is not None:
+            entry["mimic"] = {
+                "joint": mimic.get("joint"),
+                "multiplier": float(mimic.get("multiplier", 1.0)),
+                "offset": float(mimic.get("offset", 0.0)),
+            }
+        joints.append(entry)
+    return {"name": root.get("name", "robot"), "links": links, "joints": joints}
+
+
+def _floats(text: str | None, default: list[float]) -> list[float]:
+    try:
+        values = [float(v) for v in (text or "").split()]
+    except ValueError:
+        return default
+    return values if len(values) == len(default) else default
+
+
+def _origin(element: Any) -> dict[str, list[float]]:
+    if element is None:
+        return {"xyz": [0.0, 0.0, 0.0], "rpy": [0.0, 0.0, 0.0]}
+    return {"xyz": _floats(element.get("xyz"), [0.0, 0.0, 0.0]), "rpy": _floats(element.get("rpy"), [0.0, 0.0, 0.0])}
+
+
+def _mesh(resolve: Any, filename: str) -> tuple[np.ndarray, np.ndarray]:
+    import trimesh
+
+    file = Path(resolve(filename))
+    if not file.is_file():
+        raise XacrokitError(f"mesh {filename!r} is not there ({file}); the page would miss it")
+    try:
+        mesh: Any = trimesh.load(file, force="mesh")
+    except Exception as exc:  # noqa: BLE001  (trimesh raises what its readers raise)
+        raise XacrokitError(f"mesh {filename!r} cannot be read ({type(exc).__name__}: {exc})") from None
+    return np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64)
+
+
+def page(
+    path: str | os.PathLike[str],
+    mappings: Mapping[str, str] | None = None,
+    *,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
+) -> str:
+    """The HTML page of the robot at ``path`` (see the module's notes).
+
+    Raises:
+        XacrokitError: unreadable input, a mesh that cannot be found or read, or three.js unavailable.
+    """
+    from .check.run import input_kind, load_urdf
+    from .fileio import staged_packages
+    from .packages import find_package, with_nearby_packages
+    from .render import environment
+
+    where = Path(path)
+    kind = input_kind(where)
+    if mappings and kind != "xacro":
+        raise XacrokitError("name:=value arguments only apply to xacro input")
+    packages = package_paths if kind == "spec" else with_nearby_packages(where, package_paths)
+    carried: dict[str, Any] = {}
+    text, _, _, _ = load_urdf(where, kind, mappings, packages, carried)
+    with staged_packages(carried) as staged:
+        known = {**staged, **(packages or {})}
+
+        def resolve(filename: str) -> str:
+            if filename.startswith("package://"):
+                package, _, rest = filename[len("package://") :].partition("/")
+                try:
+                    return str(Path(find_package(package, known), rest))
+                except LookupError as exc:
+                    raise XacrokitError(f"mesh {filename!r}: {exc}") from None
+            if filename.startswith("file://"):
+                return filename[len("file://") :]
+            return str(where.parent / filename)
+
+        robot = robot_json(text, resolve)
+    sources = three_sources()
+    imports = {
+        "three": "data:text/javascript;base64," + base64.b64encode(sources["three"].encode()).decode("ascii"),
+        "three/addons/controls/OrbitControls.js": "data:text/javascript;base64,"
+        + base64.b64encode(sources["orbit"].encode()).decode("ascii"),
+    }
+    return (
+        environment()
+        .get_template("viewer/view.html.j2")
+        .render(
+            title=robot["name"],
+            robot_json=_script_json(robot),
+            import_map=_script_json({"imports": imports}),
+            three_version=THREE_VERSION,
+        )
+    )
+
+
+def _script_json(value: Any) -> str:
+    """JSON to put inside a <script> element: '<', '>' and '&' as \\u escapes (no name can end the element)."""
+    return json.dumps(value).replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
