@@ -110,7 +110,14 @@ def robot_json(text: str, resolve: Any) -> dict[str, Any]:
             else:
                 continue
             visuals.append(entry)
-        links.append({"name": link.get("name"), "visuals": visuals})
+        links.append(
+            {
+                "name": link.get("name"),
+                "visuals": visuals,
+                "collisions": _collisions(link),
+                "inertia": _inertia_box(link.find("inertial")),
+            }
+        )
     joints = []
     for joint in root.findall("joint"):
         limit, mimic, axis = joint.find("limit"), joint.find("mimic"), joint.find("axis")
@@ -132,6 +139,52 @@ def robot_json(text: str, resolve: Any) -> dict[str, Any]:
             }
         joints.append(entry)
     return {"name": root.get("name", "robot"), "links": links, "joints": joints}
+
+
+def _collisions(link: Any) -> list[dict[str, Any]]:
+    """A link's collision primitives (meshes are drawn as their visuals: the toggle shows the primitives)."""
+    found = []
+    for collision in link.findall("collision"):
+        geometry = collision.find("geometry")
+        if geometry is None or len(geometry) == 0 or geometry[0].tag not in ("box", "cylinder", "sphere"):
+            continue
+        shape = geometry[0]
+        entry: dict[str, Any] = {
+            "origin": _origin(collision.find("origin")),
+            "kind": shape.tag,
+            "rgba": [1, 0.4, 0, 0.5],
+        }
+        if shape.tag == "box":
+            entry["size"] = _floats(shape.get("size"), [0.1, 0.1, 0.1])
+        elif shape.tag == "cylinder":
+            entry.update(radius=float(shape.get("radius", 0.05)), length=float(shape.get("length", 0.1)))
+        else:
+            entry["radius"] = float(shape.get("radius", 0.05))
+        found.append(entry)
+    return found
+
+
+def _inertia_box(inertial: Any) -> dict[str, Any] | None:
+    """The box of uniform density with the link's mass and principal moments (sides sqrt(6 (I_j + I_k - I_i) / m)),
+    at the centre of mass, along the principal axes: what the inertia toggle draws. None without a mass."""
+    from .kinematics import rpy_matrix
+
+    if inertial is None or inertial.find("mass") is None or inertial.find("inertia") is None:
+        return None
+    try:
+        mass = float(inertial.find("mass").get("value"))
+        i = {k: float(inertial.find("inertia").get(k, 0.0)) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+    except ValueError:
+        return None
+    tensor = np.array([[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]])
+    if not mass > 0 or not np.all(np.isfinite(tensor)):
+        return None
+    moments, axes = np.linalg.eigh(tensor)
+    total = moments.sum()
+    sides = [float(np.sqrt(max(6.0 * (total - 2.0 * m) / mass, 0.0))) for m in moments]
+    origin = _origin(inertial.find("origin"))
+    rotation = rpy_matrix(*origin["rpy"]) @ axes
+    return {"xyz": origin["xyz"], "rotation": rotation.reshape(-1).tolist(), "size": sides}
 
 
 def _floats(text: str | None, default: list[float]) -> list[float]:

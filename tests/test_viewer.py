@@ -133,3 +133,21 @@ def test_names_cannot_break_out_of_the_page_and_a_missing_mesh_is_an_error(tmp_p
         page(missing)
     result = gen_robot("view", missing, "-o", tmp_path / "m.html")
     assert result.returncode == 2 and not (tmp_path / "m.html").exists()
+
+
+@browser_only
+def test_toggles_change_the_picture_and_the_sweep_moves_each_joint(browser, tmp_path):
+    import time
+
+    html = tmp_path / "ur5.html"
+    html.write_text(page(REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"), encoding="utf-8")
+    open_page(browser, html)
+    shots = [browser.get_screenshot_as_png()]
+    for toggle in ("show-inertia", "show-com", "show-frames", "show-collision", "show-visual"):
+        browser.find_element("id", toggle).click()
+        shots.append(browser.get_screenshot_as_png())
+    assert len(set(shots)) == len(shots)  # (every toggle changed what is drawn)
+    still = browser.execute_script("return window.xacrokit.linkPose('tool0')")
+    browser.find_element("id", "sweep").click()
+    time.sleep(0.5)  # (a quarter into the first joint's sweep)
+    assert browser.execute_script("return window.xacrokit.linkPose('tool0')") != still
