@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import shutil
 import subprocess
 import sys
+
+import pytest
 
 from conftest import REPO
 
@@ -61,3 +64,13 @@ def test_size_speed_script_runs():
     assert "static worst-case search, 6-axis UR5 with 5 kg:" in result.stdout
     ratio = float(result.stdout.split("ratio ")[1].split()[0])
     assert 0.5 < ratio < 20  # (a ratio, measured: not a timing target, which RESULTS.md records)
+
+
+@pytest.mark.skipif(not (shutil.which("chromium") and shutil.which("chromedriver")), reason="no chromium here")
+def test_view_speed_script_runs():
+    """benchmarks/view_speed.py: a 1,000-link page opened in headless Chromium, a joint move timed in the page."""
+    result = subprocess.run(
+        [sys.executable, str(REPO / "benchmarks" / "view_speed.py")], capture_output=True, text=True, timeout=600
+    )
+    assert result.returncode == 0, result.stderr
+    assert "1001-link fleet page: open and draw" in result.stdout and "121-link robot: a joint move" in result.stdout
