@@ -1,7 +1,10 @@
 """``gen-robot size``: what each joint's motor must deliver, computed on the description (pinocchio).
 
 One module per part: :mod:`.robot` (the model, its moving joints and loads, and the conventions), :mod:`.static` (the
-worst static torque of each joint over its range), :mod:`.report` (the table and the JSON report).
+worst static torque of each joint over its range), :mod:`.motion` (time scaling, inverse dynamics, inverse
+kinematics of pose waypoints), :mod:`.mobile` (a mobile base's wheels), :mod:`.file` (the sizing file),
+:mod:`.report` (the table and the JSON report) and :mod:`.document` (the Markdown report with plots). docs/size.md
+is the users' page.
 """
 
 from __future__ import annotations
