@@ -13,7 +13,6 @@ import os
 import shutil
 import subprocess
 from collections.abc import Mapping
-from pathlib import Path
 
 from .errors import XacrokitError
 
@@ -85,19 +84,13 @@ def graph(
     Raises:
         XacrokitError: unreadable input (SpecErrors for an invalid spec, located).
     """
-    from .check.run import input_kind, load_urdf
-    from .packages import with_nearby_packages
+    from .inputs import robot_text
 
-    where = Path(path)
-    kind = input_kind(where)
-    if mappings and kind != "xacro":
-        raise XacrokitError("name:=value arguments only apply to xacro input")
-    packages = package_paths if kind == "spec" else with_nearby_packages(where, package_paths)
-    text, _, _, _ = load_urdf(where, kind, mappings, packages, {})
-    try:
-        return tree_dot(text)
-    except Exception as exc:  # noqa: BLE001  (lxml's parse errors: the file is not XML)
-        raise XacrokitError(f"{where}: not a URDF: {exc}") from None
+    with robot_text(path, mappings, package_paths) as (text, _):
+        try:
+            return tree_dot(text)
+        except Exception as exc:  # noqa: BLE001  (lxml's parse errors: the file is not XML)
+            raise XacrokitError(f"{path}: not a URDF: {exc}") from None
 
 
 def svg(dot: str) -> bytes:

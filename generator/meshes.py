@@ -12,11 +12,10 @@ import functools
 import os
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
-from urllib.parse import unquote, urlparse
 
 import numpy as np
 
-from .packages import find_package, with_nearby_packages
+from .packages import mesh_file, with_nearby_packages
 
 MAX_MESH_BYTES = 256 * 1024 * 1024  # a CAD part's mesh is a few MB; a file this large is not one
 MESH_FOLDER = "meshes"  # where a package keeps the meshes gen-robot copies or makes
@@ -51,18 +50,10 @@ def mesh_path(filename: str, spec_path: str | os.PathLike[str]) -> Path:
     Raises:
         MeshError: the package is not known here, or the URI's scheme is not one of those.
     """
-    if filename.startswith("package://"):
-        package, _, rest = filename[len("package://") :].partition("/")
-        try:
-            folder = find_package(package, with_nearby_packages(spec_path))
-        except LookupError as exc:
-            raise MeshError(str(exc)) from None
-        return Path(folder, rest)
-    if filename.startswith("file://"):
-        return Path(unquote(urlparse(filename).path))
-    if "://" in filename:
-        raise MeshError(f"{filename!r}: unknown URI scheme; use a path, package:// or file://")
-    return Path(spec_path).parent / filename
+    try:
+        return mesh_file(filename, Path(spec_path).parent, with_nearby_packages(spec_path))
+    except (LookupError, ValueError) as exc:
+        raise MeshError(str(exc)) from None
 
 
 def mesh_solid(path: Path, scale: tuple[float, float, float]) -> MeshSolid:

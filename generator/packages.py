@@ -109,3 +109,23 @@ def _ament_index() -> tuple[Callable[[str], str], type[Exception]] | None:
     except ImportError:
         return None
     return get_package_share_directory, PackageNotFoundError
+
+
+def mesh_file(filename: str, base: Path, package_paths: Mapping[str, str | os.PathLike[str]] | None = None) -> Path:
+    """The file a mesh names: ``package://PKG/path`` (through ``package_paths``, then as :func:`find_package`
+    looks), ``file:///abs/path`` (percent-decoded), an absolute path, or a path relative to ``base``.
+
+    Raises:
+        LookupError: the package is not known here (the message says how to make it known).
+        ValueError: another URI scheme.
+    """
+    from urllib.parse import unquote, urlparse
+
+    if filename.startswith("package://"):
+        package, _, rest = filename[len("package://") :].partition("/")
+        return Path(find_package(package, package_paths), rest)
+    if filename.startswith("file://"):
+        return Path(unquote(urlparse(filename).path))
+    if "://" in filename:
+        raise ValueError(f"{filename!r}: unknown URI scheme; use a path, package:// or file://")
+    return base / filename

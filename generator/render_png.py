@@ -36,19 +36,10 @@ def render(
     Raises:
         XacrokitError: unreadable input, a mesh that cannot be found or read, or an unknown joint.
     """
-    from .check.run import input_kind, load_urdf
-    from .fileio import staged_packages
-    from .packages import with_nearby_packages
+    from .inputs import robot_text
 
-    where = Path(path)
-    kind = input_kind(where)
-    if mappings and kind != "xacro":
-        raise XacrokitError("name:=value arguments only apply to xacro input")
-    packages = package_paths if kind == "spec" else with_nearby_packages(where, package_paths)
-    carried: dict[str, Any] = {}
-    text, _, _, _ = load_urdf(where, kind, mappings, packages, carried)
-    with staged_packages(carried) as staged:  # (a spec's meshes, where its package will carry them)
-        meshes = _placed_meshes(text, {**staged, **(packages or {})}, where.parent, joints or {})
+    with robot_text(path, mappings, package_paths) as (text, packages):
+        meshes = _placed_meshes(text, packages, Path(path).parent, joints or {})
     return _draw(meshes, size)
 
 
@@ -58,19 +49,13 @@ def _placed_meshes(
     """(vertices, faces, colour) of every visual, placed in the root link's frame."""
     import yourdfpy
 
-    from .packages import find_package
+    from .packages import mesh_file
 
     def resolve(fname: str) -> str:  # (yourdfpy passes it by this name)
-        filename = fname
-        if filename.startswith("package://"):
-            package, _, rest = filename[len("package://") :].partition("/")
-            try:
-                return str(Path(find_package(package, packages), rest))
-            except LookupError as exc:
-                raise XacrokitError(f"mesh {filename!r}: {exc}") from None
-        if filename.startswith("file://"):
-            return filename[len("file://") :]
-        return str(base / filename)
+        try:
+            return str(mesh_file(fname, base, packages))
+        except (LookupError, ValueError) as exc:
+            raise XacrokitError(f"mesh {fname!r}: {exc}") from None
 
     for element in _mesh_names(text):
         file = Path(resolve(element))

@@ -225,31 +225,17 @@ def page(
     Raises:
         XacrokitError: unreadable input, a mesh that cannot be found or read, or three.js unavailable.
     """
-    from .check.run import input_kind, load_urdf
-    from .fileio import staged_packages
-    from .packages import find_package, with_nearby_packages
+    from .inputs import robot_text
+    from .packages import mesh_file
     from .render import environment
 
-    where = Path(path)
-    kind = input_kind(where)
-    if mappings and kind != "xacro":
-        raise XacrokitError("name:=value arguments only apply to xacro input")
-    packages = package_paths if kind == "spec" else with_nearby_packages(where, package_paths)
-    carried: dict[str, Any] = {}
-    text, _, _, _ = load_urdf(where, kind, mappings, packages, carried)
-    with staged_packages(carried) as staged:
-        known = {**staged, **(packages or {})}
+    with robot_text(path, mappings, package_paths) as (text, packages):
 
         def resolve(filename: str) -> str:
-            if filename.startswith("package://"):
-                package, _, rest = filename[len("package://") :].partition("/")
-                try:
-                    return str(Path(find_package(package, known), rest))
-                except LookupError as exc:
-                    raise XacrokitError(f"mesh {filename!r}: {exc}") from None
-            if filename.startswith("file://"):
-                return filename[len("file://") :]
-            return str(where.parent / filename)
+            try:
+                return str(mesh_file(filename, Path(path).parent, packages))
+            except (LookupError, ValueError) as exc:
+                raise XacrokitError(f"mesh {filename!r}: {exc}") from None
 
         robot = robot_json(text, resolve)
     sources = three_sources()
