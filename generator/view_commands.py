@@ -35,7 +35,13 @@ def add_view_commands(commands: Any, add_xacro_options: Callable[[argparse.Argum
         "three.js comes from the npm registry's pinned tarball, downloaded once and cached.",
     )
     view.add_argument("path", help="a .urdf, .xacro or .yaml spec")
-    view.add_argument("-o", "--output", required=True, help="the HTML page to write (atomically)")
+    view.add_argument("-o", "--output", help="the HTML page to write (atomically); required without --watch")
+    view.add_argument(
+        "--watch",
+        action="store_true",
+        help="serve the page on 127.0.0.1 and make it again (the browser reloads) when a file in PATH's folder changes",
+    )
+    view.add_argument("--port", type=int, default=8765, help="with --watch: the port (0: any free one; default 8765)")
     add_xacro_options(view)
     view.set_defaults(handler=_cmd_view)
 
@@ -114,9 +120,24 @@ def _cmd_render(args: argparse.Namespace) -> int:
 
 
 def _cmd_view(args: argparse.Namespace) -> int:
+    from .errors import XacrokitError
     from .fileio import write_text_atomic
     from .viewer import page
 
-    text = page(args.path, parse_mappings(args.mappings), package_paths=parse_packages(args.package))
-    write_text_atomic(Path(args.output), text)
+    mappings, packages = parse_mappings(args.mappings), parse_packages(args.package)
+    if args.watch:
+        from .watch import POLL, POLLER, Watcher
+
+        def build(version: int) -> str:
+            poller = POLLER.format(version=version, poll=int(POLL * 1000))
+            return page(args.path, mappings, package_paths=packages, poller=poller)
+
+        def say(message: str) -> None:
+            print(f"gen-robot view: {message}", flush=True)
+
+        Watcher(build, Path(args.path).resolve().parent).serve(args.port, announce=say)
+        return 0
+    if not args.output:
+        raise XacrokitError("gen-robot view needs -o PAGE.html (or --watch to serve it)")
+    write_text_atomic(Path(args.output), page(args.path, mappings, package_paths=packages))
     return 0

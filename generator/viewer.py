@@ -219,8 +219,10 @@ def page(
     mappings: Mapping[str, str] | None = None,
     *,
     package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
+    poller: str = "",
 ) -> str:
-    """The HTML page of the robot at ``path`` (see the module's notes).
+    """The HTML page of the robot at ``path`` (see the module's notes); ``poller``: the script ``--watch`` adds (it
+    may then ask its own origin, and only that).
 
     Raises:
         XacrokitError: unreadable input, a mesh that cannot be found or read, or three.js unavailable.
@@ -252,6 +254,7 @@ def page(
             robot_json=_script_json(robot),
             import_map=_script_json({"imports": imports}),
             three_version=THREE_VERSION,
+            poller=poller,
         )
     )
 
