@@ -8,7 +8,9 @@ error, located, until the next change builds: never a blank page, never the old 
 
 from __future__ import annotations
 
+import contextlib
 import html
+import os
 import threading
 import time
 from collections.abc import Callable
@@ -19,7 +21,7 @@ from .errors import SpecErrors, XacrokitError
 
 WATCHED = (".yaml", ".yml", ".xacro", ".urdf", ".xml", ".stl", ".obj", ".ply", ".dae")
 POLL = 0.5  # s, both the files' and the page's
-MAX_FILES = 10_000  # a folder this large is not a robot's: watch the first ones only
+MAX_ENTRIES = 20_000  # files and folders looked at per poll: a folder this large is not a robot's
 
 POLLER = """<script>
 const shown = {version};
@@ -47,14 +49,21 @@ def error_page(message: str, version: int) -> str:
 
 
 def snapshot(folder: Path) -> dict[str, tuple[int, int]]:
-    """(mtime, size) of every watched file under ``folder``."""
+    """(mtime, size) of every watched file under ``folder``, looking at no more than MAX_ENTRIES entries (a spec kept
+    in a home folder must not make every poll walk the whole disk)."""
     found: dict[str, tuple[int, int]] = {}
-    for path in sorted(folder.rglob("*")):
-        if len(found) >= MAX_FILES:
+    seen = 0
+    for where, folders, files in os.walk(folder):
+        folders[:] = sorted(f for f in folders if not f.startswith("."))  # (no .git, no caches)
+        seen += len(folders) + len(files)
+        for name in sorted(files):
+            path = Path(where, name)
+            if path.suffix.lower() in WATCHED:
+                with contextlib.suppress(OSError):  # (a file removed while we look)
+                    stat = path.stat()
+                    found[str(path)] = (stat.st_mtime_ns, stat.st_size)
+        if seen > MAX_ENTRIES:
             break
-        if path.suffix.lower() in WATCHED and path.is_file():
-            stat = path.stat()
-            found[str(path)] = (stat.st_mtime_ns, stat.st_size)
     return found
 
 
