@@ -74,22 +74,21 @@ def design_report(spec_path: str | Path) -> DesignReport:
         if path in solids and kind != "tool":
             volumes[name] = volumes.get(name, 0.0) + solids[path].volume  # (a composite's parts add up)
     described = _spec_shapes(spec.data)
-    links = [_link_report(link, volumes.get(link.name), described.get(link.name)) for link in _links(robot)]
-    model = pin.buildModelFromXML(emit_urdf(robot), pin.JointModelFreeFlyer())
+    urdf = emit_urdf(robot)
+    links = [_link_report(link, volumes.get(link.name), described.get(link.name)) for link in _links(robot, urdf)]
+    model = pin.buildModelFromXML(urdf, pin.JointModelFreeFlyer())
     data = model.createData()
     center = pin.centerOfMass(model, data, pin.neutral(model))
     mass = float(sum(link.inertial.mass for link in links if link.inertial is not None))
     return DesignReport(robot.name, tuple(links), mass, (float(center[0]), float(center[1]), float(center[2])))
 
 
-def _links(robot: Robot) -> list[Link]:
-    """The robot's links as the model holds them (arms and wheels through their emitted form)."""
+def _links(robot: Robot, urdf: str) -> list[Link]:
+    """The robot's links as the model holds them (arms and wheels through their emitted form, ``urdf``)."""
     from lxml import etree
 
-    from .emit import emit_urdf
-
     by_name = {link.name: link for link in robot.links}
-    root = etree.fromstring(emit_urdf(robot).encode("utf-8"))
+    root = etree.fromstring(urdf.encode("utf-8"))
     found = []
     for element in root.findall("link"):
         name = element.get("name")

@@ -86,7 +86,7 @@ def graph(
     """
     from .inputs import robot_text
 
-    with robot_text(path, mappings, package_paths) as (text, _):
+    with robot_text(path, mappings, package_paths, meshes=False) as (text, _):
         try:
             return tree_dot(text)
         except Exception as exc:  # noqa: BLE001  (lxml's parse errors: the file is not XML)

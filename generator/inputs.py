@@ -20,8 +20,11 @@ def robot_text(
     path: str | os.PathLike[str],
     mappings: Mapping[str, str] | None = None,
     package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
+    *,
+    meshes: bool = True,
 ) -> Iterator[tuple[str, Packages]]:
-    """(URDF text, packages) of the robot at ``path``, for the ``with`` block (a spec's staged meshes live that long).
+    """(URDF text, packages) of the robot at ``path``, for the ``with`` block (a spec's staged meshes live that long;
+    ``meshes=False`` for a reader of the text alone: nothing staged).
 
     Raises:
         XacrokitError: unreadable input, or name:=value arguments for input that is not xacro.
@@ -38,5 +41,5 @@ def robot_text(
     packages = package_paths if kind == "spec" else with_nearby_packages(where, package_paths)
     carried: dict[str, Any] = {}
     text, _, _, _ = load_urdf(where, kind, mappings, packages, carried)
-    with staged_packages(carried) as staged:
+    with staged_packages(carried if meshes else {}) as staged:
         yield text, {**staged, **(packages or {})}

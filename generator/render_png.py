@@ -87,7 +87,7 @@ def _mesh_names(text: str) -> list[str]:
     from lxml import etree
 
     root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
-    return sorted({m.get("filename", "") for m in root.iter("mesh") if m.getparent().getparent().tag == "visual"})
+    return sorted({m.get("filename", "") for m in root.iterfind("link/visual/geometry/mesh")})
 
 
 def _colour(geometry: Any) -> tuple[float, float, float]:

@@ -79,7 +79,7 @@ class _Package:
         self.files: dict[str, bytes | str] = {}
 
 
-def shape(data: dict[str, Any], package: _Package | None = None) -> Shape:
+def shape(data: dict[str, Any], package: _Package) -> Shape:
     """The URDF geometry of a spec shape that has one: a box, cylinder, sphere or mesh (a relative mesh path becomes
     a copy in the package's meshes/), or, for a tube, a mesh made into the package (named by its sizes: tubes of the
     same sizes share one file)."""
@@ -89,14 +89,14 @@ def shape(data: dict[str, Any], package: _Package | None = None) -> Shape:
         return Cylinder(radius=float(data["cylinder"]["radius"]), length=float(data["cylinder"]["length"]))
     if "sphere" in data:
         return Sphere(radius=float(data["sphere"]["radius"]))
-    if "tube" in data and package is not None:
+    if "tube" in data:
         inner, outer, length = (float(data["tube"][k]) for k in ("inner_radius", "outer_radius", "length"))
         path = f"{MESH_FOLDER}/xacrokit/tube_{inner!r}_{outer!r}_{length!r}.obj"
         package.files[path] = tube_obj(inner, outer, length)
         return Mesh(filename=f"package://{package.name}/{path}")
     mesh = data["mesh"]
     filename = mesh["filename"]
-    if package is not None and is_relative(filename):  # (validate saw the file there)
+    if is_relative(filename):  # (validate saw the file there)
         path = f"{MESH_FOLDER}/{PurePosixPath(filename).name}"
         package.files[path] = (package.spec_folder / filename).read_bytes()
         filename = f"package://{package.name}/{path}"

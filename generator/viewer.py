@@ -94,12 +94,8 @@ def robot_json(text: str, resolve: Any) -> dict[str, Any]:
                 colour = material.find("color")
                 rgba = colour.get("rgba") if colour is not None else colours.get(material.get("name"))
             entry["rgba"] = _floats(rgba, [0.62, 0.64, 0.68, 1.0])
-            if shape.tag == "box":
-                entry["size"] = _floats(shape.get("size"), [0.1, 0.1, 0.1])
-            elif shape.tag == "cylinder":
-                entry.update(radius=float(shape.get("radius", 0.05)), length=float(shape.get("length", 0.1)))
-            elif shape.tag == "sphere":
-                entry["radius"] = float(shape.get("radius", 0.05))
+            if shape.tag in ("box", "cylinder", "sphere"):
+                entry.update(_primitive(shape))
             elif shape.tag == "mesh":
                 vertices, faces = _mesh(resolve, shape.get("filename", ""))
                 entry.update(
@@ -121,21 +117,24 @@ def robot_json(text: str, resolve: Any) -> dict[str, Any]:
     joints = []
     for joint in root.findall("joint"):
         limit, mimic, axis = joint.find("limit"), joint.find("mimic"), joint.find("axis")
+        parent, child = joint.find("parent"), joint.find("child")
+        if parent is None or child is None:  # (not a URDF joint: check says so; the page draws the rest)
+            continue
         entry = {
             "name": joint.get("name"),
             "type": joint.get("type"),
-            "parent": joint.find("parent").get("link"),
-            "child": joint.find("child").get("link"),
+            "parent": parent.get("link"),
+            "child": child.get("link"),
             "origin": _origin(joint.find("origin")),
             "axis": _floats(axis.get("xyz") if axis is not None else None, [1.0, 0.0, 0.0]),
         }
         if limit is not None and joint.get("type") in ("revolute", "prismatic"):
-            entry["lower"], entry["upper"] = float(limit.get("lower", 0)), float(limit.get("upper", 0))
+            entry["lower"], entry["upper"] = _number(limit.get("lower"), 0.0), _number(limit.get("upper"), 0.0)
         if mimic is not None:
             entry["mimic"] = {
                 "joint": mimic.get("joint"),
-                "multiplier": float(mimic.get("multiplier", 1.0)),
-                "offset": float(mimic.get("offset", 0.0)),
+                "multiplier": _number(mimic.get("multiplier"), 1.0),
+                "offset": _number(mimic.get("offset"), 0.0),
             }
         joints.append(entry)
     return {"name": root.get("name", "robot"), "links": links, "joints": joints}
@@ -149,19 +148,28 @@ def _collisions(link: Any) -> list[dict[str, Any]]:
         if geometry is None or len(geometry) == 0 or geometry[0].tag not in ("box", "cylinder", "sphere"):
             continue
         shape = geometry[0]
-        entry: dict[str, Any] = {
-            "origin": _origin(collision.find("origin")),
-            "kind": shape.tag,
-            "rgba": [1, 0.4, 0, 0.5],
-        }
-        if shape.tag == "box":
-            entry["size"] = _floats(shape.get("size"), [0.1, 0.1, 0.1])
-        elif shape.tag == "cylinder":
-            entry.update(radius=float(shape.get("radius", 0.05)), length=float(shape.get("length", 0.1)))
-        else:
-            entry["radius"] = float(shape.get("radius", 0.05))
+        entry: dict[str, Any] = {"origin": _origin(collision.find("origin")), "kind": shape.tag}
+        entry.update(rgba=[1.0, 0.4, 0.0, 0.5], **_primitive(shape))
         found.append(entry)
     return found
+
+
+def _primitive(shape: Any) -> dict[str, Any]:
+    """A box's, cylinder's or sphere's sizes as the page reads them (a size that is not a number: a small default,
+    so that the page still draws the rest; check says what is wrong)."""
+    if shape.tag == "box":
+        return {"size": _floats(shape.get("size"), [0.1, 0.1, 0.1])}
+    if shape.tag == "cylinder":
+        return {"radius": _number(shape.get("radius"), 0.05), "length": _number(shape.get("length"), 0.1)}
+    return {"radius": _number(shape.get("radius"), 0.05)}
+
+
+def _number(text: str | None, default: float) -> float:
+    try:
+        value = float(text if text is not None else default)
+    except ValueError:
+        return default
+    return value if np.isfinite(value) else default
 
 
 def _inertia_box(inertial: Any) -> dict[str, Any] | None:

@@ -13,7 +13,6 @@ import dataclasses
 import math
 import os
 from collections.abc import Mapping, Sequence
-from pathlib import Path
 
 from ..errors import SpecErrors, XacrokitError
 from ..units import UnitError, parse_quantity
@@ -55,11 +54,6 @@ def size(
         XacrokitError: unreadable input, an unknown frame, or a robot with nothing to size.
         SpecErrors: an invalid spec or sizing file (located).
     """
-    if mappings and not str(path).endswith(".xacro"):
-        from ..check.run import input_kind
-
-        if input_kind(Path(path)) != "xacro":
-            raise XacrokitError("name:=value arguments only apply to xacro input")
     asked = read_sizing(sizing) if sizing is not None else Sizing()
     robot = load_robot(path, mappings, package_paths=package_paths)
     problems = name_errors(asked, robot)

@@ -116,13 +116,11 @@ def load_robot(
     import pinocchio as pin
     from lxml import etree
 
-    from ..check.run import input_kind, load_urdf
-    from ..packages import with_nearby_packages
+    from ..inputs import robot_text
 
     where = Path(path)
-    kind = input_kind(where)
-    packages = package_paths if kind == "spec" else with_nearby_packages(where, package_paths)
-    text, _, _, _ = load_urdf(where, kind, mappings, packages, {})
+    with robot_text(where, mappings, package_paths, meshes=False) as (text, _):  # (pinocchio reads no mesh here)
+        pass
     try:
         model = pin.buildModelFromXML(text)
     except (RuntimeError, ValueError) as exc:
@@ -205,19 +203,15 @@ def _positive(limit: Any, key: str) -> float | None:
 
 
 def _massless_moving_links(model: Any, root: Any) -> list[str]:
-    """The links moved by a joint (a body frame below a joint) that have a shape but no <inertial>, in the URDF's
-    order (a link with neither is a frame, such as tool0: massless by design)."""
-    import pinocchio as pin
-
-    moving = {f.name for f in model.frames if f.type == pin.FrameType.BODY and f.parentJoint > 0}
-    return [
-        link.get("name")
-        for link in root.findall("link")
-        if link.get("name") in moving and link.find("inertial") is None and link.find("visual") is not None
-    ]
+    """The links moved by a joint that have a shape but no <inertial>, in the URDF's order (a link with neither is a
+    frame, such as tool0: massless by design)."""
+    shaped = {link.get("name") for link in root.findall("link") if link.find("visual") is not None}
+    without = {link.get("name") for link in root.findall("link") if link.find("inertial") is None}
+    return [name for name in _moved_links(model, root) if name in shaped & without]
 
 
 def _moved_links(model: Any, root: Any) -> list[str]:
+    """The links below a joint (pinocchio's body frames with a parent joint), in the URDF's order."""
     import pinocchio as pin
 
     moving = {f.name for f in model.frames if f.type == pin.FrameType.BODY and f.parentJoint > 0}
