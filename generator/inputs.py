@@ -1,6 +1,10 @@
 """What the commands that read a robot share (graph, view, render): a URDF, xacro document, spec or scene read as URDF
 text, with the packages its ``package://`` URIs may name (a spec's own meshes staged where its package will carry
-them). ``packages.mesh_file`` resolves a mesh URI with them."""
+them). ``packages.mesh_file`` resolves a mesh URI with them.
+
+A URDF that uses a namespace prefix it never declares (``<limit drake:acceleration="..."/>``: check's U003; every
+URDF consumer reads past it) is handed on with those names in a namespace of their own
+(``urn:xacrokit:undeclared:PREFIX``), so that the XML readers behind these commands read it too."""
 
 from __future__ import annotations
 
@@ -41,5 +45,43 @@ def robot_text(
     packages = package_paths if kind == "spec" else with_nearby_packages(where, package_paths)
     carried: dict[str, Any] = {}
     text, _, _, _ = load_urdf(where, kind, mappings, packages, carried)
+    text = declared(text, str(where) if kind == "urdf" else f"{where} (as expanded)")
     with staged_packages(carried if meshes else {}) as staged:
         yield text, {**staged, **(packages or {})}
+
+
+UNDECLARED = "urn:xacrokit:undeclared:"
+
+
+def declared(text: str, where: str = "<robot>") -> str:
+    """``text`` itself when it is well-formed XML with its namespaces declared and a ``<robot>`` root; when its only
+    faults are namespace prefixes used without a declaration, the same document with each such name put in the
+    namespace ``urn:xacrokit:undeclared:PREFIX``.
+
+    Raises:
+        XacrokitError: not well-formed XML (located: ``where:line:column``), or a root that is not ``<robot>``.
+    """
+    from lxml import etree
+
+    data = text.encode("utf-8")
+    strict = etree.XMLParser(resolve_entities=False, no_network=True)
+    try:
+        root = etree.fromstring(data, strict)
+    except etree.XMLSyntaxError as exc:
+        log = strict.error_log
+        if not log or any(e.domain_name != "NAMESPACE" for e in log):
+            line, column = exc.position
+            raise XacrokitError(f"{where}:{line}:{column}: not well-formed XML: {exc.msg}") from None
+        root = etree.fromstring(data, etree.XMLParser(recover=True, resolve_entities=False, no_network=True))
+        for element in root.iter(etree.Element):
+            if ":" in element.tag and not element.tag.startswith("{"):
+                prefix, _, local = element.tag.partition(":")
+                element.tag = f"{{{UNDECLARED}{prefix}}}{local}"
+            for key in [k for k in element.attrib if ":" in k and not k.startswith("{")]:
+                prefix, _, local = key.partition(":")
+                element.set(f"{{{UNDECLARED}{prefix}}}{local}", element.attrib.pop(key))
+        text = str(etree.tostring(root, encoding="unicode"))
+    if root.tag != "robot":
+        line = root.sourceline or 1
+        raise XacrokitError(f"{where}:{line}: the root element is <{root.tag}>, not <robot>: not a URDF")
+    return text

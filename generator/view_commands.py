@@ -41,6 +41,11 @@ def add_view_commands(commands: Any, add_xacro_options: Callable[[argparse.Argum
         action="store_true",
         help="serve the page on 127.0.0.1 and make it again (the browser reloads) when a file in PATH's folder changes",
     )
+    view.add_argument(
+        "--sizing",
+        metavar="FILE",
+        help="a sizing file with a motion (as gen-robot size reads it): the page plays it, its torque plot beside it",
+    )
     view.add_argument("--port", type=int, default=8765, help="with --watch: the port (0: any free one; default 8765)")
     add_xacro_options(view)
     view.set_defaults(handler=_cmd_view)
@@ -130,7 +135,7 @@ def _cmd_view(args: argparse.Namespace) -> int:
 
         def build(version: int) -> str:
             poller = POLLER.format(version=version, poll=int(POLL * 1000))
-            return page(args.path, mappings, package_paths=packages, poller=poller)
+            return page(args.path, mappings, package_paths=packages, poller=poller, sizing=args.sizing)
 
         def say(message: str) -> None:
             print(f"gen-robot view: {message}", flush=True)
@@ -139,5 +144,9 @@ def _cmd_view(args: argparse.Namespace) -> int:
         return 0
     if not args.output:
         raise XacrokitError("gen-robot view needs -o PAGE.html (or --watch to serve it)")
-    write_text_atomic(Path(args.output), page(args.path, mappings, package_paths=packages))
+    missing: list[str] = []
+    text = page(args.path, mappings, package_paths=packages, sizing=args.sizing, missing=missing)
+    for line in missing:
+        print(f"gen-robot view: warning: not shown: {line}", file=sys.stderr)
+    write_text_atomic(Path(args.output), text)
     return 0

@@ -6,9 +6,11 @@ checked against the registry's sha512 integrity, cached (``~/.cache/xacrokit/npm
 its module build and OrbitControls are inlined into the page through an import map of data: URLs. The robot is
 embedded as JSON (every ``<`` escaped, so that no name can close the script element); meshes are read with trimesh
 (STL, OBJ, PLY, DAE when pycollada is there) and embedded as vertex and index arrays. The page's forward kinematics
-are the URDF's, in double precision (fixed-axis rpy, revolute, continuous, prismatic, mimic; floating and planar
-joints at their zero pose), and ``window.xacrokit`` exposes ``setJoints({name: value})``, ``linkPose(name)`` (the 4x4
-world transform, row-major) and ``joints()`` for tests.
+are the URDF's, in double precision (fixed-axis rpy, revolute, continuous, prismatic, mimic; a floating joint takes
+[x, y, z, roll, pitch, yaw], a planar one [x, y, theta] in the plane normal to its axis), and ``window.xacrokit``
+exposes ``setJoints({name: value})``, ``linkPose(name)`` (the 4x4 world transform, row-major), ``joints()`` and
+``multiJoints()`` for tests. With a sizing file (:mod:`xacrokit.viewer_motion`) the page plays its motion with the
+torque plot beside it (``playAt(t)``).
 """
 
 from __future__ import annotations
@@ -74,19 +76,21 @@ def _check(data: bytes) -> None:
 
 
 def robot_json(text: str, resolve: Any) -> dict[str, Any]:
-    """The robot as the page reads it: links with their visuals, joints with their origin, axis, limits, mimic."""
+    """The robot as the page reads it: links with their visuals, joints with their origin, axis, limits, mimic, and
+    ``missing``: a line for each mesh that cannot be found or read (``resolve`` raising XacrokitError for it), whose
+    visual the page goes without and lists."""
     from lxml import etree
 
     root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+    missing: list[str] = []  # (a mesh the page cannot show: said in the page and by the command)
     colours = {m.get("name"): m.find("color").get("rgba") for m in root.iter("material") if m.find("color") is not None}
     links = []
     for link in root.findall("link"):
         visuals = []
         for visual in link.findall("visual"):
-            geometry = visual.find("geometry")
-            if geometry is None or len(geometry) == 0:
+            shape = _shape(visual)
+            if shape is None:
                 continue
-            shape = geometry[0]
             entry: dict[str, Any] = {"origin": _origin(visual.find("origin")), "kind": shape.tag}
             material = visual.find("material")
             rgba = None
@@ -97,7 +101,11 @@ def robot_json(text: str, resolve: Any) -> dict[str, Any]:
             if shape.tag in ("box", "cylinder", "sphere"):
                 entry.update(_primitive(shape))
             elif shape.tag == "mesh":
-                vertices, faces = _mesh(resolve, shape.get("filename", ""))
+                try:
+                    vertices, faces = _mesh(resolve, shape.get("filename", ""))
+                except XacrokitError as exc:
+                    missing.append(f"link {link.get('name')}: {exc}")
+                    continue
                 entry.update(
                     scale=_floats(shape.get("scale"), [1.0, 1.0, 1.0]),
                     vertices=base64.b64encode(vertices.astype("<f4").tobytes()).decode("ascii"),
@@ -137,21 +145,29 @@ def robot_json(text: str, resolve: Any) -> dict[str, Any]:
                 "offset": _number(mimic.get("offset"), 0.0),
             }
         joints.append(entry)
-    return {"name": root.get("name", "robot"), "links": links, "joints": joints}
+    return {"name": root.get("name", "robot"), "links": links, "joints": joints, "missing": missing}
 
 
 def _collisions(link: Any) -> list[dict[str, Any]]:
     """A link's collision primitives (meshes are drawn as their visuals: the toggle shows the primitives)."""
     found = []
     for collision in link.findall("collision"):
-        geometry = collision.find("geometry")
-        if geometry is None or len(geometry) == 0 or geometry[0].tag not in ("box", "cylinder", "sphere"):
+        shape = _shape(collision)
+        if shape is None or shape.tag not in ("box", "cylinder", "sphere"):
             continue
-        shape = geometry[0]
         entry: dict[str, Any] = {"origin": _origin(collision.find("origin")), "kind": shape.tag}
         entry.update(rgba=[1.0, 0.4, 0.0, 0.5], **_primitive(shape))
         found.append(entry)
     return found
+
+
+def _shape(element: Any) -> Any:
+    """The shape element of a visual or collision: the first element inside its <geometry> (comments skipped, as
+    in vendors' files that keep a commented-out shape above the one in use), None without one."""
+    from lxml import etree
+
+    geometry = element.find("geometry")
+    return None if geometry is None else next(geometry.iterchildren(etree.Element), None)
 
 
 def _primitive(shape: Any) -> dict[str, Any]:
@@ -228,12 +244,16 @@ def page(
     *,
     package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
     poller: str = "",
+    sizing: str | os.PathLike[str] | None = None,
+    missing: list[str] | None = None,
 ) -> str:
     """The HTML page of the robot at ``path`` (see the module's notes); ``poller``: the script ``--watch`` adds (it
-    may then ask its own origin, and only that).
+    may then ask its own origin, and only that); ``sizing``: a sizing file whose motion the page plays; ``missing``:
+    a list the meshes the page goes without are added to (the page lists them too).
 
     Raises:
-        XacrokitError: unreadable input, a mesh that cannot be found or read, or three.js unavailable.
+        XacrokitError: unreadable input, a sizing file without a motion, or three.js unavailable.
+        SpecErrors: an invalid sizing file (located).
     """
     from .inputs import robot_text
     from .packages import mesh_file
@@ -248,6 +268,12 @@ def page(
                 raise XacrokitError(f"mesh {filename!r}: {exc}") from None
 
         robot = robot_json(text, resolve)
+    if missing is not None:
+        missing.extend(robot["missing"])
+    if sizing is not None:
+        from .viewer_motion import motion_json
+
+        robot["motion"] = motion_json(path, sizing, mappings, package_paths=package_paths)
     sources = three_sources()
     imports = {
         "three": "data:text/javascript;base64," + base64.b64encode(sources["three"].encode()).decode("ascii"),

@@ -211,3 +211,17 @@ def parse_generated(path: str, content: str) -> object:
         return mesh.vertices.round(12).tolist()
     assert path.endswith(".md"), path
     return None  # Markdown: anything parses
+
+
+@pytest.fixture(scope="session")
+def browser():
+    """One headless chromium for the session (tests/browser.py); skips the test when chromium, its driver or
+    selenium is missing."""
+    pytest.importorskip("selenium.webdriver")
+    from browser import CHROMIUM, DRIVER, start_browser
+
+    if not (CHROMIUM and DRIVER):
+        pytest.skip("chromium and chromedriver are not installed")
+    driver = start_browser()
+    yield driver
+    driver.quit()

@@ -150,6 +150,7 @@ def test_command_examples_run_in_sequence(tmp_path):
             command = line.split("  #", 1)[0].strip()
             if not command or command.startswith("pip "):
                 continue  # installing is what the README's first command shows
+            command = re.sub(r"(?<![\w/.])examples/", f"{REPO.as_posix()}/examples/", command)  # (the repository's)
             result = subprocess.run(
                 command, shell=True, cwd=tmp_path, env=env, capture_output=True, text=True, timeout=300
             )

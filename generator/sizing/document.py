@@ -110,7 +110,7 @@ def _motion_figure(report: SizeReport) -> Any:
     figure = _figure()(figsize=(8, 8), dpi=100)
     axes = figure.subplots(3, 1, sharex=True)
     for index, joint in enumerate(report.peaks):
-        axes[0].plot(path.t, torque[:, index], label=_plain(joint.joint))
+        axes[0].plot(path.t, torque[:, index], label=plot_label(joint.joint))
         axes[1].plot(path.t, path.v[:, index])
         axes[2].plot(path.t, torque[:, index] * path.v[:, index])
     axes[0].set_ylabel("torque (N·m)")
@@ -142,14 +142,14 @@ def _drive_figure(report: SizeReport, index: int) -> Any:
         ax.axvline(drive.max_speed, color="tab:purple", label="motor maximum speed")
     ax.set_xlabel("motor speed (rad/s)")
     ax.set_ylabel("motor torque (N·m)")
-    ax.set_title(f"{_plain(joint)}: margin {_num(ratio(drive.peak_torque, float(motor.max()) or 0.0))}")
+    ax.set_title(f"{plot_label(joint)}: margin {_num(ratio(drive.peak_torque, float(motor.max()) or 0.0))}")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize="small")
     figure.tight_layout()
     return figure
 
 
-def _plain(name: str) -> str:
+def plot_label(name: str) -> str:
     """A name shown as it is in a plot: matplotlib reads text between two ``$`` as mathematics."""
     return name.replace("$", r"\$")
 

@@ -10,6 +10,7 @@ from functools import cache
 
 import pytest
 import yaml
+
 from realworld import VERDICTS, CorpusUnavailable, RobotFile, corpus, findings_of, rejected_by
 
 
