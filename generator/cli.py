@@ -21,11 +21,10 @@ from typing import TYPE_CHECKING, NoReturn
 
 from . import __version__
 from .cliargs import fleet_count, parse_mappings, parse_packages, require_plain_output, spacing
+from .commands import add_commands
 from .errors import XacrokitError
 from .guard import trusting
 from .progress import Progress
-from .size_command import add_report_command, add_size_command
-from .view_commands import add_view_commands
 
 if TYPE_CHECKING:
     from .pipeline import GenerateResult
@@ -368,9 +367,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_xacro_options(chk)
     chk.set_defaults(handler=_cmd_check)
 
-    add_size_command(commands, _add_xacro_options)
-    add_report_command(commands)
-    add_view_commands(commands, _add_xacro_options)
+    add_commands(commands, _add_xacro_options)
 
     schema = commands.add_parser(
         "schema",
@@ -412,7 +409,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 SCHEMA_KINDS = ("robot", "scene", "check-report", "size-report", "sizing")
-COMMANDS = tuple("generate new check size report graph view render fleet schema expand macros materials".split())
+COMMANDS = tuple("generate new check size report graph view render export fleet schema expand macros materials".split())
 
 
 def _shorthand(words: list[str]) -> bool:

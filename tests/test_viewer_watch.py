@@ -66,16 +66,7 @@ def test_a_saved_change_is_served_and_a_mistake_shows_its_error(served):
         get(url + "anything_else")
 
 
-@pytest.mark.skipif(not (__import__("shutil").which("chromium")), reason="no chromium here")
-def test_the_browser_reloads_the_page_by_itself(served):
-    from test_viewer import CHROMIUM, DRIVER
-
-    webdriver = pytest.importorskip("selenium.webdriver")
-    options = webdriver.ChromeOptions()
-    options.binary_location = CHROMIUM
-    for flag in ("--headless=new", "--no-sandbox", "--use-gl=swiftshader", "--enable-unsafe-swiftshader"):
-        options.add_argument(flag)
-    browser = webdriver.Chrome(service=webdriver.ChromeService(executable_path=DRIVER), options=options)
+def test_the_browser_reloads_the_page_by_itself(served, browser):
     try:
         spec, url = served
         browser.get(url)
@@ -92,7 +83,7 @@ def test_the_browser_reloads_the_page_by_itself(served):
             time.sleep(0.1)
         assert links == ["base_link", "extra"]
     finally:
-        browser.quit()
+        browser.get("about:blank")  # (the session's browser: leave it on no page of this server)
 
 
 def test_view_without_output_or_watch_is_a_usage_error(tmp_path):

@@ -70,7 +70,7 @@ def gravity_gradient(robot: SizingRobot, values: np.ndarray) -> np.ndarray:
 
 def static_peaks(robot: SizingRobot, *, seed: int = 0) -> list[StaticPeak]:
     """The worst static torque of every moving joint over the joints' ranges (see the module's notes)."""
-    from scipy.optimize import minimize  # type: ignore[import-untyped]
+    from scipy.optimize import minimize
 
     joints = robot.joints
     lower = np.array([j.lower for j in joints])
