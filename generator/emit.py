@@ -34,6 +34,7 @@ from .model import (
     mount_joint_name,
 )
 from .physics import cylinder_moments, sphere_moment
+from .sensors import sensor_element, topic_namespace
 from .text import material_name, num, vec
 
 AXIS_VECTORS = {"x": "1 0 0", "y": "0 1 0", "z": "0 0 1"}
@@ -284,6 +285,8 @@ def robot_elements(
             if getattr(surface, key) is not None:
                 _sub(gazebo, key).text = num(getattr(surface, key))
         elements.append(gazebo)
+    for sensor in robot.sensors if extras else ():
+        elements.append(sensor_element(sensor, prefix, topic_namespace(prefix)))
     if extras and robot.ros2_control is not None and ros2_control == "mock":
         elements.append(_ros2_control(robot, prefix))
     return elements

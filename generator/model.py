@@ -270,6 +270,36 @@ class Surface:
 
 
 @dataclass(frozen=True)
+class Sensor:
+    """A simulated sensor at a frame (:mod:`xacrokit.sensors`): every value resolved (preset, then defaults).
+    ``frame`` is the link its readings are stamped with (a camera's optical frame)."""
+
+    link: str
+    kind: str  # lidar, lidar_3d, camera, depth_camera, rgbd_camera or imu
+    frame: str
+    topic: str
+    update_rate: float
+    samples: int = 0
+    min_angle: float = 0.0
+    max_angle: float = 0.0
+    vertical_samples: int = 0
+    vertical_min: float = 0.0
+    vertical_max: float = 0.0
+    range_min: float = 0.0
+    range_max: float = 0.0
+    range_resolution: float = 0.0
+    width: int = 0
+    height: int = 0
+    fov: float = 0.0
+    image_format: str = "R8G8B8"
+    near: float = 0.0
+    far: float = 0.0
+    noise_mean: float = 0.0
+    noise_stddev: float = 0.0
+    accel_stddev: float = 0.0
+
+
+@dataclass(frozen=True)
 class Robot:
     """A whole robot. ``links``/``joints`` hold the spec's links, joints and frames; arms and wheels keep their own
     records (they are emitted through the dh_arm and wheel macros) and add the names listed by their properties."""
@@ -283,6 +313,7 @@ class Robot:
     wheels: tuple[Wheel, ...] = ()
     ros2_control: tuple[ControlledJoint, ...] | None = None
     surfaces: tuple[Surface, ...] = ()
+    sensors: tuple[Sensor, ...] = ()
     files: tuple[PackageFile, ...] = ()
     source: str = field(default="", compare=False)
 

@@ -51,6 +51,7 @@ from .model import (
     attach_joint_name,
 )
 from .physics import box_moments, capsule_moments, combine, cylinder_moments, sphere_moment, tensor, tube_moments
+from .sensors import resolve_sensor
 from .validate import Spec
 
 DEFAULT_INTERFACES = Interfaces(command=("position",), state=("position", "velocity"))
@@ -368,10 +369,17 @@ def resolve(spec: Spec) -> Robot:
     package = _Package(data["robot"], spec.raw.file)
     links = [_link(name, link, package) for name, link in data.get("links", {}).items()]
     joints = [_joint(name, joint) for name, joint in data.get("joints", {}).items()]
+    sensors = []
     for name, frame in data.get("frames", {}).items():
         link, joint = _frame(name, frame, package)
         links.append(link)
         joints.append(joint)
+        if isinstance(frame.get("sensor"), dict):
+            sensor, optical = resolve_sensor(name, frame["sensor"])
+            sensors.append(sensor)
+            if optical is not None:
+                links.append(optical[0])
+                joints.append(optical[1])
     arms = tuple(_arm(name, arm) for name, arm in data.get("arms", {}).items())
     wheels = tuple(_wheel(name, wheel) for name, wheel in data.get("wheels", {}).items())
     moving = [(j.name, j.limit, False) for j in joints if j.type in MOVING and j.mimic is None]
@@ -395,6 +403,7 @@ def resolve(spec: Spec) -> Robot:
         wheels=wheels,
         ros2_control=_controlled(data, moving),
         surfaces=surfaces,
+        sensors=tuple(sensors),
         files=tuple(PackageFile(path, content) for path, content in sorted(package.files.items())),
         source=spec.raw.file,
     )

@@ -14,6 +14,7 @@ from .inertia import inertia_rules
 from .joints import joint_rules
 from .numbers import geometry_rules, number_rules
 from .references import prefix_rules, reference_rules
+from .sensors import sensor_rules
 from .structure import name_rules, structure_rules, xacro_rules
 
 
@@ -46,6 +47,7 @@ def other_rules(
     findings += joint_rules(doc)
     findings += inertia_rules(doc)
     findings += reference_rules(doc, packages, base_dir)
+    findings += sensor_rules(doc)
     if prefix is not None:
         findings += prefix_rules(doc, prefix)
     return findings

@@ -3,7 +3,7 @@ module holds its own rows beside its code: adding a rule to a family touches tha
 
 from __future__ import annotations
 
-from . import consumers, document, inertia, joints, numbers, references, spec, structure
+from . import consumers, document, inertia, joints, numbers, references, sensors, spec, structure
 from .findings import Row
 
 # rule id -> (name, severity, what it checks). The ids are stable: scripts may filter on them.
@@ -14,6 +14,7 @@ RULES: dict[str, Row] = {
     **joints.RULES,  # J001-J012
     **inertia.RULES,  # I001-I005
     **references.RULES,  # R001-R003, P001
+    **sensors.RULES,  # G002-G004
     **spec.RULES,  # K001, V001, V002
     **consumers.RULES,  # C001
 }

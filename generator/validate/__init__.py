@@ -19,7 +19,8 @@ from typing import Any
 
 from ..errors import SpecError, SpecErrors
 from ..gcpause import collector_paused
-from ..load import RawSpec
+from ..load import PathKey, RawSpec
+from ..sensors import preset_body, resolve_sensor, sensor_problems
 from .bodies import Body, bodies, parts
 from .names import (
     duplicate_errors,
@@ -85,7 +86,29 @@ def semantic_errors(
     errors += tree_errors(raw, kept, link_names)
     if physics:
         errors += physics_errors(raw, data, every, {child for _, child, _ in relations})
+        errors += sensor_errors(raw, data)
     return errors
+
+
+def sensor_errors(raw: RawSpec, data: dict[str, Any]) -> list[SpecError]:
+    """Each frame sensor's impossible values (a range that ends before it starts, a scan wider than a turn, a field
+    of view of pi or more), at the key that says it."""
+    errors = []
+    for name, frame in data.get("frames", {}).items():
+        if isinstance(frame.get("sensor"), dict):
+            sensor, _ = resolve_sensor(name, frame["sensor"])
+            for keys, message in sensor_problems(name, sensor):
+                path = ("frames", name, "sensor", *keys)
+                errors.append(raw.error(path if _has(frame["sensor"], keys) else ("frames", name, "sensor"), message))
+    return errors
+
+
+def _has(holder: Any, keys: Sequence[str]) -> bool:
+    for key in keys:
+        if not isinstance(holder, dict) or key not in holder:
+            return False
+        holder = holder[key]
+    return True
 
 
 def _unique(errors: list[SpecError]) -> list[SpecError]:
@@ -113,6 +136,10 @@ def validate(raw: RawSpec) -> Spec:
     data, unit_errors = quantities.run()
     notes = quantities.warnings
     del quantities  # (its table of changes is garbage now: not kept through the checks below)
+    bodied: dict[PathKey, dict[str | int, Any]] = {
+        ("frames", n): dict(preset_body(f)) for n, f in data.get("frames", {}).items() if preset_body(f)
+    }
+    data = with_values(data, bodied)  # (a sensor preset's shape and mass, for a frame that gives none)
     every = list(bodies(data))
     items = every + list(parts(data))  # (a composite link's parts are bodies too, though not links)
     solids, solid_errors, solid_notes = body_solids(raw, data, items) if not unit_errors else ({}, [], [])

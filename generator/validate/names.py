@@ -12,6 +12,7 @@ from ..errors import SpecError
 from ..load import PathKey, RawSpec, json_path
 from ..model import MOVING, attach_joint_name
 from ..resources import PUBLIC_MACROS, XACRO_KEYWORDS
+from ..sensors import CAMERAS, optical_name, sensor_kind
 from ..text import did_you_mean
 from ..tree import Tree, cycles
 from .bodies import Body
@@ -50,6 +51,11 @@ def link_and_joint_names(data: dict[str, Any], bodies: Sequence[Body]) -> tuple[
         else:  # an arm's base, a wheel, a frame: a link and the joint that attaches it
             links.append(Named(name, path, True))
             joints.append(Named(attach_joint_name(name), path, True))
+        if kind == "frame" and isinstance(item.get("sensor"), dict) and sensor_kind(item["sensor"]) in CAMERAS:
+            optical = optical_name(name, item["sensor"])  # (a camera's optical frame: a link and its joint)
+            where = (*path, "sensor", "optical_frame") if "optical_frame" in item["sensor"] else (*path, "sensor")
+            links.append(Named(optical, where, "optical_frame" not in item["sensor"]))
+            joints.append(Named(f"{optical}_joint", where, "optical_frame" not in item["sensor"]))
     return links, joints
 
 
@@ -114,6 +120,8 @@ def edges(data: dict[str, Any], bodies: Sequence[Body]) -> list[tuple[str, str, 
             result.append((above, name, path))
         elif kind != "link":  # an arm's base, a wheel, a frame: hung from the parent the spec names
             result.append((item["parent"], name, (*path, "parent")))
+        if kind == "frame" and isinstance(item.get("sensor"), dict) and sensor_kind(item["sensor"]) in CAMERAS:
+            result.append((name, optical_name(name, item["sensor"]), (*path, "sensor")))  # (a camera's optical frame)
         above = name
     return result
 

@@ -69,11 +69,13 @@ class Quantities:
             self._built = (self._count, with_values(self.raw.data, self._changes))
         return self._built[1]
 
-    def convert(self, container: Any, key: str | int, path: PathKey, kind: Kind) -> None:
+    def convert(self, container: Any, key: str | int, path: PathKey, kind: Kind, *, scale: bool = True) -> None:
+        """Convert ``container[key]`` to SI (``scale=False``: no warning for a length beyond a robot's parts, such as a
+        sensor's range)."""
         if isinstance(container, dict) and key not in container:
             return
         value = container[key]
-        if kind in ("angle", "length"):
+        if kind in ("angle", "length") and scale:
             plain = value if type(value) in (int, float) else plain_number(value) if isinstance(value, str) else None
             if plain is not None and kind == "angle" and abs(plain) > _TURNS.get(key, 1) * math.tau:
                 self._turns(plain, key, (*path, key))
@@ -242,6 +244,19 @@ class Quantities:
             if len(self.errors) == errors and isinstance(value, (int, float)) and not value > 0:
                 self.errors.append(self.raw.error((*path, key), f"{key} must be > 0, got {limit[key]!r}"))
 
+    def sensor(self, sensor: dict[str, Any], path: PathKey) -> None:
+        """A frame's sensor: its range (lengths of any size), its scan angles and field of view."""
+        for group, keys, kind in (
+            ("range", ("min", "max", "resolution"), "length"),
+            ("clip", ("near", "far"), "length"),
+            ("horizontal", ("min_angle", "max_angle"), "angle"),
+            ("vertical", ("min_angle", "max_angle"), "angle"),
+            ("image", ("fov",), "angle"),
+        ):
+            if isinstance(sensor.get(group), dict):
+                for key in keys:
+                    self.convert(sensor[group], key, (*path, group), kind, scale=False)  # type: ignore[arg-type]
+
     def run(self) -> tuple[dict[str, Any], list[SpecError]]:
         """Convert the whole spec: the converted data and the errors (the warnings are in ``warnings``)."""
         data = self.raw.data
@@ -265,6 +280,8 @@ class Quantities:
             elif kind in ("link", "frame"):
                 self.shape(item, path)
                 self.convert(item, "mass", path, "mass")
+            if kind == "frame" and isinstance(item.get("sensor"), dict):
+                self.sensor(item["sensor"], (*path, "sensor"))
             if kind == "link":
                 self.origin(item, "com", path)
                 if isinstance(item.get("collision"), dict):
