@@ -90,14 +90,14 @@ PRESETS: dict[str, tuple[str, dict[str, Any], dict[str, Any]]] = {
 OPTICAL_RPY = (-math.pi / 2.0, 0.0, -math.pi / 2.0)  # REP 103: the optical frame's z forward, x right, y down
 
 
-def preset_body(data: Mapping[str, Any]) -> dict[str, Any]:
+def preset_body(data: Mapping[str, Any]) -> dict[str | int, Any]:
     """The shape and mass a frame's sensor preset gives a frame that has neither (an empty dict otherwise)."""
     sensor = data.get("sensor")
     if not isinstance(sensor, Mapping) or sensor.get("preset") not in PRESETS:
         return {}
     if any(key in data for key in ("shape", "mass", "density", "inertia")):
         return {}
-    return dict(PRESETS[sensor["preset"]][2])
+    return {key: value for key, value in PRESETS[sensor["preset"]][2].items()}
 
 
 def sensor_kind(data: Mapping[str, Any]) -> str:

@@ -137,7 +137,7 @@ def validate(raw: RawSpec) -> Spec:
     notes = quantities.warnings
     del quantities  # (its table of changes is garbage now: not kept through the checks below)
     bodied: dict[PathKey, dict[str | int, Any]] = {
-        ("frames", n): dict(preset_body(f)) for n, f in data.get("frames", {}).items() if preset_body(f)
+        ("frames", n): preset_body(f) for n, f in data.get("frames", {}).items() if preset_body(f)
     }
     data = with_values(data, bodied)  # (a sensor preset's shape and mass, for a frame that gives none)
     every = list(bodies(data))

