@@ -40,7 +40,7 @@ DEFAULTS: dict[str, dict[str, Any]] = {
         "range_resolution": 0.01,
     },
     "lidar_3d": {
-        "topic": "points",
+        "topic": "lidar",  # (gpu_lidar publishes LaserScan here and the point cloud on lidar/points)
         "update_rate": 10.0,
         "samples": 1024,
         "min_angle": -math.pi,

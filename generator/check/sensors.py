@@ -107,8 +107,9 @@ def _problems(sensor, kind: str) -> Iterator[str]:
             yield f"range resolution {resolution:g} m must be > 0"
     if kind in CAMERAS:
         fov = _value(sensor, "camera/horizontal_fov")
-        if fov is not None and not 0 < fov < math.pi:
-            yield f"horizontal_fov {fov:g} rad must be between 0 and pi"
+        widest = 2 * math.pi if kind == "wide_angle_camera" else math.pi  # (a pinhole camera sees less than pi)
+        if fov is not None and not 0 < fov < widest:
+            yield f"horizontal_fov {fov:g} rad must be between 0 and {'2 pi' if widest > math.pi else 'pi'}"
         for side in ("width", "height"):
             pixels = _value(sensor, f"camera/image/{side}")
             if pixels is not None and not pixels >= 1:

@@ -1,5 +1,8 @@
 """What a package's config/..._controllers.yaml sets up: a diff_drive_controller for wheels that make a differential
-drive, one forward command controller per command interface for the other controlled joints."""
+drive, one forward command controller per command interface for the other controlled joints, and a
+JointTrajectoryController for the position-commanded ones (what MoveIt sends to); and which of them the launch files
+spawn active (the trajectory controller, not the position group that claims the same joints, which is loaded
+inactive)."""
 
 from __future__ import annotations
 
@@ -13,7 +16,9 @@ def controllers(robot: Robot, prefix: str = "", *, mounted: bool = False) -> dic
     diff_drive_controller for its wheels when they make a differential drive (see :func:`_differential_drive`), and
     ``command_groups``, the other controlled joints grouped by their first command interface (one forward command
     controller per group). ``mounted``: the robot is fixed into a scene's URDF, so its drive must not publish the
-    odom -> base transform (the base would have two parents in TF)."""
+    odom -> base transform (the base would have two parents in TF). ``trajectory``: the JointTrajectoryController's
+    joints and state interfaces (those every one of them has, of position and velocity); ``spawned`` and
+    ``inactive``: the controllers the launch files start active and load inactive."""
     drive = _differential_drive(robot, prefix)
     if drive:
         drive["odom_tf"] = not mounted
@@ -22,7 +27,25 @@ def controllers(robot: Robot, prefix: str = "", *, mounted: bool = False) -> dic
     for joint in robot.ros2_control or ():
         if joint.interfaces.command and prefix + joint.name not in driven:
             groups.setdefault(joint.interfaces.command[0], []).append(prefix + joint.name)
-    return {"command_groups": groups, "drive": drive}
+    trajectory = None
+    if groups.get("position"):  # (MoveIt and every trajectory sender need a JointTrajectoryController)
+        states = {j.name: j.interfaces.state for j in robot.ros2_control or ()}
+        names = groups["position"]
+        common = [k for k in ("position", "velocity") if all(k in states[n.removeprefix(prefix)] for n in names)]
+        if "position" in common:
+            trajectory = {"joints": names, "state_interfaces": common}
+    spawned = [prefix + "joint_state_broadcaster"]
+    spawned += [prefix + "diff_drive_controller"] if drive else []
+    spawned += [prefix + "joint_trajectory_controller"] if trajectory else []
+    spawned += [f"{prefix}{kind}_controller" for kind in groups if not (trajectory and kind == "position")]
+    inactive = [prefix + "position_controller"] if trajectory else []  # (it claims the trajectory's joints too)
+    return {
+        "command_groups": groups,
+        "drive": drive,
+        "trajectory": trajectory,
+        "spawned": spawned if robot.ros2_control is not None else [],
+        "inactive": inactive,
+    }
 
 
 def _differential_drive(robot: Robot, prefix: str) -> dict[str, Any] | None:

@@ -154,6 +154,8 @@ def render_package(robot: Robot, *, macros: MacroMode = "inline", spec_name: str
         "has_control": robot.ros2_control is not None,
         **controllers(robot),
         "prefix": "",
+        "fixed_base": not robot.wheels,  # (simulated, a robot without wheels stands fixed to the world)
+        "spawn_z": "0.0",
         "sensor_xml": Markup(
             "".join(
                 etree.tostring(sensor_element(s, PREFIX, XACRO_NAMESPACE), encoding="unicode", pretty_print=True)
@@ -172,13 +174,15 @@ def render_package(robot: Robot, *, macros: MacroMode = "inline", spec_name: str
         f"urdf/{name}.gazebo.xacro": "package/urdf/robot.gazebo.xacro.j2",
         f"urdf/{name}.ros2_control.xacro": "package/urdf/robot.ros2_control.xacro.j2",
         "launch/display.launch.py": "package/launch/display.launch.py.j2",
+        "launch/gazebo.launch.py": "package/launch/gazebo.launch.py.j2",
+        f"worlds/{name}.sdf": "package/worlds/world.sdf.j2",
         f"rviz/{name}.rviz": "package/rviz/robot.rviz.j2",
     }
     if robot.ros2_control is not None:
         plan[f"config/{name}_controllers.yaml"] = "package/config/controllers.yaml.j2"
+        plan["launch/control.launch.py"] = "package/launch/control.launch.py.j2"
     files = [RenderedFile(path, env.get_template(template).render(context)) for path, template in plan.items()]
-    if robot.sensors:
-        files.append(RenderedFile(f"config/{name}_bridge.yaml", bridge_yaml(robot)))
+    files.append(RenderedFile(f"config/{name}_bridge.yaml", bridge_yaml(robot)))
     if macros != "inline":  # inline arms are computed here, not read from their tables by dh_arm
         files += [RenderedFile(f"config/{a.name}.dh.yaml", dh_table_yaml(robot, i)) for i, a in enumerate(robot.arms)]
     if macros == "copy":

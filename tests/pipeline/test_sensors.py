@@ -5,6 +5,7 @@ sensor input as located spec errors with nothing written."""
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -13,38 +14,7 @@ from lxml import etree
 
 from conftest import gen_robot
 
-SPEC = """robot: sens
-links:
-  base_link:
-    shape: {box: {size: [0.3, 0.2, 0.1]}}
-    mass: 2
-frames:
-  lidar_link:
-    parent: base_link
-    origin: {xyz: [0, 0, 0.1]}
-    sensor: {preset: lds_02}
-  camera_link:
-    parent: base_link
-    origin: {xyz: [0.15, 0, 0.05], rpy: [0, 0.3, 0]}
-    sensor: {preset: d435, topic: front/rgbd}
-  imu_link:
-    parent: base_link
-    sensor: {type: imu, noise: {stddev: 0.001, accel_stddev: 0.02}}
-  cam2_link:
-    parent: base_link
-    sensor:
-      type: camera
-      image: {width: 320, height: 240, fov: 60 deg}
-      clip: {near: 5 cm, far: 20 m}
-  velodyne:
-    parent: base_link
-    shape: {cylinder: {radius: 0.05, length: 0.07}}
-    mass: 0.8
-    sensor:
-      type: lidar_3d
-      range: {min: 0.4, max: 120 m}
-      vertical: {samples: 32, min_angle: -25 deg, max_angle: 15 deg}
-"""
+SPEC = (Path(__file__).parent.parent / "shared" / "sensors.yaml").read_text(encoding="utf-8")
 
 
 @pytest.fixture(scope="module")
@@ -128,7 +98,7 @@ def test_the_bridge_file_carries_the_clock_and_every_sensor_topic(generated):
     assert topics["scan"] == ("sensor_msgs/msg/LaserScan", "gz.msgs.LaserScan")
     assert topics["imu"] == ("sensor_msgs/msg/Imu", "gz.msgs.IMU")
     assert topics["front/rgbd/points"] == ("sensor_msgs/msg/PointCloud2", "gz.msgs.PointCloudPacked")
-    assert topics["points/points"] == ("sensor_msgs/msg/PointCloud2", "gz.msgs.PointCloudPacked")
+    assert topics["lidar/points"] == ("sensor_msgs/msg/PointCloud2", "gz.msgs.PointCloudPacked")
     assert {"image", "camera_info", "front/rgbd/image", "front/rgbd/depth_image"} <= set(topics)
     assert all(e["direction"] == "GZ_TO_ROS" and e["gz_topic_name"] == e["ros_topic_name"] for e in entries)
 

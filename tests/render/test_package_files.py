@@ -58,8 +58,9 @@ def test_meshes_added_after_the_first_build_are_installed(tmp_path):
     # the same install rules without ament (not installed here): configure, install, add meshes, install again
     rules = "\n".join(line for line in text.splitlines() if line.startswith("install("))
     (tmp_path / "src").mkdir()
-    for folder in ("urdf", "launch", "rviz", "config"):
-        shutil.copytree(tmp_path / "pkg" / folder, tmp_path / "src" / folder)
+    for folder in (tmp_path / "pkg").iterdir():  # (every folder the package has: urdf, launch, config, worlds, ...)
+        if folder.is_dir():
+            shutil.copytree(folder, tmp_path / "src" / folder.name)
     (tmp_path / "src" / "CMakeLists.txt").write_text(f"cmake_minimum_required(VERSION 3.8)\nproject(p NONE)\n{rules}\n")
     prefix = tmp_path / "install"
 

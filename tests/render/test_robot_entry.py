@@ -26,17 +26,20 @@ def test_the_entry_is_the_arguments_and_one_macro_call(mode):
         files = {f.path: f.content for f in render_package(robot, macros=mode)}
         entry = etree.fromstring(files[f"urdf/{robot.name}.urdf.xacro"].encode())
         children = [e for e in entry if isinstance(e.tag, str)]
-        assert [e.tag for e in children] == [f"{XACRO}arg"] * 3 + [f"{XACRO}include", f"{XACRO}{robot.name}"], spec
-        assert [e.get("name") for e in children[:3]] == ["prefix", "ros2_control", "controllers"]
-        assert children[3].get("filename") == f"{robot.name}_macro.xacro"
-        call = children[4]
+        tags = [f"{XACRO}arg"] * 4 + [f"{XACRO}include", f"{XACRO}if", f"{XACRO}{robot.name}"]
+        assert [e.tag for e in children] == tags, spec
+        assert [e.get("name") for e in children[:4]] == ["prefix", "ros2_control", "controllers", "world"]
+        assert children[4].get("filename") == f"{robot.name}_macro.xacro"
+        assert children[5].get("value") == "$(arg world)" and [e.tag for e in children[5]] == ["link"]
+        assert children[5][0].get("name") == "world"  # (world:=true: the link a simulator fixes the root to)
+        call = children[6]
         assert call.attrib == {
             "prefix": "$(arg prefix)",
-            "parent": "",
+            "parent": "${'world' if '$(arg world)' in ('true', 'True', '1') else ''}",
             "ros2_control": "$(arg ros2_control)",
             "controllers": "$(arg controllers)",
         }
-        assert not entry.findall(".//link") and not entry.findall(".//joint") and not entry.findall(".//material")
+        assert len(entry.findall(".//link")) == 1 and not entry.findall(".//joint") and not entry.findall(".//material")
         assert len(entry.findall(f".//{XACRO}{robot.name}")) == 1  # exactly one macro call
 
 
@@ -50,7 +53,9 @@ def test_the_robot_is_written_once_in_its_macro_file(mode):
             if path.endswith(".xacro") and path != macro_file and not path.startswith("urdf/xacrokit/"):
                 root = etree.fromstring(text.encode())
                 body = [e for e in root.iter("link", "joint") if e.getparent().tag != "ros2_control"]
-                assert not body, (spec.name, path)  # (a ros2_control block names its joints, it does not make them)
+                body = [e for e in body if e.getparent().tag != f"{XACRO}if" or e.get("name") != "world"]
+                assert not body, (spec.name, path)  # (a ros2_control block names its joints, it does not make them;
+                # the entry's world link, with world:=true, is the simulator's, not the robot's)
         macro = etree.fromstring(files[macro_file].encode())
         (definition,) = macro.findall(f"{XACRO}macro[@name='{robot.name}']")
         mount = definition.find(f"{XACRO}if/joint")
