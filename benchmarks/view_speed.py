@@ -1,9 +1,10 @@
 """How fast gen-robot view's page is in headless Chromium (issue 17, item 7), measured in one run on this machine:
 
-- a fleet of 1,000 links (the diff-drive example x 125): the time from asking for the page to ``window.xacrokit``
-  being ready with the robot drawn once (target under 2 s);
-- a 100+-link robot (the same fleet x 15): one ``setJoints`` with every wheel moved, which re-poses every link and
-  draws the frame, timed inside the page with performance.now(), median of 50 (target under 16 ms, one frame).
+- a fleet of 1,000 links (the diff-drive example, 9 links, x 111, and the world): the time from asking for the page
+  to ``window.xacrokit`` being ready with the robot drawn once (target under 2 s);
+- a 100+-link robot (the same fleet x 12: 109 links): one ``setJoints`` with every wheel moved, which re-poses every
+  link and draws the frame, timed inside the page with performance.now(), median of 50 (target under 16 ms, one
+  frame).
 
 Needs Debian's chromium and chromium-driver (and selenium). Usage: python benchmarks/view_speed.py
 """
@@ -55,8 +56,8 @@ def main() -> None:
         raise SystemExit("chromium and chromedriver are not installed")
     with tempfile.TemporaryDirectory() as scratch:
         folder = Path(scratch)
-        big, big_links = fleet_page(folder, 125)
-        small, small_links = fleet_page(folder, 15)
+        big, big_links = fleet_page(folder, 111)
+        small, small_links = fleet_page(folder, 12)
         browser = driver()
         try:
             browser.get("about:blank")

@@ -73,4 +73,4 @@ def test_view_speed_script_runs():
         [sys.executable, str(REPO / "benchmarks" / "view_speed.py")], capture_output=True, text=True, timeout=600
     )
     assert result.returncode == 0, result.stderr
-    assert "1001-link fleet page: open and draw" in result.stdout and "121-link robot: a joint move" in result.stdout
+    assert "1000-link fleet page: open and draw" in result.stdout and "109-link robot: a joint move" in result.stdout

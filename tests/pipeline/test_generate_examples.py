@@ -74,6 +74,12 @@ def test_names_and_counts_match_the_spec(example):
     links = set(spec["links"]) | set(spec.get("wheels", {})) | set(spec.get("frames", {}))
     attached = {**spec.get("wheels", {}), **spec.get("frames", {})}
     joints = set(spec.get("joints", {})) | {body.get("joint", f"{n}_joint") for n, body in attached.items()}
+    for name, frame in spec.get("frames", {}).items():  # a camera's optical frame (docs/sensors.md)
+        sensor = frame.get("sensor", {})
+        if sensor.get("type") in ("camera", "depth_camera", "rgbd_camera") or sensor.get("preset") == "d435":
+            optical = sensor.get("optical_frame", name.removesuffix("_link") + "_optical_frame")
+            links.add(optical)
+            joints.add(optical + "_joint")
     for arm_name, arm in spec.get("arms", {}).items():
         tool = arm.get("tool", {}).get("name", "tool0")
         links |= {f"{arm_name}_base", tool, *(row["link"] for row in arm["joints"])}

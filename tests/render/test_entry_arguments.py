@@ -61,4 +61,4 @@ def test_robot_macro_mounts_on_a_parent_with_an_origin(diff_drive_package, tmp_p
     materials = [m.get("name") for m in root.findall("material")]
     assert len(materials) == len(set(materials)) == 3  # one definition, however many instances
     links = [e.get("name") for e in root.findall("link")]
-    assert len(links) == len(set(links)) == 1 + 2 * 8  # world + two robots of 8 links
+    assert len(links) == len(set(links)) == 1 + 2 * 9  # world + two robots of 9 links (the camera's optical frame too)

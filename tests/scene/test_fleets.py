@@ -26,7 +26,7 @@ def test_fleet_of_ten_on_a_grid(tmp_path):
         mount = root.find(f"joint[@name='r{index}_base_footprint_mount_joint']")
         row, column = divmod(index, 5)
         assert [float(v) for v in mount.find("origin").get("xyz").split()] == [column * 1.5, row * 1.5, 0.0]
-    assert len(root.findall("link")) == 1 + 10 * 8
+    assert len(root.findall("link")) == 1 + 10 * 9  # (the diff-drive example: 9 links with its camera's optical frame)
     assert not check(tmp_path / "fleet" / "urdf" / "diff_drive_fleet.urdf", consumers=["check_urdf"]).errors
     bad = gen_robot("fleet", diff_drive, "--count", "10", "--grid", "2x4")
     assert bad.returncode == 2 and "has 8 places for 10 robots" in bad.stderr

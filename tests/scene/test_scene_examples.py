@@ -91,8 +91,12 @@ def test_every_scene_example_generates_and_checks_clean(tmp_path, scene):
     assert {a.action for a in again.actions} == {"identical"}
 
 
-def test_a_scene_refuses_gazebo_by_name(tmp_path):
+def test_a_scene_takes_gazebo_and_refuses_other_hardware_by_name(tmp_path):
     xacrokit.generate(SCENES / "two_arm_cell.yaml", tmp_path / "pkg")
-    result = gen_robot("expand", tmp_path / "pkg" / "urdf" / "two_arm_cell.urdf.xacro", "ros2_control:=gazebo")
+    entry = tmp_path / "pkg" / "urdf" / "two_arm_cell.urdf.xacro"
+    result = gen_robot("expand", entry, "ros2_control:=gz")
     assert result.returncode == 2
-    assert "ros2_control must be mock or none in a scene, got 'gazebo'" in result.stderr
+    assert "ros2_control must be mock, gazebo or none, got 'gz'" in result.stderr
+    result = gen_robot("expand", entry, "ros2_control:=gazebo")  # (its package found beside it: $(find ...))
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.count("gz_ros2_control::GazeboSimROS2ControlPlugin") == 1  # (one plugin for every robot)

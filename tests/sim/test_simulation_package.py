@@ -16,7 +16,7 @@ import yaml
 from lxml import etree
 
 import xacrokit
-from conftest import ROBOT_EXAMPLES
+from conftest import ROBOT_EXAMPLES, SCENE_EXAMPLES
 from xacrokit.expansion import expand_file
 
 FACTS = yaml.safe_load((Path(__file__).parent / "ros_facts.yaml").read_text(encoding="utf-8"))
@@ -43,7 +43,7 @@ def literal_strings(node: ast.AST) -> list[str]:
     return [n.value for n in ast.walk(node) if isinstance(n, ast.Constant) and isinstance(n.value, str)]
 
 
-@pytest.mark.parametrize("example", ROBOT_EXAMPLES, ids=lambda p: p.stem)
+@pytest.mark.parametrize("example", [*ROBOT_EXAMPLES, *SCENE_EXAMPLES], ids=lambda p: p.stem)
 def test_launch_files_use_only_what_the_launch_apis_and_packages_define(example, folder):
     root = package(example, folder)
     manifest = etree.parse(str(root / "package.xml")).getroot()
@@ -89,19 +89,43 @@ def test_controllers_exist_with_typed_parameters_and_name_what_the_urdf_has(exam
         assert not (root / "launch" / "control.launch.py").exists()
         return
     (config,) = files
+    urdf = expand_file(root / "urdf" / f"{config.name.removesuffix('_controllers.yaml')}.urdf.xacro", {})
+    check_controllers(root, config, urdf)
+
+
+@pytest.mark.parametrize("example", SCENE_EXAMPLES, ids=lambda p: p.stem)
+def test_a_simulated_scene_runs_every_robot_under_one_gz_ros2_control_plugin(example, folder):
+    """ros2_control:=gazebo: one plugin reading config/SCENE_controllers.yaml (every instance's prefixed
+    controllers), each robot's ros2_control block on GazeboSimSystem, no robot's own plugin."""
+    root = package(example, folder)
+    entry = next((root / "urdf").glob("*.urdf.xacro"))
+    name = entry.name.removesuffix(".urdf.xacro")
+    config = root / "config" / f"{name}_controllers.yaml"
+    manifest = etree.parse(str(root / "package.xml")).getroot().findtext("name")
+    urdf = expand_file(entry, {"ros2_control": "gazebo"}, package_paths={manifest: str(root)})
+    tree = etree.fromstring(urdf.encode())
+    (plugin,) = tree.findall("gazebo/plugin")
+    assert plugin.get("filename") == FACTS["gz_ros2_control"]["filename"]
+    assert Path(plugin.findtext("parameters")) == root / "config" / f"{name}_controllers.yaml"
+    blocks = tree.findall("ros2_control")
+    assert len(blocks) >= 2 and {b.findtext("hardware/plugin") for b in blocks} == {
+        FACTS["gz_ros2_control"]["hardware"]
+    }
+    check_controllers(root, config, urdf)
+
+
+def check_controllers(root: Path, config: Path, urdf: str) -> None:
     data = yaml.safe_load(config.read_text(encoding="utf-8"))
     manager = data["controller_manager"]["ros__parameters"]
     assert isinstance(manager.pop("update_rate"), int)
     types = {name: entry["type"] for name, entry in manager.items()}
     assert set(types.values()) <= set(FACTS["controllers"]), types
-    urdf = expand_file(root / "urdf" / f"{config.name.removesuffix('_controllers.yaml')}.urdf.xacro", {})
-    block = etree.fromstring(urdf.encode("utf-8")).find("ros2_control")
     interfaces = {
         j.get("name"): (
             {c.get("name") for c in j.findall("command_interface")},
             {s.get("name") for s in j.findall("state_interface")},
         )
-        for j in block.findall("joint")
+        for j in etree.fromstring(urdf.encode("utf-8")).findall("ros2_control/joint")
     }
     for name, kind in types.items():
         params = data.get(name, {}).get("ros__parameters", {})
