@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import contextlib
 import os
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -48,6 +48,20 @@ def robot_text(
     text = declared(text, str(where) if kind == "urdf" else f"{where} (as expanded)")
     with staged_packages(carried if meshes else {}) as staged:
         yield text, {**staged, **(packages or {})}
+
+
+def mesh_resolver(base: Path, packages: Mapping[str, str | os.PathLike[str]]) -> Callable[[str], str]:
+    """The file of a mesh URI (``package://``, ``file://``, relative to ``base``), as a path; XacrokitError naming the
+    mesh when its package is not known or the URI is malformed (whether the file is there is the caller's to say)."""
+    from .packages import mesh_file
+
+    def resolve(filename: str) -> str:
+        try:
+            return str(mesh_file(filename, base, packages))
+        except (LookupError, ValueError) as exc:
+            raise XacrokitError(f"mesh {filename!r}: {exc}") from None
+
+    return resolve
 
 
 UNDECLARED = "urn:xacrokit:undeclared:"

@@ -416,17 +416,9 @@ def export_mjcf(
         XacrokitError: unreadable input, a mesh that cannot be found or read, a robot MuJoCo cannot take.
         SpecErrors: an invalid spec (located).
     """
-    from .inputs import robot_text
-    from .packages import mesh_file
+    from .inputs import mesh_resolver, robot_text
 
     if base not in ("auto", "fixed", "free"):
         raise XacrokitError(f"--base {base!r}: auto, fixed or free")
     with robot_text(path, mappings, package_paths) as (text, packages):
-
-        def resolve(filename: str) -> str:
-            try:
-                return str(mesh_file(filename, Path(path).parent, packages))
-            except (LookupError, ValueError) as exc:
-                raise XacrokitError(f"mesh {filename!r}: {exc}") from None
-
-        return mjcf(text, resolve, base=base, floor=floor)
+        return mjcf(text, mesh_resolver(Path(path).parent, packages), base=base, floor=floor)

@@ -5,7 +5,7 @@ three.js comes from the npm registry, not from this repository: the pinned relea
 checked against the registry's sha512 integrity, cached (``~/.cache/xacrokit/npm``, or ``XACROKIT_NPM_CACHE``), and
 its module build and OrbitControls are inlined into the page through an import map of data: URLs. The robot is
 embedded as JSON (every ``<`` escaped, so that no name can close the script element); meshes are read with trimesh
-(STL, OBJ, PLY, DAE when pycollada is there) and embedded as vertex and index arrays. The page's forward kinematics
+(STL, OBJ, PLY, and COLLADA through pycollada) and embedded as vertex and index arrays. The page's forward kinematics
 are the URDF's, in double precision (fixed-axis rpy, revolute, continuous, prismatic, mimic; a floating joint takes
 [x, y, z, roll, pitch, yaw], a planar one [x, y, theta] in the plane normal to its axis), and ``window.xacrokit``
 exposes ``setJoints({name: value})``, ``linkPose(name)`` (the 4x4 world transform, row-major), ``joints()`` and
@@ -235,6 +235,8 @@ def _mesh(resolve: Any, filename: str) -> tuple[np.ndarray, np.ndarray]:
         mesh: Any = trimesh.load(file, force="mesh")
     except Exception as exc:  # noqa: BLE001  (trimesh raises what its readers raise)
         raise XacrokitError(f"mesh {filename!r} cannot be read ({type(exc).__name__}: {exc})") from None
+    if len(mesh.faces) == 0:  # (said, not drawn as nothing: a COLLADA file trimesh finds no triangles in)
+        raise XacrokitError(f"mesh {filename!r} has no triangles that trimesh can read")
     return np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64)
 
 
@@ -255,19 +257,11 @@ def page(
         XacrokitError: unreadable input, a sizing file without a motion, or three.js unavailable.
         SpecErrors: an invalid sizing file (located).
     """
-    from .inputs import robot_text
-    from .packages import mesh_file
+    from .inputs import mesh_resolver, robot_text
     from .render import environment
 
     with robot_text(path, mappings, package_paths) as (text, packages):
-
-        def resolve(filename: str) -> str:
-            try:
-                return str(mesh_file(filename, Path(path).parent, packages))
-            except (LookupError, ValueError) as exc:
-                raise XacrokitError(f"mesh {filename!r}: {exc}") from None
-
-        robot = robot_json(text, resolve)
+        robot = robot_json(text, mesh_resolver(Path(path).parent, packages))
     if missing is not None:
         missing.extend(robot["missing"])
     if sizing is not None:

@@ -219,3 +219,15 @@ if __name__ == "__main__":
         for robot in corpus():
             for line in findings_of(robot):
                 print(robot.key, line, sep="\t")
+
+
+def corpus_or_skip() -> list[RobotFile]:
+    """:func:`corpus` for a test: skipped when a source cannot be had, unless XACROKIT_CORPUS=require."""
+    import pytest
+
+    try:
+        return corpus()
+    except CorpusUnavailable as exc:
+        if os.environ.get("XACROKIT_CORPUS") == "require":
+            raise
+        pytest.skip(f"the real-robot corpus is not available here ({exc}); XACROKIT_CORPUS=require makes this fail")

@@ -11,17 +11,12 @@ from functools import cache
 import pytest
 import yaml
 
-from realworld import VERDICTS, CorpusUnavailable, RobotFile, corpus, findings_of, rejected_by
+from realworld import VERDICTS, RobotFile, corpus_or_skip, findings_of, rejected_by
 
 
 @cache
 def robots() -> dict[str, RobotFile]:
-    try:
-        return {robot.key: robot for robot in corpus()}
-    except CorpusUnavailable as exc:
-        if os.environ.get("XACROKIT_CORPUS") == "require":
-            raise
-        pytest.skip(f"the real-robot corpus is not available here ({exc}); XACROKIT_CORPUS=require makes this fail")
+    return {robot.key: robot for robot in corpus_or_skip()}
 
 
 DATA = yaml.safe_load(VERDICTS.read_text(encoding="utf-8"))

@@ -6,14 +6,12 @@ error for: an empty robot, a joint naming a missing link, a collision mesh that 
 
 from __future__ import annotations
 
-import os
-
 import numpy as np
 import pytest
 import yaml
 from test_mjcf import compare_dynamics
 
-from realworld import VERDICTS, CorpusUnavailable, corpus
+from realworld import VERDICTS, corpus_or_skip
 from xacrokit.errors import XacrokitError
 from xacrokit.inputs import robot_text
 from xacrokit.mjcf import export_mjcf, write_export
@@ -24,12 +22,7 @@ REFUSED_FOR = {"empty-robot", "parent-missing", "mesh-missing", "mesh-uri-malfor
 
 
 def test_every_real_robot_exports_with_pinocchios_dynamics_or_is_refused_for_a_judged_error(tmp_path):
-    try:
-        robots = corpus()
-    except CorpusUnavailable as exc:
-        if os.environ.get("XACROKIT_CORPUS") == "require":
-            raise
-        pytest.skip(f"the real-robot corpus is not available here ({exc})")
+    robots = corpus_or_skip()
     exported, refused, repaired = 0, [], 0
     for index, robot in enumerate(robots):
         try:
