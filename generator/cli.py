@@ -409,7 +409,9 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 SCHEMA_KINDS = ("robot", "scene", "check-report", "size-report", "sizing")
-COMMANDS = tuple("generate new check size report graph view render export fleet schema expand macros materials".split())
+COMMANDS = tuple(
+    "generate new check size report graph view render export import fleet schema expand macros materials".split()
+)
 
 
 def _shorthand(words: list[str]) -> bool:

@@ -1,0 +1,284 @@
+"""``gen-robot import``: a URDF or xacro document read back as a robot spec that generates the same robot.
+
+What the spec says, the spec keeps, with its numbers written exactly (YAML floats are Python's shortest repr):
+
+- each link's visual as its ``shape`` (box, cylinder, sphere, mesh with its URI and scale) at its ``origin``, its
+  colour as a named ``material`` (the URDF's material name when it is an identifier, else ``colour_N``); its
+  collision as ``same`` (the visual's geometry and origin), ``none``, or its own shape and origin;
+- its inertial as ``mass`` and an explicit ``inertia`` tensor with its frame (never recomputed: what the file says);
+- each joint with its type, parent, child, origin, axis, limit, dynamics, mimic and safety controller.
+
+What the spec cannot say is reported, not dropped silently (:attr:`Imported.unsupported`): a link with more than one
+visual or collision, a collision without a visual, a negative mesh scale (a mirror), a name the spec does not take
+(letters, digits and _), a joint's calibration, and every element URDF readers do not model (``<gazebo>``,
+``<transmission>``, ``<ros2_control>``, others): those are listed as :attr:`Imported.leftovers` (issue 19 keeps them
+in an extension file; this version names them).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from .errors import XacrokitError
+
+IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+MODELLED = ("link", "joint", "material")  # what the spec holds of a <robot>'s children
+
+
+@dataclass
+class Imported:
+    """The spec (a mapping ready for YAML), what could not be imported (one line each), and the elements kept
+    for the extension file (their tags and names)."""
+
+    spec: dict[str, Any]
+    unsupported: list[str] = field(default_factory=list)
+    leftovers: list[str] = field(default_factory=list)
+
+
+def _floats(text: str | None, count: int, default: float, where: str) -> list[float]:
+    if text is None:
+        return [default] * count
+    try:
+        values = [float(v) for v in text.split()]
+    except ValueError:
+        values = []
+    if len(values) != count or not all(math.isfinite(v) for v in values):
+        raise XacrokitError(f"{where}: {text!r} is not {count} finite number(s)")
+    return values
+
+
+def _origin(element: Any, where: str) -> dict[str, list[float]] | None:
+    """A URDF <origin> as the spec's (None for the identity or no origin)."""
+    if element is None:
+        return None
+    xyz = _floats(element.get("xyz"), 3, 0.0, f"{where} origin xyz")
+    rpy = _floats(element.get("rpy"), 3, 0.0, f"{where} origin rpy")
+    found: dict[str, list[float]] = {}
+    if any(xyz):
+        found["xyz"] = xyz
+    if any(rpy):
+        found["rpy"] = rpy
+    return found or None
+
+
+def _shape(geometry: Any, where: str, problems: list[str]) -> dict[str, Any] | None:
+    from lxml import etree
+
+    shape = None if geometry is None else next(geometry.iterchildren(etree.Element), None)
+    if shape is None:
+        problems.append(f"{where}: no geometry")
+        return None
+    if shape.tag == "box":
+        return {"box": {"size": _floats(shape.get("size"), 3, 0.0, f"{where} box size")}}
+    if shape.tag == "cylinder":
+        radius = _floats(shape.get("radius"), 1, 0.0, f"{where} cylinder radius")[0]
+        length = _floats(shape.get("length"), 1, 0.0, f"{where} cylinder length")[0]
+        return {"cylinder": {"radius": radius, "length": length}}
+    if shape.tag == "sphere":
+        return {"sphere": {"radius": _floats(shape.get("radius"), 1, 0.0, f"{where} sphere radius")[0]}}
+    if shape.tag == "mesh":
+        mesh: dict[str, Any] = {"filename": shape.get("filename", "")}
+        if shape.get("scale") is not None:
+            scale = _floats(shape.get("scale"), 3, 1.0, f"{where} mesh scale")
+            if any(v < 0 for v in scale):
+                problems.append(f"{where}: mesh scale {scale} mirrors (negative), which the spec refuses")
+                return None
+            if scale != [1.0, 1.0, 1.0]:
+                mesh["scale"] = scale
+        return {"mesh": mesh}
+    problems.append(f"{where}: geometry <{shape.tag}> is not one the spec has")
+    return None
+
+
+def import_text(text: str, name_hint: str = "robot") -> Imported:
+    """The spec of a URDF text (see the module's notes)."""
+    from lxml import etree
+
+    root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+    result = Imported(spec={})
+    problems = result.unsupported
+    robot = root.get("name") or name_hint
+    if not IDENTIFIER.match(robot):
+        problems.append(f"robot name {robot!r} is not a spec name (letters, digits and _)")
+    result.spec["robot"] = robot
+    colours: dict[str, list[float]] = {}
+    named = {m.get("name"): m for m in root.findall("material")}
+
+    def colour_of(material: Any, where: str) -> str | None:
+        if material is None:
+            return None
+        colour = material.find("color")
+        source = colour if colour is not None else named.get(material.get("name"), material).find("color")
+        if source is None:
+            return None
+        rgba = _floats(source.get("rgba"), 4, 1.0, f"{where} colour")
+        name = (material.get("name") or "").rsplit("/", 1)[-1]  # (a generated robot's 'ur5/grey': grey)
+        if not IDENTIFIER.match(name) or (name in colours and colours[name] != rgba):
+            name = next((n for n, c in colours.items() if c == rgba), f"colour_{len(colours)}")
+        colours.setdefault(name, rgba)
+        return name
+
+    links: dict[str, Any] = {}
+    for link in root.findall("link"):
+        name = link.get("name", "")
+        where = f"link {name!r}"
+        if not IDENTIFIER.match(name):
+            problems.append(f"{where}: the name is not a spec name (letters, digits and _)")
+            continue
+        entry: dict[str, Any] = {}
+        visuals, collisions = link.findall("visual"), link.findall("collision")
+        if len(visuals) > 1 or len(collisions) > 1:
+            problems.append(f"{where}: {len(visuals)} visuals and {len(collisions)} collisions (the spec: one each)")
+        elif visuals:
+            shape = _shape(visuals[0].find("geometry"), f"{where} visual", problems)
+            if shape is not None:
+                entry["shape"] = shape
+                at = _origin(visuals[0].find("origin"), f"{where} visual")
+                if at:
+                    entry["origin"] = at
+                colour = colour_of(visuals[0].find("material"), where)
+                if colour:
+                    entry["material"] = colour
+                entry.update(_collision(collisions, shape, at, where, problems))
+        elif collisions:
+            problems.append(f"{where}: a collision without a visual (the spec's collision belongs to its shape)")
+        entry.update(_inertial(link.find("inertial"), where))
+        if "inertia" in entry and "origin" in entry and "origin" not in entry["inertia"]:
+            entry["inertia"]["origin"] = {"xyz": [0.0, 0.0, 0.0]}  # (else the spec takes the shape's origin for it)
+        links[name] = entry
+    joints: dict[str, Any] = {}
+    for joint in root.findall("joint"):
+        name = joint.get("name", "")
+        if not IDENTIFIER.match(name):
+            problems.append(f"joint {name!r}: the name is not a spec name (letters, digits and _)")
+            continue
+        joints[name] = _joint(joint, f"joint {name!r}", problems)
+    for child in root.iterchildren(etree.Element):
+        if child.tag not in MODELLED:
+            result.leftovers.append(f"<{child.tag}{_label(child)}>")
+    if colours:
+        result.spec["materials"] = colours
+    result.spec["links"] = links
+    if joints:
+        result.spec["joints"] = joints
+    return result
+
+
+def _label(element: Any) -> str:
+    for key in ("name", "reference"):
+        if element.get(key):
+            return f' {key}="{element.get(key)}"'
+    return ""
+
+
+def _collision(
+    collisions: list[Any], shape: dict[str, Any], at: dict[str, Any] | None, where: str, problems: list[str]
+) -> dict[str, Any]:
+    if not collisions:
+        return {"collision": "none"}
+    other = _shape(collisions[0].find("geometry"), f"{where} collision", problems)
+    if other is None:
+        return {"collision": "none"}
+    other_at = _origin(collisions[0].find("origin"), f"{where} collision")
+    if other == shape and other_at == at:
+        return {}  # ("same", the spec's default)
+    found: dict[str, Any] = {"shape": other}
+    if other_at:
+        found["origin"] = other_at
+    return {"collision": found}
+
+
+def _inertial(inertial: Any, where: str) -> dict[str, Any]:
+    if inertial is None or inertial.find("mass") is None:
+        return {}
+    mass = _floats(inertial.find("mass").get("value"), 1, 0.0, f"{where} mass")[0]
+    tensor = inertial.find("inertia")
+    keys = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
+    values = {k: _floats(tensor.get(k) if tensor is not None else None, 1, 0.0, f"{where} {k}")[0] for k in keys}
+    if mass == 0.0 and not any(values.values()):
+        return {}  # (a frame: no mass, no inertia)
+    inertia: dict[str, Any] = {k: v for k, v in values.items() if v or k in ("ixx", "iyy", "izz")}
+    at = _origin(inertial.find("origin"), f"{where} inertial")
+    if at:
+        inertia["origin"] = at
+    return {"mass": mass, "inertia": inertia}
+
+
+def _joint(joint: Any, where: str, problems: list[str]) -> dict[str, Any]:
+    entry: dict[str, Any] = {
+        "type": joint.get("type"),
+        "parent": joint.find("parent").get("link") if joint.find("parent") is not None else None,
+        "child": joint.find("child").get("link") if joint.find("child") is not None else None,
+    }
+    at = _origin(joint.find("origin"), where)
+    if at:
+        entry["origin"] = at
+    if joint.find("axis") is not None and joint.get("type") not in ("fixed", "floating"):
+        entry["axis"] = _floats(joint.find("axis").get("xyz"), 3, 0.0, f"{where} axis")
+    limit = joint.find("limit")
+    if limit is not None and joint.get("type") in ("revolute", "prismatic", "continuous"):
+        entry["limit"] = {
+            key: _floats(limit.get(key), 1, 0.0, f"{where} limit {key}")[0]
+            for key in ("lower", "upper", "effort", "velocity")
+            if limit.get(key) is not None and not (joint.get("type") == "continuous" and key in ("lower", "upper"))
+        }
+    dynamics = joint.find("dynamics")
+    if dynamics is not None:
+        entry["dynamics"] = {
+            key: _floats(dynamics.get(key), 1, 0.0, f"{where} {key}")[0]
+            for key in ("damping", "friction")
+            if dynamics.get(key) is not None
+        }
+    mimic = joint.find("mimic")
+    if mimic is not None:
+        entry["mimic"] = {"joint": mimic.get("joint")}
+        for key, default in (("multiplier", 1.0), ("offset", 0.0)):
+            value = _floats(mimic.get(key), 1, default, f"{where} mimic {key}")[0]
+            if value != default:
+                entry["mimic"][key] = value
+    safety = joint.find("safety_controller")
+    if safety is not None:
+        entry["safety_controller"] = {
+            key: _floats(safety.get(key), 1, 0.0, f"{where} {key}")[0]
+            for key in ("soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity")
+            if safety.get(key) is not None
+        }
+    if joint.find("calibration") is not None:
+        problems.append(f"{where}: <calibration> is not one the spec has")
+    return entry
+
+
+def import_robot(
+    path: str | os.PathLike[str],
+    mappings: Mapping[str, str] | None = None,
+    *,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
+) -> Imported:
+    """The spec of a URDF or xacro document (``mappings``: its xacro arguments).
+
+    Raises:
+        XacrokitError: unreadable input, or a robot with nothing the spec can hold.
+    """
+    from pathlib import Path
+
+    from .inputs import robot_text
+
+    with robot_text(path, mappings, package_paths, meshes=False) as (text, _):
+        pass
+    return import_text(text, Path(path).stem.split(".")[0])
+
+
+def spec_yaml(imported: Imported, source: str) -> str:
+    """The spec as YAML, with a header naming its source and what was not imported."""
+    import yaml
+
+    lines = [f"# Imported by gen-robot import from {source!r}.".replace("\n", " ")]
+    lines += [f"# not imported: {line}".replace("\n", " ") for line in imported.unsupported]
+    lines += [f"# left out (not modelled by the spec): {line}".replace("\n", " ") for line in imported.leftovers]
+    body = yaml.safe_dump(imported.spec, sort_keys=False, default_flow_style=None, width=120, allow_unicode=True)
+    return "\n".join(lines) + "\n" + body
