@@ -36,7 +36,16 @@ def _cmd_import(args: argparse.Namespace) -> int:
         print(f"gen-robot import: not imported: {line}", file=sys.stderr)
     text = spec_yaml(result, str(args.path))
     if args.output:
+        folder = Path(args.output).parent
+        for relative, source in result.meshes.items():  # (the URDF's relative meshes, beside the spec)
+            write_text_atomic(folder / relative, Path(source).read_bytes())
         write_text_atomic(Path(args.output), text)
     else:
+        if result.meshes:
+            print(
+                f"gen-robot import: the spec names {len(result.meshes)} mesh(es) under meshes/ that -o SPEC copies "
+                "beside it",
+                file=sys.stderr,
+            )
         sys.stdout.write(text)
     return 0

@@ -38,6 +38,7 @@ class Imported:
     spec: dict[str, Any]
     unsupported: list[str] = field(default_factory=list)
     leftovers: list[str] = field(default_factory=list)
+    meshes: dict[str, str] = field(default_factory=dict)  # a relative mesh path in the spec -> the file to copy there
 
 
 def _floats(text: str | None, count: int, default: float, where: str) -> list[float]:
@@ -227,8 +228,9 @@ def _joint(joint: Any, where: str, problems: list[str]) -> dict[str, Any]:
             for key in ("lower", "upper", "effort", "velocity")
             if limit.get(key) is not None and not (joint.get("type") == "continuous" and key in ("lower", "upper"))
         }
+    moving = joint.get("type") in ("revolute", "prismatic", "continuous")
     dynamics = joint.find("dynamics")
-    if dynamics is not None:
+    if dynamics is not None and moving:  # (URDF readers ignore a fixed joint's dynamics)
         entry["dynamics"] = {
             key: _floats(dynamics.get(key), 1, 0.0, f"{where} {key}")[0]
             for key in ("damping", "friction")
@@ -242,7 +244,7 @@ def _joint(joint: Any, where: str, problems: list[str]) -> dict[str, Any]:
             if value != default:
                 entry["mimic"][key] = value
     safety = joint.find("safety_controller")
-    if safety is not None:
+    if safety is not None and moving:
         entry["safety_controller"] = {
             key: _floats(safety.get(key), 1, 0.0, f"{where} {key}")[0]
             for key in ("soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity")
@@ -268,9 +270,38 @@ def import_robot(
 
     from .inputs import robot_text
 
-    with robot_text(path, mappings, package_paths, meshes=False) as (text, _):
-        pass
-    return import_text(text, Path(path).stem.split(".")[0])
+    with robot_text(path, mappings, package_paths, meshes=False) as (text, packages):
+        imported = import_text(text, Path(path).stem.split(".")[0])
+        _relative_meshes(imported, Path(path).parent, packages)
+    return imported
+
+
+def _relative_meshes(imported: Imported, base: Any, packages: Mapping[str, Any]) -> None:
+    """A mesh named by a path relative to the URDF (``meshes/arm.stl``) is copied beside the spec, under
+    ``meshes/``, and the spec names the copy: gen-robot then carries it into the package. (A ``package://`` or
+    ``file://`` URI stays as written: the package it names is the user's.)"""
+    from pathlib import PurePosixPath
+
+    from .meshes import MESH_SUFFIXES, is_relative
+    from .packages import mesh_file
+
+    for link in imported.spec.get("links", {}).values():
+        collision = link.get("collision")
+        for holder in (link.get("shape", {}), collision.get("shape", {}) if isinstance(collision, dict) else {}):
+            mesh = holder.get("mesh")
+            if not mesh or not is_relative(mesh["filename"]):
+                continue
+            source = mesh_file(mesh["filename"], base, packages)
+            name = PurePosixPath(mesh["filename"]).name
+            if PurePosixPath(name).suffix.lower() not in MESH_SUFFIXES:
+                imported.unsupported.append(f"mesh {mesh['filename']!r}: not a mesh file the spec copies")
+                continue
+            target = f"meshes/{name}"
+            if imported.meshes.get(target, str(source)) != str(source):
+                imported.unsupported.append(f"mesh {mesh['filename']!r}: two meshes named {name!r}")
+                continue
+            imported.meshes[target] = str(source)
+            mesh["filename"] = target
 
 
 def spec_yaml(imported: Imported, source: str) -> str:
