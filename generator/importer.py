@@ -5,7 +5,8 @@ What the spec says, the spec keeps, with its numbers written exactly (YAML float
 - each link's visual as its ``shape`` (box, cylinder, sphere, mesh with its URI and scale) at its ``origin``, its
   colour as a named ``material`` (the URDF's material name when it is an identifier, else ``colour_N``); its
   collision as ``same`` (the visual's geometry and origin), ``none``, or its own shape and origin;
-- its inertial as ``mass`` and an explicit ``inertia`` tensor with its frame (never recomputed: what the file says);
+- its inertial as ``mass`` and an explicit ``inertia`` tensor with its frame, as the file says it; or as ``mass``
+  alone when the tensor is the one the spec computes from the shape (a uniform solid, to 1e-12);
 - each joint with its type, parent, child, origin, axis, limit, dynamics, mimic and safety controller.
 
 What the spec cannot say is reported, not dropped silently (:attr:`Imported.unsupported`): a link with more than one
@@ -149,6 +150,8 @@ def import_text(text: str, name_hint: str = "robot") -> Imported:
         elif collisions:
             problems.append(f"{where}: a collision without a visual (the spec's collision belongs to its shape)")
         entry.update(_inertial(link.find("inertial"), where))
+        if "inertia" in entry and "shape" in entry and _is_the_shapes(entry):
+            del entry["inertia"]  # (the shape's own: the spec computes it from the mass)
         if "inertia" in entry and "origin" in entry and "origin" not in entry["inertia"]:
             entry["inertia"]["origin"] = {"xyz": [0.0, 0.0, 0.0]}  # (else the spec takes the shape's origin for it)
         links[name] = entry
@@ -168,6 +171,39 @@ def import_text(text: str, name_hint: str = "robot") -> Imported:
     if joints:
         result.spec["joints"] = joints
     return result
+
+
+def _is_the_shapes(entry: dict[str, Any]) -> bool:
+    """Whether a link's inertia is the one the spec computes from its shape and mass (a solid of uniform density
+    centred on the shape's origin), to 1e-12 of its largest moment: then the spec says only the mass."""
+    import numpy as np
+
+    from .kinematics import rpy_matrix
+    from .resolve import shape_inertia
+
+    if "mesh" in entry["shape"]:
+        return False  # (a mesh's tensor comes from its surface: kept as the file says it)
+    shape_at = entry.get("origin", {})
+    given = entry["inertia"]
+    given_at = given.get("origin", {})
+    if list(given_at.get("xyz", [0.0] * 3)) != list(shape_at.get("xyz", [0.0] * 3)):
+        return False
+    computed = shape_inertia(entry["shape"], entry["mass"], _zero_origin())
+    own = np.diag([computed.ixx, computed.iyy, computed.izz])
+    turn = rpy_matrix(*shape_at.get("rpy", [0.0] * 3))
+    own = turn @ own @ turn.T  # (the shape's axes, in the link frame)
+    i = {k: float(given.get(k, 0.0)) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+    tensor = np.array([[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]])
+    turn = rpy_matrix(*given_at.get("rpy", [0.0] * 3))
+    tensor = turn @ tensor @ turn.T
+    scale = max(float(np.abs(tensor).max()), 1e-300)
+    return bool(np.abs(tensor - own).max() <= 1e-12 * scale)
+
+
+def _zero_origin() -> Any:
+    from .model import Origin
+
+    return Origin()
 
 
 def _label(element: Any) -> str:

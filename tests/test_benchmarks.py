@@ -66,6 +66,19 @@ def test_size_speed_script_runs():
     assert 0.5 < ratio < 20  # (a ratio, measured: not a timing target, which RESULTS.md records)
 
 
+def test_import_speed_script_runs():
+    """benchmarks/import_speed.py: gen-robot import of a 130-link robot as a process (one run)."""
+    result = subprocess.run(
+        [sys.executable, str(REPO / "benchmarks" / "import_speed.py"), "1"],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert result.returncode == 0, result.stderr
+    assert "130-link robot (TIAGo dual): gen-robot import as a process" in result.stdout
+    assert "of which starting gen-robot" in result.stdout
+
+
 @pytest.mark.skipif(not (shutil.which("chromium") and shutil.which("chromedriver")), reason="no chromium here")
 def test_view_speed_script_runs():
     """benchmarks/view_speed.py: a 1,000-link page opened in headless Chromium, a joint move timed in the page."""
