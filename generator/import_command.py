@@ -34,9 +34,14 @@ def _cmd_import(args: argparse.Namespace) -> int:
     result = import_robot(args.path, parse_mappings(args.mappings), package_paths=parse_packages(args.package))
     for line in result.unsupported:
         print(f"gen-robot import: not imported: {line}", file=sys.stderr)
+    if args.output and result.extension:  # (the left-out elements, verbatim, beside the spec)
+        extension = Path(args.output).with_name(Path(args.output).stem + "_extension.xacro")
+        result.spec["extension"] = extension.name
     text = spec_yaml(result, str(args.path))
     if args.output:
         folder = Path(args.output).parent
+        if result.extension:
+            write_text_atomic(extension, result.extension)
         for relative, source in result.meshes.items():  # (the URDF's relative meshes, beside the spec)
             write_text_atomic(folder / relative, Path(source).read_bytes())
         write_text_atomic(Path(args.output), text)

@@ -12,8 +12,9 @@ What the spec says, the spec keeps, with its numbers written exactly (YAML float
 What the spec cannot say is reported, not dropped silently (:attr:`Imported.unsupported`): a link with more than one
 visual or collision, a collision without a visual, a negative mesh scale (a mirror), a name the spec does not take
 (letters, digits and _), a joint's calibration, and every element URDF readers do not model (``<gazebo>``,
-``<transmission>``, ``<ros2_control>``, others): those are listed as :attr:`Imported.leftovers` (issue 19 keeps them
-in an extension file; this version names them).
+``<transmission>``, ``<ros2_control>``, others): those are kept verbatim in :attr:`Imported.extension`, which
+``gen-robot import -o SPEC`` writes beside the spec as ``SPEC_extension.xacro`` and names in the spec's ``extension``:
+the generated package starts its user-owned ``urdf/NAME_extension.xacro`` with them.
 """
 
 from __future__ import annotations
@@ -40,6 +41,7 @@ class Imported:
     unsupported: list[str] = field(default_factory=list)
     leftovers: list[str] = field(default_factory=list)
     meshes: dict[str, str] = field(default_factory=dict)  # a relative mesh path in the spec -> the file to copy there
+    extension: str = ""  # the left-out elements as a <robot> document: the spec's `extension` file, verbatim
 
 
 def _floats(text: str | None, count: int, default: float, where: str) -> list[float]:
@@ -162,9 +164,19 @@ def import_text(text: str, name_hint: str = "robot") -> Imported:
             problems.append(f"joint {name!r}: the name is not a spec name (letters, digits and _)")
             continue
         joints[name] = _joint(joint, f"joint {name!r}", problems)
+    kept = etree.Element("robot")
     for child in root.iterchildren(etree.Element):
         if child.tag not in MODELLED:
             result.leftovers.append(f"<{child.tag}{_label(child)}>")
+            copy = etree.fromstring(etree.tostring(child))  # (its own document: namespaces it uses come along)
+            copy.tail = None
+            kept.append(copy)
+    if len(kept):
+        kept.text = "\n  "
+        for element in kept:
+            element.tail = "\n  "
+        kept[-1].tail = "\n"
+        result.extension = etree.tostring(kept, encoding="unicode") + "\n"
     if colours:
         result.spec["materials"] = colours
     result.spec["links"] = links
@@ -346,6 +358,9 @@ def spec_yaml(imported: Imported, source: str) -> str:
 
     lines = [f"# Imported by gen-robot import from {source!r}.".replace("\n", " ")]
     lines += [f"# not imported: {line}".replace("\n", " ") for line in imported.unsupported]
-    lines += [f"# left out (not modelled by the spec): {line}".replace("\n", " ") for line in imported.leftovers]
+    lines += [
+        f"# kept in the extension file (not modelled by the spec): {line}".replace("\n", " ")
+        for line in imported.leftovers
+    ]
     body = yaml.safe_dump(imported.spec, sort_keys=False, default_flow_style=None, width=120, allow_unicode=True)
     return "\n".join(lines) + "\n" + body

@@ -315,6 +315,8 @@ class Robot:
     surfaces: tuple[Surface, ...] = ()
     sensors: tuple[Sensor, ...] = ()
     files: tuple[PackageFile, ...] = ()
+    extension: str = ""  # the first content of urdf/NAME_extension.xacro's macro (the spec's `extension` file)
+    extension_source: str = ""  # that file's name as the spec gives it
     source: str = field(default="", compare=False)
 
     @property

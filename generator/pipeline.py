@@ -13,7 +13,7 @@ from pathlib import Path
 
 from . import __version__
 from .emit import emit_scene_urdf, emit_urdf
-from .errors import SpecError
+from .errors import SpecError, XacrokitError
 from .expansion import expand_file
 from .fileio import staged_packages, write_text_atomic
 from .guard import trusting
@@ -204,12 +204,42 @@ def generate(
     robot = resolve(spec)
     progress("rendering the package")
     files = render_package(robot, macros=macros, spec_name=Path(spec_path).name)
+    extended = _with_extensions(files, Path(output) if output is not None else Path.cwd() / robot.package)
+    via_xacro = via_xacro or extended or bool(robot.extension)  # (an extension is xacro: only xacro expands it)
     progress("expanding with xacro" if via_xacro else "emitting the URDF")
     files.append(expand_package(robot, files) if via_xacro else emitted_urdf(robot.name, emit_urdf(robot)))
     said = spec.warnings + _check_warnings(files[-1].text, Path(spec_path), raw, robot)
     warnings = tuple(sorted(said, key=lambda w: (w.line or 0, w.column or 0)))
     root, actions = _write(files, output, robot.package, force=force, dry_run=dry_run, progress=progress)
     return GenerateResult(model=robot, output=root, actions=actions, files=tuple(files), warnings=warnings)
+
+
+def _with_extensions(files: list[RenderedFile], root: Path) -> bool:
+    """Put into ``files`` the extension files (seeds) the package at ``root`` already has, as their owner left them,
+    so that ``urdf/NAME.urdf`` is expanded with them; whether any differs from what would be written fresh.
+
+    Raises:
+        XacrokitError: an extension file that cannot be read (too large, not UTF-8, not a regular file).
+    """
+    from .fileio import InputError, read_input
+
+    changed = False
+    for index, file in enumerate(files):
+        target = root / file.path
+        if not file.seed or not target.is_file():
+            continue
+        try:
+            text = read_input(target, EXTENSION_LIMIT).decode("utf-8")
+        except (InputError, UnicodeDecodeError) as exc:
+            why = exc.strerror if isinstance(exc, InputError) else "it is not UTF-8 text"
+            raise XacrokitError(f"{target}: cannot read your extension file: {why}") from None
+        if text != file.content:
+            files[index] = RenderedFile(file.path, text, seed=True)
+            changed = True
+    return changed
+
+
+EXTENSION_LIMIT = 4 * 1024 * 1024  # bytes of a package's extension file read back
 
 
 def _check_warnings(urdf: str, spec_path: Path, raw: RawSpec, robot: Robot) -> tuple[SpecError, ...]:
@@ -260,6 +290,8 @@ def generate_scene(
     """Write the package of a resolved scene (see :func:`generate`); ``gen-robot fleet`` builds its scene in memory."""
     progress(f"rendering {len(scene.instances)} instances of {len(scene.robots)} robot(s)")
     files = render_scene(scene, spec_name=spec_name, macros=macros)
+    extended = _with_extensions(files, Path(output) if output is not None else Path.cwd() / scene.package)
+    via_xacro = via_xacro or extended or any(robot.extension for robot in scene.robots)
     third_party = any(instance.macro is not None for instance in scene.instances)
     progress("expanding with xacro" if via_xacro or third_party else "emitting the URDF")
     if via_xacro or third_party:  # a third-party macro needs xacro

@@ -404,6 +404,8 @@ def resolve(spec: Spec) -> Robot:
         ros2_control=_controlled(data, moving),
         surfaces=surfaces,
         sensors=tuple(sensors),
+        extension=spec.extension,
+        extension_source=data.get("extension", ""),
         files=tuple(PackageFile(path, content) for path, content in sorted(package.files.items())),
         source=spec.raw.file,
     )

@@ -13,6 +13,9 @@ Per file (copier's way):
 * ``keep``       the same, but someone edited it, or it is reached through a symbolic link, or the file system
                  refuses: left alone and dropped from the manifest.
 
+A seed file (``RenderedFile.seed``, the package's extension file) is the user's: ``create`` when it is missing, else
+``identical`` whatever it holds (left alone); it is never in the manifest, so never a conflict and never removed.
+
 The manifest ``.xacrokit-manifest.json`` in the package root records the SHA-256 of each file as generated.
 Nothing is ever written or removed outside the output folder.
 """
@@ -130,6 +133,9 @@ def plan(
             # even --force does not replace a folder with a file
             actions.append(FileAction(file.path, "conflict", "a folder stands in its place"))
             continue
+        if file.seed:  # (the user's from its creation on: left as it is)
+            actions.append(FileAction(file.path, "identical", "yours: created once, never rewritten"))
+            continue
         current: str | bytes | None
         try:
             current = target.read_bytes() if isinstance(file.content, bytes) else target.read_text(encoding="utf-8")
@@ -152,7 +158,7 @@ def _stale(manifest: Manifest, files: list[RenderedFile], root: Path) -> list[Fi
     manifest edited by hand or a linked folder never makes us delete anything else. A name that is not a path inside
     the folder, or whose file is gone, is dropped silently; anything else we will not remove is reported as kept.
     """
-    generated = {f.path for f in files} | {MANIFEST}
+    generated = {f.path for f in files} | {MANIFEST}  # (seeds included: a seed of an older run is never stale)
     actions = []
     for path in sorted(manifest.keys() - generated):
         if not _normal(path):
@@ -351,7 +357,7 @@ def _write_planned(
     listed = [path for path in previous if _normal(path) and (root / path).resolve().is_relative_to(root.resolve())]
     remove_leftover_temporaries(root, [a.path for a in actions] + listed + [MANIFEST])
     by_path = {f.path: f for f in files}
-    digests = {f.path: _digest(f.content) for f in files}
+    digests = {f.path: _digest(f.content) for f in files if not f.seed}  # (a seed is the user's: not in the manifest)
     manifest_path = root / MANIFEST
     done = 0
     try:

@@ -154,7 +154,7 @@ def test_what_the_spec_cannot_hold_is_reported(tmp_path):
     assert "link 'a': 2 visuals and 0 collisions" in said
     assert "mirrors (negative)" in said and "<calibration> is not one the spec has" in said
     text = (tmp_path / "odd.yaml").read_text(encoding="utf-8")
-    assert '# left out (not modelled by the spec): <gazebo reference="a">' in text
+    assert '# kept in the extension file (not modelled by the spec): <gazebo reference="a">' in text
     assert '<transmission name="t">' in text
     assert yaml.safe_load(text)["joints"]["j"]["limit"] == {"effort": 1.0, "velocity": 1.0}
 
@@ -180,3 +180,41 @@ def test_a_relative_mesh_is_copied_beside_the_spec_and_into_the_package(tmp_path
     assert result.returncode == 0, result.stderr
     assert (tmp_path / "pkg" / "meshes" / "body.stl").read_bytes() == copied.read_bytes()
     assert "package://m_description/meshes/body.stl" in (tmp_path / "pkg" / "urdf" / "m.urdf").read_text()
+
+
+def test_what_the_spec_does_not_model_is_kept_verbatim_in_the_extension_and_reaches_the_urdf(tmp_path):
+    """<gazebo> and <transmission> (and a ${...} that is the vendor's text, not xacro's): gen-robot import -o writes
+    them into SPEC_extension.xacro, the generated package starts its extension file with them, and the generated
+    URDF holds them as the source had them."""
+    source = tmp_path / "lo.urdf"
+    leftovers = (
+        '<gazebo reference="arm"><mu1>0.5</mu1><plugin name="p" filename="libx.so"><arg>${not_xacro}</arg></plugin>'
+        "</gazebo>"
+        '<transmission name="t1"><type>transmission_interface/SimpleTransmission</type><joint name="j">'
+        "<hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint></transmission>"
+    )
+    source.write_text(
+        '<robot name="lo"><link name="base_link"/><link name="arm"><inertial><mass value="1"/>'
+        '<inertia ixx="0.1" iyy="0.2" izz="0.25"/></inertial></link><joint name="j" type="revolute">'
+        '<parent link="base_link"/><child link="arm"/><axis xyz="0 0 1"/>'
+        f'<limit lower="-1" upper="1" effort="2" velocity="3"/></joint>{leftovers}</robot>',
+        encoding="utf-8",
+    )
+    result = gen_robot("import", source, "-o", tmp_path / "spec" / "lo.yaml")
+    assert result.returncode == 0, result.stderr
+    assert yaml.safe_load((tmp_path / "spec" / "lo.yaml").read_text(encoding="utf-8"))["extension"] == (
+        "lo_extension.xacro"
+    )
+    result = gen_robot(tmp_path / "spec" / "lo.yaml", "-o", tmp_path / "pkg")
+    assert result.returncode == 0, result.stderr
+    generated = etree.fromstring((tmp_path / "pkg" / "urdf" / "lo.urdf").read_bytes())
+    original = etree.fromstring(source.read_bytes())
+    for tag in ("gazebo", "transmission"):
+        (want,) = original.findall(tag)
+        (got,) = generated.findall(tag)
+        canonical = etree.XMLParser(remove_blank_text=True)
+        assert etree.tostring(etree.fromstring(etree.tostring(got), canonical), method="c14n") == etree.tostring(
+            etree.fromstring(etree.tostring(want), canonical), method="c14n"
+        )
+    kept = (tmp_path / "pkg" / "urdf" / "lo_extension.xacro").read_text(encoding="utf-8")
+    assert "<arg>$${not_xacro}</arg>" in kept  # (escaped: xacro copies it, evaluates nothing)

@@ -25,10 +25,12 @@ MacroMode = Literal["copy", "find", "inline"]
 @dataclass(frozen=True)
 class RenderedFile:
     """One file of the package: a POSIX path relative to the package root and its full text (bytes for a binary file,
-    such as a mesh copied from the spec's folder)."""
+    such as a mesh copied from the spec's folder). ``seed``: the user's file, written only when it is missing, never
+    rewritten, reported as a conflict or removed (the package's extension file)."""
 
     path: str
     content: str | bytes
+    seed: bool = False
 
     @property
     def text(self) -> str:

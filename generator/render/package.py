@@ -178,6 +178,10 @@ def render_package(robot: Robot, *, macros: MacroMode = "inline", spec_name: str
         plan[f"config/{name}_controllers.yaml"] = "package/config/controllers.yaml.j2"
         plan["launch/control.launch.py"] = "package/launch/control.launch.py.j2"
     files = [RenderedFile(path, env.get_template(template).render(context)) for path, template in plan.items()]
+    seed = env.get_template("package/urdf/robot.extension.xacro.j2").render(
+        robot=robot, extension=Markup(robot.extension), extension_source=robot.extension_source
+    )
+    files.append(RenderedFile(f"urdf/{name}_extension.xacro", seed, seed=True))  # (the user's: written once)
     entries = [entry for sensor in robot.sensors for entry in bridge_entries(sensor)]
     files.append(RenderedFile(f"config/{name}_bridge.yaml", bridge_yaml(name, entries)))
     if macros != "inline":  # inline arms are computed here, not read from their tables by dh_arm

@@ -35,7 +35,7 @@ def render_scene(scene: Scene, *, spec_name: str = "scene.yaml", macros: MacroMo
     for robot in scene.robots:
         for file in render_package(robot, macros=macros, spec_name=spec_name):
             if file.path.startswith(ROBOT_FILES) and not file.path.endswith("_controllers.yaml"):
-                files.append(RenderedFile(f"robots/{robot.package}/{file.path}", file.content))
+                files.append(RenderedFile(f"robots/{robot.package}/{file.path}", file.content, seed=file.seed))
         files += [RenderedFile(file.path, file.content) for file in robot.files]  # (its meshes, moved here)
     has_control = any(i.robot is not None and i.robot.ros2_control is not None for i in scene.instances)
     context = {

@@ -22,6 +22,7 @@ from ..gcpause import collector_paused
 from ..load import PathKey, RawSpec
 from ..sensors import preset_body, resolve_sensor, sensor_problems
 from .bodies import Body, bodies, parts
+from .extension import extension_body
 from .names import (
     duplicate_errors,
     edges,
@@ -65,6 +66,7 @@ class Spec:
     raw: RawSpec
     data: dict[str, Any]
     warnings: tuple[SpecError, ...] = ()
+    extension: str = ""  # the `extension` file's <robot> children, escaped for xacro (validate/extension.py)
 
 
 def semantic_errors(
@@ -153,7 +155,8 @@ def validate(raw: RawSpec) -> Spec:
         data = with_values(data, inertias)
         every = list(bodies(data))
         items = every + list(parts(data))
-    errors += unit_errors + mesh_files_errors(raw, data) + solid_errors + density_errors
+    extension, extension_errors = extension_body(raw, data)
+    errors += unit_errors + mesh_files_errors(raw, data) + solid_errors + density_errors + extension_errors
     errors += semantic_errors(raw, data, every, physics=not unit_errors)
     if errors:
         raise SpecErrors(_unique(errors))
@@ -161,4 +164,5 @@ def validate(raw: RawSpec) -> Spec:
     # a shape whose mass gives an impossible density says so once, at its mass, not also at each long size
     said = tuple(w.path.removesuffix(".mass") + ".shape." for w in dense)
     warnings = [n for n in notes if not n.path.startswith(said)] + dense + density_notes + solid_notes
-    return Spec(raw=raw, data=data, warnings=tuple(sorted(warnings, key=lambda w: (w.line or 0, w.column or 0))))
+    ordered = tuple(sorted(warnings, key=lambda w: (w.line or 0, w.column or 0)))
+    return Spec(raw=raw, data=data, warnings=ordered, extension=extension)

@@ -92,7 +92,8 @@ def test_manifest_records_what_was_generated(tmp_path):
     out = tmp_path / "pkg"
     result = xacrokit.generate(SPEC, out)
     manifest = json.loads((out / MANIFEST).read_text(encoding="utf-8"))
-    assert sorted(manifest["files"]) == sorted(f.path for f in result.files)
+    assert sorted(manifest["files"]) == sorted(f.path for f in result.files if not f.seed)
+    assert [f.path for f in result.files if f.seed] == ["urdf/two_dof_arm_extension.xacro"]  # (the user's: not ours)
 
 
 def test_a_folder_that_cannot_be_written_is_an_error_not_a_traceback(tmp_path):

@@ -10,8 +10,14 @@ SPEC_A = REPO / "examples" / "robots" / "two_dof_arm.yaml"
 
 
 def contents(root):
-    """Every file under ``root``: relative path -> bytes."""
-    return {p.relative_to(root).as_posix(): p.read_bytes() for p in root.rglob("*") if p.is_file()}
+    """Every file under ``root``: relative path -> bytes; but the robots' extension files (urdf/NAME_extension.xacro):
+    those are the user's once written, kept when another robot is written into the folder (never removed), and
+    their own lifecycle is tests/write/test_write_extension.py's."""
+    return {
+        p.relative_to(root).as_posix(): p.read_bytes()
+        for p in root.rglob("*")
+        if p.is_file() and not (p.parent.name == "urdf" and p.name.endswith("_extension.xacro"))
+    }
 
 
 def two_specs(folder):
