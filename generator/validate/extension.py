@@ -1,7 +1,9 @@
 """The spec's ``extension``: a XML file beside the spec whose ``<robot>`` children become the first content of the
 package's user-owned ``urdf/NAME_extension.xacro``. Read here once (bounded, no entities, no network), refused with
 a located error when it is not a ``.xacro``/``.xml``/``.urdf`` file in the spec's folder (as with meshes: a spec from
-elsewhere must not carry another file of yours into a package), not well-formed, or not a ``<robot>``."""
+elsewhere must not carry another file of yours into a package), not well-formed, not a ``<robot>``, or holding a
+xacro element or attribute (the content is copied for xacro verbatim: every ``$`` escaped, and no instruction of a
+spec from elsewhere may run, an include of one of your files among them)."""
 
 from __future__ import annotations
 
@@ -45,6 +47,12 @@ def extension_body(raw: RawSpec, data: dict[str, Any]) -> tuple[str, list[SpecEr
         return "", [raw.error(("extension",), f"{name}:{line}:{column}: not well-formed XML: {exc.msg}")]
     if root.tag != "robot":
         return "", [raw.error(("extension",), f"{name}: the root element is <{root.tag}>, not <robot>")]
+    for element in root.iter(etree.Element):  # (copied verbatim: a xacro instruction in it would be run)
+        names = [element.tag, *element.attrib.keys()]
+        if any(str(n).startswith("{") and "xacro" in str(n).split("}")[0] for n in names):
+            line = element.sourceline or 1
+            message = f"{name}:{line}: a xacro element or attribute; the extension is copied verbatim, not expanded"
+            return "", [raw.error(("extension",), message)]
     for element in root.iter():
         if isinstance(element.tag, str):
             for key, value in element.attrib.items():

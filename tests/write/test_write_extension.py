@@ -73,12 +73,17 @@ def test_a_bad_extension_is_a_located_spec_error_and_nothing_is_written(tmp_path
     (tmp_path / "bad.xacro").write_text("<robot><gazebo></robot>", encoding="utf-8")
     (tmp_path / "other.xacro").write_text("<sdf/>", encoding="utf-8")
     (tmp_path / "notes.txt").write_text("<robot/>", encoding="utf-8")
+    (tmp_path / "sly.xacro").write_text(
+        '<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:include filename="/etc/passwd"/></robot>',
+        encoding="utf-8",
+    )
     for name, said in (
         ("gone.xacro", "cannot read 'gone.xacro'"),
         ("../outside.xacro", "in the spec's folder or below"),
         ("notes.txt", "in the spec's folder or below"),
         ("bad.xacro", "bad.xacro:1:"),
         ("other.xacro", "not <robot>"),
+        ("sly.xacro", "sly.xacro:1: a xacro element or attribute"),
     ):
         spec = tmp_path / "arm.yaml"
         spec.write_text(base + f"extension: {name}\n", encoding="utf-8")
