@@ -19,14 +19,13 @@ the generated package starts its user-owned ``urdf/NAME_extension.xacro`` with t
 
 from __future__ import annotations
 
-import math
 import os
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from .errors import XacrokitError
+from .inputs import urdf_floats
 
 IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 MODELLED = ("link", "joint", "material")  # what the spec holds of a <robot>'s children
@@ -45,15 +44,7 @@ class Imported:
 
 
 def _floats(text: str | None, count: int, default: float, where: str) -> list[float]:
-    if text is None:
-        return [default] * count
-    try:
-        values = [float(v) for v in text.split()]
-    except ValueError:
-        values = []
-    if len(values) != count or not all(math.isfinite(v) for v in values):
-        raise XacrokitError(f"{where}: {text!r} is not {count} finite number(s)")
-    return values
+    return urdf_floats(text, count, default, where=where)
 
 
 def _origin(element: Any, where: str) -> dict[str, list[float]] | None:

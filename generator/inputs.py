@@ -9,6 +9,7 @@ URDF consumer reads past it) is handed on with those names in a namespace of the
 from __future__ import annotations
 
 import contextlib
+import math
 import os
 from collections.abc import Callable, Iterator, Mapping
 from pathlib import Path
@@ -99,3 +100,17 @@ def declared(text: str, where: str = "<robot>") -> str:
         line = root.sourceline or 1
         raise XacrokitError(f"{where}:{line}: the root element is <{root.tag}>, not <robot>: not a URDF")
     return text
+
+
+def urdf_floats(text: str | None, count: int, default: float = 0.0, *, where: str = "") -> list[float]:
+    """``count`` finite numbers from an attribute (``default`` each when it is absent); XacrokitError otherwise,
+    saying ``where``."""
+    if text is None:
+        return [default] * count
+    try:
+        values = [float(v) for v in text.split()]
+    except ValueError:
+        values = []
+    if len(values) != count or not all(math.isfinite(v) for v in values):
+        raise XacrokitError(f"{where + ': ' if where else ''}{text!r} is not {count} finite number(s)")
+    return values

@@ -35,6 +35,7 @@ from typing import Any
 import numpy as np
 
 from .errors import XacrokitError
+from .inputs import urdf_floats as _floats
 from .mjcf_actuators import num
 from .mjcf_meshes import FlatMesh, Meshes
 
@@ -67,20 +68,6 @@ def quaternion(rpy: tuple[float, float, float]) -> list[float]:
         cr * sp * cy + sr * cp * sy,
         cr * cp * sy - sr * sp * cy,
     ]
-
-
-def _floats(text: str | None, count: int, default: float = 0.0, *, where: str = "") -> list[float]:
-    """``count`` finite numbers from an attribute (``default`` each when it is absent); XacrokitError otherwise,
-    saying ``where``."""
-    if text is None:
-        return [default] * count
-    try:
-        values = [float(v) for v in text.split()]
-    except ValueError:
-        values = []
-    if len(values) != count or not all(math.isfinite(v) for v in values):
-        raise XacrokitError(f"{where + ': ' if where else ''}{text!r} is not {count} finite number(s)")
-    return values
 
 
 def _origin(element: Any) -> tuple[list[float], list[float]]:
