@@ -226,8 +226,9 @@ def _with_extensions(files: list[RenderedFile], root: Path) -> bool:
     changed = False
     for index, file in enumerate(files):
         target = root / file.path
-        if not file.seed or not target.is_file():
-            continue
+        inside = [root.joinpath(*Path(file.path).parts[:n]) for n in range(1, len(Path(file.path).parts) + 1)]
+        if not file.seed or not target.is_file() or any(q.is_symlink() for q in inside):
+            continue  # (one reached through a symbolic link inside the package is not read: it may be anyone's)
         try:
             text = read_input(target, EXTENSION_LIMIT).decode("utf-8")
         except (InputError, UnicodeDecodeError) as exc:

@@ -90,3 +90,19 @@ def test_a_bad_extension_is_a_located_spec_error_and_nothing_is_written(tmp_path
         result = gen_robot(spec, "-o", tmp_path / "out")
         assert result.returncode == 2 and said in result.stderr and "arm.yaml:" in result.stderr, (name, result.stderr)
         assert not (tmp_path / "out").exists()
+
+
+def test_an_extension_reached_through_a_symbolic_link_is_not_read(tmp_path):
+    package = tmp_path / "pkg"
+    assert gen_robot(SPEC, "-o", package).returncode == 0
+    elsewhere = tmp_path / "elsewhere.xacro"
+    elsewhere.write_text(ADDED, encoding="utf-8")
+    extension = package / "urdf" / "two_dof_arm_extension.xacro"
+    extension.unlink()
+    extension.symlink_to(elsewhere)
+    before = (package / "urdf" / "two_dof_arm.urdf").read_text(encoding="utf-8")
+    result = gen_robot(SPEC, "-o", package)
+    assert result.returncode == 2 and "refusing to write urdf/two_dof_arm_extension.xacro" in result.stderr
+    assert "resolves outside" in result.stderr  # (the write stage's rule for every file of the package)
+    assert (package / "urdf" / "two_dof_arm.urdf").read_text(encoding="utf-8") == before  # (nothing written)
+    assert extension.is_symlink() and elsewhere.read_text(encoding="utf-8") == ADDED  # (not read, not written)
