@@ -20,7 +20,7 @@ from typing import Any
 from ..errors import SpecError, SpecErrors
 from ..gcpause import collector_paused
 from ..load import PathKey, RawSpec
-from ..sensors import preset_body, resolve_sensor, sensor_problems
+from ..sensors import PRESETS, preset_body, resolve_sensor, sensor_problems
 from .bodies import Body, bodies, parts
 from .extension import extension_body
 from .names import (
@@ -98,7 +98,13 @@ def sensor_errors(raw: RawSpec, data: dict[str, Any]) -> list[SpecError]:
     errors = []
     for name, frame in data.get("frames", {}).items():
         if isinstance(frame.get("sensor"), dict):
-            sensor, _ = resolve_sensor(name, frame["sensor"])
+            given = frame["sensor"]
+            preset = PRESETS.get(given.get("preset", ""))
+            if preset is not None and given.get("type", preset[0]) != preset[0]:
+                message = f"preset {given['preset']!r} is a {preset[0]}, not a {given['type']}: give one or the other"
+                errors.append(raw.error(("frames", name, "sensor", "preset"), message))
+                continue
+            sensor, _ = resolve_sensor(name, given)
             for keys, message in sensor_problems(name, sensor):
                 path = ("frames", name, "sensor", *keys)
                 errors.append(raw.error(path if _has(frame["sensor"], keys) else ("frames", name, "sensor"), message))

@@ -126,6 +126,7 @@ def test_a_fleet_puts_each_robots_topics_under_its_prefix(generated, tmp_path):
         ("{type: camera, clip: {near: 2, far: 1}}", "sensor.clip.far", "near < far"),
         ("{type: lidar, update_rate: 0}", "sensor.update_rate", "0"),
         ("{type: imu, noise: {stddev: -1}}", "sensor.noise.stddev", "-1"),
+        ("{type: lidar, preset: d435}", "sensor.preset", "is a rgbd_camera, not a lidar"),
     ],
 )
 def test_bad_sensor_input_is_a_located_spec_error_and_nothing_is_written(tmp_path, sensor, where, message):
