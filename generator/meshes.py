@@ -12,9 +12,11 @@ import functools
 import os
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
+from typing import Any
 
 import numpy as np
 
+from .errors import XacrokitError
 from .packages import mesh_file, with_nearby_packages
 
 MAX_MESH_BYTES = 256 * 1024 * 1024  # a CAD part's mesh is a few MB; a file this large is not one
@@ -119,6 +121,24 @@ def _solid(path: str, size: int, mtime: int, scale: tuple[float, float, float]) 
 
 
 TUBE_SIDES = 64  # a tube's mesh: its circles as 64-gons (the radius' error at mid-side: 1 - cos(pi/64) = 0.12%)
+
+
+def read_mesh(path: Path, filename: str) -> Any:
+    """A mesh file as one trimesh mesh (the commands that show or export a robot read any URDF's meshes with it;
+    ``filename``: the mesh as the URDF names it, for the messages).
+
+    Raises:
+        XacrokitError: trimesh cannot read it, or finds no triangle in it (a COLLADA file can hold none it reads).
+    """
+    import trimesh
+
+    try:
+        mesh: Any = trimesh.load(path, force="mesh")
+    except Exception as exc:  # noqa: BLE001  (trimesh raises what its readers raise)
+        raise XacrokitError(f"mesh {filename!r} cannot be read ({type(exc).__name__}: {exc})") from None
+    if len(mesh.faces) == 0:
+        raise XacrokitError(f"mesh {filename!r} has no triangles that trimesh can read")
+    return mesh
 
 
 def tube_obj(inner: float, outer: float, length: float) -> str:

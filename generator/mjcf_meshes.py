@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from .errors import XacrokitError
+from .meshes import read_mesh
 from .mjcf_actuators import num
 
 READABLE = (".obj", ".msh")  # what MuJoCo reads as it is (binary STL too: decided by looking at the file)
@@ -62,7 +63,7 @@ class Meshes:
         if not path.is_file():
             raise XacrokitError(f"mesh {filename!r} is not there ({path})")
         data = path.read_bytes()
-        mesh = _read(path, filename)
+        mesh = read_mesh(path, filename)
         spread = np.linalg.svd(mesh.vertices - mesh.vertices.mean(axis=0), compute_uv=False)
         if len(mesh.vertices) < 4 or spread[-1] <= 1e-9 * spread[0]:
             raise FlatMesh(f"mesh {filename!r} is flat (all its vertices in one plane): MuJoCo cannot take it")
@@ -92,17 +93,3 @@ def _binary_stl_faces(data: bytes) -> int:
         if 84 + 50 * count == len(data):
             return count
     return -1
-
-
-def _read(path: Path, filename: str) -> Any:
-    """The mesh, read by trimesh as one mesh (MuJoCo's STL reader takes binary files of at most 200,000 triangles:
-    others are written as OBJ)."""
-    import trimesh
-
-    try:
-        mesh: Any = trimesh.load(path, force="mesh")
-    except Exception as exc:  # noqa: BLE001  (trimesh raises what its readers raise)
-        raise XacrokitError(f"mesh {filename!r} cannot be read ({type(exc).__name__}: {exc})") from None
-    if len(mesh.faces) == 0:
-        raise XacrokitError(f"mesh {filename!r} has no triangles that trimesh can read")
-    return mesh

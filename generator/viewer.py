@@ -226,17 +226,12 @@ def _origin(element: Any) -> dict[str, list[float]]:
 
 
 def _mesh(resolve: Any, filename: str) -> tuple[np.ndarray, np.ndarray]:
-    import trimesh
+    from .meshes import read_mesh
 
     file = Path(resolve(filename))
     if not file.is_file():
         raise XacrokitError(f"mesh {filename!r} is not there ({file}); the page would miss it")
-    try:
-        mesh: Any = trimesh.load(file, force="mesh")
-    except Exception as exc:  # noqa: BLE001  (trimesh raises what its readers raise)
-        raise XacrokitError(f"mesh {filename!r} cannot be read ({type(exc).__name__}: {exc})") from None
-    if len(mesh.faces) == 0:  # (said, not drawn as nothing: a COLLADA file trimesh finds no triangles in)
-        raise XacrokitError(f"mesh {filename!r} has no triangles that trimesh can read")
+    mesh = read_mesh(file, filename)  # (one without triangles is said, not drawn as nothing)
     return np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64)
 
 
