@@ -87,7 +87,11 @@ def _solid(path: str, size: int, mtime: int, scale: tuple[float, float, float]) 
         ) from None
     if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
         raise MeshError(f"{path} holds no triangles; export the part as a closed triangle mesh (binary STL)")
-    mesh.apply_transform(np.diag([*scale, 1.0]))  # (trimesh turns the faces of a mirrored mesh back outwards)
+    # on the vertices themselves: trimesh's apply_transform skips a matrix within 1e-8 of the identity (a scale of
+    # 1 + 5e-9, an offset of 1e-9 m would be lost); a mirroring scale turns the faces back outwards
+    mesh.vertices = mesh.vertices * np.asarray(scale, dtype=float)
+    if scale[0] * scale[1] * scale[2] < 0:
+        mesh.invert()
     name = Path(path).name
     if not mesh.is_watertight:
         raise MeshError(
@@ -107,7 +111,7 @@ def _solid(path: str, size: int, mtime: int, scale: tuple[float, float, float]) 
         )
     # integrated about the middle of its bounds: far from the file's origin, the sums over its faces lose digits
     middle = mesh.bounds.mean(axis=0)
-    mesh.apply_translation(-middle)
+    mesh.vertices = mesh.vertices - middle  # (not apply_translation, which skips an offset below 1e-8)
     mesh.density = 1.0
     inertia = np.asarray(mesh.moment_inertia, dtype=float)
     center = tuple(float(v) + 0.0 for v in mesh.center_mass + middle)
