@@ -191,7 +191,10 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
     kind = _ref_name(error) if keyword in ("type", "exclusiveMinimum", "minLength") else None
     if kind in ("length", "angle", "quantity", "mass"):
         example = {"length": "150 mm", "angle": "90 deg", "quantity": "90 deg", "mass": "500 g"}[kind]
-        if keyword == "exclusiveMinimum":  # only a mass has one
+        if keyword == "exclusiveMinimum":  # a mass, or a rate (the same schema: told apart by the key)
+            key = path[-1] if path and isinstance(path[-1], str) and path[-1] != "mass" else "mass"
+            if key != "mass":  # (as validate.quantities says it, so that the two are said once)
+                return path, f"{key} must be > 0, got {error.instance!r}", False
             return path, f"mass must be > 0 kg, got {float(error.instance)!r}", False  # as the physics check says it
         return path, f"expected a number or a string such as {example!r}, got {error.instance!r}", False
     if keyword in ("oneOf", "anyOf") and len(path) == 2 and path[0] == "instances":

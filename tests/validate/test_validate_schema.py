@@ -9,7 +9,7 @@ import pytest
 import yaml
 from hypothesis import given
 from hypothesis import strategies as st
-from validate_cases import BASE, assert_mistake_located, case_ids
+from validate_cases import BASE, assert_mistake_located, case_ids, errors_of, mutated
 
 from conftest import REPO, SCENE_EXAMPLES
 from xacrokit.errors import SpecErrors
@@ -65,6 +65,13 @@ CASES = [
 @pytest.mark.parametrize(("change", "value", "path", "words"), CASES, ids=case_ids(CASES))
 def test_each_schema_mistake_is_located_and_explained(change, value, path, words):
     assert_mistake_located(change, value, path, words)
+
+
+def test_a_limit_below_zero_is_said_once_by_its_own_name():
+    # (a rate's schema equals a mass's: the schema's message once said "mass must be > 0 kg" beside the right one)
+    data = mutated("joints.shoulder.limit", {"lower": -1.0, "upper": 1.0, "effort": 1.0, "velocity": -2})
+    said = [str(e) for e in errors_of(data) if e.path == "$.joints.shoulder.limit.velocity"]
+    assert len(said) == 1 and said[0].endswith("velocity must be > 0, got -2"), said
 
 
 def test_a_name_with_a_final_newline_is_not_a_name():
