@@ -136,6 +136,9 @@ def joint_element(prefix: str, joint: Joint) -> etree._Element:
             "soft_upper_limit": s.soft_upper_limit,
         }
         _sub(element, "safety_controller", **{k: num(v) for k, v in values.items() if v is not None})
+    if joint.calibration is not None:
+        edges = {"rising": joint.calibration.rising, "falling": joint.calibration.falling}
+        _sub(element, "calibration", **{k: num(v) for k, v in edges.items() if v is not None})
     return element
 
 

@@ -34,6 +34,10 @@ def _cmd_import(args: argparse.Namespace) -> int:
     result = import_robot(args.path, parse_mappings(args.mappings), package_paths=parse_packages(args.package))
     for line in result.unsupported:
         print(f"gen-robot import: not imported: {line}", file=sys.stderr)
+    for line in result.ignored:
+        print(f"gen-robot import: not URDF, ignored by its readers: {line}", file=sys.stderr)
+    for line in result.as_given:
+        print(f"gen-robot import: kept as the file says it (strict: false): {line}", file=sys.stderr)
     if args.output and result.extension:  # (the left-out elements, verbatim, beside the spec)
         extension = Path(args.output).with_name(Path(args.output).stem + "_extension.xacro")
         result.spec["extension"] = extension.name

@@ -25,10 +25,18 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from .import_wheels import wheels
 from .inputs import urdf_floats
 
 IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 MODELLED = ("link", "joint", "material")  # what the spec holds of a <robot>'s children
+URDF_JOINT_ATTRIBUTES = {  # (urdfdom's joint parser: what it reads of each element)
+    "limit": {"lower", "upper", "effort", "velocity"},
+    "dynamics": {"damping", "friction"},
+    "mimic": {"joint", "multiplier", "offset"},
+    "safety_controller": {"soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"},
+    "calibration": {"rising", "falling"},
+}
 
 
 @dataclass
@@ -41,6 +49,9 @@ class Imported:
     leftovers: list[str] = field(default_factory=list)
     meshes: dict[str, str] = field(default_factory=dict)  # a relative mesh path in the spec -> the file to copy there
     extension: str = ""  # the left-out elements as a <robot> document: the spec's `extension` file, verbatim
+    as_given: list[str] = field(default_factory=list)  # values no real body has, kept under `strict: false`
+    ignored: list[str] = field(default_factory=list)  # attributes URDF does not define (its readers ignore them)
+    wheels: list[str] = field(default_factory=list)  # the links recognised as wheels (the spec's `wheels:`)
 
 
 def _floats(text: str | None, count: int, default: float, where: str) -> list[float]:
@@ -80,8 +91,8 @@ def _shape(geometry: Any, where: str, problems: list[str]) -> dict[str, Any] | N
         mesh: dict[str, Any] = {"filename": shape.get("filename", "")}
         if shape.get("scale") is not None:
             scale = _floats(shape.get("scale"), 3, 1.0, f"{where} mesh scale")
-            if any(v < 0 for v in scale):
-                problems.append(f"{where}: mesh scale {scale} mirrors (negative), which the spec refuses")
+            if 0.0 in scale:
+                problems.append(f"{where}: mesh scale {scale} flattens it (0), which the spec refuses")
                 return None
             if scale != [1.0, 1.0, 1.0]:
                 mesh["scale"] = scale
@@ -98,8 +109,11 @@ def import_text(text: str, name_hint: str = "robot") -> Imported:
     result = Imported(spec={})
     problems = result.unsupported
     robot = root.get("name") or name_hint
-    if not IDENTIFIER.match(robot):
-        problems.append(f"robot name {robot!r} is not a spec name (letters, digits and _)")
+    if not IDENTIFIER.match(robot):  # (it names the package, the macro and the files: made a name, said)
+        renamed = re.sub(r"[^A-Za-z0-9_]", "_", robot)
+        renamed = renamed if IDENTIFIER.match(renamed) else f"robot_{renamed}"
+        result.ignored.append(f"robot name {robot!r} written {renamed!r} (it names the package, macro and files)")
+        robot = renamed
     result.spec["robot"] = robot
     colours: dict[str, list[float]] = {}
     named = {m.get("name"): m for m in root.findall("material")}
@@ -126,22 +140,42 @@ def import_text(text: str, name_hint: str = "robot") -> Imported:
             problems.append(f"{where}: the name is not a spec name (letters, digits and _)")
             continue
         entry: dict[str, Any] = {}
-        visuals, collisions = link.findall("visual"), link.findall("collision")
-        if len(visuals) > 1 or len(collisions) > 1:
-            problems.append(f"{where}: {len(visuals)} visuals and {len(collisions)} collisions (the spec: one each)")
-        elif visuals:
-            shape = _shape(visuals[0].find("geometry"), f"{where} visual", problems)
+        drawn = []  # (shape, origin, colour) of each visual the spec can say
+        for index, visual in enumerate(link.findall("visual")):
+            said = f"{where} visual" + (f" {index + 1}" if index else "")
+            shape = _shape(visual.find("geometry"), said, problems)
             if shape is not None:
-                entry["shape"] = shape
-                at = _origin(visuals[0].find("origin"), f"{where} visual")
-                if at:
-                    entry["origin"] = at
-                colour = colour_of(visuals[0].find("material"), where)
-                if colour:
-                    entry["material"] = colour
-                entry.update(_collision(collisions, shape, at, where, problems))
-        elif collisions:
-            problems.append(f"{where}: a collision without a visual (the spec's collision belongs to its shape)")
+                drawn.append((shape, _origin(visual.find("origin"), said), colour_of(visual.find("material"), where)))
+        if drawn:
+            shape, at, colour = drawn[0]
+            entry["shape"] = shape
+            if at:
+                entry["origin"] = at
+            if colour:
+                entry["material"] = colour
+            more = [_geometry(s, a, c if c != colour else None) for s, a, c in drawn[1:]]
+            if more:
+                entry["visuals"] = more
+            if colour and any(c is None for _, _, c in drawn[1:]):
+                problems.append(
+                    f"{where}: a visual without a colour after one with a colour (the spec's visuals "
+                    "take the link's material)"
+                )
+        touched = []
+        for index, collision in enumerate(link.findall("collision")):
+            said = f"{where} collision" + (f" {index + 1}" if index else "")
+            shape = _shape(collision.find("geometry"), said, problems)
+            if shape is not None:
+                touched.append((shape, _origin(collision.find("origin"), said)))
+        if drawn and touched == [drawn[0][:2]]:
+            pass  # ("same", the spec's default)
+        elif not touched:
+            if drawn:
+                entry["collision"] = "none"
+        elif len(touched) == 1:
+            entry["collision"] = _geometry(*touched[0])
+        else:
+            entry["collision"] = [_geometry(s, a) for s, a in touched]
         entry.update(_inertial(link.find("inertial"), where))
         if "inertia" in entry and "shape" in entry and _is_the_shapes(entry):
             del entry["inertia"]  # (the shape's own: the spec computes it from the mass)
@@ -155,9 +189,18 @@ def import_text(text: str, name_hint: str = "robot") -> Imported:
             problems.append(f"joint {name!r}: the name is not a spec name (letters, digits and _)")
             continue
         joints[name] = _joint(joint, f"joint {name!r}", problems)
+        if joint.find("mimic") is not None and "mimic" not in joints[name]:
+            result.ignored.append(f"joint {name!r} <mimic> (a {joint.get('type')} joint: nothing to move)")
+        for tag, known in URDF_JOINT_ATTRIBUTES.items():
+            for element in joint.findall(tag):
+                extra = sorted(set(element.attrib) - known)
+                if extra:
+                    result.ignored.append(f"joint {name!r} <{tag}> {', '.join(extra)}")
+    found = {"links": links, "joints": joints}
+    result.wheels, absorbed = wheels(found, root)
     kept = etree.Element("robot")
     for child in root.iterchildren(etree.Element):
-        if child.tag not in MODELLED:
+        if child.tag not in MODELLED and child not in absorbed:
             result.leftovers.append(f"<{child.tag}{_label(child)}>")
             copy = etree.fromstring(etree.tostring(child))  # (its own document: namespaces it uses come along)
             copy.tail = None
@@ -173,7 +216,31 @@ def import_text(text: str, name_hint: str = "robot") -> Imported:
     result.spec["links"] = links
     if joints:
         result.spec["joints"] = joints
+    if "wheels" in found:
+        result.spec["wheels"] = found["wheels"]
+    _strictness(result)
     return result
+
+
+def _strictness(result: Imported) -> None:
+    """``strict: false`` for a robot whose file holds values the spec refuses by default (a mass of 0, a tensor that
+    is not physical, a moving link without mass, a continuous joint without limit): they are kept as the file says
+    them, and listed (:attr:`Imported.as_given`)."""
+    import yaml
+
+    from .errors import SpecErrors
+    from .load import load_text
+    from .validate import validate
+    from .validate.physics import Implausible
+
+    try:  # (its relative meshes are not beside this text: those errors are not the ones asked about)
+        validate(load_text(yaml.safe_dump(result.spec, sort_keys=False), "<import>"))
+        return
+    except SpecErrors as caught:
+        doubts = [e for e in caught.errors if isinstance(e, Implausible)]
+    if doubts:
+        result.spec = {"robot": result.spec["robot"], "strict": False, **result.spec}
+        result.as_given = [f"{e.path.removeprefix('$.')}: {e.message}" for e in doubts]
 
 
 def _is_the_shapes(entry: dict[str, Any]) -> bool:
@@ -216,21 +283,14 @@ def _label(element: Any) -> str:
     return ""
 
 
-def _collision(
-    collisions: list[Any], shape: dict[str, Any], at: dict[str, Any] | None, where: str, problems: list[str]
-) -> dict[str, Any]:
-    if not collisions:
-        return {"collision": "none"}
-    other = _shape(collisions[0].find("geometry"), f"{where} collision", problems)
-    if other is None:
-        return {"collision": "none"}
-    other_at = _origin(collisions[0].find("origin"), f"{where} collision")
-    if other == shape and other_at == at:
-        return {}  # ("same", the spec's default)
-    found: dict[str, Any] = {"shape": other}
-    if other_at:
-        found["origin"] = other_at
-    return {"collision": found}
+def _geometry(shape: dict[str, Any], at: dict[str, Any] | None, colour: str | None = None) -> dict[str, Any]:
+    """A `visuals` or `collision` entry: a shape, its origin and its colour (when they are not the defaults)."""
+    found: dict[str, Any] = {"shape": shape}
+    if at:
+        found["origin"] = at
+    if colour:
+        found["material"] = colour
+    return found
 
 
 def _inertial(inertial: Any, where: str) -> dict[str, Any]:
@@ -267,6 +327,8 @@ def _joint(joint: Any, where: str, problems: list[str]) -> dict[str, Any]:
             for key in ("lower", "upper", "effort", "velocity")
             if limit.get(key) is not None and not (joint.get("type") == "continuous" and key in ("lower", "upper"))
         }
+        if joint.get("type") != "continuous":  # (urdfdom reads a range not given as 0: the spec says it)
+            entry["limit"] = {"lower": 0.0, "upper": 0.0, **entry["limit"]}
     moving = joint.get("type") in ("revolute", "prismatic", "continuous")
     dynamics = joint.find("dynamics")
     if dynamics is not None and moving:  # (URDF readers ignore a fixed joint's dynamics)
@@ -276,7 +338,7 @@ def _joint(joint: Any, where: str, problems: list[str]) -> dict[str, Any]:
             if dynamics.get(key) is not None
         }
     mimic = joint.find("mimic")
-    if mimic is not None:
+    if mimic is not None and moving:  # (a fixed joint's mimic moves nothing: left out, said in the header)
         entry["mimic"] = {"joint": mimic.get("joint")}
         for key, default in (("multiplier", 1.0), ("offset", 0.0)):
             value = _floats(mimic.get(key), 1, default, f"{where} mimic {key}")[0]
@@ -289,8 +351,11 @@ def _joint(joint: Any, where: str, problems: list[str]) -> dict[str, Any]:
             for key in ("soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity")
             if safety.get(key) is not None
         }
-    if joint.find("calibration") is not None:
-        problems.append(f"{where}: <calibration> is not one the spec has")
+    calibration = joint.find("calibration")
+    if calibration is not None:
+        edges = {k: _floats(calibration.get(k), 1, 0.0, f"{where} calibration {k}")[0] for k in ("rising", "falling")}
+        if any(calibration.get(k) is not None for k in edges):
+            entry["calibration"] = {k: v for k, v in edges.items() if calibration.get(k) is not None}
     return entry
 
 
@@ -319,18 +384,21 @@ def _relative_meshes(imported: Imported, base: Any, packages: Mapping[str, Any])
     """A mesh named by a path relative to the URDF (``meshes/arm.stl``) is copied beside the spec, under
     ``meshes/``, and the spec names the copy: gen-robot then carries it into the package. (A ``package://`` or
     ``file://`` URI stays as written: the package it names is the user's.)"""
-    from pathlib import PurePosixPath
+    from pathlib import Path, PurePosixPath
 
     from .meshes import MESH_SUFFIXES, is_relative
     from .packages import mesh_file
+    from .validate.bodies import geometries
 
     for link in imported.spec.get("links", {}).values():
-        collision = link.get("collision")
-        for holder in (link.get("shape", {}), collision.get("shape", {}) if isinstance(collision, dict) else {}):
-            mesh = holder.get("mesh")
+        for holder in [link, *(geometry for _, geometry in geometries((), link))]:
+            mesh = holder.get("shape", {}).get("mesh")
             if not mesh or not is_relative(mesh["filename"]):
                 continue
             source = mesh_file(mesh["filename"], base, packages)
+            if not Path(source).is_file():
+                imported.unsupported.append(f"mesh {mesh['filename']!r}: not found (looked for {source})")
+                continue
             name = PurePosixPath(mesh["filename"]).name
             if PurePosixPath(name).suffix.lower() not in MESH_SUFFIXES:
                 imported.unsupported.append(f"mesh {mesh['filename']!r}: not a mesh file the spec copies")
@@ -349,6 +417,10 @@ def spec_yaml(imported: Imported, source: str) -> str:
 
     lines = [f"# Imported by gen-robot import from {source!r}.".replace("\n", " ")]
     lines += [f"# not imported: {line}".replace("\n", " ") for line in imported.unsupported]
+    lines += [f"# as the file says it (strict: false): {line}".replace("\n", " ") for line in imported.as_given]
+    lines += [f"# not URDF, ignored by its readers: {line}".replace("\n", " ") for line in imported.ignored]
+    if imported.wheels:
+        lines.append(f"# wheels (exactly what the spec's wheels: write): {', '.join(imported.wheels)}")
     lines += [
         f"# kept in the extension file (not modelled by the spec): {line}".replace("\n", " ")
         for line in imported.leftovers

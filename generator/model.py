@@ -169,6 +169,14 @@ class SafetyController:
 
 
 @dataclass(frozen=True)
+class Calibration:
+    """URDF <calibration>: the joint positions of a calibration switch's rising and falling edges (rad or m)."""
+
+    rising: float | None = None
+    falling: float | None = None
+
+
+@dataclass(frozen=True)
 class Joint:
     name: str
     type: JointType
@@ -180,6 +188,7 @@ class Joint:
     dynamics: Dynamics | None = None
     mimic: Mimic | None = None
     safety_controller: SafetyController | None = None
+    calibration: Calibration | None = None
 
 
 @dataclass(frozen=True)

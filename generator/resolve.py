@@ -24,6 +24,7 @@ from .model import (
     MOVING,
     Arm,
     Box,
+    Calibration,
     Collision,
     ControlledJoint,
     Cylinder,
@@ -144,26 +145,34 @@ def shape_inertia(body: dict[str, Any], mass: float, frame: Origin) -> Inertia:
 def _link(name: str, data: dict[str, Any], package: _Package) -> Link:
     if "parts" in data:
         return _composite(name, data, package)
-    if "shape" not in data:
-        inertial = _explicit_inertia(data, origin(data.get("com") or data.get("origin")))
-        return Link(name=name, inertial=inertial)
     where = origin(data.get("origin"))
-    drawn = pieces(data["shape"], where, package)
+    drawn = pieces(data["shape"], where, package) if "shape" in data else []
     material = data.get("material")
-    visuals = tuple(Visual(shape=body, origin=at, material=material) for body, at in drawn)
+    visuals = [Visual(shape=body, origin=at, material=material) for body, at in drawn]
+    for more in data.get("visuals", ()):  # (drawn only: no collision, no mass)
+        tint = more.get("material", material)
+        visuals += [Visual(shape=b, origin=at, material=tint) for b, at in _placed(more, package)]
     collision_spec = data.get("collision", "same")
     if collision_spec == "same":
-        collisions = tuple(Collision(shape=body, origin=at) for body, at in drawn)
+        collisions = [Collision(shape=body, origin=at) for body, at in drawn]
     elif collision_spec == "none":
-        collisions = ()
+        collisions = []
+    else:  # (one shape, or a list of them)
+        listed = collision_spec if isinstance(collision_spec, list) else [collision_spec]
+        collisions = [Collision(shape=b, origin=at) for one in listed for b, at in _placed(one, package)]
+    if "shape" not in data:
+        frame = origin(data.get("com") or data.get("origin"))
     else:
-        other = pieces(collision_spec["shape"], origin(collision_spec.get("origin")), package)
-        collisions = tuple(Collision(shape=body, origin=at) for body, at in other)
-    frame = origin(data["com"]) if "com" in data else where
+        frame = origin(data["com"]) if "com" in data else where
     inertial = _explicit_inertia(data, frame)
-    if inertial is None and "mass" in data:
+    if inertial is None and "mass" in data and "shape" in data:
         inertial = shape_inertia(data["shape"], float(data["mass"]), frame)
-    return Link(name=name, visuals=visuals, collisions=collisions, inertial=inertial)
+    return Link(name=name, visuals=tuple(visuals), collisions=tuple(collisions), inertial=inertial)
+
+
+def _placed(geometry: dict[str, Any], package: _Package) -> list[tuple[Shape, Origin]]:
+    """A `collision` or `visuals` entry's geometries (a shape at its own origin in the link frame)."""
+    return pieces(geometry["shape"], origin(geometry.get("origin")), package)
 
 
 def _composite(name: str, data: dict[str, Any], package: _Package) -> Link:
@@ -265,6 +274,12 @@ def _joint(name: str, data: dict[str, Any]) -> Joint:
             soft_upper_limit=_optional_float(safety.get("soft_upper_limit")),
         )
         if safety
+        else None,
+        calibration=Calibration(
+            rising=_optional_float(data["calibration"].get("rising")),
+            falling=_optional_float(data["calibration"].get("falling")),
+        )
+        if data.get("calibration")
         else None,
     )
 

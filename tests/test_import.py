@@ -12,10 +12,8 @@ from lxml import etree
 
 import xacrokit
 from conftest import ROBOT_EXAMPLES, gen_robot
-from xacrokit.importer import import_text, spec_yaml
+from xacrokit.importer import URDF_JOINT_ATTRIBUTES, import_text, spec_yaml
 from xacrokit.kinematics import rpy_matrix
-
-COMPOSITE = {"rover": 1}  # example -> links with several visuals (its composite base_link)
 
 
 def urdf_of(path) -> str:
@@ -44,7 +42,8 @@ def inertias(root) -> dict[str, tuple[float, np.ndarray, np.ndarray]]:
         if inertial is None or inertial.find("mass") is None:
             continue
         at = transform(inertial.find("origin"))
-        i = {k: float(inertial.find("inertia").get(k, 0)) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+        given = inertial.find("inertia")  # (none: zeros, as the importer reads it)
+        i = {k: float(given.get(k, 0) if given is not None else 0) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
         tensor = np.array(
             [[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]]
         )
@@ -55,15 +54,22 @@ def inertias(root) -> dict[str, tuple[float, np.ndarray, np.ndarray]]:
     return found
 
 
-def visuals(root) -> dict[str, tuple[str, list[float], np.ndarray]]:
+def geometries(root) -> dict[str, list[tuple[str, str, list, np.ndarray]]]:
+    """Per link, every visual then every collision, in order: (visual or collision, shape, sizes, pose in the link).
+    A mesh is named by its file's base name (a relative mesh comes back as the copy under meshes/)."""
     found = {}
     for link in root.findall("link"):
-        for visual in link.findall("visual"):
-            shape = next(visual.find("geometry").iterchildren(etree.Element))
-            sizes = sorted(
-                (k, v) for k, v in shape.attrib.items() if not (k == "scale" and floats(v, 3, 1.0) == [1.0, 1.0, 1.0])
-            )  # (scale 1 1 1 is URDF's default: said or not, the same mesh)
-            found[link.get("name")] = (shape.tag, sizes, transform(visual.find("origin")))
+        for kind in ("visual", "collision"):
+            for element in link.findall(kind):
+                shape = next(element.find("geometry").iterchildren(etree.Element))
+                sizes = sorted(
+                    (k, v.rsplit("/", 1)[-1] if k == "filename" else floats(v, len(v.split()), 0.0))
+                    for k, v in shape.attrib.items()
+                    if not (k == "scale" and floats(v, 3, 1.0) == [1.0, 1.0, 1.0])
+                )  # (scale 1 1 1 is URDF's default: said or not, the same mesh)
+                found.setdefault(link.get("name"), []).append(
+                    (kind, shape.tag, sizes, transform(element.find("origin")))
+                )
     return found
 
 
@@ -85,10 +91,6 @@ def poses(urdf: str, values: dict[str, float]) -> dict[str, np.ndarray]:
 def test_an_examples_urdf_comes_back_as_the_same_robot(example, tmp_path):
     original = urdf_of(example)
     imported = import_text(original)
-    composite = [line for line in imported.unsupported if "visuals and" in line]
-    if composite:  # (a composite link's parts: the spec has no massless visual part to carry them yet)
-        assert example.stem in COMPOSITE and len(composite) == len(imported.unsupported) == COMPOSITE[example.stem]
-        return
     assert imported.unsupported == []
     spec = tmp_path / "imported.yaml"
     spec.write_text(spec_yaml(imported, str(example)), encoding="utf-8")
@@ -113,6 +115,10 @@ def compare(original: str, again: str) -> None:
             assert (mine is None) == (theirs is None), (joint.get("name"), tag)
             if mine is not None:
                 for key, value in mine.attrib.items():
+                    if joint.get("type") == "continuous" and key in ("lower", "upper"):
+                        continue  # (URDF readers ignore a continuous joint's range; the spec writes none)
+                    if key not in URDF_JOINT_ATTRIBUTES[tag]:
+                        continue  # (ANYmal's limit command_effort: no URDF reader's, named in the spec's header)
                     assert theirs.get(key) == value or float(theirs.get(key)) == float(value), (tag, key)
     moving = [j.get("name") for j in a.findall("joint") if j.get("type") in ("revolute", "continuous", "prismatic")]
     rng = np.random.default_rng(20)
@@ -128,20 +134,25 @@ def compare(original: str, again: str) -> None:
         other_mass, other_com, other_tensor = theirs[link]
         assert abs(other_mass - mass) <= 1e-9 * mass and np.abs(other_com - com).max() < 1e-9
         assert np.abs(other_tensor - tensor).max() <= 1e-9 * max(np.abs(tensor).max(), 1e-12), link
-    mine_v, theirs_v = visuals(a), visuals(b)
-    for link, (kind, sizes, at) in mine_v.items():
-        assert theirs_v[link][0] == kind and np.abs(theirs_v[link][2] - at).max() < 1e-12, link
-        assert [(k, floats(v, len(v.split()), 0.0)) for k, v in theirs_v[link][1] if k != "filename"] == [
-            (k, floats(v, len(v.split()), 0.0)) for k, v in sizes if k != "filename"
-        ], link
+    mine_g, theirs_g = geometries(a), geometries(b)
+    assert set(mine_g) == set(theirs_g)
+    for link, drawn in mine_g.items():
+        again = theirs_g[link]
+        assert [d[:3] for d in again] == [d[:3] for d in drawn], link
+        assert all(np.abs(x[3] - y[3]).max() < 1e-12 for x, y in zip(drawn, again, strict=True)), link
 
 
 def test_what_the_spec_cannot_hold_is_reported(tmp_path):
+    import trimesh
+
+    trimesh.creation.box(extents=(0.1, 0.2, 0.3)).export(tmp_path / "m.stl")
     urdf = tmp_path / "odd.urdf"
     urdf.write_text(
         '<robot name="odd"><link name="base-link"/><link name="a"><visual><geometry><box size="1 1 1"/></geometry>'
         '</visual><visual><geometry><sphere radius="1"/></geometry></visual></link>'
         '<link name="b"><visual><geometry><mesh filename="m.stl" scale="-1 1 1"/></geometry></visual></link>'
+        '<link name="c"><visual><geometry><mesh filename="gone.stl"/></geometry></visual></link>'
+        '<joint name="k" type="fixed"><parent link="a"/><child link="c"/></joint>'
         '<joint name="j" type="revolute"><parent link="a"/><child link="b"/><limit effort="1" velocity="1"/>'
         '<calibration rising="0.1"/></joint><gazebo reference="a"><mu1>1</mu1></gazebo>'
         '<transmission name="t"/></robot>',
@@ -151,12 +162,70 @@ def test_what_the_spec_cannot_hold_is_reported(tmp_path):
     assert result.returncode == 0, result.stderr
     said = result.stderr
     assert "link 'base-link': the name is not a spec name" in said
-    assert "link 'a': 2 visuals and 0 collisions" in said
-    assert "mirrors (negative)" in said and "<calibration> is not one the spec has" in said
+    assert "calibration" not in said and "mirror" not in said  # (both imported: the spec has them)
+    assert "not imported: mesh 'gone.stl': not found" in said
     text = (tmp_path / "odd.yaml").read_text(encoding="utf-8")
     assert '# kept in the extension file (not modelled by the spec): <gazebo reference="a">' in text
     assert '<transmission name="t">' in text
-    assert yaml.safe_load(text)["joints"]["j"]["limit"] == {"effort": 1.0, "velocity": 1.0}
+    spec = yaml.safe_load(text)
+    assert spec["joints"]["j"]["limit"] == {"lower": 0.0, "upper": 0.0, "effort": 1.0, "velocity": 1.0}  # (as read)
+    assert spec["joints"]["j"]["calibration"] == {"rising": 0.1}
+    assert spec["links"]["b"]["shape"]["mesh"]["scale"] == [-1.0, 1.0, 1.0]
+
+
+def test_several_visuals_and_collisions_a_collision_alone_and_values_no_body_has_come_back(tmp_path):
+    """A CAD export's link drawn in pieces, a link that only collides, a link of mass 0 with a flat tensor, a
+    continuous joint without limit, and a limit attribute URDF does not define: imported (the spec's `visuals`, a
+    collision list, `strict: false`), said in the spec's header, and generated back as the same robot."""
+    urdf = tmp_path / "cad.urdf"
+    box = '<geometry><box size="0.1 0.2 0.3"/></geometry>'
+    ball = '<geometry><sphere radius="0.05"/></geometry>'
+    original = (
+        '<robot name="cad"><material name="red"><color rgba="1 0 0 1"/></material>'
+        f'<link name="base"><visual>{box}<material name="red"/></visual>'
+        f'<visual><origin xyz="0 0 0.2" rpy="0 1.5 0"/>{ball}<material name="blue"><color rgba="0 0 1 1"/></material>'
+        f'</visual><collision>{box}</collision><collision><origin xyz="0 0 0.2"/>{ball}</collision>'
+        '<inertial><mass value="2"/><inertia ixx="0.1" iyy="0.1" izz="0.1"/></inertial></link>'
+        f'<link name="bumper"><collision><origin xyz="0.3 0 0"/>{ball}</collision></link>'
+        '<link name="flat"><inertial><mass value="0"/><inertia ixx="1e-3" iyy="0" izz="0"/></inertial></link>'
+        '<joint name="fix" type="fixed"><parent link="base"/><child link="bumper"/></joint>'
+        '<joint name="spin" type="continuous"><parent link="base"/><child link="flat"/><axis xyz="0 0 1"/></joint>'
+        '<joint name="lift" type="prismatic"><parent link="bumper"/><child link="lifted"/><axis xyz="0 0 1"/>'
+        '<limit lower="0" upper="0.1" effort="0" velocity="0.5" current="3"/></joint>'
+        '<link name="lifted"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1"/></inertial></link></robot>'
+    )
+    urdf.write_text(original, encoding="utf-8")
+    result = gen_robot("import", urdf, "-o", tmp_path / "cad.yaml")
+    assert result.returncode == 0, result.stderr
+    assert "not imported" not in result.stderr
+    assert "not URDF, ignored by its readers: joint 'lift' <limit> current" in result.stderr
+    text = (tmp_path / "cad.yaml").read_text(encoding="utf-8")
+    spec = yaml.safe_load(text)
+    assert spec["strict"] is False
+    said = [line for line in text.splitlines() if line.startswith("# as the file says it (strict: false): ")]
+    assert len(said) == 4, said  # (flat's mass and tensor, spin's missing limit, lift's effort of 0)
+    assert spec["links"]["base"]["visuals"] == [
+        {
+            "shape": {"sphere": {"radius": 0.05}},
+            "origin": {"xyz": [0.0, 0.0, 0.2], "rpy": [0.0, 1.5, 0.0]},
+            "material": "blue",
+        }
+    ]
+    assert spec["links"]["base"]["collision"] == [
+        {"shape": {"box": {"size": [0.1, 0.2, 0.3]}}},
+        {"shape": {"sphere": {"radius": 0.05}}, "origin": {"xyz": [0.0, 0.0, 0.2]}},
+    ]
+    assert spec["links"]["bumper"] == {
+        "collision": {"shape": {"sphere": {"radius": 0.05}}, "origin": {"xyz": [0.3, 0.0, 0.0]}}
+    }
+    generated = gen_robot(tmp_path / "cad.yaml", "-o", tmp_path / "pkg")
+    assert generated.returncode == 0, generated.stderr
+    compare(original, (tmp_path / "pkg" / "urdf" / "cad.urdf").read_text(encoding="utf-8"))
+    strict = text.replace("strict: false\n", "")
+    (tmp_path / "strict.yaml").write_text(strict, encoding="utf-8")
+    refused = gen_robot(tmp_path / "strict.yaml", "-o", tmp_path / "refused")
+    assert refused.returncode == 2 and not (tmp_path / "refused").exists()
+    assert refused.stderr.count("strict.yaml:") == 4, refused.stderr
 
 
 def test_a_relative_mesh_is_copied_beside_the_spec_and_into_the_package(tmp_path):

@@ -33,7 +33,7 @@ from .names import (
     robot_name_errors,
     tree_errors,
 )
-from .physics import physics_errors
+from .physics import Implausible, physics_errors
 from .quantities import Quantities, with_values
 from .schema import (
     SchemaValidator,
@@ -142,6 +142,7 @@ def validate(raw: RawSpec) -> Spec:
         raise SpecErrors(errors)
     quantities = Quantities(raw)
     data, unit_errors = quantities.run()
+    parsed = all(isinstance(e, Implausible) for e in unit_errors)  # (a limit of 0 is a number the checks compare)
     notes = quantities.warnings
     del quantities  # (its table of changes is garbage now: not kept through the checks below)
     bodied: dict[PathKey, dict[str | int, Any]] = {
@@ -150,8 +151,8 @@ def validate(raw: RawSpec) -> Spec:
     data = with_values(data, bodied)  # (a sensor preset's shape and mass, for a frame that gives none)
     every = list(bodies(data))
     items = every + list(parts(data))  # (a composite link's parts are bodies too, though not links)
-    solids, solid_errors, solid_notes = body_solids(raw, data, items) if not unit_errors else ({}, [], [])
-    masses, density_errors, density_notes = masses_from_density(raw, items, solids) if not unit_errors else ({}, [], [])
+    solids, solid_errors, solid_notes = body_solids(raw, data, items) if parsed else ({}, [], [])
+    masses, density_errors, density_notes = masses_from_density(raw, items, solids) if parsed else ({}, [], [])
     if masses:  # (the bodies that gave a density: their mass, before the checks that want one)
         data = with_values(data, {path: {"mass": mass} for path, mass in masses.items()})
         every = list(bodies(data))
@@ -163,12 +164,15 @@ def validate(raw: RawSpec) -> Spec:
         items = every + list(parts(data))
     extension, extension_errors = extension_body(raw, data)
     errors += unit_errors + mesh_files_errors(raw, data) + solid_errors + density_errors + extension_errors
-    errors += semantic_errors(raw, data, every, physics=not unit_errors)
+    errors += semantic_errors(raw, data, every, physics=parsed)
+    doubts: list[SpecError] = [e for e in errors if isinstance(e, Implausible)] if data.get("strict") is False else []
+    errors = [e for e in errors if e not in doubts]
     if errors:
         raise SpecErrors(_unique(errors))
     dense = list(density_warnings(raw, items, solids))
     # a shape whose mass gives an impossible density says so once, at its mass, not also at each long size
     said = tuple(w.path.removesuffix(".mass") + ".shape." for w in dense)
     warnings = [n for n in notes if not n.path.startswith(said)] + dense + density_notes + solid_notes
+    warnings += _unique(doubts)  # (strict: false: the values no real body has, written as given)
     ordered = tuple(sorted(warnings, key=lambda w: (w.line or 0, w.column or 0)))
     return Spec(raw=raw, data=data, warnings=ordered, extension=extension)

@@ -50,3 +50,14 @@ def parts(data: dict[str, Any]) -> Iterator[Body]:
     for name, link in data.get("links", {}).items():
         for index, part in enumerate(link.get("parts", ())):
             yield ("part", name, ("links", name, "parts", index), part)
+
+
+def geometries(path: PathKey, link: dict[str, Any]) -> Iterator[tuple[PathKey, dict[str, Any]]]:
+    """The mappings of a link, besides the link itself, that hold a shape and an origin: its collision (one, or each
+    of a list) and each of its ``visuals``, with their paths."""
+    collision = link.get("collision")
+    if isinstance(collision, dict):
+        yield (*path, "collision"), collision
+    elif isinstance(collision, list):
+        yield from (((*path, "collision", i), c) for i, c in enumerate(collision) if isinstance(c, dict))
+    yield from (((*path, "visuals", i), v) for i, v in enumerate(link.get("visuals", ())) if isinstance(v, dict))

@@ -15,7 +15,7 @@ from ..resources import PUBLIC_MACROS, XACRO_KEYWORDS
 from ..sensors import CAMERAS, optical_name, sensor_kind
 from ..text import did_you_mean
 from ..tree import Tree, cycles
-from .bodies import Body
+from .bodies import Body, geometries
 
 # The robot name becomes a xacro macro name: it must not shadow a library macro or a xacro keyword.
 RESERVED_ROBOT_NAMES = frozenset({*PUBLIC_MACROS, *XACRO_KEYWORDS})
@@ -177,6 +177,13 @@ def reference_errors(
         if material is not None and material not in materials:
             known = ", ".join(sorted(materials)) or "none defined"
             yield raw.error((*path, "material"), f"material {material!r} is not in materials (known: {known})")
+    for name, link in data.get("links", {}).items():  # (a composite link's parts and a link's other visuals)
+        drawn = [(("links", name, "parts", i), p) for i, p in enumerate(link.get("parts", ()))]
+        for path, item in drawn + [g for g in geometries(("links", name), link) if g[0][2] == "visuals"]:
+            material = item.get("material")
+            if material is not None and material not in materials:
+                known = ", ".join(sorted(materials)) or "none defined"
+                yield raw.error((*path, "material"), f"material {material!r} is not in materials (known: {known})")
     for name, joint in data.get("joints", {}).items():
         yield from _joint_reference_errors(raw, name, joint, link_names, data.get("links", {}), types)
     mimics = {n: j["mimic"]["joint"] for n, j in data.get("joints", {}).items() if j.get("mimic")}

@@ -13,9 +13,19 @@ from ..errors import SpecError
 from ..load import PathKey, RawSpec
 from ..model import AXIAL, LIMITED
 from ..physics import tensor, tensor_problem
-from .bodies import Body
+from .bodies import Body, geometries
 
 AXIS_LENGTHS = (1e-9, 1e9)  # what an axis may measure before it is normalised (resolve divides by its length)
+
+
+class Implausible(SpecError):
+    """An error about a value no real body has but a real robot's file may hold (a mass of 0, an impossible tensor, a
+    moving link without mass, a continuous joint without limit): a warning instead under the spec's ``strict: false``,
+    which gen-robot import writes so that such a robot comes back as its file describes it."""
+
+
+def implausible(error: SpecError) -> Implausible:
+    return Implausible(error.message, file=error.file, path=error.path, line=error.line, column=error.column)
 
 
 def physics_errors(
@@ -46,14 +56,18 @@ def _link_errors(raw: RawSpec, link: dict[str, Any], path: PathKey) -> Iterator[
         yield from _composite_errors(raw, link, path)
         return
     yield from _shape_errors(raw, link, path)
-    if isinstance(link.get("collision"), dict):
-        yield from _shape_errors(raw, link["collision"], (*path, "collision"))
+    for where, geometry in geometries(path, link):
+        yield from _shape_errors(raw, geometry, where)
+    if link.get("collision") == "same" and "shape" not in link:
+        yield raw.error((*path, "collision"), "collision: same needs the link's shape; give the collision's own shape")
     if "shape" in link and "mass" not in link and "density" not in link:  # (a density's own error is said)
-        yield raw.error(
-            path,
-            "a link with a shape needs a mass (kg) or a density: simulators drop bodies without one; "
-            "for a pure frame, leave the shape out",
-            key=True,
+        yield implausible(
+            raw.error(
+                path,
+                "a link with a shape needs a mass (kg) or a density: simulators drop bodies without one; "
+                "for a pure frame, leave the shape out",
+                key=True,
+            )
         )
     computed = isinstance(link.get("inertia"), dict) and link["inertia"].get("kind") == "mesh"
     if "mass" in link:
@@ -138,10 +152,12 @@ def _joint_errors(
     child = data.get("links", {}).get(joint["child"])
     massless = isinstance(child, dict) and not {"mass", "density", "parts"} & set(child)
     if joint["type"] != "fixed" and massless:
-        yield raw.error(
-            (*path, "child"),
-            f"link {joint['child']!r} is moved by this {joint['type']} joint but "
-            "has no mass; give it a mass (and a shape or an inertia)",
+        yield implausible(
+            raw.error(
+                (*path, "child"),
+                f"link {joint['child']!r} is moved by this {joint['type']} joint but "
+                "has no mass; give it a mass (and a shape or an inertia)",
+            )
         )
     axis = joint.get("axis")
     if axis is not None and not any(axis):
@@ -185,8 +201,8 @@ def _limit_errors(raw: RawSpec, holder: dict[str, Any], path: PathKey, joint_typ
                     f"soft upper limit {high!r} is above the hard upper limit {limit['upper']!r}",
                 )
     elif joint_type == "continuous" and not isinstance(limit, dict):
-        yield raw.error(
-            path, "a continuous joint needs limit: {effort, velocity} (controllers and simulators read them)"
+        yield implausible(
+            raw.error(path, "a continuous joint needs limit: {effort, velocity} (controllers and simulators read them)")
         )
     elif isinstance(limit, dict) and ("lower" in limit or "upper" in limit):
         hint = "; make it revolute to limit its range" if joint_type == "continuous" else ""
@@ -240,9 +256,10 @@ def _inertia_errors(raw: RawSpec, inertia: dict[str, Any], path: PathKey) -> Ite
     )
     problem = tensor_problem(matrix)
     if problem:
-        yield raw.error(path, problem)
+        yield implausible(raw.error(path, problem))
 
 
 def _mass_error(raw: RawSpec, mass: float, path: PathKey) -> Iterator[SpecError]:
     if not (isinstance(mass, float) and mass > 0 and math.isfinite(mass)):
-        yield raw.error(path, f"mass must be > 0 kg, got {mass!r}")
+        error = raw.error(path, f"mass must be > 0 kg, got {mass!r}")
+        yield implausible(error) if mass == 0 else error

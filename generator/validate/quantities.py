@@ -13,8 +13,8 @@ from ..load import PathKey, RawSpec
 from ..materials import MATERIALS, find_material, material_key
 from ..text import did_you_mean
 from ..units import Kind, UnitError, parse_quantity, plain_number
-from .bodies import bodies, parts
-from .physics import AXIS_LENGTHS
+from .bodies import bodies, geometries, parts
+from .physics import AXIS_LENGTHS, implausible
 
 # A plain-number angle beyond this many turns is most likely degrees: one turn for an orientation, two for a joint's
 # range (multi-turn joints exist; a range beyond two turns written in radians is rarer than degrees left unmarked).
@@ -242,7 +242,8 @@ class Quantities:
             self.convert(limit, key, path, kind)
             value = self._changes.get(path, {}).get(key, limit[key])
             if len(self.errors) == errors and isinstance(value, (int, float)) and not value > 0:
-                self.errors.append(self.raw.error((*path, key), f"{key} must be > 0, got {limit[key]!r}"))
+                error = self.raw.error((*path, key), f"{key} must be > 0, got {limit[key]!r}")
+                self.errors.append(implausible(error) if value == 0 else error)
 
     def sensor(self, sensor: dict[str, Any], path: PathKey) -> None:
         """A frame's sensor: its range (lengths of any size), its scan angles and field of view."""
@@ -284,9 +285,9 @@ class Quantities:
                 self.sensor(item["sensor"], (*path, "sensor"))
             if kind == "link":
                 self.origin(item, "com", path)
-                if isinstance(item.get("collision"), dict):
-                    self.shape(item["collision"], (*path, "collision"))
-                    self.origin(item["collision"], "origin", (*path, "collision"))
+                for where, geometry in geometries(path, item):
+                    self.shape(geometry, where)
+                    self.origin(geometry, "origin", where)
                 if isinstance(item.get("inertia"), dict):
                     self.origin(item["inertia"], "origin", (*path, "inertia"))
         for _, _, path, part in parts(data):

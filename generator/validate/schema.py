@@ -188,10 +188,10 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
             _bad_name(error.instance),
             False,
         )
-    kind = _ref_name(error) if keyword in ("type", "exclusiveMinimum", "minLength") else None
+    kind = _ref_name(error) if keyword in ("type", "minimum", "minLength") else None
     if kind in ("length", "angle", "quantity", "mass"):
         example = {"length": "150 mm", "angle": "90 deg", "quantity": "90 deg", "mass": "500 g"}[kind]
-        if keyword == "exclusiveMinimum":  # a mass, or a rate (the same schema: told apart by the key)
+        if keyword == "minimum":  # a mass, or a rate (the same schema: told apart by the key); 0 is physics' to say
             key = path[-1] if path and isinstance(path[-1], str) and path[-1] != "mass" else "mass"
             if key != "mass":  # (as validate.quantities says it, so that the two are said once)
                 return path, f"{key} must be > 0, got {error.instance!r}", False
@@ -206,7 +206,7 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
             False,
         )
     if keyword == "oneOf" and path and path[-1] == "collision":
-        return path, "collision must be same, none, or a mapping with a shape (and an origin)", False
+        return path, "collision must be same, none, a mapping with a shape (and an origin), or a list of them", False
     if keyword == "maxProperties" and path == ("instances",):
         return (
             path,

@@ -26,7 +26,7 @@ from ..load import PathKey, RawSpec
 from ..meshes import MESH_SUFFIXES, MeshError, MeshSolid, is_relative, mesh_path, mesh_solid
 from ..model import DEFAULT_ROW_RADIUS
 from ..physics import capsule_volume, tube_volume
-from .bodies import Body
+from .bodies import Body, geometries
 
 DENSEST = 22_590.0  # kg/m^3: osmium, the densest element
 LIGHTEST = 1.0  # kg/m^3: less than air (1.2); no solid body in a robot is lighter
@@ -149,8 +149,7 @@ def _mesh_names(data: dict[str, Any]) -> Iterator[tuple[PathKey, str]]:
     holders: list[tuple[PathKey, Any]] = []
     for name, link in data.get("links", {}).items():
         holders.append((("links", name), link))
-        if isinstance(link.get("collision"), dict):
-            holders.append((("links", name, "collision"), link["collision"]))
+        holders += list(geometries(("links", name), link))
         holders += [(("links", name, "parts", i), part) for i, part in enumerate(link.get("parts", ()))]
     holders += [(("frames", name), frame) for name, frame in data.get("frames", {}).items()]
     for path, holder in holders:
