@@ -12,6 +12,7 @@ from lxml import etree
 
 import xacrokit
 from conftest import ROBOT_EXAMPLES, gen_robot
+from xacrokit.emit import urdf_differences
 from xacrokit.importer import URDF_JOINT_ATTRIBUTES, import_text, spec_yaml
 from xacrokit.kinematics import rpy_matrix
 
@@ -89,14 +90,26 @@ def poses(urdf: str, values: dict[str, float]) -> dict[str, np.ndarray]:
 
 @pytest.mark.parametrize("example", ROBOT_EXAMPLES, ids=lambda p: p.stem)
 def test_an_examples_urdf_comes_back_as_the_same_robot(example, tmp_path):
+    """...and regenerates it identically: every element, name and number exactly (emit.urdf_differences with rel 0;
+    element order and formatting aside), its wheels as wheels and its Gazebo and ros2_control blocks through the
+    extension file, as `gen-robot import -o` writes them."""
     original = urdf_of(example)
     imported = import_text(original)
     assert imported.unsupported == []
+    assert imported.wheels == WHEELS.get(example.stem, [])
     spec = tmp_path / "imported.yaml"
+    if imported.extension:
+        (tmp_path / "imported_extension.xacro").write_text(imported.extension, encoding="utf-8")
+        imported.spec["extension"] = "imported_extension.xacro"
     spec.write_text(spec_yaml(imported, str(example)), encoding="utf-8")
     xacrokit.generate(spec, tmp_path / "pkg")
     (again_path,) = (tmp_path / "pkg" / "urdf").glob("*.urdf")
-    compare(original, again_path.read_text(encoding="utf-8"))
+    again = again_path.read_text(encoding="utf-8")
+    compare(original, again)
+    assert urdf_differences(original, again, rel=0.0) == []
+
+
+WHEELS = {"diff_drive": ["left_wheel", "right_wheel"], "rover": ["wheel_left_link", "wheel_right_link"]}
 
 
 def compare(original: str, again: str) -> None:

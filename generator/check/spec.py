@@ -1,5 +1,6 @@
 """Rules about a spec, which only spec input can show: its DH arms' URDF kinematics (K001), and what gen-robot says
-of the spec itself, as findings: values that look like a units mistake (V001) and errors (V002)."""
+of the spec itself, as findings: values that look like a units mistake (V001), errors (V002), and the values no real
+body has that a spec under strict: false keeps (V003)."""
 
 from __future__ import annotations
 
@@ -32,6 +33,12 @@ RULES = rule_table(
             "error",
             "a spec follows its schema and the rules gen-robot applies (as gen-robot SPEC)",
         ),
+        "V003": (
+            "spec-as-given",
+            "warning",
+            "a spec under strict: false says which of its values no real body has (a mass of 0, a tensor that is not "
+            "physical, a moving link without mass, a continuous joint without limit, a limit of 0): written as given",
+        ),
     }
 )
 
@@ -39,8 +46,15 @@ FK_TOLERANCE = 1e-9  # K001: largest difference allowed between URDF and DH tran
 
 
 def spec_findings(problems: Iterable[SpecError], rule: str = "V001") -> tuple[Finding, ...]:
-    """A spec's warnings (values that look like a units mistake; V001) or errors (V002) as findings."""
-    return tuple(Finding(rule, severity(rule), "value", e.path, e.message, e.file, e.line) for e in problems)
+    """A spec's warnings (values that look like a units mistake, V001; or, under strict: false, values no real body
+    has, V003) or errors (V002) as findings."""
+    from ..validate.physics import Implausible
+
+    found = []
+    for e in problems:
+        said = "V003" if rule == "V001" and isinstance(e, Implausible) else rule
+        found.append(Finding(said, severity(said), "value", e.path, e.message, e.file, e.line))
+    return tuple(found)
 
 
 def kinematics_rules(doc: Doc, robot: Robot, urdf_text: str) -> Iterator[Finding]:

@@ -220,6 +220,8 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
         return path, f"must be > {error.validator_value}, got {error.instance!r}", False
     if keyword == "minimum":
         return path, f"must be >= {error.validator_value}, got {error.instance!r}", False
+    if keyword == "not" and path[-2:-1] == ("scale",):
+        return path, "a scale factor must not be 0 (it flattens the mesh; a negative one mirrors it)", False
     if keyword == "maximum":
         colour = " (colours are 0..1: divide 0-255 values by 255)" if path[:1] == ("materials",) else ""
         return path, f"must be <= {error.validator_value}, got {error.instance!r}{colour}", False

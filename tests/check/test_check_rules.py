@@ -12,7 +12,7 @@ from check_helpers import BODY, CORPUS, MOVED_MASSLESS, rules_of
 from conftest import REPO, gen_robot
 from xacrokit.check import RULES, CheckReport, check
 
-SPEC_ONLY = ("K001", "V001", "V002")  # rules about a spec, which a URDF fixture cannot show
+SPEC_ONLY = ("K001", "V001", "V002", "V003")  # rules about a spec, which a URDF fixture cannot show
 
 
 def corpus_check(path: Path) -> CheckReport:
@@ -274,3 +274,20 @@ def test_a_mimic_consumers_ignore_is_a_warning(tmp_path):
     report = check(urdf)
     assert [(f.rule, f.severity) for f in report.findings] == [("J008", "warning")], report.findings
     assert [c.status for c in report.consumers] == ["accepted"] * len(report.consumers)
+
+
+def test_v003_names_what_a_spec_under_strict_false_keeps_as_given(tmp_path):
+    spec = tmp_path / "given.yaml"
+    text = (
+        "robot: given\nstrict: false\nlinks:\n  base_link: {shape: {box: {size: [0.1, 0.1, 0.1]}}, mass: 1.0}\n"
+        "  flat: {mass: 0.5, inertia: {ixx: 0.001, iyy: 0.001, izz: 0}}\n"
+        "joints:\n  spin: {type: continuous, parent: base_link, child: flat}\n"
+    )
+    spec.write_text(text, encoding="utf-8")
+    found = {f.element: f for f in check(spec, consumers=[]).findings if f.rule == "V003"}
+    assert set(found) == {"$.links.flat.inertia", "$.joints.spin"}, sorted(found)
+    assert all(f.severity == "warning" for f in found.values())
+    assert found["$.links.flat.inertia"].line == 5 and found["$.joints.spin"].line == 7
+    (tmp_path / "strict.yaml").write_text(text.replace("strict: false\n", ""), encoding="utf-8")
+    refused = {f.element for f in check(tmp_path / "strict.yaml", consumers=[]).findings if f.rule == "V002"}
+    assert refused == set(found)
