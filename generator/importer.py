@@ -132,6 +132,8 @@ def import_text(text: str, name_hint: str = "robot") -> Imported:
         colours.setdefault(name, rgba)
         return name
 
+    for material in root.findall("material"):  # (every colour the file defines, used or not, in its order)
+        colour_of(material, f"material {material.get('name')!r}")
     links: dict[str, Any] = {}
     for link in root.findall("link"):
         name = link.get("name", "")
@@ -154,13 +156,11 @@ def import_text(text: str, name_hint: str = "robot") -> Imported:
             if colour:
                 entry["material"] = colour
             more = [_geometry(s, a, c if c != colour else None) for s, a, c in drawn[1:]]
+            for piece, (_, _, c) in zip(more, drawn[1:], strict=True):
+                if colour and c is None:
+                    piece["material"] = None  # (no colour, where the link's would be the default)
             if more:
                 entry["visuals"] = more
-            if colour and any(c is None for _, _, c in drawn[1:]):
-                problems.append(
-                    f"{where}: a visual without a colour after one with a colour (the spec's visuals "
-                    "take the link's material)"
-                )
         touched = []
         for index, collision in enumerate(link.findall("collision")):
             said = f"{where} collision" + (f" {index + 1}" if index else "")
@@ -258,6 +258,8 @@ def _is_the_shapes(entry: dict[str, Any]) -> bool:
     given_at = given.get("origin", {})
     if list(given_at.get("xyz", [0.0] * 3)) != list(shape_at.get("xyz", [0.0] * 3)):
         return False
+    if list(given_at.get("rpy", [0.0] * 3)) != list(shape_at.get("rpy", [0.0] * 3)):
+        return False  # (the same tensor said in other axes: kept as said, so that it is written back the same)
     computed = shape_inertia(entry["shape"], entry["mass"], _zero_origin())
     own = np.diag([computed.ixx, computed.iyy, computed.izz])
     turn = rpy_matrix(*shape_at.get("rpy", [0.0] * 3))

@@ -150,7 +150,7 @@ def _link(name: str, data: dict[str, Any], package: _Package) -> Link:
     material = data.get("material")
     visuals = [Visual(shape=body, origin=at, material=material) for body, at in drawn]
     for more in data.get("visuals", ()):  # (drawn only: no collision, no mass)
-        tint = more.get("material", material)
+        tint = more.get("material", material)  # (null: none)
         visuals += [Visual(shape=b, origin=at, material=tint) for b, at in _placed(more, package)]
     collision_spec = data.get("collision", "same")
     if collision_spec == "same":

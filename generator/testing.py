@@ -174,14 +174,23 @@ def _link(draw, materials: list[str]) -> dict[str, Any]:
         link.update(mass=draw(_mass), inertia=draw(_physical_tensor()))  # (these name no real file to read)
     else:
         link.update(draw(_mass_or_density()))
-    collision = draw(st.sampled_from(["default", "same", "none", "other"]))
-    if collision == "other":
-        link["collision"] = {
-            "shape": draw(_shape(draw(st.sampled_from(["box", "cylinder", "sphere"])))),
-            "origin": draw(_origin()),
-        }
+    collision = draw(st.sampled_from(["default", "same", "none", "other", "list"]))
+    if collision in ("other", "list"):
+        shapes = [
+            {"shape": draw(_shape(draw(st.sampled_from(["box", "cylinder", "sphere"])))), "origin": draw(_origin())}
+            for _ in range(1 if collision == "other" else draw(st.integers(1, 3)))
+        ]
+        link["collision"] = shapes[0] if collision == "other" else shapes
     elif collision != "default":
         link["collision"] = collision
+    if kind != "mesh" and draw(st.integers(0, 3)) == 0:  # (more pieces, drawn only)
+        link["visuals"] = []
+        for _ in range(draw(st.integers(1, 2))):
+            more: dict[str, Any] = {"shape": draw(_shape(draw(st.sampled_from(["box", "cylinder", "sphere"]))))}
+            more["origin"] = draw(_origin())
+            if materials and draw(st.booleans()):
+                more["material"] = draw(st.sampled_from(materials))
+            link["visuals"].append(more)
     return link
 
 
