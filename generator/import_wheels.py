@@ -3,10 +3,10 @@
 A continuous joint's child is a wheel when the generated wheel would be the same robot: one cylinder as visual and
 as collision (the same), turned onto the joint's axis as the ``wheel`` macro turns it (rpy ``pi/2 0 0`` for the y
 axle, ``0 pi/2 0`` for x, none for z), the inertial of a uniform cylinder of its mass about its centre (the importer
-already said it as ``mass`` alone, to 1e-12), an axis of exactly [1, 0, 0], [0, 1, 0] or [0, 0, 1], a limit of
-effort and velocity, no mimic, safety controller or calibration, and no link hanging from it. Its Gazebo friction
-block, when it holds only ``mu1`` and ``mu2``, becomes the wheel's; a wheel without one gets 1 and 1, Gazebo's own
-default. The joint keeps its name (``joint:`` when it is not ``NAME_joint``).
+said it as ``mass`` alone, or as the same tensor in the link's axes, to 1e-12), an axis of exactly [1, 0, 0],
+[0, 1, 0] or [0, 0, 1], a limit of effort and velocity, no mimic, safety controller or calibration, and no link
+hanging from it. Its Gazebo friction block, when it holds only ``mu1`` and ``mu2``, becomes the wheel's; a wheel
+without one gets 1 and 1, Gazebo's own default. The joint keeps its name (``joint:`` when it is not ``NAME_joint``).
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from typing import Any
 AXLES = {"x": ([1.0, 0.0, 0.0], [0.0, math.pi / 2, 0.0]), "y": ([0.0, 1.0, 0.0], [math.pi / 2, 0.0, 0.0])}
 AXLES["z"] = ([0.0, 0.0, 1.0], [0.0, 0.0, 0.0])
 JOINT_KEYS = {"type", "parent", "child", "origin", "axis", "limit", "dynamics"}
-LINK_KEYS = {"shape", "origin", "material", "mass"}
+LINK_KEYS = {"shape", "origin", "material", "mass", "inertia"}
 
 
 def wheels(spec: dict[str, Any], root: Any) -> tuple[list[str], set[Any]]:
@@ -69,8 +69,24 @@ def _axle(joint: dict[str, Any], link: dict[str, Any]) -> str | None:
         return None
     for axle, (axis, rpy) in AXLES.items():
         if joint.get("axis") == axis and link.get("origin", {}) == ({"rpy": rpy} if any(rpy) else {}):
-            return axle
+            return axle if "inertia" not in link or _cylinders(link, axle) else None
     return None
+
+
+def _cylinders(link: dict[str, Any], axle: str) -> bool:
+    """Whether a link's explicit inertia is the wheel's: a uniform cylinder's about its centre, in the link's axes
+    (the wheel macro's), to 1e-12 of its largest moment."""
+    from .physics import cylinder_moments
+
+    inertia = link["inertia"]
+    if inertia.get("origin", {}) not in ({}, {"xyz": [0.0, 0.0, 0.0]}) or any(
+        inertia.get(k, 0.0) for k in ("ixy", "ixz", "iyz")
+    ):
+        return False
+    cylinder = link["shape"]["cylinder"]
+    axial, transverse = cylinder_moments(link["mass"], cylinder["radius"], cylinder["length"])
+    want = {f"i{a}{a}": axial if a == axle else transverse for a in "xyz"}
+    return all(abs(inertia.get(k, 0.0) - v) <= 1e-12 * max(axial, transverse) for k, v in want.items())
 
 
 def _friction_blocks(root: Any) -> dict[str, Any]:

@@ -29,6 +29,7 @@ from .import_wheels import wheels
 from .inputs import urdf_floats
 
 IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*(?:[./-][A-Za-z0-9_]+)*$")  # (a link's or joint's: the schema's urdf_name)
 MODELLED = ("link", "joint", "material")  # what the spec holds of a <robot>'s children
 URDF_JOINT_ATTRIBUTES = {  # (urdfdom's joint parser: what it reads of each element)
     "limit": {"lower", "upper", "effort", "velocity"},
@@ -109,9 +110,9 @@ def import_text(text: str, name_hint: str = "robot") -> Imported:
     result = Imported(spec={})
     problems = result.unsupported
     robot = root.get("name") or name_hint
-    if not IDENTIFIER.match(robot):  # (it names the package, the macro and the files: made a name, said)
+    if not IDENTIFIER.fullmatch(robot):  # (it names the package, the macro and the files: made a name, said)
         renamed = re.sub(r"[^A-Za-z0-9_]", "_", robot)
-        renamed = renamed if IDENTIFIER.match(renamed) else f"robot_{renamed}"
+        renamed = renamed if IDENTIFIER.fullmatch(renamed) else f"robot_{renamed}"
         result.ignored.append(f"robot name {robot!r} written {renamed!r} (it names the package, macro and files)")
         robot = renamed
     result.spec["robot"] = robot
@@ -127,7 +128,7 @@ def import_text(text: str, name_hint: str = "robot") -> Imported:
             return None
         rgba = _floats(source.get("rgba"), 4, 1.0, f"{where} colour")
         name = (material.get("name") or "").rsplit("/", 1)[-1]  # (a generated robot's 'ur5/grey': grey)
-        if not IDENTIFIER.match(name) or (name in colours and colours[name] != rgba):
+        if not IDENTIFIER.fullmatch(name) or (name in colours and colours[name] != rgba):
             name = next((n for n, c in colours.items() if c == rgba), f"colour_{len(colours)}")
         colours.setdefault(name, rgba)
         return name
@@ -138,8 +139,8 @@ def import_text(text: str, name_hint: str = "robot") -> Imported:
     for link in root.findall("link"):
         name = link.get("name", "")
         where = f"link {name!r}"
-        if not IDENTIFIER.match(name):
-            problems.append(f"{where}: the name is not a spec name (letters, digits and _)")
+        if not NAME.fullmatch(name):
+            problems.append(f"{where}: the name is not a spec name (letters, digits and _, in parts joined by . / -)")
             continue
         entry: dict[str, Any] = {}
         drawn = []  # (shape, origin, colour) of each visual the spec can say
@@ -185,8 +186,10 @@ def import_text(text: str, name_hint: str = "robot") -> Imported:
     joints: dict[str, Any] = {}
     for joint in root.findall("joint"):
         name = joint.get("name", "")
-        if not IDENTIFIER.match(name):
-            problems.append(f"joint {name!r}: the name is not a spec name (letters, digits and _)")
+        if not NAME.fullmatch(name):
+            problems.append(
+                f"joint {name!r}: the name is not a spec name (letters, digits and _, in parts joined by . / -)"
+            )
             continue
         joints[name] = _joint(joint, f"joint {name!r}", problems)
         if joint.find("mimic") is not None and "mimic" not in joints[name]:

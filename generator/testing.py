@@ -259,9 +259,17 @@ def valid_specs(draw, max_links: int = 5) -> dict[str, Any]:
     if materials:
         spec["materials"] = {name: [draw(st.floats(0, 1)) for _ in range(3)] + [1.0] for name in materials}
     count = draw(st.integers(1, max_links))
-    spec["links"] = {f"link_{i}": draw(_link(materials)) for i in range(count)}
+    # (link and joint names as real robots write them too: parts joined by . / or -)
+    spec["links"] = {
+        draw(st.sampled_from([f"link_{i}", f"link-{i}", f"arm/link.{i}"])): draw(_link(materials)) for i in range(count)
+    }
     links = list(spec["links"])
-    spec["joints"] = {f"joint_{i}": draw(_joint(links[draw(st.integers(0, i - 1))], links[i])) for i in range(1, count)}
+    spec["joints"] = {
+        draw(st.sampled_from([f"joint_{i}", f"base-joint.{i}"])): draw(
+            _joint(links[draw(st.integers(0, i - 1))], links[i])
+        )
+        for i in range(1, count)
+    }
     for joint in spec["joints"].values():  # a floating joint is a floating base: it hangs from the root
         if joint["type"] == "floating":
             joint["parent"] = links[0]

@@ -164,7 +164,7 @@ def test_what_the_spec_cannot_hold_is_reported(tmp_path):
     trimesh.creation.box(extents=(0.1, 0.2, 0.3)).export(tmp_path / "m.stl")
     urdf = tmp_path / "odd.urdf"
     urdf.write_text(
-        '<robot name="odd"><link name="base-link"/><link name="a"><visual><geometry><box size="1 1 1"/></geometry>'
+        '<robot name="odd"><link name="base link"/><link name="a"><visual><geometry><box size="1 1 1"/></geometry>'
         '</visual><visual><geometry><sphere radius="1"/></geometry></visual></link>'
         '<link name="b"><visual><geometry><mesh filename="m.stl" scale="-1 1 1"/></geometry></visual></link>'
         '<link name="c"><visual><geometry><mesh filename="gone.stl"/></geometry></visual></link>'
@@ -177,7 +177,7 @@ def test_what_the_spec_cannot_hold_is_reported(tmp_path):
     result = gen_robot("import", urdf, "-o", tmp_path / "odd.yaml")
     assert result.returncode == 0, result.stderr
     said = result.stderr
-    assert "link 'base-link': the name is not a spec name" in said
+    assert "link 'base link': the name is not a spec name" in said
     assert "calibration" not in said and "mirror" not in said  # (both imported: the spec has them)
     assert "not imported: mesh 'gone.stl': not found" in said
     text = (tmp_path / "odd.yaml").read_text(encoding="utf-8")

@@ -121,7 +121,12 @@ def robot_validator() -> SchemaValidator:
 
 
 # ---------------------------------------------------------------- schema errors
-def _bad_name(name: object) -> str:
+def _bad_name(name: object, *, link_or_joint: bool = False) -> str:
+    if link_or_joint:
+        return (
+            f"{name!r} is not a valid link or joint name: use letters, digits and _, not starting with a digit, in "
+            "parts joined by single . / or -"
+        )
     return f"{name!r} is not a valid name: use letters, digits and _, not starting with a digit"
 
 
@@ -175,17 +180,18 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
             _long_name(error),
             ("propertyNames" in error.absolute_schema_path),
         )
+    separated = keyword == "pattern" and "[./-]" in str(error.validator_value)  # (link and joint names' pattern)
     if keyword == "pattern" and "propertyNames" in error.absolute_schema_path:
         name = error.instance  # a mapping key that is not a valid name: point at the key itself
         return (
             (*path, name),
-            _bad_name(name),
+            _bad_name(name, link_or_joint=separated),
             True,
         )
     if keyword == "pattern":
         return (
             path,
-            _bad_name(error.instance),
+            _bad_name(error.instance, link_or_joint=separated),
             False,
         )
     kind = _ref_name(error) if keyword in ("type", "minimum", "minLength") else None

@@ -28,7 +28,7 @@ FAULT_WORDS = {
     "missing_gazebo_reference": ["'no_such_link', which is not a link"],
     "wrong_type": ["expected a number or a string"],
     "bad_unit": ["unknown unit", "expected a length", "unexpected 'x'"],
-    "injected_name": ["is not a valid name"],
+    "injected_name": ["is not a valid name", "is not a valid link or joint name"],
     "unknown_material": ["material 'no_such_colour' is not in materials"],
     "not_finite": ["is not a finite number"],
     "extreme_axis": ["has length"],

@@ -46,7 +46,9 @@ CASES = [
         "$.links.base_link.shape",
         "exactly one of box",
     ),
-    ("links.bad-name", {}, "$.links['bad-name']", "not a valid name"),
+    ("links.bad name", {}, "$.links['bad name']", "not a valid link or joint name"),
+    ("links.bad--name", {}, "$.links['bad--name']", "in parts joined by single . / or -"),
+    ("materials.bad-name", [0, 0, 0, 1], "$.materials['bad-name']", "not a valid name: use letters"),
     (
         "joints.shoulder.type",
         "ball",
@@ -81,7 +83,8 @@ def test_a_name_with_a_final_newline_is_not_a_name():
     spec["joints"]["shoulder"]["child"] = "arm\n"
     with pytest.raises(SpecErrors) as caught:
         validate(load_text(yaml.safe_dump(spec, sort_keys=False), "spec.yaml"))
-    assert any("'arm\\n' is not a valid name" in error.message for error in caught.value.errors), caught.value.errors
+    said = [error.message for error in caught.value.errors]
+    assert any("'arm\\n' is not a valid link or joint name" in message for message in said), said
 
 
 _ODD_VALUES = st.one_of(
