@@ -34,6 +34,8 @@ def _cmd_import(args: argparse.Namespace) -> int:
     result = import_robot(args.path, parse_mappings(args.mappings), package_paths=parse_packages(args.package))
     for line in result.unsupported:
         print(f"gen-robot import: not imported: {line}", file=sys.stderr)
+    if result.renamed:
+        print(f"gen-robot import: renamed: {result.renamed}", file=sys.stderr)
     for line in result.ignored:
         print(f"gen-robot import: not URDF, ignored by its readers: {line}", file=sys.stderr)
     for line in result.as_given:

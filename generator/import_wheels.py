@@ -5,17 +5,20 @@ as collision (the same), turned onto the joint's axis as the ``wheel`` macro tur
 axle, ``0 pi/2 0`` for x, none for z), the inertial of a uniform cylinder of its mass about its centre (the importer
 said it as ``mass`` alone, or as the same tensor in the link's axes, to 1e-12), an axis of exactly [1, 0, 0],
 [0, 1, 0] or [0, 0, 1], a limit of effort and velocity, no mimic, safety controller or calibration, and no link
-hanging from it. Its Gazebo friction block, when it holds only ``mu1`` and ``mu2``, becomes the wheel's; a wheel
-without one gets 1 and 1, Gazebo's own default. The joint keeps its name (``joint:`` when it is not ``NAME_joint``).
+hanging from it, and a Gazebo block holding only ``mu1`` and ``mu2``, which becomes the wheel's (the spec writes a
+wheel's friction: without the file's own block, the wheel would gain one). The link and joint keep their names, which
+must then be letters, digits and _ (``joint:`` when it is not ``NAME_joint``).
 """
 
 from __future__ import annotations
 
 import math
+import re
 from typing import Any
 
 AXLES = {"x": ([1.0, 0.0, 0.0], [0.0, math.pi / 2, 0.0]), "y": ([0.0, 1.0, 0.0], [math.pi / 2, 0.0, 0.0])}
 AXLES["z"] = ([0.0, 0.0, 1.0], [0.0, 0.0, 0.0])
+IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")  # (the spec's wheel and wheel joint names)
 JOINT_KEYS = {"type", "parent", "child", "origin", "axis", "limit", "dynamics"}
 LINK_KEYS = {"shape", "origin", "material", "mass", "inertia"}
 
@@ -33,8 +36,9 @@ def wheels(spec: dict[str, Any], root: Any) -> tuple[list[str], set[Any]]:
         child = joint.get("child")
         link = links.get(child)
         axle = _axle(joint, link) if link is not None and child not in parents and name not in mimicked else None
-        if axle is None or (child in friction and friction[child] is None):
-            continue
+        named = IDENTIFIER.fullmatch(child) and IDENTIFIER.fullmatch(name)  # (a wheel's names are identifiers)
+        if axle is None or friction.get(child) is None or not named:
+            continue  # (a wheel's friction is written: without the file's own block, it would gain one)
         wheel: dict[str, Any] = {"parent": joint["parent"]}
         if joint.get("origin"):
             wheel["origin"] = joint["origin"]
@@ -45,10 +49,9 @@ def wheels(spec: dict[str, Any], root: Any) -> tuple[list[str], set[Any]]:
         wheel["limit"] = {"effort": joint["limit"]["effort"], "velocity": joint["limit"]["velocity"]}
         dynamics = joint.get("dynamics", {})
         wheel["dynamics"] = {"damping": dynamics.get("damping", 0.0), "friction": dynamics.get("friction", 0.0)}
-        if child in friction:
-            element, (mu1, mu2) = friction[child]
-            wheel.update(mu1=mu1, mu2=mu2)
-            absorbed.add(element)
+        element, (mu1, mu2) = friction[child]
+        wheel.update(mu1=mu1, mu2=mu2)
+        absorbed.add(element)
         if name != f"{child}_joint":
             wheel["joint"] = name
         found[child] = wheel

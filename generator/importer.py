@@ -53,6 +53,7 @@ class Imported:
     as_given: list[str] = field(default_factory=list)  # values no real body has, kept under `strict: false`
     ignored: list[str] = field(default_factory=list)  # attributes URDF does not define (its readers ignore them)
     wheels: list[str] = field(default_factory=list)  # the links recognised as wheels (the spec's `wheels:`)
+    renamed: str = ""  # the robot's name made a spec name, said
 
 
 def _floats(text: str | None, count: int, default: float, where: str) -> list[float]:
@@ -106,14 +107,21 @@ def import_text(text: str, name_hint: str = "robot") -> Imported:
     """The spec of a URDF text (see the module's notes)."""
     from lxml import etree
 
+    from .validate.names import RESERVED_ROBOT_NAMES
+
     root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
     result = Imported(spec={})
     problems = result.unsupported
     robot = root.get("name") or name_hint
-    if not IDENTIFIER.fullmatch(robot):  # (it names the package, the macro and the files: made a name, said)
-        renamed = re.sub(r"[^A-Za-z0-9_]", "_", robot)
-        renamed = renamed if IDENTIFIER.fullmatch(renamed) else f"robot_{renamed}"
-        result.ignored.append(f"robot name {robot!r} written {renamed!r} (it names the package, macro and files)")
+    if not IDENTIFIER.fullmatch(robot) or len(robot) > 200:  # (it names the package, macro, files: made a name, said)
+        renamed = re.sub(r"[^A-Za-z0-9_]", "_", robot)[:200]
+        renamed = renamed if IDENTIFIER.fullmatch(renamed) else f"robot_{renamed}"[:200]
+    else:
+        renamed = robot
+    if renamed in RESERVED_ROBOT_NAMES or renamed.startswith("_xacrokit"):  # (its macro would be a xacro keyword's)
+        renamed = f"{renamed[:194]}_robot"
+    if renamed != robot:
+        result.renamed = f"robot name {robot!r} written {renamed!r} (it names the package, the macro and the files)"
         robot = renamed
     result.spec["robot"] = robot
     colours: dict[str, list[float]] = {}
@@ -241,6 +249,9 @@ def _strictness(result: Imported) -> None:
         return
     except SpecErrors as caught:
         doubts = [e for e in caught.errors if isinstance(e, Implausible)]
+        for error in caught.errors:  # (what the spec would refuse besides: said now; a relative mesh is seen to)
+            if not isinstance(error, Implausible) and not error.path.endswith(".filename"):
+                result.unsupported.append(f"the spec refuses {error.path.removeprefix('$.')}: {error.message}")
     if doubts:
         result.spec = {"robot": result.spec["robot"], "strict": False, **result.spec}
         result.as_given = [f"{e.path.removeprefix('$.')}: {e.message}" for e in doubts]
@@ -402,7 +413,7 @@ def _relative_meshes(imported: Imported, base: Any, packages: Mapping[str, Any])
                 continue
             source = mesh_file(mesh["filename"], base, packages)
             if not Path(source).is_file():
-                imported.unsupported.append(f"mesh {mesh['filename']!r}: not found (looked for {source})")
+                imported.unsupported.append(f"mesh {mesh['filename']!r}: not found (looked for {str(source)!r})")
                 continue
             name = PurePosixPath(mesh["filename"]).name
             if PurePosixPath(name).suffix.lower() not in MESH_SUFFIXES:
@@ -420,15 +431,15 @@ def spec_yaml(imported: Imported, source: str) -> str:
     """The spec as YAML, with a header naming its source and what was not imported."""
     import yaml
 
-    lines = [f"# Imported by gen-robot import from {source!r}.".replace("\n", " ")]
-    lines += [f"# not imported: {line}".replace("\n", " ") for line in imported.unsupported]
-    lines += [f"# as the file says it (strict: false): {line}".replace("\n", " ") for line in imported.as_given]
-    lines += [f"# not URDF, ignored by its readers: {line}".replace("\n", " ") for line in imported.ignored]
+    said = [f"Imported by gen-robot import from {source!r}."]
+    said += [f"not imported: {line}" for line in imported.unsupported]
+    said += [f"as the file says it (strict: false): {line}" for line in imported.as_given]
+    said += [f"not URDF, ignored by its readers: {line}" for line in imported.ignored]
+    said += [f"renamed: {imported.renamed}"] if imported.renamed else []
     if imported.wheels:
-        lines.append(f"# wheels (exactly what the spec's wheels: write): {', '.join(imported.wheels)}")
-    lines += [
-        f"# kept in the extension file (not modelled by the spec): {line}".replace("\n", " ")
-        for line in imported.leftovers
-    ]
+        said.append(f"wheels (exactly what the spec's wheels: write): {', '.join(imported.wheels)}")
+    said += [f"kept in the extension file (not modelled by the spec): {line}" for line in imported.leftovers]
+    # (one comment line each: every line break YAML knows, a carriage return among them, is made a space)
+    lines = ["# " + " ".join(line.splitlines()) for line in said]
     body = yaml.safe_dump(imported.spec, sort_keys=False, default_flow_style=None, width=120, allow_unicode=True)
     return "\n".join(lines) + "\n" + body

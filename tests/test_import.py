@@ -5,6 +5,8 @@ same visual geometry; what the spec cannot hold is reported, not dropped silentl
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 import yaml
@@ -324,3 +326,66 @@ def test_a_random_specs_urdf_imports_to_a_spec_that_writes_it_again(tmp_path_fac
         spec_urdf(folder / "again.yaml").urdf if imported.extension else emit_urdf(build_robot(folder / "again.yaml"))
     )
     assert urdf_differences(first, again, rel=1e-12) == []
+
+
+def _wheel_urdf(wheel="left_wheel", joint="left_wheel_joint", gazebo=True):
+    """A base with one wheel exactly as the spec's `wheels:` writes it (optionally without its friction block)."""
+    rpy = f"{math.pi / 2!r} 0 0"
+    cylinder = '<geometry><cylinder radius="0.05" length="0.02"/></geometry>'
+    axial, transverse = 0.5 * 0.05**2 / 2, 0.5 * (3 * 0.05**2 + 0.02**2) / 12
+    return (
+        '<robot name="w"><link name="base"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1"/></inertial>'
+        f'</link><link name="{wheel}"><visual><origin rpy="{rpy}"/>{cylinder}</visual><collision><origin rpy="{rpy}"/>'
+        f'{cylinder}</collision><inertial><mass value="0.5"/><inertia ixx="{transverse!r}" iyy="{axial!r}" '
+        f'izz="{transverse!r}"/></inertial></link><joint name="{joint}" type="continuous"><parent link="base"/>'
+        f'<child link="{wheel}"/><origin xyz="0 0.1 0"/><axis xyz="0 1 0"/><limit effort="2" velocity="3"/>'
+        '<dynamics damping="0.01" friction="0"/></joint>'
+        + (f'<gazebo reference="{wheel}"><mu1>0.8</mu1><mu2>0.7</mu2></gazebo>' if gazebo else "")
+        + "</robot>"
+    )
+
+
+@pytest.mark.parametrize(
+    ("case", "wheels"),
+    [({}, ["left_wheel"]), ({"gazebo": False}, []), ({"wheel": "wheel-left"}, []), ({"joint": "wheel/joint"}, [])],
+    ids=["wheel", "no-friction-block", "link-name", "joint-name"],
+)
+def test_a_wheel_is_recognised_only_when_the_spec_writes_it_the_same(case, wheels, tmp_path):
+    """Without its own mu1/mu2 block a wheel would gain one (MuJoCo's export would give it friction and priority), and
+    a wheel's names are identifiers: such links stay links; each case comes back as the same URDF."""
+    original = _wheel_urdf(**case)
+    imported = import_text(original)
+    assert imported.wheels == wheels and imported.unsupported == []
+    if wheels:
+        assert imported.spec["wheels"]["left_wheel"]["mu1"] == 0.8 and "extension" not in imported.spec
+        assert imported.extension == ""  # (the friction block said by the wheel, not kept twice)
+    if imported.extension:
+        (tmp_path / "w_extension.xacro").write_text(imported.extension, encoding="utf-8")
+        imported.spec["extension"] = "w_extension.xacro"
+    (tmp_path / "w.yaml").write_text(spec_yaml(imported, "w.urdf"), encoding="utf-8")
+    compare(original, spec_urdf(tmp_path / "w.yaml").urdf)
+
+
+def test_a_line_break_in_a_name_does_not_reach_the_specs_keys(tmp_path):
+    """A carriage return is a line break to YAML: in a comment line of the header it would start a key."""
+    urdf = tmp_path / "cr.urdf"
+    urdf.write_text(
+        '<robot name="cr"><link name="a"><visual><geometry><mesh filename="package://p/a&#13;strict: false&#13;#.stl"/>'
+        '</geometry></visual><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1"/></inertial></link>'
+        '<gazebo reference="a&#13;robot: evil&#13;"><mu1>1</mu1></gazebo></robot>',
+        encoding="utf-8",
+    )
+    result = gen_robot("import", urdf, "-o", tmp_path / "cr.yaml")
+    assert result.returncode == 0, result.stderr
+    spec = yaml.safe_load((tmp_path / "cr.yaml").read_text(encoding="utf-8"))
+    assert list(spec) == ["robot", "links", "extension"] and spec["robot"] == "cr"
+    assert spec["links"]["a"]["shape"]["mesh"]["filename"] == "package://p/a\rstrict: false\r#.stl"
+
+
+def test_a_robot_name_the_spec_cannot_take_is_made_one_and_said(tmp_path):
+    for name, written in (("my-robot", "my_robot"), ("if", "if_robot"), ("9" * 300, ("robot_" + "9" * 300)[:200])):
+        imported = import_text(f'<robot name="{name}"><link name="a"/></robot>')
+        assert imported.spec["robot"] == written and imported.unsupported == []
+        assert imported.renamed.startswith(f"robot name {name!r} written {written!r}")
+        (tmp_path / "r.yaml").write_text(spec_yaml(imported, "r.urdf"), encoding="utf-8")
+        build_robot(tmp_path / "r.yaml")  # (valid)

@@ -178,8 +178,8 @@ def _moving_joints(model: Any, root: Any) -> list[MovingJoint]:
                 v_index=model.idx_vs[index],
                 lower=lower,
                 upper=upper,
-                effort=_positive(limit, "effort"),
-                velocity=_positive(limit, "velocity"),
+                effort=_given(limit, "effort"),
+                velocity=_given(limit, "velocity"),
             )
         )
     return found
@@ -194,12 +194,14 @@ def _bounds(limit: Any) -> tuple[float, float]:
     return (lower, upper) if lower <= upper else (upper, lower)
 
 
-def _positive(limit: Any, key: str) -> float | None:
+def _given(limit: Any, key: str) -> float | None:
+    """A limit's effort or velocity; None when not given or not a number >= 0 (a limit of 0 is a limit: its margin
+    is 0, not "no limit")."""
     try:
         value = float(limit.get(key, ""))
     except (AttributeError, ValueError):
         return None
-    return value if value > 0 else None
+    return value if 0 <= value < math.inf else None
 
 
 def _massless_moving_links(model: Any, root: Any) -> list[str]:

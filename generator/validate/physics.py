@@ -71,7 +71,7 @@ def _link_errors(raw: RawSpec, link: dict[str, Any], path: PathKey) -> Iterator[
         )
     computed = isinstance(link.get("inertia"), dict) and link["inertia"].get("kind") == "mesh"
     if "mass" in link:
-        yield from _mass_error(raw, link["mass"], (*path, "mass"))
+        yield from _mass_error(raw, link["mass"], (*path, "mass"), link=True)
         if "inertia" not in link and not link.get("shape"):
             yield raw.error(
                 (*path, "mass"),
@@ -90,7 +90,7 @@ def _link_errors(raw: RawSpec, link: dict[str, Any], path: PathKey) -> Iterator[
 
 
 # What a composite link takes from its parts instead of giving it itself.
-_PART_KEYS = ("shape", "origin", "mass", "density", "inertia", "com", "collision")
+_PART_KEYS = ("shape", "origin", "mass", "density", "inertia", "com", "collision", "visuals")
 
 
 def _composite_errors(raw: RawSpec, link: dict[str, Any], path: PathKey) -> Iterator[SpecError]:
@@ -259,7 +259,9 @@ def _inertia_errors(raw: RawSpec, inertia: dict[str, Any], path: PathKey) -> Ite
         yield implausible(raw.error(path, problem))
 
 
-def _mass_error(raw: RawSpec, mass: float, path: PathKey) -> Iterator[SpecError]:
+def _mass_error(raw: RawSpec, mass: float, path: PathKey, *, link: bool = False) -> Iterator[SpecError]:
+    """``link``: a link's own mass, whose 0 strict: false keeps (a part's, a wheel's, a row's or a frame's stays an
+    error: a composite of parts that weigh nothing has no centre of mass)."""
     if not (isinstance(mass, float) and mass > 0 and math.isfinite(mass)):
         error = raw.error(path, f"mass must be > 0 kg, got {mass!r}")
-        yield implausible(error) if mass == 0 else error
+        yield implausible(error) if mass == 0 and link else error

@@ -235,3 +235,20 @@ def test_a_safety_factor_divides_every_margin(arm_file, tmp_path):
     for peak_plain, peak_safe in zip(plain.peaks, safe.peaks, strict=True):
         assert safe.margin(peak_safe) == pytest.approx(plain.margin(peak_plain) / 1.5, rel=1e-12)
     assert plain.failed == [] and safe.failed == ["shoulder"]  # (9.80665 x 2.56 = 25.1 N*m; x 1.5 = 37.7 > 30)
+
+
+def test_an_effort_limit_of_0_is_a_limit_whose_margin_is_0(tmp_path):
+    """(a spec under strict: false keeps a file's effort of 0: the joint holds nothing, so it fails, rather than
+    being read as "no limit" and passing)"""
+    spec = tmp_path / "zero.yaml"
+    spec.write_text(
+        "robot: zero\nstrict: false\nlinks:\n  base_link: {shape: {box: {size: [0.4, 0.3, 0.1]}}, mass: 2}\n"
+        "  arm: {shape: {box: {size: [0.4, 0.1, 0.1]}}, origin: {xyz: [0.2, 0, 0]}, mass: 1}\n"
+        "joints:\n  j: {type: revolute, parent: base_link, child: arm, axis: [0, 1, 0],\n"
+        "      limit: {lower: -1, upper: 1, effort: 0, velocity: 1}}\n",
+        encoding="utf-8",
+    )
+    result = gen_robot("size", spec, "--json")
+    assert result.returncode == 1, result.stderr
+    (joint,) = json.loads(result.stdout)["joints"]
+    assert joint["effort_limit"] == 0.0 and joint["static"]["margin"] == 0.0 and joint["static"]["pass"] is False

@@ -184,3 +184,23 @@ def test_a_mirrored_mesh_has_the_mirrored_centre_of_mass(tmp_path):
     assert np.abs(np.array(xyz) - [0.01, -0.02, 0.03]).max() < 1e-15
     want = np.diag([2.0 * (0.2**2 + 0.3**2) / 12, 2.0 * (0.1**2 + 0.3**2) / 12, 2.0 * (0.1**2 + 0.2**2) / 12])
     assert np.abs(rot @ tensor @ rot.T - want).max() < 1e-15
+
+
+def test_strict_false_keeps_a_links_mass_of_0_not_a_parts_and_takes_no_visuals_beside_parts():
+    """Parts that all weigh nothing have no centre of mass (it would be written NaN): their 0 stays an error; a
+    composite link's pieces are its parts, so `visuals:` beside them is refused, not dropped."""
+    spec = {
+        "robot": "comp",
+        "strict": False,
+        "links": {
+            "base": {
+                "parts": [{"shape": {"box": {"size": [1, 1, 1]}}, "mass": 0}],
+                "visuals": [{"shape": {"sphere": {"radius": 0.1}}}],
+            }
+        },
+    }
+    with pytest.raises(SpecErrors) as caught:
+        validate(load_text(yaml.safe_dump(spec, sort_keys=False), "s.yaml"))
+    said = {e.path: e.message for e in caught.value.errors}
+    assert said.keys() == {"$.links.base.parts[0].mass", "$.links.base.visuals"}, said
+    assert "move visuals into a part" in said["$.links.base.visuals"]
