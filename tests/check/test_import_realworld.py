@@ -20,12 +20,14 @@ from xacrokit.inputs import robot_text
 def test_the_importable_real_robots_come_back_as_the_same_robots(tmp_path):
     reasons: collections.Counter[str] = collections.Counter()
     done = []
+    refused: dict[str, list[str]] = {}
     for index, robot in enumerate(corpus_or_skip()):
         with robot_text(robot.path, {}, robot.packages, meshes=False) as (text, _):
             pass
         imported = import_robot(robot.path, package_paths=robot.packages)
         if imported.unsupported:
             reasons["importer"] += 1
+            refused[robot.key] = imported.unsupported
             continue
         spec = tmp_path / f"s{index}" / "robot.yaml"
         for relative, source in imported.meshes.items():  # (what gen-robot import -o does)
@@ -41,4 +43,13 @@ def test_the_importable_real_robots_come_back_as_the_same_robots(tmp_path):
         (again,) = (tmp_path / f"pkg{index}" / "urdf").glob("*.urdf")
         compare(text, again.read_text(encoding="utf-8"))
         done.append(robot.key)
-    assert len(done) == 122 and reasons == {"importer": 2, "spec": 5}, (len(done), reasons)
+    assert len(done) == 122 and reasons == {"importer": 7}, (len(done), reasons)
+    # (each an error of the file itself, said at import with the spec's message; the other two: two meshes of a name)
+    by_the_spec = {k.rsplit("/", 1)[-1] for k, said in refused.items() if any("the spec refuses" in s for s in said)}
+    assert by_the_spec == {
+        "alex_psyonic_hands.urdf",  # mimic joints that name no joint of the file
+        "ur3.urdf",  # a macro file: no link
+        "finger_macro.urdf",
+        "trifinger_stage.urdf",  # a joint whose parent is not in the file
+        "trifingeredu_stage.urdf",
+    }, sorted(by_the_spec)
