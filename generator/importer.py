@@ -30,6 +30,7 @@ from .inputs import urdf_floats
 
 IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*(?:[./-][A-Za-z0-9_]+)*$")  # (a link's or joint's: the schema's urdf_name)
+SPEC_ITEM = re.compile(r"^\$\.(links|joints)(?:\.([A-Za-z_][A-Za-z0-9_]*)|\['([^']*)'\])")  # (a JSON path's item)
 MODELLED = ("link", "joint", "material")  # what the spec holds of a <robot>'s children
 URDF_JOINT_ATTRIBUTES = {  # (urdfdom's joint parser: what it reads of each element)
     "limit": {"lower", "upper", "effort", "velocity"},
@@ -54,6 +55,7 @@ class Imported:
     ignored: list[str] = field(default_factory=list)  # attributes URDF does not define (its readers ignore them)
     wheels: list[str] = field(default_factory=list)  # the links recognised as wheels (the spec's `wheels:`)
     renamed: str = ""  # the robot's name made a spec name, said
+    lines: dict[tuple[str, str], int] = field(default_factory=dict)  # (links or joints, name) -> its line in the file
 
 
 def _floats(text: str | None, count: int, default: float, where: str) -> list[float]:
@@ -103,8 +105,9 @@ def _shape(geometry: Any, where: str, problems: list[str]) -> dict[str, Any] | N
     return None
 
 
-def import_text(text: str, name_hint: str = "robot") -> Imported:
-    """The spec of a URDF text (see the module's notes)."""
+def import_text(text: str, name_hint: str = "robot", source: str = "") -> Imported:
+    """The spec of a URDF text (see the module's notes); ``source``: the file it was read from, which locates what
+    is reported (``FILE:LINE: link 'x': ...``; a xacro document's lines are its expansion's)."""
     from lxml import etree
 
     from .validate.names import RESERVED_ROBOT_NAMES
@@ -124,6 +127,14 @@ def import_text(text: str, name_hint: str = "robot") -> Imported:
         result.renamed = f"robot name {robot!r} written {renamed!r} (it names the package, the macro and the files)"
         robot = renamed
     result.spec["robot"] = robot
+    for kind in ("link", "joint"):
+        for element in root.findall(kind):
+            result.lines.setdefault((f"{kind}s", element.get("name", "")), element.sourceline or 0)
+
+    def located(kind: str, name: str) -> str:
+        line = result.lines.get((kind, name))
+        return f"{source}:{line}: " if source and line else ""
+
     colours: dict[str, list[float]] = {}
     named = {m.get("name"): m for m in root.findall("material")}
 
@@ -146,7 +157,7 @@ def import_text(text: str, name_hint: str = "robot") -> Imported:
     links: dict[str, Any] = {}
     for link in root.findall("link"):
         name = link.get("name", "")
-        where = f"link {name!r}"
+        where = f"{located('links', name)}link {name!r}"
         if not NAME.fullmatch(name):
             problems.append(f"{where}: the name is not a spec name (letters, digits and _, in parts joined by . / -)")
             continue
@@ -196,10 +207,11 @@ def import_text(text: str, name_hint: str = "robot") -> Imported:
         name = joint.get("name", "")
         if not NAME.fullmatch(name):
             problems.append(
-                f"joint {name!r}: the name is not a spec name (letters, digits and _, in parts joined by . / -)"
+                f"{located('joints', name)}joint {name!r}: the name is not a spec name (letters, digits and _, in "
+                "parts joined by . / -)"
             )
             continue
-        joints[name] = _joint(joint, f"joint {name!r}", problems)
+        joints[name] = _joint(joint, f"{located('joints', name)}joint {name!r}", problems)
         if joint.find("mimic") is not None and "mimic" not in joints[name]:
             result.ignored.append(f"joint {name!r} <mimic> (a {joint.get('type')} joint: nothing to move)")
         for tag, known in URDF_JOINT_ATTRIBUTES.items():
@@ -229,11 +241,11 @@ def import_text(text: str, name_hint: str = "robot") -> Imported:
         result.spec["joints"] = joints
     if "wheels" in found:
         result.spec["wheels"] = found["wheels"]
-    _strictness(result)
+    _strictness(result, located)
     return result
 
 
-def _strictness(result: Imported) -> None:
+def _strictness(result: Imported, located: Any) -> None:
     """``strict: false`` for a robot whose file holds values the spec refuses by default (a mass of 0, a tensor that
     is not physical, a moving link without mass, a continuous joint without limit): they are kept as the file says
     them, and listed (:attr:`Imported.as_given`)."""
@@ -251,7 +263,9 @@ def _strictness(result: Imported) -> None:
         doubts = [e for e in caught.errors if isinstance(e, Implausible)]
         for error in caught.errors:  # (what the spec would refuse besides: said now; a relative mesh is seen to)
             if not isinstance(error, Implausible) and not error.path.endswith(".filename"):
-                result.unsupported.append(f"the spec refuses {error.path.removeprefix('$.')}: {error.message}")
+                found = SPEC_ITEM.match(error.path)  # (at the link's or joint's line in the file)
+                where = located(found[1], found[2] or found[3]) if found else ""
+                result.unsupported.append(f"{where}the spec refuses {error.path.removeprefix('$.')}: {error.message}")
     if doubts:
         result.spec = {"robot": result.spec["robot"], "strict": False, **result.spec}
         result.as_given = [f"{e.path.removeprefix('$.')}: {e.message}" for e in doubts]
@@ -391,7 +405,10 @@ def import_robot(
     from .inputs import robot_text
 
     with robot_text(path, mappings, package_paths, meshes=False) as (text, packages):
-        imported = import_text(text, Path(path).stem.split(".")[0])
+        from .check.run import input_kind
+
+        source = str(path) if input_kind(Path(path)) == "urdf" else f"{path} (as expanded)"
+        imported = import_text(text, Path(path).stem.split(".")[0], source)
         _relative_meshes(imported, Path(path).parent, packages)
     return imported
 

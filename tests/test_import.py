@@ -389,3 +389,18 @@ def test_a_robot_name_the_spec_cannot_take_is_made_one_and_said(tmp_path):
         assert imported.renamed.startswith(f"robot name {name!r} written {written!r}")
         (tmp_path / "r.yaml").write_text(spec_yaml(imported, "r.urdf"), encoding="utf-8")
         build_robot(tmp_path / "r.yaml")  # (valid)
+
+
+def test_what_cannot_be_imported_is_said_at_its_line_in_the_file(tmp_path):
+    urdf = tmp_path / "loc.urdf"
+    urdf.write_text(
+        '<robot name="x">\n<link name="a"/>\n<link name="b c"/>\n'
+        '<joint name="j" type="fixed"><parent link="a"/><child link="zz"/></joint>\n</robot>\n',
+        encoding="utf-8",
+    )
+    said = gen_robot("import", urdf).stderr.splitlines()
+    assert f"gen-robot import: not imported: {urdf}:3: link 'b c': the name is not a spec name" in said[0]
+    assert (
+        said[1]
+        == f"gen-robot import: not imported: {urdf}:4: the spec refuses joints.j.child: child 'zz' is not in links"
+    )
