@@ -2,19 +2,22 @@
 
 What the spec says, the spec keeps, with its numbers written exactly (YAML floats are Python's shortest repr):
 
-- each link's visual as its ``shape`` (box, cylinder, sphere, mesh with its URI and scale) at its ``origin``, its
-  colour as a named ``material`` (the URDF's material name when it is an identifier, else ``colour_N``); its
-  collision as ``same`` (the visual's geometry and origin), ``none``, or its own shape and origin;
+- each link's first visual as its ``shape`` (box, cylinder, sphere, mesh with its URI and scale, a negative factor
+  mirroring it) at its ``origin``, its colour as a named ``material`` (the URDF's material name when it is an
+  identifier, else ``colour_N``), its other visuals as ``visuals:``; its collisions as ``same`` (one, the first
+  visual's geometry and origin), ``none``, one shape or a list of them (also on a link without a visual);
 - its inertial as ``mass`` and an explicit ``inertia`` tensor with its frame, as the file says it; or as ``mass``
-  alone when the tensor is the one the spec computes from the shape (a uniform solid, to 1e-12);
-- each joint with its type, parent, child, origin, axis, limit, dynamics, mimic and safety controller.
+  alone when the tensor is the one the spec computes from the shape (a uniform solid in the shape's axes, to 1e-12);
+- each joint with its type, parent, child, origin, axis, limit, dynamics, mimic, safety controller and calibration;
+- wheels that are exactly what ``wheels:`` writes (:mod:`.import_wheels`);
+- values no real body has under ``strict: false`` (:attr:`Imported.as_given`).
 
-What the spec cannot say is reported, not dropped silently (:attr:`Imported.unsupported`): a link with more than one
-visual or collision, a collision without a visual, a negative mesh scale (a mirror), a name the spec does not take
-(letters, digits and _), a joint's calibration, and every element URDF readers do not model (``<gazebo>``,
-``<transmission>``, ``<ros2_control>``, others): those are kept verbatim in :attr:`Imported.extension`, which
-``gen-robot import -o SPEC`` writes beside the spec as ``SPEC_extension.xacro`` and names in the spec's ``extension``:
-the generated package starts its user-owned ``urdf/NAME_extension.xacro`` with them.
+What the spec cannot say is reported at its element's line, not dropped silently (:attr:`Imported.unsupported`): a
+name the spec does not take, two relative meshes of one file name, a relative mesh that is not there, and whatever
+else the spec would refuse. Attributes URDF does not define are named (:attr:`Imported.ignored`). Every element URDF
+readers do not model (``<gazebo>``, ``<transmission>``, ``<ros2_control>``, others) is kept verbatim in
+:attr:`Imported.extension`, which ``gen-robot import -o SPEC`` writes beside the spec as ``SPEC_extension.xacro`` and
+names in the spec's ``extension``: the generated package starts its user-owned ``urdf/NAME_extension.xacro`` with them.
 """
 
 from __future__ import annotations
@@ -256,8 +259,10 @@ def _strictness(result: Imported, located: Any) -> None:
     from .validate import validate
     from .validate.physics import Implausible
 
-    try:  # (its relative meshes are not beside this text: those errors are not the ones asked about)
-        validate(load_text(yaml.safe_dump(result.spec, sort_keys=False), "<import>"))
+    # (its relative meshes are not beside this text, which is read as in a folder that is not there: those errors are
+    # not the ones asked about, and nothing of the working folder is read)
+    try:
+        validate(load_text(yaml.safe_dump(result.spec, sort_keys=False), "/nonexistent/xacrokit-import/spec.yaml"))
         return
     except SpecErrors as caught:
         doubts = [e for e in caught.errors if isinstance(e, Implausible)]
