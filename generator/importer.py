@@ -388,9 +388,10 @@ def _joint(joint: Any, where: str, problems: list[str]) -> dict[str, Any]:
         }
     calibration = joint.find("calibration")
     if calibration is not None:
-        edges = {k: _floats(calibration.get(k), 1, 0.0, f"{where} calibration {k}")[0] for k in ("rising", "falling")}
-        if any(calibration.get(k) is not None for k in edges):
-            entry["calibration"] = {k: v for k, v in edges.items() if calibration.get(k) is not None}
+        given = [k for k in ("rising", "falling") if calibration.get(k) is not None]
+        if given:
+            said = {k: _floats(calibration.get(k), 1, 0.0, f"{where} calibration {k}")[0] for k in given}
+            entry["calibration"] = said
     return entry
 
 

@@ -165,8 +165,9 @@ def validate(raw: RawSpec) -> Spec:
     extension, extension_errors = extension_body(raw, data)
     errors += unit_errors + mesh_files_errors(raw, data) + solid_errors + density_errors + extension_errors
     errors += semantic_errors(raw, data, every, physics=parsed)
-    doubts: list[SpecError] = [e for e in errors if isinstance(e, Implausible)] if data.get("strict") is False else []
-    errors = [e for e in errors if e not in doubts]
+    lenient = data.get("strict") is False
+    doubts: list[SpecError] = [e for e in errors if lenient and isinstance(e, Implausible)]
+    errors = [e for e in errors if not (lenient and isinstance(e, Implausible))]
     if errors:
         raise SpecErrors(_unique(errors))
     dense = list(density_warnings(raw, items, solids))
