@@ -205,7 +205,7 @@ def output_rows(tag: str, package: list, urdf: str, full: Callable[[Path], None]
     from lxml import etree
 
     from xacrokit.check import check
-    from xacrokit.write import write
+    from xacrokit.write.package_writer import write
 
     urdf_path = folder / f"{tag}.urdf"
     urdf_path.write_text(urdf, encoding="utf-8")
@@ -388,7 +388,7 @@ def bench_memory(folder: Path) -> None:
 
 def bench_xacro_cost(folder: Path) -> None:
     from xacrokit.emit import emit_urdf
-    from xacrokit.expansion import expand_file
+    from xacrokit.expand.xacro_expand import expand_file
     from xacrokit.pipeline import build_robot, generate
 
     print("== xacro cost of the generated package (6-axis arm, UR5), median of 7 expansions")

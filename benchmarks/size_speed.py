@@ -47,7 +47,7 @@ def main(runs: int) -> None:
 
     from xacrokit.sizing import Payload
     from xacrokit.sizing.motion import Motion, inverse_dynamics, joint_motions, trajectory
-    from xacrokit.sizing.robot import load_robot
+    from xacrokit.sizing.sized_robot import load_robot
     from xacrokit.sizing.static import static_peaks
 
     print(f"imports (pinocchio, scipy.optimize, xacrokit.sizing): {time.perf_counter() - started:.2f} s, once")

@@ -21,15 +21,15 @@ from importlib import import_module
 from typing import Any
 
 from .errors import ExpandError, ResourceError, SpecError, SpecErrors, XacrokitError
-from .resources import macros_dir
+from .shared.package_data import macros_dir
 
 __version__ = "0.1.0"
 
 _LAZY = {
     "generate": ("xacrokit.pipeline", "generate"),
     "GenerateResult": ("xacrokit.pipeline", "GenerateResult"),
-    "expand": ("xacrokit.expansion", "expand_file"),
-    "ConflictError": ("xacrokit.write", "ConflictError"),
+    "expand": ("xacrokit.expand.xacro_expand", "expand_file"),
+    "ConflictError": ("xacrokit.write.package_writer", "ConflictError"),
     "check": ("xacrokit.check", "check"),
     "CheckReport": ("xacrokit.check", "CheckReport"),
 }

@@ -13,8 +13,6 @@ from collections.abc import Iterator
 
 from lxml import etree
 
-from .gcpause import collector_paused
-from .kinematics import dh_body_end
 from .model import (
     Arm,
     Box,
@@ -33,9 +31,11 @@ from .model import (
     attach_joint_name,
     mount_joint_name,
 )
-from .physics import cylinder_moments, sphere_moment
-from .sensors import sensor_element, topic_namespace
-from .text import material_name, num, vec
+from .shared.gc_pause import collector_paused
+from .shared.sim_sensors import sensor_element, topic_namespace
+from .shared.solid_inertia import cylinder_moments, sphere_moment
+from .shared.transforms import dh_body_end
+from .shared.value_text import material_name, num, vec
 
 AXIS_VECTORS = {"x": "1 0 0", "y": "0 1 0", "z": "0 0 1"}
 AXLE_GEOMETRY_RPY = {"x": "0 " + str(math.pi / 2) + " 0", "y": str(math.pi / 2) + " 0 0", "z": "0 0 0"}

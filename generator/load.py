@@ -20,9 +20,9 @@ import yaml
 from yaml.constructor import SafeConstructor
 
 from .errors import SpecError, SpecErrors
-from .fileio import read_input
-from .gcpause import collector_paused
-from .units import NUMBER
+from .shared.gc_pause import collector_paused
+from .shared.input_files import read_input
+from .shared.units import NUMBER
 
 PathKey = tuple[str | int, ...]
 # libyaml's parser (same events, same line/column marks) is several times faster than PyYAML's pure-Python one

@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Literal
 
 from .errors import SpecError
-from .joint_types import AXIAL, JOINT_TYPES, LIMITED, MOVING, JointType  # noqa: F401  (part of the model)
+from .shared.joint_types import AXIAL, JOINT_TYPES, LIMITED, MOVING, JointType  # noqa: F401  (part of the model)
 
 Vec3 = tuple[float, float, float]
 ZERO: Vec3 = (0.0, 0.0, 0.0)
@@ -280,7 +280,7 @@ class Surface:
 
 @dataclass(frozen=True)
 class Sensor:
-    """A simulated sensor at a frame (:mod:`xacrokit.sensors`): every value resolved (preset, then defaults).
+    """A simulated sensor at a frame (:mod:`xacrokit.shared.sim_sensors`): every value resolved (preset, then defaults).
     ``frame`` is the link its readings are stamped with (a camera's optical frame)."""
 
     link: str

@@ -14,16 +14,16 @@ from pathlib import Path
 from . import __version__
 from .emit import emit_scene_urdf, emit_urdf
 from .errors import SpecError, XacrokitError
-from .expansion import expand_file
-from .fileio import staged_packages, write_text_atomic
-from .guard import trusting
+from .expand.expression_guard import trusting
+from .expand.xacro_expand import expand_file
 from .load import RawSpec, load_file
 from .model import Robot, Scene, attach_joint_name
 from .render import MacroMode, RenderedFile, render_package, render_scene
 from .resolve import resolve
 from .scene import build_scene, is_scene
 from .validate import validate
-from .write import FileAction, write
+from .write.atomic import staged_packages, write_text_atomic
+from .write.package_writer import FileAction, write
 
 
 @dataclass(frozen=True)
@@ -70,7 +70,7 @@ def expand_package(model: Robot | Scene, files: list[RenderedFile]) -> RenderedF
 
     What xacrokit wrote is trusted (every text from a spec is escaped for xacro: no expression of the spec's own is
     ever evaluated), so it expands in-process, unbounded; a scene with a third-party macro is trusted only as the
-    caller says (:func:`xacrokit.guard.trusting`, ``--trust``)."""
+    caller says (:func:`xacrokit.expand.expression_guard.trusting`, ``--trust``)."""
     ours = not isinstance(model, Scene) or all(instance.macro is None for instance in model.instances)
     with tempfile.TemporaryDirectory(prefix="xacrokit-") as scratch:
         root = Path(scratch) / model.package
@@ -221,7 +221,7 @@ def _with_extensions(files: list[RenderedFile], root: Path) -> bool:
     Raises:
         XacrokitError: an extension file that cannot be read (too large, not UTF-8, not a regular file).
     """
-    from .fileio import InputError, read_input
+    from .shared.input_files import InputError, read_input
 
     changed = False
     for index, file in enumerate(files):
@@ -247,7 +247,7 @@ def _check_warnings(urdf: str, spec_path: Path, raw: RawSpec, robot: Robot) -> t
     """What ``gen-robot check --strict SPEC`` would fail on in the URDF (its warnings, and the errors a valid spec
     can still give, such as a mesh file that is not there), as warnings at the spec's lines."""
     from .check.document_rules import generated_urdf_findings
-    from .check.rules import RULES
+    from .check.rule_table import RULES
 
     said = []
     with staged_packages(robot.carried_files) as staged:  # (its meshes, where the package will carry them)

@@ -14,9 +14,6 @@ from typing import Any
 
 import numpy as np
 
-from .gcpause import collector_paused
-from .kinematics import rpy_matrix
-from .meshes import MESH_FOLDER, is_relative, tube_obj
 from .model import (
     AXIAL,
     DEFAULT_ROW_RADIUS,
@@ -51,8 +48,19 @@ from .model import (
     arm_base_name,
     attach_joint_name,
 )
-from .physics import box_moments, capsule_moments, combine, cylinder_moments, sphere_moment, tensor, tube_moments
-from .sensors import resolve_sensor
+from .shared.gc_pause import collector_paused
+from .shared.mesh_solids import MESH_FOLDER, is_relative, tube_obj
+from .shared.sim_sensors import resolve_sensor
+from .shared.solid_inertia import (
+    box_moments,
+    capsule_moments,
+    combine,
+    cylinder_moments,
+    sphere_moment,
+    tensor,
+    tube_moments,
+)
+from .shared.transforms import rpy_matrix
 from .validate import Spec
 
 DEFAULT_INTERFACES = Interfaces(command=("position",), state=("position", "velocity"))

@@ -12,9 +12,9 @@ import pytest
 import yourdfpy
 
 from conftest import REPO, gen_robot
-from xacrokit.design import design_report, principal_moments, to_markdown
 from xacrokit.emit import emit_urdf
 from xacrokit.pipeline import build_robot
+from xacrokit.sizing.design_report import design_report, principal_moments, to_markdown
 
 ROVER = REPO / "examples" / "robots" / "rover.yaml"
 

@@ -17,8 +17,8 @@ from lxml import etree
 
 import xacrokit
 from conftest import REPO
-from xacrokit.macrodoc import XACRO_NS, read_macro_docs, render_reference
-from xacrokit.resources import PUBLIC_MACRO_FILES, PUBLIC_MACROS
+from xacrokit.shared.macro_banners import XACRO_NS, read_macro_docs, render_reference
+from xacrokit.shared.package_data import PUBLIC_MACRO_FILES, PUBLIC_MACROS
 
 README = REPO / "README.md"
 DOCS = REPO / "docs"
@@ -192,7 +192,7 @@ def test_readme_xml_sample_expands(tmp_path):
 
 
 def test_docs_check_rules_table_is_current():
-    from xacrokit.check.report import rules_markdown
+    from xacrokit.check.text_report import rules_markdown
 
     check_md = text_of(DOCS / "check.md")
     block = check_md.split("<!-- check-rules:start -->\n", 1)[1].split("<!-- check-rules:end -->", 1)[0]

@@ -11,7 +11,7 @@ import pytest
 from lxml import etree
 
 from conftest import REPO, gen_robot
-from xacrokit.graph import tree_dot
+from xacrokit.view.tree_graph import tree_dot
 
 ODD = (
     '<robot name="odd"><link name="a"><inertial><mass value="2"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" '

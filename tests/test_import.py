@@ -16,14 +16,14 @@ from lxml import etree
 import xacrokit
 from conftest import ROBOT_EXAMPLES, gen_robot
 from xacrokit.emit import emit_urdf, urdf_differences
-from xacrokit.importer import URDF_JOINT_ATTRIBUTES, import_text, spec_yaml
-from xacrokit.kinematics import rpy_matrix
+from xacrokit.importer.urdf_to_spec import URDF_JOINT_ATTRIBUTES, import_text, spec_yaml
 from xacrokit.pipeline import build_robot, spec_urdf
+from xacrokit.shared.transforms import rpy_matrix
 from xacrokit.testing import valid_specs
 
 
 def urdf_of(path) -> str:
-    from xacrokit.check.run import input_kind, load_urdf
+    from xacrokit.check.checker import input_kind, load_urdf
 
     return load_urdf(path, input_kind(path), None, None, {})[0]
 

@@ -137,7 +137,7 @@ STAGES = [
     "xacrokit.resolve",
     "xacrokit.emit",
     "xacrokit.render",
-    "xacrokit.write",
+    "xacrokit.write.package_writer",
 ]
 
 

@@ -12,13 +12,13 @@ from lxml import etree
 
 from conftest import REPO, ROBOT_EXAMPLES, SCENE_EXAMPLES, gen_robot
 from xacrokit.errors import XacrokitError
-from xacrokit.mjcf import MASSLESS, export_mjcf, mjcf, write_export
+from xacrokit.export.mjcf import MASSLESS, export_mjcf, mjcf, write_export
 
 mujoco = pytest.importorskip("mujoco")
 
 
 def urdf_of(path) -> str:
-    from xacrokit.check.run import input_kind, load_urdf
+    from xacrokit.check.checker import input_kind, load_urdf
 
     return load_urdf(path, input_kind(path), None, None, {})[0]
 

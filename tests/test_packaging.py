@@ -45,7 +45,7 @@ def test_wheel_contains_the_macro_library_and_data_packages(wheel):
     assert {"xacrokit/check/__init__.py", "xacrokit/check/run.py", "xacrokit/check/consumers.py"} <= names
     assert {"xacrokit/validate/__init__.py", "xacrokit/validate/bodies.py", "xacrokit/validate/schema.py"} <= names
     entry_points = next(n for n in names if n.endswith("entry_points.txt"))
-    assert "gen-robot = xacrokit.cli:main" in zipfile.ZipFile(wheel).read(entry_points).decode()
+    assert "gen-robot = xacrokit.cli.app:main" in zipfile.ZipFile(wheel).read(entry_points).decode()
 
 
 def test_installed_wheel_finds_its_macros_and_expands_the_demo(wheel, tmp_path):

@@ -12,7 +12,7 @@ import pytest
 
 from conftest import REPO, ROBOT_EXAMPLES, SCENE_EXAMPLES, gen_robot
 from xacrokit.errors import XacrokitError
-from xacrokit.render_png import render
+from xacrokit.view.picture import render
 
 UR5 = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
 

@@ -11,14 +11,14 @@ import pytest
 
 from browser import browser_only, open_page, pinocchio_poses, requests_made
 from conftest import REPO, ROBOT_EXAMPLES, SCENE_EXAMPLES, gen_robot
-from xacrokit.inputs import declared
-from xacrokit.viewer import page, robot_json
+from xacrokit.reader.robot_source import declared
+from xacrokit.view.page import page, robot_json
 
 
 @browser_only
 @pytest.mark.parametrize("example", [*ROBOT_EXAMPLES, *SCENE_EXAMPLES], ids=lambda p: p.stem)
 def test_every_example_opens_offline_and_its_kinematics_are_pinocchios(browser, example, tmp_path):
-    from xacrokit.check.run import input_kind, load_urdf
+    from xacrokit.check.checker import input_kind, load_urdf
 
     html = tmp_path / f"{example.stem}.html"
     html.write_text(page(example), encoding="utf-8")
@@ -187,7 +187,7 @@ def test_a_sizing_motion_plays_with_its_torque_plot(browser, tmp_path):
     html = tmp_path / "motion.html"
     result = gen_robot("view", robot, "--sizing", REPO / "examples" / "sizing" / "planar_2dof_payload.yaml", "-o", html)
     assert result.returncode == 0, result.stderr
-    from xacrokit.check.run import input_kind, load_urdf
+    from xacrokit.check.checker import input_kind, load_urdf
 
     urdf = load_urdf(robot, input_kind(robot), None, None, {})[0]
     open_page(browser, html)

@@ -1,9 +1,9 @@
 """The check stage: a strict verifier for any URDF, xacro document or spec (see :func:`check`).
 
-Modules: ``run`` (check, input_kind), ``document`` (the URDF reader), one module per rule family holding its rules and
-their rows of the table (``numbers``, ``structure``, ``joints``, ``inertia``, ``references``, ``spec``), ``consumers``
-(the independent consumers), ``rules`` (the whole table, RULES), ``findings`` (Finding, CheckReport) and ``report``
-(the text form).
+Modules: ``checker`` (check), ``urdf_document`` (the URDF as check reads it), one module per rule family holding its
+rules and their rows of the table (``number_rules``, ``structure_rules``, ``joint_rules``, ``inertia_rules``,
+``reference_rules``, ``sensor_rules``, ``spec_rules``), ``consumers`` (the independent consumers), ``rule_table`` (the
+whole table, RULES), ``findings`` (Finding, CheckReport) and ``text_report`` (the text form).
 
 The names below load on first use: ``python -m xacrokit.check.consumers`` runs in a subprocess per consumer, and
 importing this package must not load that module (nor the rules) before it runs.
@@ -15,16 +15,16 @@ from importlib import import_module
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
+    from .checker import check, input_kind
     from .findings import CheckReport, Finding
-    from .rules import RULES
-    from .run import check, input_kind
+    from .rule_table import RULES
 
 __all__ = ["RULES", "CheckReport", "Finding", "check", "input_kind"]
 
 _LAZY = {
-    "check": "run",
-    "input_kind": "run",
-    "RULES": "rules",
+    "check": "checker",
+    "input_kind": "checker",
+    "RULES": "rule_table",
     "CheckReport": "findings",
     "Finding": "findings",
 }
@@ -32,7 +32,7 @@ _LAZY = {
 
 def __getattr__(name: str) -> Any:
     if name in _LAZY:
-        import_module(f"{__name__}.rules")  # (every rule's row entered before a finding is made or named)
+        import_module(f"{__name__}.rule_table")  # (every rule's row entered before a finding is made or named)
         value = getattr(import_module(f"{__name__}.{_LAZY[name]}"), name)
         globals()[name] = value
         return value

@@ -22,8 +22,8 @@ from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-from ..bounded import Bounds, ChildFailed, OutOfBounds, start_bounded
 from ..errors import XacrokitError
+from ..expand.bounded_child import Bounds, ChildFailed, OutOfBounds, start_bounded
 from .findings import ConsumerResult, Finding, rule_table, severity
 
 RULES = rule_table(
@@ -396,7 +396,7 @@ def _ascii_stl(path: Path) -> bool:
 def _with_mesh_paths(path: str, packages: Mapping[str, str]) -> str:
     from lxml import etree
 
-    from ..packages import find_package
+    from ..shared.ros_packages import find_package
 
     root = _read(Path(path).read_bytes())
     for mesh in root.iter("mesh"):

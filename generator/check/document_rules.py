@@ -8,14 +8,14 @@ import os
 from collections.abc import Mapping
 from pathlib import Path
 
-from .document import Doc, parse_robot
 from .findings import Finding
-from .inertia import inertia_rules
-from .joints import joint_rules
-from .numbers import geometry_rules, number_rules
-from .references import prefix_rules, reference_rules
-from .sensors import sensor_rules
-from .structure import name_rules, structure_rules, xacro_rules
+from .inertia_rules import inertia_rules
+from .joint_rules import joint_rules
+from .number_rules import geometry_rules, number_rules
+from .reference_rules import prefix_rules, reference_rules
+from .sensor_rules import sensor_rules
+from .structure_rules import name_rules, structure_rules, xacro_rules
+from .urdf_document import Doc, parse_robot
 
 
 def document_rules(

@@ -1,7 +1,7 @@
 """What a check says: findings, the consumers' verdicts, the report holding both, and the rule table they name.
 
 Each rule family's module keeps its rows of the table beside its code and enters them here with :func:`rule_table`;
-a finding reads its rule's name and severity from there. ``xacrokit.check.rules.RULES`` lists every row in order.
+a finding reads its rule's name and severity from there. ``xacrokit.check.rule_table.RULES`` lists every row in order.
 """
 
 from __future__ import annotations

@@ -16,8 +16,8 @@ import jinja2
 from markupsafe import Markup
 
 from ..model import Box, Cylinder
-from ..resources import templates_dir
-from ..text import num, vec, xacro_text, xml_comment_text
+from ..shared.package_data import templates_dir
+from ..shared.value_text import num, vec, xacro_text, xml_comment_text
 
 MacroMode = Literal["copy", "find", "inline"]
 

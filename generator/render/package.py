@@ -21,11 +21,11 @@ from markupsafe import Markup
 
 from .. import __version__
 from ..emit import joint_element, link_element, robot_elements
-from ..gcpause import collector_paused
 from ..model import Box, Cylinder, Link, Mesh, Robot, Sphere, mount_joint_name
-from ..resources import macros_dir
-from ..sensors import XACRO_NAMESPACE, bridge_entries, sensor_element
-from ..text import command_text, comment_text, material_name, xacro_text
+from ..shared.gc_pause import collector_paused
+from ..shared.package_data import macros_dir
+from ..shared.sim_sensors import XACRO_NAMESPACE, bridge_entries, sensor_element
+from ..shared.value_text import command_text, comment_text, material_name, xacro_text
 from .control import controllers
 from .environment import MacroMode, RenderedFile, environment
 
@@ -113,7 +113,7 @@ def dh_table_yaml(robot: Robot, arm_index: int) -> str:
 
 def bridge_yaml(name: str, entries: list[dict[str, str]]) -> str:
     """config/NAME_bridge.yaml: ros_gz_bridge's parameter_bridge entries, /clock first, then ``entries`` (each
-    sensor's topics, :func:`xacrokit.sensors.bridge_entries`), Gazebo to ROS."""
+    sensor's topics, :func:`xacrokit.shared.sim_sensors.bridge_entries`), Gazebo to ROS."""
     clock = {
         "ros_topic_name": "clock",
         "gz_topic_name": "clock",

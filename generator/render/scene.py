@@ -16,10 +16,10 @@ from typing import Any
 import yaml
 
 from .. import __version__
-from ..gcpause import collector_paused
 from ..model import Instance, Origin, Scene
-from ..sensors import bridge_entries, topic_namespace
-from ..text import command_text, comment_text, xacro_text
+from ..shared.gc_pause import collector_paused
+from ..shared.sim_sensors import bridge_entries, topic_namespace
+from ..shared.value_text import command_text, comment_text, xacro_text
 from .control import controllers
 from .environment import MacroMode, RenderedFile, environment
 from .package import bridge_yaml, render_package

@@ -18,7 +18,7 @@ from ..load import PathKey, RawSpec, load_file
 from ..model import Robot, Scene, ThirdPartyMacro
 from ..resolve import origin as resolve_origin
 from ..resolve import resolve
-from ..resources import XACRO_KEYWORDS, schemas_dir
+from ..shared.package_data import XACRO_KEYWORDS, schemas_dir
 from ..validate import Quantities, SchemaValidator, inline_refs, schema_errors, validate
 from .plan import Planned, resolve_plan
 

@@ -16,7 +16,7 @@ from ..errors import SpecError, SpecErrors
 from ..load import PathKey, RawSpec
 from ..model import Instance, Origin, Robot, Scene, ThirdPartyMacro, mount_joint_name
 from ..resolve import carried_into
-from ..text import did_you_mean
+from ..shared.value_text import did_you_mean
 from .probe import probe_names
 
 

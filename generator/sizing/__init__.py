@@ -15,12 +15,12 @@ import os
 from collections.abc import Mapping, Sequence
 
 from ..errors import SpecErrors, XacrokitError
-from ..units import UnitError, parse_quantity
-from .file import Drive, Sizing, motion_of, name_errors, read_sizing
+from ..shared.units import UnitError, parse_quantity
 from .mobile import base_of
 from .motion import inverse_dynamics, joint_motions, trajectory
-from .report import SizeReport, format_text
-from .robot import GRAVITY, Load, Payload, add_loads, load_robot
+from .size_results import SizeReport, format_text
+from .sized_robot import GRAVITY, Load, Payload, add_loads, load_robot
+from .sizing_file import Drive, Sizing, motion_of, name_errors, read_sizing
 from .static import StaticPeak, static_peaks
 
 __all__ = [

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .robot import GRAVITY, SizingRobot
+from .sized_robot import GRAVITY, SizingRobot
 
 
 @dataclass(frozen=True)

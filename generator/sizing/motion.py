@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .robot import SizingRobot, configurations
+from .sized_robot import SizingRobot, configurations
 
 QUINTIC_SPEED = 15.0 / 8.0  # peak ds/du of 10u^3 - 15u^4 + 6u^5
 QUINTIC_ACCELERATION = 10.0 / math.sqrt(3.0)  # peak |d2s/du2|
@@ -252,7 +252,7 @@ def reach(
     kept within the joints' ranges; and the pose error left (m, and rad for the orientation)."""
     import pinocchio as pin
 
-    from ..kinematics import rpy_matrix
+    from ..shared.transforms import rpy_matrix
 
     model, data = robot.model, robot.model.createData()
     frame_id = model.getFrameId(frame)

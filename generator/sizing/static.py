@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .robot import SizingRobot
+from .sized_robot import SizingRobot
 
 SAMPLES_PER_JOINT = 256  # uniform random samples per moving joint (seeded: the same search every run), capped
 MAX_SAMPLES = 8192

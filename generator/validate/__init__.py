@@ -18,9 +18,9 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..errors import SpecError, SpecErrors
-from ..gcpause import collector_paused
 from ..load import PathKey, RawSpec
-from ..sensors import PRESETS, preset_body, resolve_sensor, sensor_problems
+from ..shared.gc_pause import collector_paused
+from ..shared.sim_sensors import PRESETS, preset_body, resolve_sensor, sensor_problems
 from .bodies import Body, bodies, parts
 from .extension import extension_body
 from .names import (

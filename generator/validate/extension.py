@@ -11,8 +11,8 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import SpecError
-from ..fileio import InputError, read_input
 from ..load import RawSpec
+from ..shared.input_files import InputError, read_input
 
 LIMIT = 4 * 1024 * 1024  # bytes: an extension of hand-added content, not a robot of its own
 SUFFIXES = (".xacro", ".xml", ".urdf")
@@ -23,7 +23,7 @@ def extension_body(raw: RawSpec, data: dict[str, Any]) -> tuple[str, list[SpecEr
     xacro evaluates nothing), and the errors of reading it."""
     from lxml import etree
 
-    from ..text import xacro_text
+    from ..shared.value_text import xacro_text
 
     name = data.get("extension")
     if name is None:

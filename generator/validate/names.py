@@ -11,10 +11,10 @@ from typing import Any
 from ..errors import SpecError
 from ..load import PathKey, RawSpec, json_path
 from ..model import MOVING, attach_joint_name
-from ..resources import PUBLIC_MACROS, XACRO_KEYWORDS
-from ..sensors import CAMERAS, optical_name, sensor_kind
-from ..text import did_you_mean
-from ..tree import Tree, cycles
+from ..shared.kinematic_tree import Tree, cycles
+from ..shared.package_data import PUBLIC_MACROS, XACRO_KEYWORDS
+from ..shared.sim_sensors import CAMERAS, optical_name, sensor_kind
+from ..shared.value_text import did_you_mean
 from .bodies import Body, geometries
 
 # The robot name becomes a xacro macro name: it must not shadow a library macro or a xacro keyword.

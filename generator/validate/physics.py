@@ -12,7 +12,7 @@ from typing import Any
 from ..errors import SpecError
 from ..load import PathKey, RawSpec
 from ..model import AXIAL, LIMITED
-from ..physics import tensor, tensor_problem
+from ..shared.solid_inertia import tensor, tensor_problem
 from .bodies import Body, geometries
 
 AXIS_LENGTHS = (1e-9, 1e9)  # what an axis may measure before it is normalised (resolve divides by its length)

@@ -8,11 +8,11 @@ import math
 from typing import Any
 
 from ..errors import SpecError
-from ..kinematics import rotation_rpy
 from ..load import PathKey, RawSpec
-from ..materials import MATERIALS, find_material, material_key
-from ..text import did_you_mean
-from ..units import Kind, UnitError, parse_quantity, plain_number
+from ..shared.materials import MATERIALS, find_material, material_key
+from ..shared.transforms import rotation_rpy
+from ..shared.units import Kind, UnitError, parse_quantity, plain_number
+from ..shared.value_text import did_you_mean
 from .bodies import bodies, geometries, parts
 from .physics import AXIS_LENGTHS, implausible
 
@@ -204,7 +204,7 @@ class Quantities:
 
     def density(self, item: dict[str, Any], path: PathKey) -> None:
         """A body's ``density``: kg/m^3, a string with a unit ('2.7 g/cm3'), or the name of a material of
-        :mod:`xacrokit.materials` ('aluminium_6061'); > 0."""
+        :mod:`xacrokit.shared.materials` ('aluminium_6061'); > 0."""
         if "density" not in item:
             return
         value = item["density"]

@@ -17,7 +17,7 @@ import jsonschema
 
 from ..errors import SpecError
 from ..load import PathKey, RawSpec
-from ..resources import schemas_dir
+from ..shared.package_data import schemas_dir
 
 
 @cache

@@ -21,11 +21,11 @@ from typing import Any
 import numpy as np
 
 from ..errors import SpecError
-from ..kinematics import dh_body_end, rpy_matrix
 from ..load import PathKey, RawSpec
-from ..meshes import MESH_SUFFIXES, MeshError, MeshSolid, is_relative, mesh_path, mesh_solid
 from ..model import DEFAULT_ROW_RADIUS
-from ..physics import capsule_volume, tube_volume
+from ..shared.mesh_solids import MESH_SUFFIXES, MeshError, MeshSolid, is_relative, mesh_path, mesh_solid
+from ..shared.solid_inertia import capsule_volume, tube_volume
+from ..shared.transforms import dh_body_end, rpy_matrix
 from .bodies import Body, geometries
 
 DENSEST = 22_590.0  # kg/m^3: osmium, the densest element

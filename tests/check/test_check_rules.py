@@ -64,8 +64,8 @@ def test_a_moved_link_may_leave_its_mass_to_links_fixed_to_it(tmp_path):
 def test_k001_catches_a_urdf_that_does_not_follow_its_dh_table(tmp_path):
     from lxml import etree
 
-    from xacrokit.check.document import Doc
-    from xacrokit.check.spec import kinematics_rules
+    from xacrokit.check.spec_rules import kinematics_rules
+    from xacrokit.check.urdf_document import Doc
     from xacrokit.pipeline import build_robot, expand_package
     from xacrokit.render import render_package
 

@@ -13,8 +13,8 @@ from test_mjcf import compare_dynamics
 
 from realworld import VERDICTS, corpus_or_skip
 from xacrokit.errors import XacrokitError
-from xacrokit.inputs import robot_text
-from xacrokit.mjcf import export_mjcf, write_export
+from xacrokit.export.mjcf import export_mjcf, write_export
+from xacrokit.reader.robot_source import robot_text
 
 mujoco = pytest.importorskip("mujoco")
 FILES = yaml.safe_load(VERDICTS.read_text(encoding="utf-8"))["files"]

@@ -6,15 +6,14 @@ reasons the importer gives, counted here so that a change in either shows."""
 from __future__ import annotations
 
 import collections
-from pathlib import Path
 
 from test_import import compare
 
 import xacrokit
 from realworld import corpus_or_skip
 from xacrokit.errors import SpecErrors
-from xacrokit.importer import import_robot, spec_yaml
-from xacrokit.inputs import robot_text
+from xacrokit.importer.urdf_to_spec import import_robot, spec_yaml
+from xacrokit.reader.robot_source import robot_text
 
 
 def test_the_importable_real_robots_come_back_as_the_same_robots(tmp_path):
@@ -32,7 +31,7 @@ def test_the_importable_real_robots_come_back_as_the_same_robots(tmp_path):
         spec = tmp_path / f"s{index}" / "robot.yaml"
         for relative, source in imported.meshes.items():  # (what gen-robot import -o does)
             (spec.parent / relative).parent.mkdir(parents=True, exist_ok=True)
-            (spec.parent / relative).write_bytes(Path(source).read_bytes())
+            (spec.parent / relative).write_bytes(source)
         spec.parent.mkdir(exist_ok=True)
         spec.write_text(spec_yaml(imported, robot.key), encoding="utf-8")
         try:

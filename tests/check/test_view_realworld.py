@@ -14,8 +14,8 @@ from lxml import etree
 
 from browser import open_page, pinocchio_poses, requests_made
 from realworld import VERDICTS, RobotFile, corpus_or_skip
-from xacrokit.inputs import mesh_resolver, robot_text
-from xacrokit.viewer import page, robot_json
+from xacrokit.reader.robot_source import mesh_resolver, robot_text
+from xacrokit.view.page import page, robot_json
 
 FILES = yaml.safe_load(VERDICTS.read_text(encoding="utf-8"))["files"]
 

@@ -1,6 +1,6 @@
-"""Every class of bad input (xacrokit.hostile, re-exported by xacrokit.testing) gives its documented outcome through
-the command line: exit 2 with a message (located for specs: the line of the bad value), nothing written, never the
-internal-error exit 70 nor a traceback. The finite classes are tried in full; docs/development.md (Bad inputs) has
+"""Every class of bad input (xacrokit.testing.hostile, re-exported by xacrokit.testing) gives its documented outcome
+through the command line: exit 2 with a message (located for specs: the line of the bad value), nothing written, never
+the internal-error exit 70 nor a traceback. The finite classes are tried in full; docs/development.md (Bad inputs) has
 the table and the counts."""
 
 from __future__ import annotations
@@ -14,14 +14,21 @@ from pathlib import Path
 import pytest
 from hypothesis import HealthCheck, given, settings
 
-import xacrokit.cli
-from xacrokit.hostile import ARGUMENT_CASES, NUMBER_FIELDS, SPEC_TEMPLATE, STRUCTURE_CASES, XACRO_CASES, XACRO_HEAD
+import xacrokit.cli.app
 from xacrokit.testing import (
     HOSTILE_NUMBERS,
     HOSTILE_PATHS,
     hostile_spec_texts,
     make_hostile_path,
     spec_text,
+)
+from xacrokit.testing.hostile import (
+    ARGUMENT_CASES,
+    NUMBER_FIELDS,
+    SPEC_TEMPLATE,
+    STRUCTURE_CASES,
+    XACRO_CASES,
+    XACRO_HEAD,
 )
 
 
@@ -30,7 +37,7 @@ def run(argv: list[str]) -> tuple[int, str]:
     err = io.StringIO()
     with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
         try:
-            code = xacrokit.cli.main([str(word) for word in argv])
+            code = xacrokit.cli.app.main([str(word) for word in argv])
         except SystemExit as exc:  # (argparse's usage errors)
             code = exc.code if isinstance(exc.code, int) else 2
     return code, err.getvalue()

@@ -10,7 +10,7 @@ import sys
 
 import pytest
 
-import xacrokit.cli
+import xacrokit.cli.app
 from conftest import ROBOT_EXAMPLES, XACRO_HEADER, gen_robot
 
 SPEC = next(p for p in ROBOT_EXAMPLES if p.stem == "two_dof_arm")
@@ -85,8 +85,8 @@ def test_a_bug_of_ours_is_exit_70_with_a_short_report(monkeypatch, capsys):
     def broken(args):
         raise KeyError("no such thing")
 
-    monkeypatch.setattr(xacrokit.cli, "_cmd_schema", broken)
-    assert xacrokit.cli.main(["schema"]) == 70
+    monkeypatch.setattr(xacrokit.cli.app, "_cmd_schema", broken)
+    assert xacrokit.cli.app.main(["schema"]) == 70
     err = capsys.readouterr().err
     assert "gen-robot: internal error (a bug in xacrokit" in err and "KeyError: 'no such thing'" in err
     assert "Traceback" not in err and len(err.splitlines()) == 2
@@ -98,7 +98,8 @@ def test_output_must_be_a_plain_path(tmp_path, command):
     doc.write_text('<robot name="r"><link name="a"/></robot>', encoding="utf-8")
     source = doc if command == "expand" else SPEC
     words = ["expand", source] if command == "expand" else [source]
-    what = "a regular file" if command == "expand" else "a folder"
-    assert_refused(gen_robot(*words, "-o", "/dev/null"), f"-o /dev/null: it exists and is not {what}")
-    assert_refused(gen_robot(*words, "-o", ""), "-o needs a path")
+    device = "/dev/null: it is a device, FIFO or socket" if command == "expand" else "-o /dev/null: it exists and is"
+    assert_refused(gen_robot(*words, "-o", "/dev/null"), device)
+    empty = "not a file name to write" if command == "expand" else "-o needs a path"
+    assert_refused(gen_robot(*words, "-o", ""), empty)
     assert os.path.exists("/dev/null") and not os.path.isfile("/dev/null")  # (still the device)

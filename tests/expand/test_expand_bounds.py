@@ -1,5 +1,5 @@
-"""An untrusted document expands within bounds (xacrokit.bounded): what no check of an expression's text can bound,
-its time, memory and output, is bounded by a forked child; a trusted document is not bounded."""
+"""An untrusted document expands within bounds (xacrokit.expand.bounded_child): what no check of an expression's text
+can bound, its time, memory and output, is bounded by a forked child; a trusted document is not bounded."""
 
 from __future__ import annotations
 
@@ -9,10 +9,10 @@ import time
 
 import pytest
 
-import xacrokit.expansion as expansion
+import xacrokit.expand.xacro_expand as expansion
 from conftest import XACRO_HEADER, gen_robot
-from xacrokit.bounded import Bounds
 from xacrokit.errors import ExpandError
+from xacrokit.expand.bounded_child import Bounds
 
 # a macro that calls the level below it twice: 2**depth links
 DOUBLING = XACRO_HEADER + (

@@ -13,7 +13,7 @@ from lxml import etree
 
 import xacrokit
 from conftest import assert_physical_tensor, link_inertial, rpy_matrix, xacro_doc
-from xacrokit.physics import capsule_moments, tensor_problem
+from xacrokit.shared.solid_inertia import capsule_moments, tensor_problem
 
 positive = st.floats(min_value=1e-3, max_value=1e3, allow_nan=False, allow_infinity=False)
 length = st.floats(min_value=1e-3, max_value=10.0, allow_nan=False, allow_infinity=False)

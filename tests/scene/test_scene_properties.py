@@ -14,9 +14,9 @@ from scene_helpers import scene_file, urdf_root
 import xacrokit
 from conftest import mesh_package_at
 from xacrokit.check import check
-from xacrokit.kinematics import origin_transform
 from xacrokit.pipeline import expand_package
 from xacrokit.render import render_package
+from xacrokit.shared.transforms import origin_transform
 from xacrokit.testing import valid_specs
 
 

@@ -12,7 +12,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from conftest import expand_text
-from xacrokit.physics import (
+from xacrokit.shared.kinematic_tree import Tree, cycles
+from xacrokit.shared.solid_inertia import (
     box_moments,
     cylinder_moments,
     moments_problem,
@@ -21,8 +22,7 @@ from xacrokit.physics import (
     tensor,
     tensor_problem,
 )
-from xacrokit.text import num, vec, xacro_text
-from xacrokit.tree import Tree, cycles
+from xacrokit.shared.value_text import num, vec, xacro_text
 
 
 def integrated_moments(inside, half: tuple[float, float, float], mass: float, cells: int = 80) -> np.ndarray:

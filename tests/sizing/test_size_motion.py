@@ -20,7 +20,7 @@ from conftest import REPO, gen_robot
 from xacrokit.errors import SpecErrors
 from xacrokit.sizing import Payload, size
 from xacrokit.sizing.motion import Motion, Trajectory, inverse_dynamics, trajectory
-from xacrokit.sizing.robot import load_robot
+from xacrokit.sizing.sized_robot import load_robot
 
 I1, I2 = M1 * L1**2 / 12, M2 * L2**2 / 12  # (the bars' tensors about y, as planar_arm writes them)
 

@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 from conftest import REPO, gen_robot
 from xacrokit.errors import XacrokitError
 from xacrokit.sizing import GRAVITY, Load, Payload, parse_load, parse_payload, size
-from xacrokit.sizing.robot import load_robot
+from xacrokit.sizing.sized_robot import load_robot
 from xacrokit.sizing.static import torques
 
 # the course's two-link arm: links of 0.6 m and 0.4 m, each a uniform bar (its centre of mass at its middle)

@@ -15,8 +15,8 @@ from lxml import etree
 import xacrokit
 from conftest import REPO, gen_robot
 from xacrokit.check import check
-from xacrokit.starter import KINDS as STARTER_KINDS
-from xacrokit.starter import starter_text, write_starter
+from xacrokit.cli.starter import KINDS as STARTER_KINDS
+from xacrokit.cli.starter import starter_text, write_starter
 
 
 @pytest.mark.parametrize("kind", STARTER_KINDS)

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from xacrokit.units import UnitError, parse_quantity
+from xacrokit.shared.units import UnitError, parse_quantity
 
 
 @pytest.mark.parametrize(
@@ -209,7 +209,7 @@ def test_long_quantities_are_refused_and_long_numbers_read():
 def test_the_one_number_fast_path_reads_what_the_parser_reads(number, unit):
     """'150 mm' skips the parser (decimal arithmetic instead of fractions): both must give the same double, or the
     same refusal."""
-    from xacrokit.units import _parsed
+    from xacrokit.shared.units import _parsed
 
     name, kind = unit
     text = f"{number} {name}".strip()

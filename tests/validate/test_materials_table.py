@@ -1,12 +1,12 @@
-"""The built-in materials table (xacrokit.materials): every density physically plausible, every key in the table's own
-spelling, every alias pointing at a grade, every source naming something specific, look-up forgiving case, spaces and
-hyphens, and a few values checked against the published numbers they come from."""
+"""The built-in materials table (xacrokit.shared.materials): every density physically plausible, every key in the
+table's own spelling, every alias pointing at a grade, every source naming something specific, look-up forgiving case,
+spaces and hyphens, and a few values checked against the published numbers they come from."""
 
 from __future__ import annotations
 
 import pytest
 
-from xacrokit.materials import ALIASES, MATERIALS, find_material, material_key
+from xacrokit.shared.materials import ALIASES, MATERIALS, find_material, material_key
 
 # osmium, the densest element, is 22 590 kg/m^3; nothing solid a robot is built of is lighter than 1 kg/m^3
 LIGHTEST, DENSEST = 1.0, 22_590.0

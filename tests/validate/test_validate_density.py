@@ -14,8 +14,8 @@ from hypothesis import strategies as st
 
 from conftest import REPO, gen_robot
 from xacrokit.errors import SpecErrors
-from xacrokit.materials import MATERIALS, find_material
 from xacrokit.pipeline import build_robot
+from xacrokit.shared.materials import MATERIALS, find_material
 
 
 def robot_of(tmp_path, spec):

@@ -16,8 +16,8 @@ from scipy.spatial.transform import Rotation
 
 from conftest import REPO, gen_robot
 from xacrokit.errors import SpecErrors
-from xacrokit.kinematics import rpy_matrix
 from xacrokit.pipeline import build_robot
+from xacrokit.shared.transforms import rpy_matrix
 
 SPEC = {
     "robot": "rot",

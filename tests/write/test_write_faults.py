@@ -21,8 +21,8 @@ import pytest
 from write_helpers import contents, two_specs
 
 import xacrokit
-from xacrokit.fileio import TEMPORARY
-from xacrokit.write import MANIFEST
+from xacrokit.write.atomic import TEMPORARY
+from xacrokit.write.package_writer import MANIFEST
 
 SEED = 20261124
 
@@ -30,7 +30,7 @@ SEED = 20261124
 # "rename" (after its temporary file is written, before it replaces the file: leaves the temporary behind)
 KILLER = """
 import os, signal, sys
-import xacrokit.fileio as fileio, xacrokit.write as write
+import xacrokit.write.atomic as fileio, xacrokit.write.package_writer as write
 point, stage = int(os.environ["KILL_AT"]), os.environ["KILL_STAGE"]
 calls = []
 def maybe_die():
@@ -49,7 +49,7 @@ else:
         maybe_die()
         return replace(*args, **kwargs)
     fileio.os.replace = dying_replace
-from xacrokit.cli import main
+from xacrokit.cli.app import main
 sys.exit(main(sys.argv[1:]))
 """
 

@@ -13,8 +13,8 @@ import pytest
 from write_helpers import contents, two_specs
 
 import xacrokit
-import xacrokit.write as write_stage
-from xacrokit.write import MANIFEST, ConflictError
+import xacrokit.write.package_writer as write_stage
+from xacrokit.write.package_writer import MANIFEST, ConflictError
 
 
 class Killed(BaseException):

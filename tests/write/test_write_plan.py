@@ -14,7 +14,7 @@ import xacrokit
 from conftest import REPO, gen_robot, snapshot
 from xacrokit.errors import XacrokitError
 from xacrokit.render import RenderedFile
-from xacrokit.write import MANIFEST, ConflictError, plan, write
+from xacrokit.write.package_writer import MANIFEST, ConflictError, plan, write
 
 SPEC = REPO / "examples" / "robots" / "two_dof_arm.yaml"
 
@@ -141,7 +141,7 @@ def test_the_next_run_removes_the_temporary_files_a_killed_run_left(tmp_path):
 
 
 def test_a_second_writer_waits_for_the_first_then_stops_with_a_message(tmp_path, monkeypatch):
-    from xacrokit.write import package_lock
+    from xacrokit.write.package_writer import package_lock
 
     out = tmp_path / "pkg"
     with package_lock(out):  # the first writer holds the folder
@@ -160,10 +160,10 @@ def test_a_second_writer_waits_for_the_first_then_stops_with_a_message(tmp_path,
 def full_disk(monkeypatch):
     """Called, it makes the disk fill at the third file the write stage writes from then on; it returns the list of
     the paths the stage tried."""
-    import xacrokit.write
+    import xacrokit.write.package_writer
 
     def install() -> list:
-        real, calls = xacrokit.write.write_text_atomic, []
+        real, calls = xacrokit.write.package_writer.write_text_atomic, []
 
         def write_until_full(path, text):
             calls.append(path)
@@ -171,7 +171,7 @@ def full_disk(monkeypatch):
                 raise OSError(28, "No space left on device", str(path))
             real(path, text)
 
-        monkeypatch.setattr(xacrokit.write, "write_text_atomic", write_until_full)
+        monkeypatch.setattr(xacrokit.write.package_writer, "write_text_atomic", write_until_full)
         return calls
 
     return install
@@ -187,13 +187,15 @@ def test_a_fresh_package_that_cannot_be_written_leaves_nothing_behind(tmp_path, 
 def test_a_failed_fresh_package_removes_only_its_own_files(tmp_path, monkeypatch, full_disk):
     """Two packages made side by side in a new folder: the one that fails leaves the other whole (the review found
     that removing the new folder wholesale deleted a sibling run's package)."""
-    import xacrokit.write
+    import xacrokit.write.package_writer
 
     out = tmp_path / "new"
     xacrokit.generate(SPEC, out / "a")
     (out / "a" / "mine.txt").write_text("a user's file", encoding="utf-8")
     before = snapshot(out / "a")
-    monkeypatch.setattr(xacrokit.write, "_first_missing", lambda root: out)  # as if b's run had made new/ too
+    monkeypatch.setattr(
+        xacrokit.write.package_writer, "_first_missing", lambda root: out
+    )  # as if b's run had made new/ too
     full_disk()
     with pytest.raises(XacrokitError, match="what this run wrote is removed"):
         xacrokit.generate(SPEC, out / "b")
@@ -206,7 +208,7 @@ def test_a_run_that_waited_for_another_writer_of_a_new_folder_does_not_undo_its_
     """B starts when the folder does not exist, waits for the lock while A writes a package there, then fails: A's
     package is updated, not B's new one, so nothing of it is removed (the files of it that B replaced, the manifest
     among them, were deleted, and the next run of B found 11 conflicts)."""
-    import xacrokit.write as write_stage
+    import xacrokit.write.package_writer as write_stage
 
     spec, clean = two_specs(tmp_path)
     out = tmp_path / "pkg"
@@ -232,8 +234,8 @@ def test_a_run_that_waited_for_another_writer_of_a_new_folder_does_not_undo_its_
 def test_a_writer_that_finds_the_folder_busy_removes_nothing_of_it(tmp_path, monkeypatch):
     """A second writer that gives up waiting never held the folder: it does not undo it as a package it made (it
     removed the empty folders the first writer had just made, the package folder too, the first writer's lock on it)."""
-    import xacrokit.write as write_stage
-    from xacrokit.write import package_lock
+    import xacrokit.write.package_writer as write_stage
+    from xacrokit.write.package_writer import package_lock
 
     out = tmp_path / "pkg"
     monkeypatch.setattr(write_stage, "_first_missing", lambda root: out)  # (missing when the second run began)

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 import xacrokit
 from conftest import REPO, gen_robot, snapshot
 from xacrokit.render import RenderedFile
-from xacrokit.write import MANIFEST, ConflictError, write
+from xacrokit.write.package_writer import MANIFEST, ConflictError, write
 
 SPEC = REPO / "examples" / "robots" / "two_dof_arm.yaml"
 
@@ -155,7 +155,7 @@ def test_regenerating_touches_only_what_we_generated_and_nobody_edited(tmp_path_
 
 
 def test_a_folder_swapped_for_a_link_while_we_write_does_not_lead_removal_outside(tmp_path, monkeypatch):
-    import xacrokit.write as write_module
+    import xacrokit.write.package_writer as write_module
 
     out, outside = tmp_path / "pkg", tmp_path / "outside"
     write([RenderedFile("x/f.txt", "1"), RenderedFile("a.txt", "1")], out)

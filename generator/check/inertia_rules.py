@@ -1,0 +1,286 @@
+"""Inertia rules (I001-I007): the bodies that need mass have it, with a tensor a rigid body can have, of a size that
+fits the body and not a placeholder. Rigid bodies are judged as simulators see them: links joined by fixed joints are
+one body."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+
+from lxml import etree
+
+from ..shared.joint_types import MOVING
+from ..shared.solid_inertia import TOLERANCE, describe_problem, format_moments, moments_problem, principal_moments
+from .findings import Finding, rule_table
+from .urdf_document import Doc, read_float, read_triple
+
+RULES = rule_table(
+    {
+        "I001": (
+            "mass-positive",
+            "error",
+            "no mass is negative, and every body a joint moves has mass > 0: judged per rigid body, as simulators see "
+            "it (links joined by fixed joints are one body, so a massless link fixed to a massive one is fine)",
+        ),
+        "I002": (
+            "inertia-positive-definite",
+            "error",
+            "every link's inertia tensor is positive definite (MuJoCo checks each link before it fuses fixed ones), or "
+            "all zero (a point mass) on a link fixed to one whose tensor is",
+        ),
+        "I003": (
+            "inertia-triangle",
+            "error",
+            "every link's principal moments obey the triangle inequality (MuJoCo rejects a link's that do not)",
+        ),
+        "I004": (
+            "inertia-plausible",
+            "warning",
+            "inertia fits the collision geometry's size (within 100x) on a link with a tenth of its rigid body's mass "
+            "or more (collisions of 5 mm or less are markers, not the body's shape)",
+        ),
+        "I005": (
+            "inertia-placeholder",
+            "warning",
+            "the tensor is not an identity-like placeholder, on a link with a tenth of its rigid body's mass or more",
+        ),
+        "I006": (
+            "inertia-present",
+            "error",
+            "an <inertial> with a <mass> has an <inertia> (urdfdom rejects it without)",
+        ),
+        "I007": (
+            "base-mass",
+            "warning",
+            "the robot's base body (the root link and the links fixed to it) has a mass when it has geometry (a fixed "
+            "base needs none; a mobile one in a simulator does)",
+        ),
+    }
+)
+
+_INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+_PLACEHOLDERS = (1.0, 0.1, 0.01, 1e-3, 1e-4, 1e-5, 1e-6)
+
+
+def _geometry_extent(geometry: etree._Element | None) -> tuple[float, float, float] | None:
+    """Edge lengths of the geometry's own bounding box, or None when unknown (meshes)."""
+    if geometry is None:
+        return None
+    if (box := geometry.find("box")) is not None:
+        return read_triple(box, "size")
+    if (cylinder := geometry.find("cylinder")) is not None:
+        r, length = read_float(cylinder, "radius", math.nan), read_float(cylinder, "length", math.nan)
+        return (2 * r, 2 * r, length)
+    if (sphere := geometry.find("sphere")) is not None:
+        diameter = 2 * (read_float(sphere, "radius", math.nan) or math.nan)
+        return (diameter, diameter, diameter)
+    return None
+
+
+MARKER = 0.005  # m: a collision geometry no larger is a marker, not the body's shape (I004)
+SIGNIFICANT = 0.1  # of its rigid body's mass: a link below it is judged with its body, not on its own (I004, I005)
+ZERO_MOMENT = 1e-12  # kg*m^2: below it every principal moment is zero (a 1 g, 1 mm part has about 1e-10)
+
+
+class _Bodies:
+    """The rigid bodies of a document as consumers see them: links joined by fixed joints are one body (pinocchio,
+    MuJoCo and Gazebo fuse them), so mass and inertia are asked of the body, not of each link. A body is moved when
+    one of its links is the child of a moving joint; the body that holds the root link is the robot's base."""
+
+    def __init__(self, doc: Doc, masses: dict[str, float | None], solid: set[str]) -> None:
+        self.owner: dict[str, str] = {name: name for name in doc.link_names}  # union-find: link -> representative
+        for joint in doc.joints:
+            parent, child = joint.find("parent"), joint.find("child")
+            if joint.get("type") == "fixed" and parent is not None and child is not None:
+                self._join(parent.get("link", ""), child.get("link", ""))
+        self.members: dict[str, list[str]] = {}
+        for name in (link.get("name", "") for link in doc.links):  # (in the document's order: messages list them)
+            self.members.setdefault(self.body(name), []).append(name)
+        self.massive = {self.body(n) for n, m in masses.items() if m is not None and m > 0}
+        self.mass: dict[str, float] = {}  # body -> the sum of its links' masses
+        for n, m in masses.items():
+            if m is not None and m > 0 and math.isfinite(m):
+                self.mass[self.body(n)] = self.mass.get(self.body(n), 0.0) + m
+        self.solid = {self.body(n) for n in solid}  # bodies with a link whose tensor is positive definite
+
+    def body(self, name: str) -> str:
+        root = self.owner.setdefault(name, name)
+        while self.owner[root] != root:
+            self.owner[root] = self.owner[self.owner[root]]  # (path halving)
+            root = self.owner[root]
+        return root
+
+    def _join(self, a: str, b: str) -> None:
+        self.owner[self.body(a)] = self.body(b)
+
+    def others(self, name: str) -> str:
+        """The links fixed to ``name``, for messages: 'a, b' (at most four)."""
+        rest = [n for n in self.members.get(self.body(name), []) if n != name]
+        return ", ".join(rest[:4]) + (f" and {len(rest) - 4} more" if len(rest) > 4 else "")
+
+
+def inertia_rules(doc: Doc) -> Iterator[Finding]:
+    moved = {j.find("child").get("link") for j in doc.joints if j.get("type") in MOVING and j.find("child") is not None}
+    # (ixx, ixy, ixz, iyy, iyz, izz) of every link that has them; the principal moments of all the finite ones in one
+    # batched eigvalsh, consumed in link order below (per-link numpy calls cost ten times more)
+    entries = [_inertia_entries(link) for link in doc.links]
+    finite = [e is not None and all(math.isfinite(v) for v in e) for e in entries]
+    moments_in_order = iter(principal_moments([e for e in entries if e is not None and all(map(math.isfinite, e))]))
+    moments_of = [next(moments_in_order) if ok else None for ok in finite]
+    masses = {link.get("name", ""): _mass(link) for link in doc.links}
+    solid = {
+        link.get("name", "")
+        for link, moments in zip(doc.links, moments_of, strict=True)
+        if moments is not None and max(moments) >= ZERO_MOMENT and moments_problem(moments) is None
+    }
+    bodies = _Bodies(doc, masses, solid)
+    moved_bodies = {bodies.body(n) for n in moved}
+    said_base: set[str] = set()  # (I007 once per base body)
+    for link, entry, moments in zip(doc.links, entries, moments_of, strict=True):
+        name = link.get("name", "")
+        body = bodies.body(name)
+        mass = masses[name]
+        has_geometry = link.find("visual") is not None or link.find("collision") is not None
+        inertial = link.find("inertial")
+        if inertial is not None and inertial.find("mass") is not None and inertial.find("inertia") is None:
+            yield doc.finding(
+                "I006",
+                "link",
+                name,
+                "<inertial> has a mass but no <inertia>; urdfdom rejects it: "
+                "give <inertia ixx iyy izz ixy ixz iyz> (kg*m^2)",
+                link,
+            )
+        if mass is not None and not mass >= 0:
+            yield doc.finding(
+                "I001", "link", name, f"mass is {mass}; it must be > 0 kg (or 0 on a massless frame)", link
+            )
+            continue
+        if body not in bodies.massive:
+            if name in moved:
+                fixed = bodies.others(name)
+                what = f"neither it nor a link fixed to it ({fixed}) has a mass" if fixed else "it has no mass"
+                yield doc.finding(
+                    "I001",
+                    "link",
+                    name,
+                    f"it is moved by a joint but {what}: give it <inertial> with mass > 0 (kg) and its inertia "
+                    "(simulators cannot move a massless body; MuJoCo rejects it, even between two joints)",
+                    link,
+                )
+            elif has_geometry and body not in moved_bodies and body not in said_base:
+                said_base.add(body)
+                yield doc.finding(
+                    "I007",
+                    "link",
+                    name,
+                    "the robot's base has geometry but no mass anywhere (it or a link fixed to it): enough for a "
+                    "fixed base, but a simulator that lets the robot move (a mobile base in Gazebo) needs its mass",
+                    link,
+                )
+            continue
+        if entry is None or moments is None:
+            if entry is not None:
+                yield doc.finding("I002", "link", name, "the inertia tensor has unreadable entries", link)
+            continue
+        if max(abs(m) for m in moments) < ZERO_MOMENT:  # (a point mass, or a massless frame's zeros)
+            if mass and body not in bodies.solid and body in moved_bodies:
+                yield doc.finding(
+                    "I002",
+                    "link",
+                    name,
+                    f"mass {mass:g} kg with no rotational inertia (all principal moments below {ZERO_MOMENT:g} "
+                    "kg*m^2), and no link fixed to it has any: give the body its inertia",
+                    link,
+                )
+            continue
+        problem = _tensor_problem(moments)
+        if problem is not None:
+            # per link, not per rigid body: MuJoCo reads each link's tensor before it fuses fixed links, and rejects
+            # any that is not all zero and not a rigid body's (a part's tensor fused into a solid body included)
+            rule, said = problem
+            yield doc.finding(rule, "link", name, said, link)
+            continue
+        ixx, ixy, ixz, iyy, iyz, izz = entry
+        # a link of a tenth of its body's mass or less (an IMU frame on a trunk) changes the body's dynamics by little:
+        # a placeholder or an odd size there is no mistake worth a warning
+        if not (mass and mass >= SIGNIFICANT * bodies.mass.get(body, 0.0)):
+            continue
+        if ixy == ixz == iyz == 0 and ixx == iyy == izz and ixx in _PLACEHOLDERS:
+            yield doc.finding(
+                "I005",
+                "link",
+                name,
+                f"inertia is {ixx:g} * identity, a common placeholder; "
+                "compute it from the body (e.g. xacrokit's inertia macros)",
+                link,
+            )
+        yield from _plausibility(doc, link, name, mass, sum(moments))
+
+
+def _tensor_problem(moments: tuple[float, ...] | list[float]) -> tuple[str, str] | None:
+    """(rule, message) for principal moments no rigid body has, or None. Moments within rounding of zero (1e-9 of the
+    largest) are zero: a rod's or a sheet's tensor, which no real part has, is I002 like a negative moment."""
+    problem = moments_problem(moments)
+    if problem is None:
+        return None
+    if problem == "triangle-inequality":
+        return "I003", describe_problem(problem, moments) + " (a real body's always are; MuJoCo rejects it)"
+    shown = format_moments(moments)
+    if min(moments) < -max(ZERO_MOMENT, TOLERANCE * max(abs(m) for m in moments)):
+        return "I002", (
+            f"the inertia tensor has a negative principal moment ({shown} kg*m^2); every principal moment of a "
+            "body is > 0 (MuJoCo rejects it): the entries are wrong (a sign, or products of inertia where zeros were "
+            "meant?)"
+        )
+    return "I002", (
+        f"the inertia tensor has a principal moment of zero ({shown} kg*m^2): a thin rod's or a flat sheet's, "
+        "which no real part has; MuJoCo rejects it (write all six entries 0 for a point mass, or give the part its "
+        "thickness)"
+    )
+
+
+def _mass(link: etree._Element) -> float | None:
+    inertial = link.find("inertial")
+    return read_float(inertial.find("mass"), "value") if inertial is not None else None
+
+
+def _inertia_entries(link: etree._Element) -> tuple[float, ...] | None:
+    inertial = link.find("inertial")
+    inertia = inertial.find("inertia") if inertial is not None else None
+    return None if inertia is None else tuple(read_float(inertia, key, 0.0) for key in _INERTIA)
+
+
+def _plausibility(doc: Doc, link: etree._Element, name: str, mass: float, trace: float) -> Iterator[Finding]:
+    """Compare trace(I) with a solid box filling the collision geometry: m * diagonal^2 / 6, the box bounding every
+    collision geometry where it sits (several small spheres far apart make a large body)."""
+    low, high = [math.inf] * 3, [-math.inf] * 3
+    collisions = link.findall("collision")
+    for collision in collisions:
+        extent = _geometry_extent(collision.find("geometry"))
+        if extent is None or not all(math.isfinite(v) for v in extent):
+            return  # (a mesh, or an unreadable size: the body's size is not known)
+        if max(extent) <= MARKER:
+            return  # (a dummy collision, a 1 mm sphere some exporters write: it says nothing of the body's size)
+        origin = collision.find("origin")
+        centre = read_triple(origin, "xyz")
+        turned = any(v != 0 for v in read_triple(origin, "rpy")) if origin is not None else False
+        radius = 0.5 * math.sqrt(sum(v * v for v in extent))  # (turned: the bounding sphere holds it in any pose)
+        half = (radius, radius, radius) if turned else tuple(v / 2 for v in extent)
+        for axis in range(3):
+            low[axis] = min(low[axis], centre[axis] - half[axis])
+            high[axis] = max(high[axis], centre[axis] + half[axis])
+    if not collisions or not all(math.isfinite(v) for v in (*low, *high)):
+        return
+    diagonal_sq = sum((high[axis] - low[axis]) ** 2 for axis in range(3))
+    expected = mass * diagonal_sq / 6.0
+    if expected > 0 and not 1e-2 <= trace / expected <= 1e2:
+        yield doc.finding(
+            "I004",
+            "link",
+            name,
+            f"inertia (trace {trace:.3g} kg*m^2) is {trace / expected:.3g} times "
+            f"that of a solid body filling the collision geometry ({expected:.3g}); "
+            "a units mistake (mm for m, g for kg)?",
+            link,
+        )

@@ -1,0 +1,189 @@
+"""Joint rules (J001-J012): a joint's type, limits, axis, mimic, dynamics and safety controller are ones consumers
+accept."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+
+from lxml import etree
+
+from ..shared.joint_types import AXIAL, JOINT_TYPES, LIMITED, MOVING
+from ..shared.kinematic_tree import cycles
+from .findings import Finding, Severity, rule_table
+from .urdf_document import Doc, read_float, read_triple
+
+RULES = rule_table(
+    {
+        "J001": (
+            "limit-present",
+            "error",
+            "revolute and prismatic joints have <limit> (urdfdom rejects them without); a <limit> without lower and "
+            "upper is a warning (URDF reads them as 0: the joint cannot move)",
+        ),
+        "J002": ("limit-order", "error", "lower <= upper"),
+        "J003": (
+            "limit-effort",
+            "error",
+            "a <limit> has an effort, not negative (urdfdom rejects it without, pinocchio a negative one); 0 is a "
+            "warning (Gazebo then applies no force)",
+        ),
+        "J004": (
+            "limit-velocity",
+            "error",
+            "a <limit> has a velocity, not negative (urdfdom rejects it without, pinocchio a negative one); 0 is a "
+            "warning (Gazebo then holds the joint still)",
+        ),
+        "J005": (
+            "continuous-limit",
+            "error",
+            "a continuous joint's <limit>, when given (it is optional), has effort and velocity (urdfdom rejects it "
+            "without)",
+        ),
+        "J006": ("axis-nonzero", "error", "a joint's axis is not the zero vector"),
+        "J007": ("axis-unit", "warning", "a joint's axis has unit length"),
+        "J008": (
+            "mimic-target",
+            "error",
+            "<mimic> names an existing joint, not itself and not round a cycle; a target of another kind (a fixed "
+            "joint, or prismatic for revolute) is a warning",
+        ),
+        "J009": (
+            "dynamics-present",
+            "info",
+            "moving joints have <dynamics> (damping, friction; optional in URDF: without it simulators assume none)",
+        ),
+        "J010": ("safety-inside-limits", "error", "safety_controller soft limits lie inside the hard limits"),
+        "J011": ("joint-type", "error", "a joint's type is one URDF knows"),
+        "J012": (
+            "floating-at-root",
+            "warning",
+            "a floating joint hangs from the root link (simulators reject deeper ones)",
+        ),
+        "J013": (
+            "limit-range",
+            "warning",
+            "a revolute or prismatic joint's lower and upper limits differ (equal ones leave it no motion: a fixed "
+            "joint says so)",
+        ),
+    }
+)
+
+
+def _mimic_cycles(doc: Doc) -> Iterator[Finding]:
+    """J008 for mimic joints that follow each other round a loop (none of them moves by itself)."""
+    mimics = {j.get("name", ""): m.get("joint", "") for j in doc.joints if (m := j.find("mimic")) is not None}
+    for loop in cycles(mimics):
+        if len(loop) > 1:  # (a joint that mimics itself has its own message)
+            message = f"mimic joints {' -> '.join([*loop, loop[0]])} form a cycle: none of them moves by itself"
+            yield doc.finding("J008", "joint", loop[0], message, doc.joint_by_name.get(loop[0]))
+
+
+def joint_rules(doc: Doc) -> Iterator[Finding]:
+    types = {j.get("name", ""): j.get("type", "") for j in doc.joints}
+    yield from _mimic_cycles(doc)
+    children = {j.find("child").get("link") for j in doc.joints if j.find("child") is not None}
+    for joint in doc.joints:
+        name, kind = joint.get("name", ""), joint.get("type", "")
+
+        def found(
+            rule: str, message: str, name: str = name, joint: etree._Element = joint, level: Severity | None = None
+        ) -> Finding:
+            return doc.finding(rule, "joint", name, message, joint, level)
+
+        if kind not in JOINT_TYPES:
+            yield found("J011", f"type {kind!r} is not a URDF joint type ({', '.join(JOINT_TYPES)})")
+            continue
+        limit = joint.find("limit")
+        if kind in LIMITED:
+            lower, upper = read_float(limit, "lower"), read_float(limit, "upper")
+            if limit is None:
+                yield found("J001", f"a {kind} joint needs <limit lower upper effort velocity>: urdfdom rejects it")
+            elif lower is None or upper is None:
+                missing = " and ".join(k for k, v in (("lower", lower), ("upper", upper)) if v is None)
+                yield found(
+                    "J001",
+                    f"<limit> has no {missing}; URDF reads a missing one as 0, so the joint's range is "
+                    f"[{lower or 0.0:g}, {upper or 0.0:g}]: give both (or make an endless joint continuous)",
+                    level="warning",
+                )
+            elif not lower <= upper:
+                yield found("J002", f"limit lower ({lower}) is greater than upper ({upper}); swap them")
+            elif lower == upper:
+                yield found(
+                    "J013", f"limit lower and upper are both {lower}: the joint cannot move; make it a fixed joint"
+                )
+        if (
+            kind == "continuous"
+            and limit is not None
+            and (limit.get("effort") is None or limit.get("velocity") is None)
+        ):
+            missing = " and ".join(k for k in ("effort", "velocity") if limit.get(k) is None)
+            yield found(
+                "J005",
+                f"<limit> has no {missing}; urdfdom rejects a limit without them: give effort and velocity, or leave "
+                "the <limit> out (a passive continuous joint needs none)",
+            )
+        if kind in MOVING and limit is not None:
+            for rule, key, unit, then in (
+                ("J003", "effort", "N*m or N", "Gazebo applies no force to the joint"),
+                ("J004", "velocity", "rad/s or m/s", "Gazebo holds the joint still"),
+            ):
+                value = read_float(limit, key)
+                if value is not None and value < 0:  # pinocchio rejects it (its lower bound, -value, is above it)
+                    yield found(
+                        rule, f"limit {key} is {value:g}; pinocchio rejects a negative one: give one > 0 ({unit})"
+                    )
+                elif value == 0:
+                    yield found(
+                        rule,
+                        f"limit {key} is 0: {then} (a placeholder?); give the real one > 0 ({unit})",
+                        level="warning",
+                    )
+                elif value is None and kind != "continuous":
+                    yield found(rule, f"<limit> has no {key}; urdfdom rejects it: give one > 0 ({unit})")
+        if kind in AXIAL:
+            axis = read_triple(joint.find("axis"), "xyz", "1 0 0")
+            norm = math.hypot(*axis)
+            if not math.isfinite(norm) or norm == 0:
+                yield found(
+                    "J006",
+                    f"axis {joint.find('axis').get('xyz') if joint.find('axis') is not None else ''!r}"
+                    " is zero or unreadable; give a direction such as '0 0 1'",
+                )
+            elif abs(norm - 1.0) > 1e-6:
+                yield found("J007", f"axis has length {norm:.6g}; consumers normalise it, write the unit vector")
+        if kind in MOVING and joint.find("dynamics") is None and joint.find("mimic") is None:
+            yield found("J009", "no <dynamics damping friction>: simulators assume none (URDF makes it optional)")
+        if kind == "floating" and joint.find("parent") is not None and joint.find("parent").get("link") in children:
+            yield found(
+                "J012",
+                "floating joint below the root link; MuJoCo and most simulators accept a floating "
+                "joint only as the base: make it fixed, or the robot's root",
+            )
+        mimic = joint.find("mimic")
+        if mimic is not None:
+            target = mimic.get("joint", "")
+            if target == name:
+                yield found("J008", "a joint cannot mimic itself")
+            elif target not in types:
+                yield found("J008", f"mimics {target!r}, which is not a joint of this robot")
+            elif (
+                types[target] not in MOVING
+                or kind not in MOVING
+                or (types[target] == "prismatic") != (kind == "prismatic")
+            ):
+                yield found(
+                    "J008",
+                    f"mimics {target!r} ({types[target]}) from a {kind} joint; consumers ignore such a mimic (both "
+                    "must move, and rotate or slide alike): remove it, or fix the joint types",
+                    level="warning",
+                )
+        safety = joint.find("safety_controller")
+        if safety is not None and limit is not None and kind in LIMITED:
+            lower, upper = read_float(limit, "lower"), read_float(limit, "upper")
+            soft_lower, soft_upper = read_float(safety, "soft_lower_limit"), read_float(safety, "soft_upper_limit")
+            if lower is not None and soft_lower is not None and soft_lower < lower:
+                yield found("J010", f"soft_lower_limit {soft_lower} is below the hard lower limit {lower}")
+            if upper is not None and soft_upper is not None and soft_upper > upper:
+                yield found("J010", f"soft_upper_limit {soft_upper} is above the hard upper limit {upper}")

@@ -1,0 +1,498 @@
+"""``gen-robot``: a thin command-line shell over the public Python API.
+
+Exit codes (the same words in ``gen-robot --help``, one list: :data:`EXIT_CODES`): 0 success; 1 errors found by
+``check`` (its warnings too with --strict) or files refused because they were edited since generated (generate,
+fleet); 2 bad input or usage; 70 internal error (a bug; reported in two lines); 130 interrupted; 141 output closed.
+Errors are one located message, never a traceback.
+Imports stay light here: heavy libraries load inside the commands that use them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import difflib
+import os
+import re
+import sys
+from collections.abc import Iterator, Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING, NoReturn
+
+from .. import __version__
+from ..errors import XacrokitError
+from ..expand.expression_guard import trusting
+from ..shared.progress_line import Progress
+from .arguments import add_force_option, fleet_count, parse_mappings, parse_packages, require_plain_output, spacing
+from .subcommands import add_commands
+
+if TYPE_CHECKING:
+    from ..pipeline import GenerateResult
+
+
+def _cmd_expand(args: argparse.Namespace) -> int:
+    from ..expand.xacro_expand import expand_file
+
+    urdf = expand_file(args.file, parse_mappings(args.mappings), package_paths=parse_packages(args.package))
+    if args.output is not None:
+        from ..write.outputs import output_file
+
+        output_file(Path(args.output), urdf, force=args.force)
+    else:
+        sys.stdout.write(urdf)
+    return 0
+
+
+@contextlib.contextmanager
+def _progress() -> Iterator[Progress]:
+    """A progress line on stderr while the work runs (on a terminal only), cleared before the command's output."""
+    progress = Progress()
+    try:
+        yield progress
+    finally:
+        progress.done()
+
+
+def _cmd_generate(args: argparse.Namespace) -> int:
+    from ..pipeline import generate
+
+    if args.output is not None:
+        require_plain_output(args.output, folder=True)
+
+    with _progress() as progress:
+        result = generate(
+            args.spec,
+            args.output,
+            dry_run=args.dry_run,
+            force=args.force,
+            macros=args.macros,
+            via_xacro=args.via_xacro,
+            progress=progress,
+        )
+    _print_warnings(result)
+    width = max(len(a.action) for a in result.actions)
+    for action in result.actions:
+        note = f"  ({action.reason})" if action.reason else ""
+        print(f"{action.action:<{width}}  {action.path}{note}")
+    print(
+        f"{result.package}: {_written(result, args.dry_run)}" + (" (dry run: nothing written)" if args.dry_run else "")
+    )
+    return _conflicts_exit(result)
+
+
+def _print_warnings(result: GenerateResult) -> None:
+    """Valid values that look like a units mistake, located; before the plan, so that a long plan does not hide
+    them."""
+    for warning in result.warnings:
+        print(f"gen-robot: warning: {warning}", file=sys.stderr)
+
+
+def _conflicts_exit(result: GenerateResult) -> int:
+    """A dry run plans conflicts instead of stopping at them: say what the real run would refuse (exit code 1)."""
+    from ..write.package_writer import ConflictError
+
+    conflicts = [a for a in result.actions if a.action == "conflict"]
+    if not conflicts:
+        return 0
+    print(f"gen-robot: error: {ConflictError(result.output, conflicts, planned=True)}", file=sys.stderr)
+    return ConflictError.exit_code
+
+
+def _written(result: GenerateResult, dry_run: bool) -> str:
+    """'wrote 3 of 12 files in DIR', and what was removed or kept of the files no longer generated."""
+    counts = {name: sum(a.action == name for a in result.actions) for name in ("remove", "keep")}
+    written = sum(a.action in ("create", "update", "overwrite") for a in result.actions)
+    generated = len(result.actions) - counts["remove"] - counts["keep"]
+    text = f"{'would write' if dry_run else 'wrote'} {written} of {generated} files in {result.output}"
+    if counts["remove"]:
+        text += f"; {'would remove' if dry_run else 'removed'} {counts['remove']} no longer generated"
+    if counts["keep"]:
+        text += (
+            f"; {'would keep' if dry_run else 'kept'} {counts['keep']} no longer generated (edited, or not removable)"
+        )
+    return text
+
+
+def _cmd_fleet(args: argparse.Namespace) -> int:
+    from ..pipeline import generate_scene
+    from ..scene import fleet_scene
+
+    if args.output is not None:
+        require_plain_output(args.output, folder=True)
+    columns = None
+    if args.grid:
+        grid = re.fullmatch(r"([0-9]{1,6})x([0-9]{1,6})", args.grid.strip().lower())  # (ASCII digits: not ²x²)
+        if not grid or int(grid[1]) * int(grid[2]) < 1:
+            raise XacrokitError(f"--grid expects ROWSxCOLUMNS such as 2x5, got {args.grid!r}")
+        rows_text, columns_text = grid[1], grid[2]
+        if int(rows_text) * int(columns_text) < args.count:
+            raise XacrokitError(
+                f"--grid {args.grid} has {int(rows_text) * int(columns_text)} places for {args.count} robots"
+            )
+        columns = int(columns_text)
+    with _progress() as progress:
+        progress(f"checking {args.count} copies of {Path(args.spec).name}")
+        scene = fleet_scene(args.spec, args.count, columns=columns, spacing=args.spacing)
+        result = generate_scene(
+            scene,
+            args.output,
+            dry_run=args.dry_run,
+            force=args.force,
+            spec_name=Path(args.spec).name,
+            macros=args.macros,
+            via_xacro=args.via_xacro,
+            progress=progress,
+        )
+    _print_warnings(result)
+    print(
+        f"{scene.package}: {len(scene.instances)} robots r0_ .. r{len(scene.instances) - 1}_; "
+        + _written(result, args.dry_run)
+    )
+    return _conflicts_exit(result)
+
+
+def _cmd_new(args: argparse.Namespace) -> int:
+    from .starter import write_starter
+
+    path = write_starter(args.name, kind=args.kind, output=args.output)
+    print(f"wrote {path}; generate its package with: gen-robot {path}")
+    return 0
+
+
+def _cmd_check(args: argparse.Namespace) -> int:
+    import json
+
+    from ..check import check
+    from ..check.text_report import format_text
+
+    if args.consumers in ("all", None):
+        consumers = None
+    elif args.consumers == "none":
+        consumers = []
+    else:
+        consumers = [c.strip() for c in args.consumers.split(",") if c.strip()]
+    with _progress() as progress:
+        report = check(
+            args.path,
+            parse_mappings(args.mappings),
+            prefix=args.prefix,
+            consumers=consumers,
+            package_paths=parse_packages(args.package),
+            progress=progress,
+        )
+    if args.json:
+        sys.stdout.write(json.dumps(report.to_dict(), indent=2) + "\n")
+    else:
+        colour = sys.stdout.isatty() and "NO_COLOR" not in os.environ
+        sys.stdout.write(format_text(report, colour=colour, strict=args.strict))
+    return report.exit_code(strict=args.strict)
+
+
+def _cmd_schema(args: argparse.Namespace) -> int:
+    from ..shared.package_data import schemas_dir
+
+    sys.stdout.write((schemas_dir() / f"{args.kind}.schema.json").read_text(encoding="utf-8"))
+    return 0
+
+
+def _cmd_materials(args: argparse.Namespace) -> int:
+    from ..shared.materials import ALIASES, MATERIALS
+
+    width = max(len(name) for name in MATERIALS)
+    for name, material in MATERIALS.items():
+        print(f"{name:<{width}}  {material.density:>7g} kg/m^3  {material.grade}; {material.source}")
+    if ALIASES:
+        print("also: " + ", ".join(f"{alias} = {name}" for alias, name in ALIASES.items()))
+    return 0
+
+
+def _cmd_macros(args: argparse.Namespace) -> int:
+    from ..shared.package_data import PUBLIC_MACRO_FILES, macros_dir
+
+    if args.reference:
+        from ..shared.macro_banners import render_reference
+
+        sys.stdout.write(render_reference())
+        return 0
+    folder = macros_dir()
+    print(folder)
+    if args.verbose:
+        for name in PUBLIC_MACRO_FILES:
+            print(f"  $(find xacrokit)/macros/{name}  ->  {folder / name}")
+    return 0
+
+
+def _add_write_options(parser: argparse.ArgumentParser, default_output: str) -> None:
+    parser.add_argument("-o", "--output", help=f"package folder (default: ./{default_output})")
+    parser.add_argument("--dry-run", action="store_true", help="print what would be written; write nothing")
+    parser.add_argument("--force", action="store_true", help="overwrite files edited since they were generated")
+    parser.add_argument(
+        "--via-xacro",
+        action="store_true",
+        help="write urdf/NAME.urdf by expanding the package "
+        "with xacro instead of emitting it directly (the same robot; slower)",
+    )
+    parser.add_argument(
+        "--macros",
+        choices=("inline", "copy", "find"),
+        default="inline",
+        help="how the robot macro is written: inline (default) writes the links and joints as plain XML computed by "
+        "gen-robot, which xacro expands almost as fast as a plain URDF; copy calls the xacrokit library macros "
+        "and copies them into the package; find calls them through $(find xacrokit) (the package then depends "
+        "on xacrokit). All three describe the same robot",
+    )
+    parser.add_argument(
+        "--trust",
+        action="store_true",
+        help="evaluate every xacro expression of a scene's third-party macros, as xacro does (for macros that are "
+        "your own; by default, expressions that could reach Python's internals are refused: see docs/macros.md, "
+        "Untrusted documents)",
+    )
+
+
+def _add_xacro_options(parser: argparse.ArgumentParser) -> None:
+    # (default=[]: argparse otherwise calls an optional list of positionals required when the path is missing)
+    parser.add_argument(
+        "mappings", nargs="*", default=[], metavar="name:=value", help="values for the document's xacro:args"
+    )
+    parser.add_argument(
+        "--package",
+        action="append",
+        default=[],
+        metavar="NAME=PATH",
+        help="folder for $(find NAME) and package://NAME; repeatable",
+    )
+    parser.add_argument(
+        "--trust",
+        action="store_true",
+        help="evaluate every xacro expression, as xacro does (for your own documents; by default, expressions that "
+        "could reach Python's internals are refused: see docs/macros.md, Untrusted documents)",
+    )
+
+
+EXIT_CODES = (
+    "Exit codes: 0 success; 1 errors found (check; with --strict its warnings too) or files refused because they were "
+    "edited since generated (generate, fleet); 2 bad input or usage; 70 internal error (a bug: please report it); "
+    "130 interrupted; 141 output closed."
+)
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with one prefix for every error, as gen-robot's own errors have: ``gen-robot: error: ...`` (a
+    command's parser said ``gen-robot fleet: error: ...`` for its option errors; its usage line still names it)."""
+
+    def error(self, message: str) -> NoReturn:
+        self.print_usage(sys.stderr)
+        self.exit(2, f"gen-robot: error: {message}\n")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(
+        prog="gen-robot",
+        description="xacrokit: correct robot descriptions from a macro library and short YAML specs. "
+        "`gen-robot SPEC.yaml [options]` is short for `gen-robot generate SPEC.yaml [options]`.",
+        epilog=EXIT_CODES,
+    )
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND")
+
+    gen = commands.add_parser(
+        "generate",
+        help="turn a YAML robot spec into a ROS 2 description package (also: gen-robot SPEC.yaml)",
+        description="Validate SPEC, render the package NAME_description (xacro macro, entry, materials, Gazebo, "
+        "ros2_control, launch, RViz), write urdf/NAME.urdf (the robot expanding the package with xacro gives, "
+        "emitted directly; --via-xacro runs the real xacro), and write it all. Invalid specs are reported with "
+        "file:line:column and write nothing; files edited since they were generated are conflicts and stop the "
+        "write unless --force; files the last run generated and this one does not are removed unless edited.",
+    )
+    gen.add_argument("spec", help="the robot spec (YAML; see `gen-robot schema`)")
+    _add_write_options(gen, "NAME_description")
+    gen.set_defaults(handler=_cmd_generate)
+
+    fleet = commands.add_parser(
+        "fleet",
+        help="a scene of N copies of one robot, prefixed r0_ .. r{N-1}_, on a grid",
+        description="Generate the scene package NAME_fleet_description: --count copies of the robot of SPEC with "
+        "prefixes r0_, r1_, ... placed row by row on a grid in the world (x along a row, y across rows).",
+    )
+    fleet.add_argument("spec", help="the robot spec")
+    fleet.add_argument("--count", type=fleet_count, required=True, help="how many robots (1 to 1,000)")
+    fleet.add_argument("--grid", help="ROWSxCOLUMNS, e.g. 2x5 (default: a square grid)")
+    fleet.add_argument(
+        "--spacing",
+        type=spacing,
+        default=2.0,
+        help="distance between neighbours: metres, or with a unit such as '150 cm' (default 2.0)",
+    )
+    _add_write_options(fleet, "NAME_fleet_description")
+    fleet.set_defaults(handler=_cmd_fleet)
+
+    new = commands.add_parser(
+        "new", help="write a commented starter spec", description="Write NAME.yaml, a commented starter spec."
+    )
+    new.add_argument("name", help="robot name (letters, digits, _)")
+    new.add_argument(
+        "--kind", choices=("arm", "mobile", "humanoid"), default="arm", help="what to start from (default: arm)"
+    )
+    new.add_argument(
+        "-o",
+        "--output",
+        help="the spec file (.yaml), or a folder for NAME.yaml (default: ./NAME.yaml); missing folders are made; an "
+        "existing file is never overwritten",
+    )
+    new.set_defaults(handler=_cmd_new)
+
+    chk = commands.add_parser(
+        "check",
+        help="strictly verify a URDF, xacro document or spec (structure, joints, inertia, references, kinematics)",
+        description="Check PATH: a URDF, a xacro document (expanded with the name:=value arguments) or a spec "
+        "(generated in memory, never written). Our rules run first, then the independent consumers check_urdf, "
+        "pinocchio, yourdfpy and MuJoCo (when installed). Exit code 0 clean, 1 errors (or warnings with --strict), "
+        "2 unreadable input or usage.",
+    )
+    chk.add_argument("path", help="a .urdf, .xacro or .yaml spec")
+    chk.add_argument("--json", action="store_true", help="print the report as JSON (schemas/check-report.schema.json)")
+    chk.add_argument("--strict", action="store_true", help="warnings fail the check too (exit code 1)")
+    chk.add_argument(
+        "--consumers",
+        metavar="LIST",
+        default="all",
+        help="comma list of check_urdf, pinocchio, yourdfpy, mujoco; 'all' (default: those installed) or 'none'",
+    )
+    chk.add_argument(
+        "--prefix", help="require every link, joint, gazebo reference and ros2_control joint to start with this prefix"
+    )
+    _add_xacro_options(chk)
+    chk.set_defaults(handler=_cmd_check)
+
+    add_commands(commands, _add_xacro_options)
+
+    schema = commands.add_parser(
+        "schema",
+        help="print a JSON Schema",
+        description="Print the JSON Schema (2020-12) of robot specs (default), scene specs, gen-robot check's or "
+        "size's JSON report, or size's sizing file.",
+    )
+    schema.add_argument("--kind", choices=SCHEMA_KINDS, default="robot", help="which schema")
+    schema.set_defaults(handler=_cmd_schema)
+
+    expand = commands.add_parser(
+        "expand",
+        help="expand a xacro file to URDF with the real xacro, $(find xacrokit) resolved without ROS",
+        description="Expand FILE with the real xacro. $(find xacrokit) resolves to the installed macro library; "
+        "other packages through --package, a sourced ROS workspace, or AMENT_PREFIX_PATH. "
+        "Every name:=value must be declared in the document with <xacro:arg>.",
+    )
+    expand.add_argument("file", help="the .xacro document")
+    expand.add_argument("-o", "--output", help="write the URDF here (atomically) instead of to standard output")
+    add_force_option(expand)
+    _add_xacro_options(expand)
+    expand.set_defaults(handler=_cmd_expand)
+
+    macros = commands.add_parser(
+        "macros",
+        help="print where the macro library is installed",
+        description="Print the folder of the installed macro library (what $(find xacrokit)/macros points at).",
+    )
+    macros.add_argument("-v", "--verbose", action="store_true", help="also list each public macro file")
+    macros.add_argument("--reference", action="store_true", help="print the Markdown macro reference instead")
+    macros.set_defaults(handler=_cmd_macros)
+
+    materials = commands.add_parser(
+        "materials",
+        help="list the materials a spec's density may name",
+        description="Print the built-in materials a body's `density:` may name: density (kg/m^3), grade, source.",
+    )
+    materials.set_defaults(handler=_cmd_materials)
+    return parser
+
+
+SCHEMA_KINDS = ("robot", "scene", "check-report", "size-report", "sizing")
+COMMANDS = tuple(
+    "generate new check size report graph view render export import fleet schema expand macros materials".split()
+)
+
+
+def _shorthand(words: list[str]) -> bool:
+    """Whether the words are `gen-robot [options] SPEC [options]`, without the word generate: no command comes first
+    and a spec is named (a file that exists, or a name ending in .yaml/.yml, so that a missing one is reported)."""
+    if not words or words[0] in COMMANDS or words[0] in ("-h", "--help", "--version"):
+        return False
+
+    def spec_like(word: str) -> bool:
+        return not word.startswith("-") and (word.lower().endswith((".yaml", ".yml")) or Path(word).is_file())
+
+    return spec_like(words[0]) if not words[0].startswith("-") else any(map(spec_like, words))
+
+
+def _closest_options(parser: argparse.ArgumentParser, args: argparse.Namespace, unknown: list[str]) -> str:
+    """'; did you mean --dry-run?' for a mistyped option of the command given (or of gen-robot itself)."""
+    options = set(parser._option_string_actions)  # (argparse keeps them only there)
+    for action in parser._subparsers._group_actions if parser._subparsers else ():
+        chosen = getattr(action, "choices", {}).get(getattr(args, "command", None))
+        if chosen is not None:
+            options |= set(chosen._option_string_actions)
+    close = [m for word in unknown if word.startswith("-") for m in difflib.get_close_matches(word, options, n=1)]
+    return f"; did you mean {', '.join(close)}?" if close else ""
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run ``gen-robot`` with ``argv`` (default: the process arguments); returns the exit code."""
+    if sys.stdout is None or sys.stdout.closed:  # (started with its output closed: nobody reads what it says)
+        return 141
+    parser = build_parser()
+    words = list(sys.argv[1:] if argv is None else argv)
+    if _shorthand(words):
+        words.insert(0, "generate")  # gen-robot [options] SPEC.yaml [options]
+    elif words and words[0].startswith("-") and words[0] not in ("-h", "--help", "--version"):
+        parser.error(f"no spec given for {words[0]}: gen-robot SPEC.yaml [options], or gen-robot COMMAND ...")
+    elif words and not words[0].startswith("-") and words[0] not in COMMANDS:
+        close = difflib.get_close_matches(words[0], COMMANDS, n=1)
+        hint = f"did you mean {close[0]!r}? " if close else ""
+        parser.error(
+            f"{words[0]!r} is neither a command nor a spec file; {hint}commands: {', '.join(COMMANDS)}, or give a "
+            "spec: gen-robot SPEC.yaml"
+        )
+    args, unknown = parser.parse_known_args(words)
+    if unknown:
+        parser.error(f"unrecognized arguments: {' '.join(unknown)}{_closest_options(parser, args, unknown)}")
+    if not getattr(args, "handler", None):
+        parser.print_help(sys.stderr)
+        return 2
+    try:
+        with trusting(getattr(args, "trust", False)):
+            return args.handler(args)
+    except XacrokitError as exc:
+        print(f"gen-robot: error: {exc}", file=sys.stderr)
+        return exc.exit_code
+    except BrokenPipeError:  # the reader went away (gen-robot schema | head): stop quietly, as other tools do
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 141
+    except OSError as exc:  # the file system refused (permissions, a full disk, a missing folder): say what and where
+        where = f"{exc.filename}: " if exc.filename else ""
+        print(f"gen-robot: error: {where}{exc.strerror or exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        return 130
+    except Exception as exc:  # a bug of ours, whatever the input: a short report to file, never a bare traceback
+        return _internal_error(exc)
+
+
+INTERNAL_ERROR = 70  # EX_SOFTWARE (sysexits.h): no input may lead here; the tests feed every bad input class
+
+
+def _internal_error(exc: Exception) -> int:
+    import traceback
+
+    where = traceback.extract_tb(exc.__traceback__)[-1] if exc.__traceback__ else None
+    place = f" at {Path(where.filename).name}:{where.lineno}" if where else ""
+    print(
+        f"gen-robot: internal error (a bug in xacrokit {__version__}): {type(exc).__name__}: {exc}{place}\n"
+        "gen-robot: please report it with the command you ran and the files it read",
+        file=sys.stderr,
+    )
+    return INTERNAL_ERROR
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,53 @@
+"""``gen-robot export``: the robot for another program, written from its URDF (:mod:`xacrokit.export.mjcf`,
+imported when the command runs). Today: MuJoCo's MJCF."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Callable
+from typing import Any
+
+from .arguments import add_force_option, parse_mappings, parse_packages
+
+
+def add_export_command(commands: Any, add_xacro_options: Callable[[argparse.ArgumentParser], None]) -> None:
+    """Add ``export`` to the CLI's subcommands."""
+    export = commands.add_parser(
+        "export",
+        help="write the robot as a MuJoCo model (--mjcf): bodies named as links, actuators from ros2_control",
+        description="Write PATH (a URDF, xacro document, spec or scene) as a MuJoCo MJCF model, from its URDF: every "
+        "link a body of its name (massless links also sites), inertials exact, meshes copied into meshes/ next to "
+        "the model (converted to STL when MuJoCo cannot read them), mimic joints as equality constraints, actuators "
+        "from the ros2_control block, parent-child contacts excluded, every compiler setting explicit.",
+    )
+    export.add_argument("path", help="a .urdf, .xacro or .yaml spec")
+    export.add_argument("--mjcf", action="store_true", required=True, help="write MJCF (the one format so far)")
+    export.add_argument("-o", "--output", required=True, help="the model to write, e.g. robot.xml (meshes/ beside it)")
+    export.add_argument(
+        "--base",
+        choices=["auto", "fixed", "free"],
+        default="auto",
+        help="the root link fixed to the world or on a free joint (auto: free for a robot with wheels whose root "
+        "is not 'world')",
+    )
+    export.add_argument("--floor", action="store_true", help="add a ground plane at z = 0")
+    add_force_option(export)
+    add_xacro_options(export)
+    export.set_defaults(handler=_cmd_export)
+
+
+def _cmd_export(args: argparse.Namespace) -> int:
+    from ..export.mjcf import export_mjcf, write_export
+
+    model = export_mjcf(
+        args.path,
+        parse_mappings(args.mappings),
+        package_paths=parse_packages(args.package),
+        base=args.base,
+        floor=args.floor,
+    )
+    for note in model.notes:
+        print(f"gen-robot export: note: {note}", file=sys.stderr)
+    write_export(model, args.output, force=args.force)
+    return 0

@@ -1,0 +1,63 @@
+"""``gen-robot import``: a URDF or xacro document as a robot spec (:mod:`xacrokit.importer.urdf_to_spec`,
+imported when the command runs)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from .arguments import add_force_option, parse_mappings, parse_packages
+
+
+def add_import_command(commands: Any, add_xacro_options: Callable[[argparse.ArgumentParser], None]) -> None:
+    """Add ``import`` to the CLI's subcommands."""
+    imported = commands.add_parser(
+        "import",
+        help="read a URDF or xacro document back as a robot spec (links, joints, colours, inertials, meshes)",
+        description="Write the robot spec of FILE (a URDF or xacro document with its name:=value arguments): each "
+        "link's shape, origin, colour, collision and inertial, each joint with its limits, dynamics, mimic and safety "
+        "controller, numbers exact. What the spec cannot say is listed at the top of the spec and on standard error.",
+    )
+    imported.add_argument("path", help="a .urdf or .xacro file")
+    imported.add_argument("-o", "--output", help="the spec to write (atomically); standard output without it")
+    add_force_option(imported)
+    add_xacro_options(imported)
+    imported.set_defaults(handler=_cmd_import)
+
+
+def _cmd_import(args: argparse.Namespace) -> int:
+    from ..importer.urdf_to_spec import import_robot, spec_yaml
+    from ..write.outputs import OutputFile, write_outputs
+
+    result = import_robot(args.path, parse_mappings(args.mappings), package_paths=parse_packages(args.package))
+    for line in result.unsupported:
+        print(f"gen-robot import: not imported: {line}", file=sys.stderr)
+    if result.renamed:
+        print(f"gen-robot import: renamed: {result.renamed}", file=sys.stderr)
+    for line in result.ignored:
+        print(f"gen-robot import: not URDF, ignored by its readers: {line}", file=sys.stderr)
+    for line in result.as_given:
+        print(f"gen-robot import: kept as the file says it (strict: false): {line}", file=sys.stderr)
+    if args.output and result.extension:  # (the left-out elements, verbatim, beside the spec)
+        extension = Path(args.output).with_name(Path(args.output).stem + "_extension.xacro")
+        result.spec["extension"] = extension.name
+    text = spec_yaml(result, str(args.path))
+    if args.output:
+        target = Path(args.output)
+        files = [OutputFile(target.name, text)]
+        if result.extension:
+            files.append(OutputFile(extension.name, result.extension))
+        files += [OutputFile(relative, data) for relative, data in result.meshes.items()]  # (beside the spec)
+        write_outputs(target.parent, files, force=args.force)
+    else:
+        if result.meshes:
+            print(
+                f"gen-robot import: the spec names {len(result.meshes)} mesh(es) under meshes/ that -o SPEC copies "
+                "beside it",
+                file=sys.stderr,
+            )
+        sys.stdout.write(text)
+    return 0

@@ -1,0 +1,50 @@
+"""``gen-robot new``: a commented starter spec to edit, one per kind of robot."""
+
+from __future__ import annotations
+
+import os
+import re
+from pathlib import Path
+
+from ..errors import XacrokitError
+from ..render import environment
+
+KINDS = ("arm", "mobile", "humanoid")
+
+
+def starter_text(name: str, kind: str = "arm") -> str:
+    """The starter spec for robot ``name`` of ``kind`` (arm, mobile or humanoid)."""
+    if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*", name):
+        raise XacrokitError(f"robot name {name!r} must be letters, digits and _, not starting with a digit")
+    if kind not in KINDS:
+        raise XacrokitError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
+    # No schema modeline: the only schema file we could name is the installed copy, an absolute path of this machine
+    # that breaks once the spec is shared or the venv goes; the starter says how to get one next to the spec instead.
+    return environment().get_template(f"specs/{kind}.yaml.j2").render(name=name)
+
+
+def write_starter(name: str, *, kind: str = "arm", output: str | Path | None = None) -> Path:
+    """Write the starter spec; an existing file is never overwritten.
+
+    ``output``: the spec file (a name ending in .yaml or .yml), or a folder for ``NAME.yaml`` (an existing folder, a
+    name ending in a slash, or a name without such a suffix); missing folders are made. Default: ``./NAME.yaml``.
+    """
+    text = starter_text(name, kind)  # (the name is checked before any folder is made)
+    path = Path(output) if output else Path.cwd() / f"{name}.yaml"
+    as_folder = str(output).endswith(("/", os.sep)) or path.is_dir() or path.suffix.lower() not in (".yaml", ".yml")
+    if output and as_folder:
+        path = path / f"{name}.yaml"
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise XacrokitError(
+            f"cannot make the folder {path.parent}: {exc.strerror or exc} (a file in the way?)"
+        ) from None
+    try:
+        with path.open("x", encoding="utf-8") as handle:
+            handle.write(text)
+    except FileExistsError:
+        raise XacrokitError(f"{path} already exists; not overwritten (choose another name or -o PATH)") from None
+    except OSError as exc:
+        raise XacrokitError(f"cannot write {path}: {exc.strerror}") from None
+    return path

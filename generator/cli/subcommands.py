@@ -1,0 +1,22 @@
+"""The subcommands that live outside cli.py (each in its own module, its work imported when it runs): size and report,
+graph, view and render, export, import."""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Callable
+from typing import Any
+
+from .export_command import add_export_command
+from .import_command import add_import_command
+from .size_commands import add_report_command, add_size_command
+from .view_commands import add_view_commands
+
+
+def add_commands(commands: Any, add_xacro_options: Callable[[argparse.ArgumentParser], None]) -> None:
+    """Add size, report, graph, view, render, export and import to the CLI's subcommands."""
+    add_size_command(commands, add_xacro_options)
+    add_report_command(commands)
+    add_view_commands(commands, add_xacro_options)
+    add_export_command(commands, add_xacro_options)
+    add_import_command(commands, add_xacro_options)

@@ -1,0 +1,413 @@
+"""``gen-robot export --mjcf``: a MuJoCo model (MJCF) written from the robot's URDF, not through MuJoCo's URDF compiler.
+
+What it keeps that MuJoCo's URDF import loses (docs/export.md has the whole mapping):
+
+- every link is a body with the link's name and frame (``fusestatic="false"``: tool frames do not vanish), and a link
+  without mass also a site of that name at its origin (where a tool or sensor frame is looked for);
+- the inertial exactly as written (``fullinertia`` in the inertial origin's frame, ``inertiafromgeom="false"``);
+- visuals (group 2, no contact) and collisions (group 3) with their colours; meshes copied into ``meshes/`` next to
+  the model, those MuJoCo cannot read (COLLADA, PLY, glTF, OFF, text STL, STL of more than 200,000 triangles)
+  converted to OBJ by trimesh; a visual mesh that cannot be found or read is left out with a note (a collision mesh
+  is an error: the robot would not touch what it touches), and so is a flat mesh, visual or collision (MuJoCo cannot
+  make its convex hull: it has no volume to collide with);
+- mimic joints as joint equality constraints (q = offset + multiplier q_leader);
+- actuators from the ``<ros2_control>`` block's command interfaces (:mod:`xacrokit.export.mjcf_actuators`);
+- the parent and child of every joint excluded from colliding with each other;
+- Gazebo's ``mu1`` of a link as its collision geoms' sliding friction, with priority over what they touch;
+- a free joint on the root link of a mobile robot (``--base free``, or ``auto``: a robot with a wheel, a continuous
+  joint whose child has a cylinder collision, and a root not called ``world``), a floor with ``--floor``;
+- every compiler and option setting explicit: radians, 9.80665 m/s^2, a 2 ms step, the implicitfast integrator.
+
+A moving link without mass (MuJoCo refuses "moving bodies" without mass and inertia) gets ``MASSLESS`` (1e-12 kg,
+1e-14 kg m^2 about each axis, at its origin): its effect on the mass matrix is ~1e-12 N m s^2, named in the model's
+header comment.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import XacrokitError
+from ..reader.robot_source import urdf_floats as _floats
+from .mjcf_actuators import num
+from .mjcf_meshes import FlatMesh, Meshes
+
+MASSLESS = (1e-12, 1e-14)  # (kg, kg m^2): what a moving link without mass gets, MuJoCo needing more than 1e-15
+GRAVITY = 9.80665
+
+
+@dataclass
+class Export:
+    """The model's XML and the mesh files it names (meshes/NAME -> bytes), and what the writer had to say."""
+
+    xml: str
+    meshes: dict[str, bytes] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+    repairs: dict[str, float] = field(default_factory=dict)  # link -> |change| (2-norm, kg m^2) of its inertia
+    massless: list[str] = field(default_factory=list)  # moving links given MASSLESS
+
+
+def nums(values: Any) -> str:
+    return " ".join(num(v) for v in values)
+
+
+def quaternion(rpy: tuple[float, float, float]) -> list[float]:
+    """MuJoCo's quaternion (w, x, y, z) of the URDF's fixed-axis roll, pitch, yaw (R = Rz(y) Ry(p) Rx(r))."""
+    r, p, y = (v / 2.0 for v in rpy)
+    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
+    return [
+        cr * cp * cy + sr * sp * sy,
+        sr * cp * cy - cr * sp * sy,
+        cr * sp * cy + sr * cp * sy,
+        cr * cp * sy - sr * sp * cy,
+    ]
+
+
+def _origin(element: Any) -> tuple[list[float], list[float]]:
+    if element is None:
+        return [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]
+    return _floats(element.get("xyz"), 3), _floats(element.get("rpy"), 3)
+
+
+def _place(node: Any, origin: Any) -> None:
+    """Set ``pos`` and ``quat`` of an MJCF element from a URDF <origin> (nothing for the identity)."""
+    xyz, rpy = _origin(origin)
+    if any(xyz):
+        node.set("pos", nums(xyz))
+    if any(rpy):
+        node.set("quat", nums(quaternion((rpy[0], rpy[1], rpy[2]))))
+
+
+def mjcf(
+    text: str,
+    resolve: Any,
+    *,
+    base: str = "auto",
+    floor: bool = False,
+) -> Export:
+    """The MJCF of a URDF ``text``; ``resolve(filename)`` gives a mesh's file path; ``base``: auto, fixed or free.
+
+    Raises:
+        XacrokitError: a URDF MuJoCo cannot take (not a tree, a mesh that cannot be found or read, bad numbers).
+    """
+    from lxml import etree
+
+    from .mjcf_actuators import actuators, commanded, gains, mimics
+
+    root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+    links = {link.get("name"): link for link in root.findall("link")}
+    joints = [j for j in root.findall("joint") if j.find("parent") is not None and j.find("child") is not None]
+    by_child: dict[str, Any] = {}
+    children: dict[str, list[Any]] = {}
+    for joint in joints:
+        child, parent = joint.find("child").get("link"), joint.find("parent").get("link")
+        if child in by_child:
+            raise XacrokitError(f"link {child!r} is the child of two joints: not a tree, MuJoCo needs one")
+        if child not in links or parent not in links:
+            raise XacrokitError(f"joint {joint.get('name')!r} names a link that is not in the robot")
+        by_child[child] = joint
+        children.setdefault(parent, []).append(joint)
+    roots = [name for name in links if name not in by_child]
+    if not links:
+        raise XacrokitError("the robot has no link (a file of xacro macros expanded without a call?)")
+    if not roots:
+        raise XacrokitError("every link is the child of a joint: the joints make a loop, MuJoCo needs a tree")
+    if len(roots) != 1:
+        raise XacrokitError(f"the robot has {len(roots)} root links ({', '.join(roots[:5])}): MuJoCo needs one tree")
+    (root_name,) = roots
+    free = base == "free" or (base == "auto" and root_name != "world" and _has_wheel(joints, links))
+    colours = {m.get("name"): m.find("color").get("rgba") for m in root.iter("material") if m.find("color") is not None}
+    friction = _frictions(root)
+    export = Export(xml="")
+    meshes = Meshes(resolve, export.meshes, export.notes)
+
+    model = etree.Element("mujoco", model=root.get("name", "robot"))
+    etree.SubElement(
+        model,
+        "compiler",
+        angle="radian",
+        autolimits="true",
+        inertiafromgeom="false",
+        fusestatic="false",
+        discardvisual="false",
+        balanceinertia="false",
+        boundmass="0",
+        boundinertia="0",
+        meshdir="meshes",
+    )
+    etree.SubElement(model, "option", gravity=f"0 0 {num(-GRAVITY)}", timestep="0.002", integrator="implicitfast")
+    defaults = etree.SubElement(model, "default")
+    visual = etree.SubElement(defaults, "default", {"class": "visual"})
+    etree.SubElement(visual, "geom", contype="0", conaffinity="0", group="2")
+    collision = etree.SubElement(defaults, "default", {"class": "collision"})
+    etree.SubElement(collision, "geom", group="3")
+    asset = etree.SubElement(model, "asset")
+    world = etree.SubElement(model, "worldbody")
+    etree.SubElement(world, "light", pos="0 0 5", dir="0 0 -1", directional="true")
+    if floor:
+        etree.SubElement(world, "geom", name="floor", type="plane", size="0 0 1", rgba="0.85 0.85 0.85 1")
+    massless = export.massless
+
+    def body_of(name: str, parent: Any, joint: Any) -> None:
+        link = links[name]
+        if joint is None and name == "world":
+            body = parent  # (a root link called world is MuJoCo's world body)
+        else:
+            body = etree.SubElement(parent, "body", name=name)
+            if joint is not None:
+                _place(body, joint.find("origin"))
+        moving = (joint is not None and _add_joint(body, joint)) or (joint is None and free)
+        if joint is None and free:
+            etree.SubElement(body, "freejoint", name=f"{name}_free")
+        if body is not parent:
+            _inertial(body, link, moving, massless, export.repairs)
+        _geoms(body, link, colours, friction.get(name), meshes)
+        if link.find("inertial") is None and body is not parent:
+            etree.SubElement(body, "site", name=name)
+        for child in children.get(name, []):
+            body_of(child.find("child").get("link"), body, child)
+
+    body_of(root_name, world, None)
+    for mesh in meshes.assets:
+        asset.append(mesh)
+    contact = etree.SubElement(model, "contact")
+    for joint in joints:
+        parent, child = joint.find("parent").get("link"), joint.find("child").get("link")
+        if parent != "world" or root_name != "world":
+            etree.SubElement(contact, "exclude", body1=parent, body2=child)
+    equality = mimics(joints, export.notes)
+    if len(equality):
+        model.append(equality)
+    driven = list(commanded(root))
+    inertia = gains(text, driven, free) if driven else {}
+    acts = actuators(root, {j.get("name"): j for j in joints}, inertia, export.notes)
+    if len(acts):
+        model.append(acts)
+    for element in (asset, contact):
+        if len(element) == 0:
+            model.remove(element)
+    for name, change in export.repairs.items():
+        export.notes.append(
+            f"link {name!r}: its inertia is not a rigid body's (gen-robot check says why); raised by "
+            f"{change:.3g} kg m^2 (2-norm) for MuJoCo"
+        )
+    header = "Generated by xacrokit from the robot's URDF (gen-robot export, MJCF); see docs/export.md."
+    if massless:
+        header += f" Moving links without mass given {MASSLESS[0]} kg, {MASSLESS[1]} kg m^2: {', '.join(massless)}."
+    model.insert(0, etree.Comment(" " + header.replace("--", "- -") + " "))
+    export.xml = etree.tostring(model, pretty_print=True, encoding="unicode")
+    return export
+
+
+def _has_wheel(joints: list[Any], links: Mapping[str, Any]) -> bool:
+    return any(
+        j.get("type") == "continuous"
+        and links[j.find("child").get("link")].find("collision/geometry/cylinder") is not None
+        for j in joints
+    )
+
+
+def _frictions(root: Any) -> dict[str, float]:
+    found = {}
+    for gazebo in root.findall("gazebo"):
+        mu = gazebo.find("mu1")
+        if gazebo.get("reference") and mu is not None and mu.text:
+            try:
+                found[gazebo.get("reference")] = float(mu.text)
+            except ValueError:
+                continue
+    return found
+
+
+def _add_joint(body: Any, joint: Any) -> bool:
+    """The MJCF joint(s) of a URDF joint inside its child's body; False for a fixed joint (the body is welded)."""
+    from lxml import etree
+
+    kind, name = joint.get("type"), joint.get("name")
+    if kind == "fixed":
+        return False
+    axis_element = joint.find("axis")
+    axis = np.array(_floats(axis_element.get("xyz") if axis_element is not None else None, 3, 0.0))
+    if axis_element is None:
+        axis = np.array([1.0, 0.0, 0.0])
+    if not np.linalg.norm(axis) > 0:
+        raise XacrokitError(f"joint {name!r}: its axis is zero")
+    axis = axis / np.linalg.norm(axis)
+    dynamics = joint.find("dynamics")
+    extra = {}
+    if dynamics is not None:
+        for urdf_key, mjcf_key in (("damping", "damping"), ("friction", "frictionloss")):
+            if dynamics.get(urdf_key):
+                extra[mjcf_key] = num(_floats(dynamics.get(urdf_key), 1)[0])
+    if kind == "floating":
+        etree.SubElement(body, "joint", name=name, type="free")
+        return True
+    if kind == "planar":  # (x along u, y along v, theta about the normal: as gen-robot view and pinocchio for z)
+        u = np.array([0.0, 1.0, 0.0]) if abs(axis[0]) > 0.9 else np.array([1.0, 0.0, 0.0])
+        u = u - (u @ axis) * axis
+        u /= np.linalg.norm(u)
+        v = np.cross(axis, u)
+        etree.SubElement(body, "joint", name=f"{name}_x", type="slide", axis=nums(u), **extra)
+        etree.SubElement(body, "joint", name=f"{name}_y", type="slide", axis=nums(v), **extra)
+        etree.SubElement(body, "joint", name=f"{name}_theta", type="hinge", axis=nums(axis), **extra)
+        return True
+    if kind not in ("revolute", "continuous", "prismatic"):
+        raise XacrokitError(f"joint {name!r}: type {kind!r} is not a URDF joint type")
+    element = etree.SubElement(
+        body, "joint", name=name, type="slide" if kind == "prismatic" else "hinge", axis=nums(axis), **extra
+    )
+    limit = joint.find("limit")
+    if kind != "continuous" and limit is not None and limit.get("lower") is not None and limit.get("upper") is not None:
+        lower, upper = _floats(limit.get("lower"), 1)[0], _floats(limit.get("upper"), 1)[0]
+        if lower < upper:
+            element.set("range", f"{num(lower)} {num(upper)}")
+    return True
+
+
+def _inertial(body: Any, link: Any, moving: bool, massless: list[str], repairs: dict[str, float]) -> None:
+    from lxml import etree
+
+    inertial = link.find("inertial")
+    where = f"link {link.get('name')!r}: inertial"
+    mass_element = inertial.find("mass") if inertial is not None else None
+    mass = _floats(mass_element.get("value", "0"), 1, where=where)[0] if mass_element is not None else 0.0
+    tensor = inertial.find("inertia") if inertial is not None else None
+    keys = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
+    i = {k: _floats(tensor.get(k, "0"), 1, where=where)[0] if tensor is not None else 0.0 for k in keys}
+    matrix = np.array([[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]])
+    if not mass > 0 and moving:
+        massless.append(link.get("name"))
+        mass = MASSLESS[0]
+        if not matrix.any():
+            value = num(MASSLESS[1])
+            etree.SubElement(body, "inertial", pos="0 0 0", mass=num(mass), diaginertia=f"{value} {value} {value}")
+            return
+    if not mass > 0 and not matrix.any():
+        return
+    element = etree.SubElement(body, "inertial", mass=num(max(mass, 0.0)))  # (no mass, moments: pinocchio keeps them)
+    xyz, rpy = _origin(inertial.find("origin"))
+    element.set("pos", nums(xyz))
+    if any(rpy):  # (MJCF takes fullinertia in the body's axes only: R I R^T, R the inertial origin's rotation)
+        from ..shared.transforms import rpy_matrix
+
+        rotation = rpy_matrix(*rpy)
+        matrix = rotation @ matrix @ rotation.T
+    fixed = physical(matrix)
+    if fixed is None:
+        element.set("fullinertia", nums(matrix[[0, 1, 2, 0, 0, 1], [0, 1, 2, 1, 2, 2]]))
+        return
+    moments, axes = fixed  # (principal moments and axes: MuJoCo's own eigensolver stumbles on near-equal tiny ones)
+    repairs[link.get("name")] = float(np.linalg.norm(axes @ np.diag(moments) @ axes.T - matrix, 2))
+    from scipy.spatial.transform import Rotation
+
+    x, y, z, w = Rotation.from_matrix(axes).as_quat()
+    element.set("quat", nums((w, x, y, z)))
+    element.set("diaginertia", nums(moments))
+
+
+def physical(matrix: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """The principal moments and axes (a rotation) of the nearest inertia MuJoCo takes when ``matrix`` is not one
+    (None when it is): moments below ``MASSLESS[1]`` raised to it, and when the two smaller ones sum to less than the
+    largest (no rigid body has such moments; pinocchio reads them, MuJoCo refuses) both raised by half the shortfall
+    and a margin of 1e-10 of the largest, so that MuJoCo's own eigensolver agrees."""
+    moments, axes = np.linalg.eigh((matrix + matrix.T) / 2.0)
+    raised = np.maximum(moments, MASSLESS[1])
+    shortfall = raised[2] * (1.0 + 1e-10) - raised[0] - raised[1]
+    if shortfall > 0 and raised[0] + raised[1] < raised[2]:
+        raised[:2] += shortfall / 2.0
+    if np.array_equal(raised, moments):
+        return None
+    if np.linalg.det(axes) < 0:
+        axes[:, 0] = -axes[:, 0]
+    return raised, axes
+
+
+def _geoms(body: Any, link: Any, colours: Mapping[str, str], mu: float | None, meshes: Meshes) -> None:
+    from lxml import etree
+
+    for kind in ("visual", "collision"):
+        for element in link.findall(kind):
+            geometry = element.find("geometry")
+            shape = None if geometry is None else next(geometry.iterchildren(etree.Element), None)
+            if shape is None:
+                continue
+            geom = etree.Element("geom", {"class": kind})
+            if shape.tag == "box":
+                geom.set("type", "box")
+                geom.set("size", nums(v / 2.0 for v in _floats(shape.get("size"), 3)))
+            elif shape.tag == "cylinder":
+                radius, length = _floats(shape.get("radius"), 1)[0], _floats(shape.get("length"), 1)[0]
+                geom.set("type", "cylinder")
+                geom.set("size", f"{num(radius)} {num(length / 2.0)}")
+            elif shape.tag == "sphere":
+                geom.set("type", "sphere")
+                geom.set("size", num(_floats(shape.get("radius"), 1)[0]))
+            elif shape.tag == "mesh":
+                geom.set("type", "mesh")
+                try:
+                    geom.set("mesh", meshes.name(shape.get("filename", ""), shape.get("scale")))
+                except XacrokitError as exc:
+                    if kind == "collision" and not isinstance(exc, FlatMesh):
+                        raise XacrokitError(f"link {link.get('name')!r}: collision {exc}") from None
+                    meshes.notes.append(f"link {link.get('name')!r}: {kind} left out: {exc}")
+                    continue
+            else:
+                continue
+            _place(geom, element.find("origin"))
+            if kind == "visual":
+                material = element.find("material")
+                rgba = None
+                if material is not None:
+                    colour = material.find("color")
+                    rgba = colour.get("rgba") if colour is not None else colours.get(material.get("name"))
+                if rgba:
+                    geom.set("rgba", nums(_floats(rgba, 4)))
+            elif mu is not None:
+                geom.set("friction", f"{num(mu)} 0.005 0.0001")
+                geom.set("priority", "1")  # (its friction, not the larger of the two, decides the contact)
+            body.append(geom)
+
+
+def write_export(export: Export, output: str | os.PathLike[str], *, force: bool = False) -> list[Path]:
+    """Write the model and its meshes (meshes/ next to it) through the write stage
+    (:func:`~xacrokit.write.outputs.write_outputs`: atomic; never through a link or onto a device; a file there that
+    gen-robot did not write is kept and nothing is written, unless ``force``); the paths written."""
+    from ..write.outputs import OutputFile, output_file, write_outputs
+
+    target = Path(output)
+    if not export.meshes:
+        output_file(target, export.xml, force=force)
+        return [target]
+    files = [OutputFile(target.name, export.xml)]
+    files += [OutputFile(f"meshes/{name}", data) for name, data in export.meshes.items()]
+    write_outputs(target.parent, files, force=force)
+    return [target.parent / item.relative for item in files]
+
+
+def export_mjcf(
+    path: str | os.PathLike[str],
+    mappings: Mapping[str, str] | None = None,
+    *,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
+    base: str = "auto",
+    floor: bool = False,
+) -> Export:
+    """The MJCF of the robot at ``path`` (URDF, xacro document, spec or scene; see :func:`mjcf`).
+
+    Raises:
+        XacrokitError: unreadable input, a mesh that cannot be found or read, a robot MuJoCo cannot take.
+        SpecErrors: an invalid spec (located).
+    """
+    from ..reader.robot_source import mesh_resolver, robot_text
+
+    if base not in ("auto", "fixed", "free"):
+        raise XacrokitError(f"--base {base!r}: auto, fixed or free")
+    with robot_text(path, mappings, package_paths) as (text, packages):
+        return mjcf(text, mesh_resolver(Path(path).parent, packages), base=base, floor=floor)

@@ -1,0 +1,476 @@
+"""``gen-robot import``: a URDF or xacro document read back as a robot spec that generates the same robot.
+
+What the spec says, the spec keeps, with its numbers written exactly (YAML floats are Python's shortest repr):
+
+- each link's first visual as its ``shape`` (box, cylinder, sphere, mesh with its URI and scale, a negative factor
+  mirroring it) at its ``origin``, its colour as a named ``material`` (the URDF's material name when it is an
+  identifier, else ``colour_N``), its other visuals as ``visuals:``; its collisions as ``same`` (one, the first
+  visual's geometry and origin), ``none``, one shape or a list of them (also on a link without a visual);
+- its inertial as ``mass`` and an explicit ``inertia`` tensor with its frame, as the file says it; or as ``mass``
+  alone when the tensor is the one the spec computes from the shape (a uniform solid in the shape's axes, to 1e-12);
+- each joint with its type, parent, child, origin, axis, limit, dynamics, mimic, safety controller and calibration;
+- wheels that are exactly what ``wheels:`` writes (:mod:`.import_wheels`);
+- values no real body has under ``strict: false`` (:attr:`Imported.as_given`).
+
+What the spec cannot say is reported at its element's line, not dropped silently (:attr:`Imported.unsupported`): a
+name the spec does not take, two relative meshes of one file name, a relative mesh that is not there, and whatever
+else the spec would refuse. Attributes URDF does not define are named (:attr:`Imported.ignored`). Every element URDF
+readers do not model (``<gazebo>``, ``<transmission>``, ``<ros2_control>``, others) is kept verbatim in
+:attr:`Imported.extension`, which ``gen-robot import -o SPEC`` writes beside the spec as ``SPEC_extension.xacro`` and
+names in the spec's ``extension``: the generated package starts its user-owned ``urdf/NAME_extension.xacro`` with them.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from ..reader.robot_source import urdf_floats
+from .wheel_match import wheels
+
+IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*(?:[./-][A-Za-z0-9_]+)*$")  # (a link's or joint's: the schema's urdf_name)
+SPEC_ITEM = re.compile(r"^\$\.(links|joints)(?:\.([A-Za-z_][A-Za-z0-9_]*)|\['([^']*)'\])")  # (a JSON path's item)
+MODELLED = ("link", "joint", "material")  # what the spec holds of a <robot>'s children
+URDF_JOINT_ATTRIBUTES = {  # (urdfdom's joint parser: what it reads of each element)
+    "limit": {"lower", "upper", "effort", "velocity"},
+    "dynamics": {"damping", "friction"},
+    "mimic": {"joint", "multiplier", "offset"},
+    "safety_controller": {"soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"},
+    "calibration": {"rising", "falling"},
+}
+
+
+@dataclass
+class Imported:
+    """The spec (a mapping ready for YAML), what could not be imported (one line each), and the elements kept
+    for the extension file (their tags and names)."""
+
+    spec: dict[str, Any]
+    unsupported: list[str] = field(default_factory=list)
+    leftovers: list[str] = field(default_factory=list)
+    meshes: dict[str, bytes] = field(default_factory=dict)  # a relative mesh path in the spec -> what to copy there
+    extension: str = ""  # the left-out elements as a <robot> document: the spec's `extension` file, verbatim
+    as_given: list[str] = field(default_factory=list)  # values no real body has, kept under `strict: false`
+    ignored: list[str] = field(default_factory=list)  # attributes URDF does not define (its readers ignore them)
+    wheels: list[str] = field(default_factory=list)  # the links recognised as wheels (the spec's `wheels:`)
+    renamed: str = ""  # the robot's name made a spec name, said
+    lines: dict[tuple[str, str], int] = field(default_factory=dict)  # (links or joints, name) -> its line in the file
+
+
+def _floats(text: str | None, count: int, default: float, where: str) -> list[float]:
+    return urdf_floats(text, count, default, where=where)
+
+
+def _origin(element: Any, where: str) -> dict[str, list[float]] | None:
+    """A URDF <origin> as the spec's (None for the identity or no origin)."""
+    if element is None:
+        return None
+    xyz = _floats(element.get("xyz"), 3, 0.0, f"{where} origin xyz")
+    rpy = _floats(element.get("rpy"), 3, 0.0, f"{where} origin rpy")
+    found: dict[str, list[float]] = {}
+    if any(xyz):
+        found["xyz"] = xyz
+    if any(rpy):
+        found["rpy"] = rpy
+    return found or None
+
+
+def _shape(geometry: Any, where: str, problems: list[str]) -> dict[str, Any] | None:
+    from lxml import etree
+
+    shape = None if geometry is None else next(geometry.iterchildren(etree.Element), None)
+    if shape is None:
+        problems.append(f"{where}: no geometry")
+        return None
+    if shape.tag == "box":
+        return {"box": {"size": _floats(shape.get("size"), 3, 0.0, f"{where} box size")}}
+    if shape.tag == "cylinder":
+        radius = _floats(shape.get("radius"), 1, 0.0, f"{where} cylinder radius")[0]
+        length = _floats(shape.get("length"), 1, 0.0, f"{where} cylinder length")[0]
+        return {"cylinder": {"radius": radius, "length": length}}
+    if shape.tag == "sphere":
+        return {"sphere": {"radius": _floats(shape.get("radius"), 1, 0.0, f"{where} sphere radius")[0]}}
+    if shape.tag == "mesh":
+        mesh: dict[str, Any] = {"filename": shape.get("filename", "")}
+        if shape.get("scale") is not None:
+            scale = _floats(shape.get("scale"), 3, 1.0, f"{where} mesh scale")
+            if 0.0 in scale:
+                problems.append(f"{where}: mesh scale {scale} flattens it (0), which the spec refuses")
+                return None
+            if scale != [1.0, 1.0, 1.0]:
+                mesh["scale"] = scale
+        return {"mesh": mesh}
+    problems.append(f"{where}: geometry <{shape.tag}> is not one the spec has")
+    return None
+
+
+def import_text(text: str, name_hint: str = "robot", source: str = "") -> Imported:
+    """The spec of a URDF text (see the module's notes); ``source``: the file it was read from, which locates what
+    is reported (``FILE:LINE: link 'x': ...``; a xacro document's lines are its expansion's)."""
+    from lxml import etree
+
+    from ..validate.names import RESERVED_ROBOT_NAMES
+
+    root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+    result = Imported(spec={})
+    problems = result.unsupported
+    robot = root.get("name") or name_hint
+    if not IDENTIFIER.fullmatch(robot) or len(robot) > 200:  # (it names the package, macro, files: made a name, said)
+        renamed = re.sub(r"[^A-Za-z0-9_]", "_", robot)[:200]
+        renamed = renamed if IDENTIFIER.fullmatch(renamed) else f"robot_{renamed}"[:200]
+    else:
+        renamed = robot
+    if renamed in RESERVED_ROBOT_NAMES or renamed.startswith("_xacrokit"):  # (its macro would be a xacro keyword's)
+        renamed = f"{renamed[:194]}_robot"
+    if renamed != robot:
+        result.renamed = f"robot name {robot!r} written {renamed!r} (it names the package, the macro and the files)"
+        robot = renamed
+    result.spec["robot"] = robot
+    for kind in ("link", "joint"):
+        for element in root.findall(kind):
+            result.lines.setdefault((f"{kind}s", element.get("name", "")), element.sourceline or 0)
+
+    def located(kind: str, name: str) -> str:
+        line = result.lines.get((kind, name))
+        return f"{source}:{line}: " if source and line else ""
+
+    colours: dict[str, list[float]] = {}
+    named = {m.get("name"): m for m in root.findall("material")}
+
+    def colour_of(material: Any, where: str) -> str | None:
+        if material is None:
+            return None
+        colour = material.find("color")
+        source = colour if colour is not None else named.get(material.get("name"), material).find("color")
+        if source is None:
+            return None
+        rgba = _floats(source.get("rgba"), 4, 1.0, f"{where} colour")
+        name = (material.get("name") or "").rsplit("/", 1)[-1]  # (a generated robot's 'ur5/grey': grey)
+        if not IDENTIFIER.fullmatch(name) or (name in colours and colours[name] != rgba):
+            name = next((n for n, c in colours.items() if c == rgba), f"colour_{len(colours)}")
+        colours.setdefault(name, rgba)
+        return name
+
+    for material in root.findall("material"):  # (every colour the file defines, used or not, in its order)
+        colour_of(material, f"material {material.get('name')!r}")
+    links: dict[str, Any] = {}
+    for link in root.findall("link"):
+        name = link.get("name", "")
+        where = f"{located('links', name)}link {name!r}"
+        if not NAME.fullmatch(name):
+            problems.append(f"{where}: the name is not a spec name (letters, digits and _, in parts joined by . / -)")
+            continue
+        entry: dict[str, Any] = {}
+        drawn = []  # (shape, origin, colour) of each visual the spec can say
+        for index, visual in enumerate(link.findall("visual")):
+            said = f"{where} visual" + (f" {index + 1}" if index else "")
+            shape = _shape(visual.find("geometry"), said, problems)
+            if shape is not None:
+                drawn.append((shape, _origin(visual.find("origin"), said), colour_of(visual.find("material"), where)))
+        if drawn:
+            shape, at, colour = drawn[0]
+            entry["shape"] = shape
+            if at:
+                entry["origin"] = at
+            if colour:
+                entry["material"] = colour
+            more = [_geometry(s, a, c if c != colour else None) for s, a, c in drawn[1:]]
+            for piece, (_, _, c) in zip(more, drawn[1:], strict=True):
+                if colour and c is None:
+                    piece["material"] = None  # (no colour, where the link's would be the default)
+            if more:
+                entry["visuals"] = more
+        touched = []
+        for index, collision in enumerate(link.findall("collision")):
+            said = f"{where} collision" + (f" {index + 1}" if index else "")
+            shape = _shape(collision.find("geometry"), said, problems)
+            if shape is not None:
+                touched.append((shape, _origin(collision.find("origin"), said)))
+        if drawn and touched == [drawn[0][:2]]:
+            pass  # ("same", the spec's default)
+        elif not touched:
+            if drawn:
+                entry["collision"] = "none"
+        elif len(touched) == 1:
+            entry["collision"] = _geometry(*touched[0])
+        else:
+            entry["collision"] = [_geometry(s, a) for s, a in touched]
+        entry.update(_inertial(link.find("inertial"), where))
+        if "inertia" in entry and "shape" in entry and _is_the_shapes(entry):
+            del entry["inertia"]  # (the shape's own: the spec computes it from the mass)
+        if "inertia" in entry and "origin" in entry and "origin" not in entry["inertia"]:
+            entry["inertia"]["origin"] = {"xyz": [0.0, 0.0, 0.0]}  # (else the spec takes the shape's origin for it)
+        links[name] = entry
+    joints: dict[str, Any] = {}
+    for joint in root.findall("joint"):
+        name = joint.get("name", "")
+        if not NAME.fullmatch(name):
+            problems.append(
+                f"{located('joints', name)}joint {name!r}: the name is not a spec name (letters, digits and _, in "
+                "parts joined by . / -)"
+            )
+            continue
+        joints[name] = _joint(joint, f"{located('joints', name)}joint {name!r}", problems)
+        if joint.find("mimic") is not None and "mimic" not in joints[name]:
+            result.ignored.append(f"joint {name!r} <mimic> (a {joint.get('type')} joint: nothing to move)")
+        for tag, known in URDF_JOINT_ATTRIBUTES.items():
+            for element in joint.findall(tag):
+                extra = sorted(set(element.attrib) - known)
+                if extra:
+                    result.ignored.append(f"joint {name!r} <{tag}> {', '.join(extra)}")
+    found = {"links": links, "joints": joints}
+    result.wheels, absorbed = wheels(found, root)
+    kept = etree.Element("robot")
+    for child in root.iterchildren(etree.Element):
+        if child.tag not in MODELLED and child not in absorbed:
+            result.leftovers.append(f"<{child.tag}{_label(child)}>")
+            copy = etree.fromstring(etree.tostring(child))  # (its own document: namespaces it uses come along)
+            copy.tail = None
+            kept.append(copy)
+    if len(kept):
+        kept.text = "\n  "
+        for element in kept:
+            element.tail = "\n  "
+        kept[-1].tail = "\n"
+        result.extension = etree.tostring(kept, encoding="unicode") + "\n"
+    if colours:
+        result.spec["materials"] = colours
+    result.spec["links"] = links
+    if joints:
+        result.spec["joints"] = joints
+    if "wheels" in found:
+        result.spec["wheels"] = found["wheels"]
+    _strictness(result, located)
+    return result
+
+
+def _strictness(result: Imported, located: Any) -> None:
+    """``strict: false`` for a robot whose file holds values the spec refuses by default (a mass of 0, a tensor that
+    is not physical, a moving link without mass, a continuous joint without limit): they are kept as the file says
+    them, and listed (:attr:`Imported.as_given`)."""
+    import yaml
+
+    from ..errors import SpecErrors
+    from ..load import load_text
+    from ..validate import validate
+    from ..validate.physics import Implausible
+
+    # (its relative meshes are not beside this text, which is read as in a folder that is not there: those errors are
+    # not the ones asked about, and nothing of the working folder is read)
+    try:
+        validate(load_text(yaml.safe_dump(result.spec, sort_keys=False), "/nonexistent/xacrokit-import/spec.yaml"))
+        return
+    except SpecErrors as caught:
+        doubts = [e for e in caught.errors if isinstance(e, Implausible)]
+        for error in caught.errors:  # (what the spec would refuse besides: said now; a relative mesh is seen to)
+            if not isinstance(error, Implausible) and not error.path.endswith(".filename"):
+                found = SPEC_ITEM.match(error.path)  # (at the link's or joint's line in the file)
+                where = located(found[1], found[2] or found[3]) if found else ""
+                result.unsupported.append(f"{where}the spec refuses {error.path.removeprefix('$.')}: {error.message}")
+    if doubts:
+        result.spec = {"robot": result.spec["robot"], "strict": False, **result.spec}
+        result.as_given = [f"{e.path.removeprefix('$.')}: {e.message}" for e in doubts]
+
+
+def _is_the_shapes(entry: dict[str, Any]) -> bool:
+    """Whether a link's inertia is the one the spec computes from its shape and mass (a solid of uniform density
+    centred on the shape's origin), to 1e-12 of its largest moment: then the spec says only the mass."""
+    import numpy as np
+
+    from ..resolve import shape_inertia
+    from ..shared.transforms import rpy_matrix
+
+    if "mesh" in entry["shape"]:
+        return False  # (a mesh's tensor comes from its surface: kept as the file says it)
+    shape_at = entry.get("origin", {})
+    given = entry["inertia"]
+    given_at = given.get("origin", {})
+    if list(given_at.get("xyz", [0.0] * 3)) != list(shape_at.get("xyz", [0.0] * 3)):
+        return False
+    if list(given_at.get("rpy", [0.0] * 3)) != list(shape_at.get("rpy", [0.0] * 3)):
+        return False  # (the same tensor said in other axes: kept as said, so that it is written back the same)
+    computed = shape_inertia(entry["shape"], entry["mass"], _zero_origin())
+    own = np.diag([computed.ixx, computed.iyy, computed.izz])
+    turn = rpy_matrix(*shape_at.get("rpy", [0.0] * 3))
+    own = turn @ own @ turn.T  # (the shape's axes, in the link frame)
+    i = {k: float(given.get(k, 0.0)) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+    tensor = np.array([[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]])
+    turn = rpy_matrix(*given_at.get("rpy", [0.0] * 3))
+    tensor = turn @ tensor @ turn.T
+    scale = max(float(np.abs(tensor).max()), 1e-300)
+    return bool(np.abs(tensor - own).max() <= 1e-12 * scale)
+
+
+def _zero_origin() -> Any:
+    from ..model import Origin
+
+    return Origin()
+
+
+def _label(element: Any) -> str:
+    for key in ("name", "reference"):
+        if element.get(key):
+            return f' {key}="{element.get(key)}"'
+    return ""
+
+
+def _geometry(shape: dict[str, Any], at: dict[str, Any] | None, colour: str | None = None) -> dict[str, Any]:
+    """A `visuals` or `collision` entry: a shape, its origin and its colour (when they are not the defaults)."""
+    found: dict[str, Any] = {"shape": shape}
+    if at:
+        found["origin"] = at
+    if colour:
+        found["material"] = colour
+    return found
+
+
+def _inertial(inertial: Any, where: str) -> dict[str, Any]:
+    if inertial is None or inertial.find("mass") is None:
+        return {}
+    mass = _floats(inertial.find("mass").get("value"), 1, 0.0, f"{where} mass")[0]
+    tensor = inertial.find("inertia")
+    keys = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
+    values = {k: _floats(tensor.get(k) if tensor is not None else None, 1, 0.0, f"{where} {k}")[0] for k in keys}
+    if mass == 0.0 and not any(values.values()):
+        return {}  # (a frame: no mass, no inertia)
+    inertia: dict[str, Any] = {k: v for k, v in values.items() if v or k in ("ixx", "iyy", "izz")}
+    at = _origin(inertial.find("origin"), f"{where} inertial")
+    if at:
+        inertia["origin"] = at
+    return {"mass": mass, "inertia": inertia}
+
+
+def _joint(joint: Any, where: str, problems: list[str]) -> dict[str, Any]:
+    entry: dict[str, Any] = {
+        "type": joint.get("type"),
+        "parent": joint.find("parent").get("link") if joint.find("parent") is not None else None,
+        "child": joint.find("child").get("link") if joint.find("child") is not None else None,
+    }
+    at = _origin(joint.find("origin"), where)
+    if at:
+        entry["origin"] = at
+    if joint.find("axis") is not None and joint.get("type") not in ("fixed", "floating"):
+        entry["axis"] = _floats(joint.find("axis").get("xyz"), 3, 0.0, f"{where} axis")
+    limit = joint.find("limit")
+    if limit is not None and joint.get("type") in ("revolute", "prismatic", "continuous"):
+        entry["limit"] = {
+            key: _floats(limit.get(key), 1, 0.0, f"{where} limit {key}")[0]
+            for key in ("lower", "upper", "effort", "velocity")
+            if limit.get(key) is not None and not (joint.get("type") == "continuous" and key in ("lower", "upper"))
+        }
+        if joint.get("type") != "continuous":  # (urdfdom reads a range not given as 0: the spec says it)
+            entry["limit"] = {"lower": 0.0, "upper": 0.0, **entry["limit"]}
+    moving = joint.get("type") in ("revolute", "prismatic", "continuous")
+    dynamics = joint.find("dynamics")
+    if dynamics is not None and moving:  # (URDF readers ignore a fixed joint's dynamics)
+        entry["dynamics"] = {
+            key: _floats(dynamics.get(key), 1, 0.0, f"{where} {key}")[0]
+            for key in ("damping", "friction")
+            if dynamics.get(key) is not None
+        }
+    mimic = joint.find("mimic")
+    if mimic is not None and moving:  # (a fixed joint's mimic moves nothing: left out, said in the header)
+        entry["mimic"] = {"joint": mimic.get("joint")}
+        for key, default in (("multiplier", 1.0), ("offset", 0.0)):
+            value = _floats(mimic.get(key), 1, default, f"{where} mimic {key}")[0]
+            if value != default:
+                entry["mimic"][key] = value
+    safety = joint.find("safety_controller")
+    if safety is not None and moving:
+        entry["safety_controller"] = {
+            key: _floats(safety.get(key), 1, 0.0, f"{where} {key}")[0]
+            for key in ("soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity")
+            if safety.get(key) is not None
+        }
+    calibration = joint.find("calibration")
+    if calibration is not None:
+        given = [k for k in ("rising", "falling") if calibration.get(k) is not None]
+        if given:
+            said = {k: _floats(calibration.get(k), 1, 0.0, f"{where} calibration {k}")[0] for k in given}
+            entry["calibration"] = said
+    return entry
+
+
+def import_robot(
+    path: str | os.PathLike[str],
+    mappings: Mapping[str, str] | None = None,
+    *,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
+) -> Imported:
+    """The spec of a URDF or xacro document (``mappings``: its xacro arguments).
+
+    Raises:
+        XacrokitError: unreadable input, or a robot with nothing the spec can hold.
+    """
+    from pathlib import Path
+
+    from ..reader.robot_source import robot_text
+
+    with robot_text(path, mappings, package_paths, meshes=False) as (text, packages):
+        from ..check.checker import input_kind
+
+        source = str(path) if input_kind(Path(path)) == "urdf" else f"{path} (as expanded)"
+        imported = import_text(text, Path(path).stem.split(".")[0], source)
+        _relative_meshes(imported, Path(path).parent, packages, source)
+    return imported
+
+
+def _relative_meshes(imported: Imported, base: Any, packages: Mapping[str, Any], source: str) -> None:
+    """A mesh named by a path relative to the URDF (``meshes/arm.stl``) is copied beside the spec, under
+    ``meshes/``, and the spec names the copy: gen-robot then carries it into the package. (A ``package://`` or
+    ``file://`` URI stays as written: the package it names is the user's.) What is copied is read here, once, safely
+    (:func:`~xacrokit.reader.mesh_copies.mesh_to_copy`: no link, nothing outside the URDF's folder, a mesh of its
+    kind); a mesh that is not is a located error, and nothing is imported."""
+    from pathlib import Path, PurePosixPath
+
+    from ..reader.mesh_copies import mesh_to_copy
+    from ..shared.mesh_solids import MESH_SUFFIXES, is_relative
+    from ..shared.ros_packages import mesh_file
+    from ..validate.bodies import geometries
+
+    sources: dict[str, Path] = {}
+    for link_name, link in imported.spec.get("links", {}).items():
+        for holder in [link, *(geometry for _, geometry in geometries((), link))]:
+            mesh = holder.get("shape", {}).get("mesh")
+            if not mesh or not is_relative(mesh["filename"]):
+                continue
+            path = mesh_file(mesh["filename"], base, packages)
+            line = imported.lines.get(("links", link_name))
+            where = f"{source}:{line}: " if line else f"{source}: "
+            if not Path(path).is_file() and not Path(path).is_symlink():
+                imported.unsupported.append(f"mesh {mesh['filename']!r}: not found (looked for {str(path)!r})")
+                continue
+            name = PurePosixPath(mesh["filename"]).name
+            if PurePosixPath(name).suffix.lower() not in MESH_SUFFIXES:
+                imported.unsupported.append(f"mesh {mesh['filename']!r}: not a mesh file the spec copies")
+                continue
+            target = f"meshes/{name}"
+            if sources.get(target, path) != path:
+                imported.unsupported.append(f"mesh {mesh['filename']!r}: two meshes named {name!r}")
+                continue
+            if target not in sources:
+                imported.meshes[target] = mesh_to_copy(base, path, where=f"{where}mesh {mesh['filename']!r}")
+                sources[target] = path
+            mesh["filename"] = target
+
+
+def spec_yaml(imported: Imported, source: str) -> str:
+    """The spec as YAML, with a header naming its source and what was not imported."""
+    import yaml
+
+    said = [f"Imported by gen-robot import from {source!r}."]
+    said += [f"not imported: {line}" for line in imported.unsupported]
+    said += [f"as the file says it (strict: false): {line}" for line in imported.as_given]
+    said += [f"not URDF, ignored by its readers: {line}" for line in imported.ignored]
+    said += [f"renamed: {imported.renamed}"] if imported.renamed else []
+    if imported.wheels:
+        said.append(f"wheels (exactly what the spec's wheels: write): {', '.join(imported.wheels)}")
+    said += [f"kept in the extension file (not modelled by the spec): {line}" for line in imported.leftovers]
+    # (one comment line each: every line break YAML knows, a carriage return among them, is made a space)
+    lines = ["# " + " ".join(line.splitlines()) for line in said]
+    body = yaml.safe_dump(imported.spec, sort_keys=False, default_flow_style=None, width=120, allow_unicode=True)
+    return "\n".join(lines) + "\n" + body

@@ -1,0 +1,99 @@
+"""Rigid transforms and the DH product, written from the textbook definitions (numpy, 4x4 homogeneous)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from ..model import DHRow, Origin
+
+
+def dh_body_end(
+    convention: str, a: float, alpha: float, following: tuple[float, float, float] | None
+) -> tuple[float, float, float]:
+    """Where a DH row's link body ends, in the row's link frame: the next joint's frame origin (the tool frame's for
+    the last row, less the tool's own offset). ``following`` is the next row's (a, alpha, d), None for the last row.
+    Standard DH puts the row's own a along x; modified DH the next row's a and alpha (the next joint's screw)."""
+    end_a, end_alpha = (a, alpha) if convention == "standard" else following[:2] if following else (0.0, 0.0)
+    end_d = following[2] if following else 0.0
+    return (end_a, -math.sin(end_alpha) * end_d, math.cos(end_alpha) * end_d)
+
+
+def rotation_rpy(
+    *,
+    quaternion: tuple[float, float, float, float] | None = None,
+    axis: tuple[float, float, float] | None = None,
+    angle: float = 0.0,
+) -> tuple[float, float, float]:
+    """URDF's roll, pitch, yaw of a rotation given as a unit quaternion (x, y, z, w: ROS's order) or as a unit axis and
+    an angle (right-handed), with pinocchio's conversions (Eigen's quaternion and angle-axis; ``matrixToRpy`` gives
+    pitch in [-pi/2, pi/2], as URDF reads it)."""
+    import pinocchio  # (loaded only for an origin given this way: it takes a quarter of a second)
+
+    if quaternion is not None:
+        matrix = pinocchio.Quaternion(np.array(quaternion, dtype=float)).toRotationMatrix()
+    elif axis is not None:
+        matrix = pinocchio.AngleAxis(angle, np.array(axis, dtype=float)).matrix()
+    else:
+        raise ValueError("a quaternion, or an axis and an angle")
+    roll, pitch, yaw = (float(v) + 0.0 for v in pinocchio.rpy.matrixToRpy(matrix))
+    return (roll, pitch, yaw)
+
+
+def rot_x(angle: float) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+
+
+def rot_y(angle: float) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+
+def rot_z(angle: float) -> np.ndarray:
+    c, s = np.cos(angle), np.sin(angle)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def rpy_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """URDF's fixed-axis roll-pitch-yaw: R = Rz(yaw) Ry(pitch) Rx(roll)."""
+    return rot_z(yaw) @ rot_y(pitch) @ rot_x(roll)
+
+
+def transform(rotation: np.ndarray, translation: Sequence[float]) -> np.ndarray:
+    result = np.eye(4)
+    result[:3, :3] = rotation
+    result[:3, 3] = translation
+    return result
+
+
+def origin_transform(origin: Origin) -> np.ndarray:
+    return transform(rpy_matrix(*origin.rpy), origin.xyz)
+
+
+def dh_step(row: DHRow, q: float, convention: str) -> np.ndarray:
+    """One DH row at joint value q.
+
+    standard: Rz(theta) Tz(d) Tx(a) Rx(alpha); modified: Rx(alpha) Tx(a) Rz(theta) Tz(d). q adds to theta (revolute,
+    continuous) or d (prismatic).
+    """
+    theta, d = row.theta, row.d
+    if row.type in ("revolute", "continuous"):
+        theta += q
+    elif row.type == "prismatic":
+        d += q
+    screw_z = transform(rot_z(theta), (0.0, 0.0, 0.0)) @ transform(np.eye(3), (0.0, 0.0, d))
+    screw_x = transform(np.eye(3), (row.a, 0.0, 0.0)) @ transform(rot_x(row.alpha), (0.0, 0.0, 0.0))
+    return screw_z @ screw_x if convention == "standard" else screw_x @ screw_z
+
+
+def dh_chain(rows: Sequence[DHRow], q: Sequence[float], convention: str, base: Origin, tool: Origin) -> np.ndarray:
+    """Pose of the tool frame in the arm's parent: base origin, the DH rows at joint values q, the tool offset."""
+    result = origin_transform(base)
+    for row, value in zip(rows, q, strict=True):
+        result = result @ dh_step(row, value, convention)
+    return result @ origin_transform(tool)

@@ -1,0 +1,248 @@
+"""The sizing file (``gen-robot size ROBOT --sizing FILE``): payloads, loads, a motion and drives, read with the
+spec's reader (positions kept), checked against schemas/sizing.schema.json, its units converted; every problem
+located (file:line:col) and reported at once. Names of frames and joints are checked against the robot."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from dataclasses import dataclass, field
+from functools import cache
+from typing import Any
+
+from ..errors import SpecError, SpecErrors
+from ..load import PathKey, RawSpec, load_file
+from ..shared.package_data import schemas_dir
+from ..shared.units import Kind, UnitError, parse_quantity
+from ..shared.value_text import did_you_mean
+from ..validate.schema import SchemaValidator, inline_refs, schema_errors
+from .mobile import BaseMotion
+from .motion import Motion, reach, waypoint_errors
+from .sized_robot import Load, Payload, SizingRobot, frame_names
+
+
+@dataclass(frozen=True)
+class Drive:
+    """A joint's gearbox and motor: ratio N, efficiency, rotor inertia (kg*m^2), and the motor's limits (None where
+    not given): continuous and peak torque (N*m), maximum speed (rad/s)."""
+
+    gear_ratio: float
+    efficiency: float = 1.0
+    rotor_inertia: float = 0.0
+    rated_torque: float | None = None
+    peak_torque: float | None = None
+    max_speed: float | None = None
+
+
+@dataclass(frozen=True)
+class Sizing:
+    """What a sizing file asks for, in SI, by name (the motion's waypoints still by joint name)."""
+
+    payloads: tuple[Payload, ...] = ()
+    loads: tuple[Load, ...] = ()
+    motion: dict[str, Any] | None = None
+    drives: dict[str, Drive] = field(default_factory=dict)
+    raw: RawSpec | None = None
+    mobile: BaseMotion | None = None
+    safety_factor: float = 1.0
+
+
+@cache
+def _validator() -> SchemaValidator:
+    schema = json.loads((schemas_dir() / "sizing.schema.json").read_text("utf-8"))
+    return SchemaValidator(inline_refs(schema))
+
+
+class _Reader:
+    def __init__(self, raw: RawSpec) -> None:
+        self.raw = raw
+        self.errors: list[SpecError] = []
+
+    def quantity(self, value: Any, kind: Kind, path: PathKey, *, positive: bool = False) -> float:
+        try:
+            number = parse_quantity(value, kind)
+        except UnitError as exc:
+            self.errors.append(self.raw.error(path, str(exc)))
+            return math.nan
+        if positive and not number > 0:
+            self.errors.append(self.raw.error(path, f"must be > 0, got {value!r}"))
+        return number
+
+
+def read_sizing(path: str | os.PathLike[str]) -> Sizing:
+    """The sizing file at ``path``. Raises SpecErrors (located) when it does not follow its schema or a value does
+    not parse."""
+    raw = load_file(os.fspath(path))
+    errors = schema_errors(raw, _validator())
+    if errors:
+        raise SpecErrors(errors)
+    data, read = raw.data or {}, _Reader(raw)
+    payloads = []
+    for index, item in enumerate(data.get("payloads", [])):
+        where: PathKey = ("payloads", index)
+        mass = read.quantity(item["mass"], "mass", (*where, "mass"), positive=True)
+        com = tuple(read.quantity(v, "length", (*where, "com", k)) for k, v in enumerate(item.get("com", [0, 0, 0])))
+        tensor = item.get("inertia", {})
+        inertia = tuple(float(tensor.get(k, 0.0)) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"))
+        payloads.append(Payload(item["frame"], mass, (com[0], com[1], com[2]), inertia))  # type: ignore[arg-type]
+    loads = []
+    for index, item in enumerate(data.get("loads", [])):
+        where = ("loads", index)
+        force = [read.quantity(v, "force", (*where, "force", k)) for k, v in enumerate(item.get("force", [0, 0, 0]))]
+        moment = [read.quantity(v, "torque", (*where, "moment", k)) for k, v in enumerate(item.get("moment", [0] * 3))]
+        loads.append(Load(item["frame"], (force[0], force[1], force[2]), (moment[0], moment[1], moment[2])))
+    drives = {}
+    for name, item in data.get("drives", {}).items():
+        where = ("drives", name)
+        drives[name] = Drive(
+            gear_ratio=float(item["gear_ratio"]),
+            efficiency=float(item.get("efficiency", 1.0)),
+            rotor_inertia=float(item.get("rotor_inertia", 0.0)),
+            rated_torque=_optional(read, item, "rated_torque", "torque", where),
+            peak_torque=_optional(read, item, "peak_torque", "torque", where),
+            max_speed=_optional(read, item, "max_speed", "angular_velocity", where),
+        )
+    mobile = None
+    if "mobile" in data:
+        item, where = data["mobile"], ("mobile",)
+        mobile = BaseMotion(
+            speed=read.quantity(item["speed"], "linear_velocity", (*where, "speed"), positive=True),
+            acceleration=float(item["acceleration"]),
+            slope=read.quantity(item.get("slope", 0.0), "angle", (*where, "slope")),
+            rolling_resistance=float(item.get("rolling_resistance", 0.0)),
+            wheels=tuple(item.get("wheels", ())),
+        )
+    if read.errors:
+        raise SpecErrors(read.errors)
+    factor = float(data.get("safety_factor", 1.0))
+    return Sizing(tuple(payloads), tuple(loads), data.get("motion"), drives, raw, mobile, factor)
+
+
+def _optional(read: _Reader, item: dict[str, Any], key: str, kind: Kind, where: PathKey) -> float | None:
+    return read.quantity(item[key], kind, (*where, key), positive=True) if key in item else None
+
+
+def motion_of(sizing: Sizing, robot: SizingRobot) -> Motion | None:
+    """The sizing file's motion for ``robot``: waypoints in the robot's joint order (a joint left out keeps its
+    value), limits per joint. Raises SpecErrors (located) for an unknown joint, a missing limit, a value that does
+    not parse or a waypoint outside a joint's range."""
+    data, raw = sizing.motion, sizing.raw
+    if data is None or raw is None:
+        return None
+    read = _Reader(raw)
+    names = [j.name for j in robot.joints]
+    current = [0.0] * len(names)
+    waypoints = []
+    for index, point in enumerate(data["waypoints"]):
+        if "pose" in point:
+            current = _reached(read, robot, point["pose"], ("motion", "waypoints", index, "pose"), current)
+        for name, value in point.items():
+            if name == "pose":
+                continue
+            where: PathKey = ("motion", "waypoints", index, name)
+            if name not in names:
+                read.errors.append(raw.error(where, f"{name!r} is not a moving joint{did_you_mean(name, names)}"))
+                continue
+            joint = robot.joints[names.index(name)]
+            current[names.index(name)] = read.quantity(value, "length" if joint.kind == "prismatic" else "angle", where)
+        waypoints.append(tuple(current))
+    velocity = _per_joint(read, data.get("velocity"), robot, "velocity", ("motion", "velocity"))
+    acceleration = _per_joint(read, data.get("acceleration"), robot, "acceleration", ("motion", "acceleration"))
+    if not read.errors:
+        read.errors += [raw.error(("motion", "waypoints"), problem) for problem in waypoint_errors(robot, waypoints)]
+    if read.errors:
+        raise SpecErrors(read.errors)
+    return Motion(
+        waypoints=tuple(waypoints),
+        velocity=tuple(velocity),
+        acceleration=tuple(acceleration),
+        scaling=data.get("scaling", "quintic"),
+        dwell=float(data.get("dwell", 0.0)),
+        step=float(data.get("step", 1e-3)),
+    )
+
+
+IK_REACHED = 1e-6  # m / rad: a pose error left above this is "unreachable"
+
+
+def _reached(
+    read: _Reader, robot: SizingRobot, pose: dict[str, Any], where: PathKey, start: list[float]
+) -> list[float]:
+    """The joint values inverse kinematics finds for a waypoint's pose, from the previous waypoint's."""
+    raw = read.raw
+    frames = frame_names(robot)
+    if pose["frame"] not in frames:
+        read.errors.append(
+            raw.error(
+                (*where, "frame"), f"the robot has no frame {pose['frame']!r}{did_you_mean(pose['frame'], frames)}"
+            )
+        )
+        return start
+    xyz = [read.quantity(v, "length", (*where, "xyz", k)) for k, v in enumerate(pose["xyz"])]
+    rpy = [read.quantity(v, "angle", (*where, "rpy", k)) for k, v in enumerate(pose["rpy"])] if "rpy" in pose else None
+    if read.errors:
+        return start
+    values, error = reach(robot, pose["frame"], xyz, rpy, start)
+    if error > IK_REACHED:
+        read.errors.append(
+            raw.error(
+                where,
+                f"inverse kinematics cannot put {pose['frame']!r} there within the joints' ranges (the pose "
+                f"it ends at is {error:.3g} away); move the point in reach, or give the joint values",
+            )
+        )
+    return values
+
+
+def _per_joint(read: _Reader, given: Any, robot: SizingRobot, what: str, where: PathKey) -> list[float]:
+    """A limit for every moving joint: one value for all, a mapping by name, or (speeds) the URDF's velocity limit."""
+    raw = read.raw
+    values = []
+    names = [j.name for j in robot.joints]
+    if isinstance(given, dict):
+        for name in given:
+            if name not in names:
+                read.errors.append(
+                    raw.error((*where, name), f"{name!r} is not a moving joint{did_you_mean(name, names)}")
+                )
+    for joint in robot.joints:
+        value = given.get(joint.name) if isinstance(given, dict) else given
+        kind: Kind = "linear_velocity" if joint.kind == "prismatic" else "angular_velocity"
+        if value is None and what == "velocity" and joint.velocity is not None:
+            values.append(joint.velocity)
+        elif value is None:
+            source = " and the URDF gives no velocity limit" if what == "velocity" else ""
+            read.errors.append(raw.error(where[:-1], f"joint {joint.name!r} needs a {what} limit{source}", key=True))
+            values.append(math.nan)
+        elif what == "velocity":
+            path = (*where, joint.name) if isinstance(given, dict) else where
+            values.append(read.quantity(value, kind, path, positive=True))
+        else:
+            path = (*where, joint.name) if isinstance(given, dict) else where
+            values.append(read.quantity(value, "number", path, positive=True))
+    return values
+
+
+def name_errors(sizing: Sizing, robot: SizingRobot) -> list[SpecError]:
+    """The frames and joints the sizing file names that the robot lacks, located, with the closest name."""
+    raw = sizing.raw
+    if raw is None:
+        return []
+    frames, joints = frame_names(robot), [j.name for j in robot.joints]
+    data = raw.data or {}
+    errors = []
+    for section in ("payloads", "loads"):
+        for index, item in enumerate(data.get(section, [])):
+            if item["frame"] not in frames:
+                message = f"the robot has no frame {item['frame']!r}{did_you_mean(item['frame'], frames)}"
+                errors.append(raw.error((section, index, "frame"), message))
+    for index, name in enumerate(data.get("mobile", {}).get("wheels", [])):
+        if name not in joints:
+            message = f"{name!r} is not a moving joint{did_you_mean(name, joints)}"
+            errors.append(raw.error(("mobile", "wheels", index), message))
+    for name in data.get("drives", {}):
+        if name not in joints:
+            message = f"{name!r} is not a moving joint{did_you_mean(name, joints)}"
+            errors.append(raw.error(("drives", name), message, key=True))
+    return errors

@@ -1,0 +1,287 @@
+"""``gen-robot view``: one self-contained HTML page that shows a robot (URDF, xacro document, spec or scene) and moves
+its joints, offline from ``file://``: no request of any kind leaves the page.
+
+three.js comes from the npm registry, not from this repository: the pinned release's tarball is downloaded once,
+checked against the registry's sha512 integrity, cached (``~/.cache/xacrokit/npm``, or ``XACROKIT_NPM_CACHE``), and
+its module build and OrbitControls are inlined into the page through an import map of data: URLs. The robot is
+embedded as JSON (every ``<`` escaped, so that no name can close the script element); meshes are read with trimesh
+(STL, OBJ, PLY, and COLLADA through pycollada) and embedded as vertex and index arrays. The page's forward kinematics
+are the URDF's, in double precision (fixed-axis rpy, revolute, continuous, prismatic, mimic; a floating joint takes
+[x, y, z, roll, pitch, yaw], a planar one [x, y, theta] in the plane normal to its axis), and ``window.xacrokit``
+exposes ``setJoints({name: value})``, ``linkPose(name)`` (the 4x4 world transform, row-major), ``joints()`` and
+``multiJoints()`` for tests. With a sizing file (:mod:`xacrokit.view.page_motion`) the page plays its motion with the
+torque plot beside it (``playAt(t)``).
+"""
+
+from __future__ import annotations
+
+import base64
+import hashlib
+import io
+import json
+import os
+import tarfile
+import urllib.request
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import XacrokitError
+
+THREE_VERSION = "0.170.0"
+THREE_TARBALL = f"https://registry.npmjs.org/three/-/three-{THREE_VERSION}.tgz"
+THREE_INTEGRITY = "sha512-FQK+LEpYc0fBD+J8g6oSEyyNzjp+Q7Ks1C568WWaoMRLW+TkNNWmenWeGgJjV105Gd+p/2ql1ZcjYvNiPZBhuQ=="
+THREE_FILES = {"three": "package/build/three.module.min.js", "orbit": "package/examples/jsm/controls/OrbitControls.js"}
+
+
+def npm_cache() -> Path:
+    return Path(os.environ.get("XACROKIT_NPM_CACHE") or Path.home() / ".cache" / "xacrokit" / "npm")
+
+
+def three_sources() -> dict[str, str]:
+    """three.js's module build and OrbitControls, from the pinned npm tarball (downloaded once, integrity-checked)."""
+    tarball = npm_cache() / f"three-{THREE_VERSION}.tgz"
+    if not tarball.is_file():
+        try:
+            with urllib.request.urlopen(THREE_TARBALL, timeout=120) as response:  # noqa: S310  (a pinned https URL)
+                data = response.read()
+        except OSError as exc:
+            raise XacrokitError(
+                f"three.js {THREE_VERSION} is not cached and cannot be downloaded from the npm registry ({exc}); "
+                f"put {THREE_TARBALL} at {tarball}"
+            ) from None
+        _check(data)
+        tarball.parent.mkdir(parents=True, exist_ok=True)
+        partial = tarball.with_suffix(".part")
+        partial.write_bytes(data)
+        partial.replace(tarball)
+    data = tarball.read_bytes()
+    _check(data)
+    with tarfile.open(fileobj=io.BytesIO(data), mode="r:gz") as archive:
+        found = {}
+        for key, member in THREE_FILES.items():
+            handle = archive.extractfile(member)
+            if handle is None:
+                raise XacrokitError(f"{tarball} holds no {member}")
+            found[key] = handle.read().decode("utf-8")
+    return found
+
+
+def _check(data: bytes) -> None:
+    digest = "sha512-" + base64.b64encode(hashlib.sha512(data).digest()).decode("ascii")
+    if digest != THREE_INTEGRITY:
+        raise XacrokitError(f"the three.js tarball does not have the npm registry's integrity {THREE_INTEGRITY}")
+
+
+def robot_json(text: str, resolve: Any) -> dict[str, Any]:
+    """The robot as the page reads it: links with their visuals, joints with their origin, axis, limits, mimic, and
+    ``missing``: a line for each mesh that cannot be found or read (``resolve`` raising XacrokitError for it), whose
+    visual the page goes without and lists."""
+    from lxml import etree
+
+    root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+    missing: list[str] = []  # (a mesh the page cannot show: said in the page and by the command)
+    colours = {m.get("name"): m.find("color").get("rgba") for m in root.iter("material") if m.find("color") is not None}
+    links = []
+    for link in root.findall("link"):
+        visuals = []
+        for visual in link.findall("visual"):
+            shape = _shape(visual)
+            if shape is None:
+                continue
+            entry: dict[str, Any] = {"origin": _origin(visual.find("origin")), "kind": shape.tag}
+            material = visual.find("material")
+            rgba = None
+            if material is not None:
+                colour = material.find("color")
+                rgba = colour.get("rgba") if colour is not None else colours.get(material.get("name"))
+            entry["rgba"] = _floats(rgba, [0.62, 0.64, 0.68, 1.0])
+            if shape.tag in ("box", "cylinder", "sphere"):
+                entry.update(_primitive(shape))
+            elif shape.tag == "mesh":
+                try:
+                    vertices, faces = _mesh(resolve, shape.get("filename", ""))
+                except XacrokitError as exc:
+                    missing.append(f"link {link.get('name')}: {exc}")
+                    continue
+                entry.update(
+                    scale=_floats(shape.get("scale"), [1.0, 1.0, 1.0]),
+                    vertices=base64.b64encode(vertices.astype("<f4").tobytes()).decode("ascii"),
+                    faces=base64.b64encode(faces.astype("<u4").tobytes()).decode("ascii"),
+                )
+            else:
+                continue
+            visuals.append(entry)
+        links.append(
+            {
+                "name": link.get("name"),
+                "visuals": visuals,
+                "collisions": _collisions(link),
+                "inertia": _inertia_box(link.find("inertial")),
+            }
+        )
+    joints = []
+    for joint in root.findall("joint"):
+        limit, mimic, axis = joint.find("limit"), joint.find("mimic"), joint.find("axis")
+        parent, child = joint.find("parent"), joint.find("child")
+        if parent is None or child is None:  # (not a URDF joint: check says so; the page draws the rest)
+            continue
+        entry = {
+            "name": joint.get("name"),
+            "type": joint.get("type"),
+            "parent": parent.get("link"),
+            "child": child.get("link"),
+            "origin": _origin(joint.find("origin")),
+            "axis": _floats(axis.get("xyz") if axis is not None else None, [1.0, 0.0, 0.0]),
+        }
+        if limit is not None and joint.get("type") in ("revolute", "prismatic"):
+            entry["lower"], entry["upper"] = _number(limit.get("lower"), 0.0), _number(limit.get("upper"), 0.0)
+        if mimic is not None:
+            entry["mimic"] = {
+                "joint": mimic.get("joint"),
+                "multiplier": _number(mimic.get("multiplier"), 1.0),
+                "offset": _number(mimic.get("offset"), 0.0),
+            }
+        joints.append(entry)
+    return {"name": root.get("name", "robot"), "links": links, "joints": joints, "missing": missing}
+
+
+def _collisions(link: Any) -> list[dict[str, Any]]:
+    """A link's collision primitives (meshes are drawn as their visuals: the toggle shows the primitives)."""
+    found = []
+    for collision in link.findall("collision"):
+        shape = _shape(collision)
+        if shape is None or shape.tag not in ("box", "cylinder", "sphere"):
+            continue
+        entry: dict[str, Any] = {"origin": _origin(collision.find("origin")), "kind": shape.tag}
+        entry.update(rgba=[1.0, 0.4, 0.0, 0.5], **_primitive(shape))
+        found.append(entry)
+    return found
+
+
+def _shape(element: Any) -> Any:
+    """The shape element of a visual or collision: the first element inside its <geometry> (comments skipped, as
+    in vendors' files that keep a commented-out shape above the one in use), None without one."""
+    from lxml import etree
+
+    geometry = element.find("geometry")
+    return None if geometry is None else next(geometry.iterchildren(etree.Element), None)
+
+
+def _primitive(shape: Any) -> dict[str, Any]:
+    """A box's, cylinder's or sphere's sizes as the page reads them (a size that is not a number: a small default,
+    so that the page still draws the rest; check says what is wrong)."""
+    if shape.tag == "box":
+        return {"size": _floats(shape.get("size"), [0.1, 0.1, 0.1])}
+    if shape.tag == "cylinder":
+        return {"radius": _number(shape.get("radius"), 0.05), "length": _number(shape.get("length"), 0.1)}
+    return {"radius": _number(shape.get("radius"), 0.05)}
+
+
+def _number(text: str | None, default: float) -> float:
+    try:
+        value = float(text if text is not None else default)
+    except ValueError:
+        return default
+    return value if np.isfinite(value) else default
+
+
+def _inertia_box(inertial: Any) -> dict[str, Any] | None:
+    """The box of uniform density with the link's mass and principal moments (sides sqrt(6 (I_j + I_k - I_i) / m)),
+    at the centre of mass, along the principal axes: what the inertia toggle draws. None without a mass."""
+    from ..shared.transforms import rpy_matrix
+
+    if inertial is None or inertial.find("mass") is None or inertial.find("inertia") is None:
+        return None
+    try:
+        mass = float(inertial.find("mass").get("value"))
+        i = {k: float(inertial.find("inertia").get(k, 0.0)) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+    except ValueError:
+        return None
+    tensor = np.array([[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]])
+    if not mass > 0 or not np.all(np.isfinite(tensor)):
+        return None
+    moments, axes = np.linalg.eigh(tensor)
+    total = moments.sum()
+    sides = [float(np.sqrt(max(6.0 * (total - 2.0 * m) / mass, 0.0))) for m in moments]
+    origin = _origin(inertial.find("origin"))
+    rotation = rpy_matrix(*origin["rpy"]) @ axes
+    return {"xyz": origin["xyz"], "rotation": rotation.reshape(-1).tolist(), "size": sides}
+
+
+def _floats(text: str | None, default: list[float]) -> list[float]:
+    try:
+        values = [float(v) for v in (text or "").split()]
+    except ValueError:
+        return default
+    return values if len(values) == len(default) else default
+
+
+def _origin(element: Any) -> dict[str, list[float]]:
+    if element is None:
+        return {"xyz": [0.0, 0.0, 0.0], "rpy": [0.0, 0.0, 0.0]}
+    return {"xyz": _floats(element.get("xyz"), [0.0, 0.0, 0.0]), "rpy": _floats(element.get("rpy"), [0.0, 0.0, 0.0])}
+
+
+def _mesh(resolve: Any, filename: str) -> tuple[np.ndarray, np.ndarray]:
+    from ..shared.mesh_solids import read_mesh
+
+    file = Path(resolve(filename))
+    if not file.is_file():
+        raise XacrokitError(f"mesh {filename!r} is not there ({file}); the page would miss it")
+    mesh = read_mesh(file, filename)  # (one without triangles is said, not drawn as nothing)
+    return np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64)
+
+
+def page(
+    path: str | os.PathLike[str],
+    mappings: Mapping[str, str] | None = None,
+    *,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
+    poller: str = "",
+    sizing: str | os.PathLike[str] | None = None,
+    missing: list[str] | None = None,
+) -> str:
+    """The HTML page of the robot at ``path`` (see the module's notes); ``poller``: the script ``--watch`` adds (it
+    may then ask its own origin, and only that); ``sizing``: a sizing file whose motion the page plays; ``missing``:
+    a list the meshes the page goes without are added to (the page lists them too).
+
+    Raises:
+        XacrokitError: unreadable input, a sizing file without a motion, or three.js unavailable.
+        SpecErrors: an invalid sizing file (located).
+    """
+    from ..reader.robot_source import mesh_resolver, robot_text
+    from ..render import environment
+
+    with robot_text(path, mappings, package_paths) as (text, packages):
+        robot = robot_json(text, mesh_resolver(Path(path).parent, packages))
+    if missing is not None:
+        missing.extend(robot["missing"])
+    if sizing is not None:
+        from .page_motion import motion_json
+
+        robot["motion"] = motion_json(path, sizing, mappings, package_paths=package_paths)
+    sources = three_sources()
+    imports = {
+        "three": "data:text/javascript;base64," + base64.b64encode(sources["three"].encode()).decode("ascii"),
+        "three/addons/controls/OrbitControls.js": "data:text/javascript;base64,"
+        + base64.b64encode(sources["orbit"].encode()).decode("ascii"),
+    }
+    return (
+        environment()
+        .get_template("viewer/view.html.j2")
+        .render(
+            title=robot["name"],
+            robot_json=_script_json(robot),
+            import_map=_script_json({"imports": imports}),
+            three_version=THREE_VERSION,
+            poller=poller,
+        )
+    )
+
+
+def _script_json(value: Any) -> str:
+    """JSON to put inside a <script> element: '<', '>' and '&' as \\u escapes (no name can end the element)."""
+    return json.dumps(value).replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")

@@ -1,0 +1,145 @@
+"""``gen-robot render``: a picture of a robot (URDF, xacro document, spec or scene) without OpenGL: yourdfpy places
+every visual at the joint values asked for (its forward kinematics, primitives made meshes by trimesh), and
+matplotlib's Agg backend draws the triangles, shaded by a fixed light, from a fixed view. The same input gives the
+same PNG bytes (no version metadata), for docs, reports and CI artefacts.
+
+A mesh file that cannot be found or read is an error that names it (never a picture with a hole in it).
+"""
+
+from __future__ import annotations
+
+import io
+import os
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import XacrokitError
+
+LIGHT = np.array([0.3, -0.5, 0.8]) / np.linalg.norm([0.3, -0.5, 0.8])
+VIEW = (22.0, -55.0)  # elevation and azimuth, degrees: the robot's front-left from above (x forward, z up)
+GREY = (0.62, 0.64, 0.68)
+
+
+def render(
+    path: str | os.PathLike[str],
+    mappings: Mapping[str, str] | None = None,
+    *,
+    joints: Mapping[str, float] | None = None,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
+    size: tuple[int, int] = (800, 600),
+) -> bytes:
+    """The PNG of the robot at ``joints`` (name -> rad or m; the others at 0).
+
+    Raises:
+        XacrokitError: unreadable input, a mesh that cannot be found or read, or an unknown joint.
+    """
+    from ..reader.robot_source import robot_text
+
+    with robot_text(path, mappings, package_paths) as (text, packages):
+        meshes = _placed_meshes(text, packages, Path(path).parent, joints or {})
+    return _draw(meshes, size)
+
+
+def _placed_meshes(
+    text: str, packages: Mapping[str, str | os.PathLike[str]], base: Path, joints: Mapping[str, float]
+) -> list[tuple[np.ndarray, np.ndarray, tuple[float, float, float]]]:
+    """(vertices, faces, colour) of every visual, placed in the root link's frame."""
+    import yourdfpy
+
+    from ..shared.ros_packages import mesh_file
+
+    def resolve(fname: str) -> str:  # (yourdfpy passes it by this name)
+        try:
+            return str(mesh_file(fname, base, packages))
+        except (LookupError, ValueError) as exc:
+            raise XacrokitError(f"mesh {fname!r}: {exc}") from None
+
+    for element in _mesh_names(text):
+        file = Path(resolve(element))
+        if not file.is_file():
+            raise XacrokitError(f"mesh {element!r} is not there ({file}); the picture would miss it")
+    try:
+        robot = yourdfpy.URDF.load(io.StringIO(text), filename_handler=resolve, build_scene_graph=True)
+    except XacrokitError:
+        raise
+    except Exception as exc:  # noqa: BLE001  (yourdfpy and trimesh raise what their readers raise)
+        raise XacrokitError(f"cannot draw the robot: {type(exc).__name__}: {exc}") from None
+    unknown = sorted(set(joints) - set(robot.actuated_joint_names))
+    if unknown:
+        raise XacrokitError(f"--joint: no moving joint {', '.join(map(repr, unknown))} in the robot")
+    if joints:
+        robot.update_cfg({name: float(value) for name, value in joints.items()})
+    found = []
+    for name, geometry in robot.scene.geometry.items():
+        for node in robot.scene.graph.geometry_nodes.get(name, []):
+            transform, _ = robot.scene.graph.get(node)
+            vertices = np.asarray(geometry.vertices) @ transform[:3, :3].T + transform[:3, 3]
+            found.append((vertices, np.asarray(geometry.faces), _colour(geometry)))
+    if not found:
+        raise XacrokitError("the robot has no visual geometry to draw")
+    return found
+
+
+def _mesh_names(text: str) -> list[str]:
+    from lxml import etree
+
+    root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+    return sorted({m.get("filename", "") for m in root.iterfind("link/visual/geometry/mesh")})
+
+
+def _colour(geometry: Any) -> tuple[float, float, float]:
+    """A visual's colour (its material's rgb), grey when it has none."""
+    try:
+        rgba = np.asarray(geometry.visual.main_color, dtype=float) / 255.0
+    except (AttributeError, ValueError):
+        return GREY
+    if rgba.shape != (4,) or np.allclose(rgba[:3], 102 / 255.0):  # (trimesh's default colour: none was given)
+        return GREY
+    return (float(rgba[0]), float(rgba[1]), float(rgba[2]))
+
+
+def _draw(meshes: list[tuple[np.ndarray, np.ndarray, tuple[float, float, float]]], size: tuple[int, int]) -> bytes:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # type: ignore[import-untyped]
+
+    figure = Figure(figsize=(size[0] / 100, size[1] / 100), dpi=100)
+    ax = figure.add_subplot(projection="3d")
+    from trimesh.remesh import subdivide_to_size
+
+    points = np.concatenate([vertices for vertices, _, _ in meshes])
+    longest = float((points.max(axis=0) - points.min(axis=0)).max()) / 12  # (small faces: matplotlib sorts by face)
+    triangles, colours = [], []
+    for vertices, faces, colour in meshes:
+        if len(faces) and longest > 0:
+            vertices, faces = subdivide_to_size(vertices, faces, max_edge=longest, max_iter=8)
+        corners = vertices[faces]
+        normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+        lengths = np.linalg.norm(normals, axis=1)
+        keep = lengths > 0
+        shade = 0.45 + 0.55 * np.abs(normals[keep] @ LIGHT) / lengths[keep]
+        triangles.append(corners[keep])
+        colours.append(np.clip(np.outer(shade, colour), 0.0, 1.0))
+    everything = np.concatenate(triangles)
+    shades = np.concatenate(colours)  # (edges in the faces' colour: no seams between the small faces)
+    ax.add_collection3d(Poly3DCollection(everything, facecolors=shades, edgecolors=shades, linewidths=0.3))
+    low, high = everything.reshape(-1, 3).min(axis=0), everything.reshape(-1, 3).max(axis=0)
+    centre, half = (low + high) / 2, max(float((high - low).max()) / 2, 1e-3)
+    ax.set_xlim(centre[0] - half, centre[0] + half)
+    ax.set_ylim(centre[1] - half, centre[1] + half)
+    ax.set_zlim(centre[2] - half, centre[2] + half)
+    ax.set_box_aspect((1, 1, 1))
+    ax.view_init(*VIEW)
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_zlabel("z (m)")
+    ax.tick_params(labelsize=7)
+    figure.tight_layout()
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format="png", metadata={"Software": None})
+    return buffer.getvalue()

@@ -1,0 +1,73 @@
+"""Atomic file writes: a reader never sees a half-written file, and a failed write leaves the old file in place."""
+
+from __future__ import annotations
+
+import contextlib
+import glob
+import os
+import re
+import tempfile
+from collections.abc import Iterable, Iterator, Mapping
+from pathlib import Path
+from typing import Any
+
+TEMPORARY = re.compile(r"\..+\.[A-Za-z0-9_]{8}\.tmp")  # what mkstemp names ours: .NAME.XXXXXXXX.tmp
+
+
+def write_text_atomic(path: Path, text: str | bytes) -> None:
+    """Write ``text`` (UTF-8; bytes as they are) to ``path`` through a temporary file in the same folder and
+    ``os.replace``; the file gets the permissions a plain ``open`` would give (0644 under umask 022: mkstemp makes it
+    0600)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        os.fchmod(fd, 0o666 & ~_umask())
+        if isinstance(text, bytes):
+            with os.fdopen(fd, "wb") as binary:
+                binary.write(text)
+        else:
+            with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as handle:
+                handle.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+@contextlib.contextmanager
+def staged_packages(files: Mapping[str, Iterable[Any]]) -> Iterator[dict[str, Path]]:
+    """Package folders holding ``files`` (package name -> files with ``path`` and ``content``) in a scratch folder for
+    the ``with`` block: where ``package://`` URIs of a package not yet written resolve (checking a spec's URDF)."""
+    if not files:
+        yield {}
+        return
+    with tempfile.TemporaryDirectory(prefix="xacrokit-staged-") as scratch:
+        found: dict[str, Path] = {}
+        for package, items in files.items():
+            found[package] = root = Path(scratch, package)
+            for item in items:
+                write_text_atomic(root / item.path, item.content)
+        yield found
+
+
+def _umask() -> int:
+    mask = os.umask(0o022)  # (the only way to read it is to set it: put back at once, read afresh on each write)
+    os.umask(mask)
+    return mask
+
+
+def remove_leftover_temporaries(root: Path, paths: Iterable[str]) -> list[Path]:
+    """Delete the temporary files :func:`write_text_atomic` left for the files ``paths`` (relative to ``root``) when a
+    run was killed mid-write: ``.NAME.XXXXXXXX.tmp`` beside each, mkstemp's names only, nothing else and nowhere else.
+    Returns what was removed."""
+    removed: list[Path] = []
+    for relative in paths:
+        target = root / relative
+        if not target.parent.is_dir():
+            continue
+        for candidate in target.parent.glob(f".{glob.escape(target.name)}.*.tmp"):
+            if TEMPORARY.fullmatch(candidate.name) and candidate.is_file() and not candidate.is_symlink():
+                with contextlib.suppress(OSError):
+                    candidate.unlink()
+                    removed.append(candidate)
+    return removed
