@@ -388,7 +388,7 @@ def bench_memory(folder: Path) -> None:
 
 def bench_xacro_cost(folder: Path) -> None:
     from xacrokit.emit import emit_urdf
-    from xacrokit.expand.xacro_expand import expand_file
+    from xacrokit.expansion.xacro_expand import expand_file
     from xacrokit.pipeline import build_robot, generate
 
     print("== xacro cost of the generated package (6-axis arm, UR5), median of 7 expansions")

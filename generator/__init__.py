@@ -28,7 +28,7 @@ __version__ = "0.1.0"
 _LAZY = {
     "generate": ("xacrokit.pipeline", "generate"),
     "GenerateResult": ("xacrokit.pipeline", "GenerateResult"),
-    "expand": ("xacrokit.expand.xacro_expand", "expand_file"),
+    "expand": ("xacrokit.expansion.xacro_expand", "expand_file"),
     "ConflictError": ("xacrokit.write.package_writer", "ConflictError"),
     "check": ("xacrokit.check", "check"),
     "CheckReport": ("xacrokit.check", "CheckReport"),

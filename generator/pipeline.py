@@ -14,8 +14,8 @@ from pathlib import Path
 from . import __version__
 from .emit import emit_scene_urdf, emit_urdf
 from .errors import SpecError, XacrokitError
-from .expand.expression_guard import trusting
-from .expand.xacro_expand import expand_file
+from .expansion.expression_guard import trusting
+from .expansion.xacro_expand import expand_file
 from .load import RawSpec, load_file
 from .model import Robot, Scene, attach_joint_name
 from .render import MacroMode, RenderedFile, render_package, render_scene
@@ -70,7 +70,7 @@ def expand_package(model: Robot | Scene, files: list[RenderedFile]) -> RenderedF
 
     What xacrokit wrote is trusted (every text from a spec is escaped for xacro: no expression of the spec's own is
     ever evaluated), so it expands in-process, unbounded; a scene with a third-party macro is trusted only as the
-    caller says (:func:`xacrokit.expand.expression_guard.trusting`, ``--trust``)."""
+    caller says (:func:`xacrokit.expansion.expression_guard.trusting`, ``--trust``)."""
     ours = not isinstance(model, Scene) or all(instance.macro is None for instance in model.instances)
     with tempfile.TemporaryDirectory(prefix="xacrokit-") as scratch:
         root = Path(scratch) / model.package

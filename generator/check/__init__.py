@@ -11,6 +11,8 @@ importing this package must not load that module (nor the rules) before it runs.
 
 from __future__ import annotations
 
+import sys
+import types
 from importlib import import_module
 from typing import TYPE_CHECKING, Any
 
@@ -37,3 +39,15 @@ def __getattr__(name: str) -> Any:
         globals()[name] = value
         return value
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+class _CheckPackage(types.ModuleType):
+    """This package, callable as :func:`check`: ``xacrokit.check`` is both the public function and this package, and
+    once any ``xacrokit.check.X`` is imported Python sets the package as the attribute ``check`` of ``xacrokit``, so
+    ``xacrokit.check(path)`` must work on the package too."""
+
+    def __call__(self, *args: Any, **kwargs: Any) -> Any:
+        return __getattr__("check")(*args, **kwargs)
+
+
+sys.modules[__name__].__class__ = _CheckPackage

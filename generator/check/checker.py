@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..errors import SpecErrors, XacrokitError
-from ..expand.expression_guard import trusting
+from ..expansion.expression_guard import trusting
 from ..shared.gc_pause import collector_paused
 from ..shared.input_files import read_input, require_regular_file
 from ..shared.ros_packages import with_nearby_packages
@@ -71,7 +71,7 @@ def load_urdf(
         carried.update(described.model.carried_files)
         return described.urdf, robot, described.lines, spec_findings(described.warnings)
     if kind == "xacro":
-        from ..expand.xacro_expand import expand_file  # (xacro: loaded for xacro input only)
+        from ..expansion.xacro_expand import expand_file  # (xacro: loaded for xacro input only)
 
         return expand_file(path, mappings, package_paths=package_paths), None, None, ()
     try:
@@ -106,7 +106,7 @@ def check(
         package_paths: folders for ``$(find PKG)`` and ``package://PKG`` of packages not otherwise found.
         progress: called with a short message as each step starts (the CLI shows it on a terminal).
         trust: evaluate every expression of a xacro document (and of a scene's third-party macros); by default those
-            that could reach Python's internals are refused (:mod:`xacrokit.expand.expression_guard`).
+            that could reach Python's internals are refused (:mod:`xacrokit.expansion.expression_guard`).
 
     Raises:
         XacrokitError: the input cannot be read (a spec file that cannot be read raises SpecErrors, a xacro

@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import XacrokitError
-from ..expand.bounded_child import Bounds, ChildFailed, OutOfBounds, start_bounded
+from ..expansion.bounded_child import Bounds, ChildFailed, OutOfBounds, start_bounded
 from .findings import ConsumerResult, Finding, rule_table, severity
 
 RULES = rule_table(

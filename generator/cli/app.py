@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, NoReturn
 
 from .. import __version__
 from ..errors import XacrokitError
-from ..expand.expression_guard import trusting
+from ..expansion.expression_guard import trusting
 from ..shared.progress_line import Progress
 from .arguments import add_force_option, fleet_count, parse_mappings, parse_packages, require_plain_output, spacing
 from .subcommands import add_commands
@@ -31,7 +31,7 @@ if TYPE_CHECKING:
 
 
 def _cmd_expand(args: argparse.Namespace) -> int:
-    from ..expand.xacro_expand import expand_file
+    from ..expansion.xacro_expand import expand_file
 
     urdf = expand_file(args.file, parse_mappings(args.mappings), package_paths=parse_packages(args.package))
     if args.output is not None:

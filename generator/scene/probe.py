@@ -25,7 +25,7 @@ def probe_names(
     (located at the instance's ``xacro`` entry) that says why the scene cannot use it."""
     from lxml import etree
 
-    from ..expand.xacro_expand import expand_file
+    from ..expansion.xacro_expand import expand_file
 
     where: PathKey = ("instances", name, "xacro")
     instance = Instance(name=name, prefix=prefix, parent=parent, origin=Origin(), links=(), joints=(), macro=macro)

@@ -131,3 +131,20 @@ def test_a_file_in_a_package_finds_its_package_and_siblings(tmp_path):
     result = gen_robot("expand", document)
     assert result.returncode == 0, result.stderr
     assert f"file://{(src / 'meshes_pkg').resolve()}/meshes/m.stl" in result.stdout
+
+
+def test_xacrokit_check_is_the_function_whatever_was_imported_before(tmp_path):
+    """xacrokit.check is the public function and a package: importing one of the package's modules first (which makes
+    Python set the package as xacrokit.check) leaves xacrokit.check(path) working."""
+    import subprocess
+    import sys
+
+    urdf = tmp_path / "r.urdf"
+    urdf.write_text('<robot name="r"><link name="a"/></robot>', encoding="utf-8")
+    script = (
+        "import xacrokit, xacrokit.check.findings, sys\n"
+        f"report = xacrokit.check({str(urdf)!r}, consumers=[])\n"
+        "print(type(report).__name__, report.robot)\n"
+    )
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert done.stdout.split() == ["CheckReport", "r"], done.stderr

@@ -1,4 +1,4 @@
-"""An untrusted document expands within bounds (xacrokit.expand.bounded_child): what no check of an expression's text
+"""An untrusted document expands within bounds (xacrokit.expansion.bounded_child): what no check of an expression's text
 can bound, its time, memory and output, is bounded by a forked child; a trusted document is not bounded."""
 
 from __future__ import annotations
@@ -9,10 +9,10 @@ import time
 
 import pytest
 
-import xacrokit.expand.xacro_expand as expansion
+import xacrokit.expansion.xacro_expand as expansion
 from conftest import XACRO_HEADER, gen_robot
 from xacrokit.errors import ExpandError
-from xacrokit.expand.bounded_child import Bounds
+from xacrokit.expansion.bounded_child import Bounds
 
 # a macro that calls the level below it twice: 2**depth links
 DOUBLING = XACRO_HEADER + (

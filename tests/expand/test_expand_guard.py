@@ -8,7 +8,7 @@ import pytest
 
 import xacrokit
 from conftest import XACRO_HEADER, expand_text, gen_robot
-from xacrokit.expand.expression_guard import expression_problem
+from xacrokit.expansion.expression_guard import expression_problem
 
 # xacro's own check (no name starting with __) lets these through; each reaches Python's object graph or builtins
 ESCAPES = [

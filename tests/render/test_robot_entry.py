@@ -9,7 +9,7 @@ from lxml import etree
 import xacrokit
 from conftest import ROBOT_EXAMPLES
 from xacrokit.emit import joint_element, link_element, urdf_differences
-from xacrokit.expand.xacro_expand import expand_file
+from xacrokit.expansion.xacro_expand import expand_file
 from xacrokit.model import mount_joint_name
 from xacrokit.pipeline import build_robot
 from xacrokit.render import render_package, simple_shape_link

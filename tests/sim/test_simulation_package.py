@@ -17,7 +17,7 @@ from lxml import etree
 
 import xacrokit
 from conftest import ROBOT_EXAMPLES, SCENE_EXAMPLES
-from xacrokit.expand.xacro_expand import expand_file
+from xacrokit.expansion.xacro_expand import expand_file
 
 FACTS = yaml.safe_load((Path(__file__).parent / "ros_facts.yaml").read_text(encoding="utf-8"))
 TYPES = {"string_array": list, "double_array": list, "bool": bool, "string": str, "double": float, "int": int}

@@ -8,7 +8,7 @@ from __future__ import annotations
 import json
 
 from conftest import REPO, gen_robot
-from xacrokit.expand.xacro_expand import expand_file
+from xacrokit.expansion.xacro_expand import expand_file
 
 SPEC = REPO / "examples" / "robots" / "two_dof_arm.yaml"
 ADDED = """<?xml version="1.0"?>

@@ -17,7 +17,7 @@ names it and says how to trust one's own documents: ``--trust`` or ``XACROKIT_TR
 
 A guard, not a proof and not a sandbox: it refuses the ways of reaching Python's object graph that are known (two more
 were found by a review and are now refused); time, memory and output are bounded elsewhere (an untrusted document
-expands in a bounded child: :mod:`xacrokit.expand.bounded_child`), and it leaves
+expands in a bounded child: :mod:`xacrokit.expansion.bounded_child`), and it leaves
 what xacro offers on purpose: ``xacro.load_yaml`` reads any YAML file the process can read, ``$(env NAME)`` any
 environment variable, into the output.
 """

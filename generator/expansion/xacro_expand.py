@@ -30,8 +30,8 @@ from .expression_guard import HOW_TO_TRUST, NAMESPACE_REMOVED, guarded, trusted_
 
 MAX_DOCUMENT_BYTES = 64 * 1024 * 1024  # a xacro document (the file expanded; its includes are read by xacro)
 # an untrusted document's expansion: wall time, memory beyond the parent's, size of the URDF
-# (xacrokit.expand.bounded_child). The largest description we write, a 1,000-Panda fleet, took xacro 2 min 48 s, 370 MB
-# and gave 10.4 MB (2026-11-24).
+# (xacrokit.expansion.bounded_child). The largest description we write, a 1,000-Panda fleet, took xacro 2 min 48 s, 370
+# MB and gave 10.4 MB (2026-11-24).
 EXPAND_BOUNDS = Bounds(seconds=600.0, memory=4 * 2**30, output=64 * 2**20)
 
 
@@ -145,8 +145,8 @@ def expand_file(
         xacro_banner: keep the comment xacro puts on top (it names the input path, so output that must not depend
             on where it was made leaves it out).
         trust: evaluate every expression, as xacro does; untrusted (the default, unless
-            :func:`xacrokit.expand.expression_guard.trusting` or ``XACROKIT_TRUST_XACRO=1`` says otherwise),
-            expressions that could reach Python's internals are refused (:mod:`xacrokit.expand.expression_guard`).
+            :func:`xacrokit.expansion.expression_guard.trusting` or ``XACROKIT_TRUST_XACRO=1`` says otherwise),
+            expressions that could reach Python's internals are refused (:mod:`xacrokit.expansion.expression_guard`).
 
     Returns:
         The expanded URDF as pretty-printed XML text.
@@ -191,7 +191,8 @@ def expand_file(
 
 
 def _error_fields(exc: BaseException) -> dict[str, Any] | None:
-    """An ExpandError as plain data, to come back from the bounded child (see :mod:`xacrokit.expand.bounded_child`)."""
+    """An ExpandError as plain data, to come back from the bounded child (see
+    :mod:`xacrokit.expansion.bounded_child`)."""
     if not isinstance(exc, ExpandError):
         return None
     return {"message": exc.message, "file": exc.file, "macro_stack": exc.macro_stack, "file_stack": exc.file_stack}

@@ -1,6 +1,6 @@
 """Run one piece of untrusted work (expanding a xacro document from elsewhere) in a forked child process, with bounds.
 
-xacro evaluates a document's expressions with Python's ``eval``. :mod:`xacrokit.expand.expression_guard` refuses the
+xacro evaluates a document's expressions with Python's ``eval``. :mod:`xacrokit.expansion.expression_guard` refuses the
 expressions that reach Python's internals, but no check of an expression's text can bound what it costs: ``${'x' *
 10**10}`` asks for 10 GB, ``${10**10**10}`` computes for hours inside one C call that no signal interrupts, and a macro
 that calls itself twice, 30 levels deep, makes 2**30 elements. So the work runs in a child (``os.fork``: a few
