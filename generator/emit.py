@@ -36,6 +36,7 @@ from .shared.sim_sensors import sensor_element, topic_namespace
 from .shared.solid_inertia import cylinder_moments, sphere_moment
 from .shared.transforms import dh_body_end
 from .shared.value_text import material_name, num, vec
+from .shared.xml_parse import parse_xml
 
 AXIS_VECTORS = {"x": "1 0 0", "y": "0 1 0", "z": "0 0 1"}
 AXLE_GEOMETRY_RPY = {"x": "0 " + str(math.pi / 2) + " 0", "y": str(math.pi / 2) + " 0 0", "z": "0 0 0"}
@@ -377,7 +378,7 @@ def urdf_differences(a: str, b: str, *, rel: float = 1e-12) -> list[str]:
     """Where two URDF texts describe different robots: element sets, names and numbers (to ``rel``); attribute
     order, element order, whitespace and comments are ignored. An empty list means the same robot."""
     out: list[str] = []
-    _compare(etree.fromstring(a.encode()), etree.fromstring(b.encode()), "robot", rel, out)
+    _compare(parse_xml(a, "<first>"), parse_xml(b, "<second>"), "robot", rel, out)
     return out
 
 

@@ -319,7 +319,9 @@ def _read(data: bytes) -> Any:
     (U003), which consumers read past; the elements stay as written."""
     from lxml import etree
 
-    return etree.fromstring(data, etree.XMLParser(recover=True, resolve_entities=False, no_network=True))
+    from ..shared.xml_parse import parser
+
+    return etree.fromstring(data, parser(recover=True))
 
 
 def consumer_findings(results: Sequence[ConsumerResult], file: str) -> list[Finding]:

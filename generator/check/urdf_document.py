@@ -9,6 +9,7 @@ from typing import overload
 
 from lxml import etree
 
+from ..shared.xml_parse import parse_urdf
 from .findings import Finding, Severity, rule_table, severity
 
 RULES = rule_table(
@@ -28,45 +29,23 @@ def parse_robot(text: str, file: str) -> tuple[etree._Element | None, list[Findi
     """The ``<robot>`` element of a URDF text (None when there is none, and the U001 finding says why), and the
     findings of reading it: U003 for each namespace prefix used without a declaration, which every consumer reads
     past (they ignore elements and attributes they do not know)."""
-    data = text.encode("utf-8")
-    strict = etree.XMLParser(resolve_entities=False, no_network=True)
-    try:
-        root = etree.fromstring(data, strict)
-        found: list[Finding] = []
-    except etree.XMLSyntaxError as exc:
-        log = strict.error_log  # (this parse's own: the exception's may hold earlier parses' errors of the thread)
-        if not log or any(e.domain_name != "NAMESPACE" for e in log):
-            return None, [
-                Finding("U001", severity("U001"), "robot", "", f"not well-formed XML: {exc}", file, exc.lineno)
-            ]
-        parser = etree.XMLParser(recover=True, resolve_entities=False, no_network=True)
-        root = etree.fromstring(data, parser)
-        found = _undeclared_prefixes(log, file)
-    if root is None or root.tag != "robot":
-        said = f"the root element is <{root.tag}>, not <robot>" if root is not None else "no root element"
-        return None, [Finding("U001", severity("U001"), "robot", "", said, file, 1)]
-    return root, found
+    parsed = parse_urdf(text)
+    if parsed.root is None:
+        return None, [Finding("U001", severity("U001"), "robot", "", parsed.error, file, parsed.error_line)]
+    return parsed.root, [_undeclared(prefix, line, file) for prefix, line in parsed.undeclared.items()]
 
 
-def _undeclared_prefixes(log: etree._ListErrorLog, file: str) -> list[Finding]:
-    first: dict[str, int] = {}
-    for entry in log:  # 'Namespace prefix drake for foo on link is not defined', 'Namespace prefix drake on thing ...'
-        words = entry.message.split()
-        if len(words) > 2 and words[:2] == ["Namespace", "prefix"]:
-            first.setdefault(words[2], entry.line)
-    return [
-        Finding(
-            "U003",
-            severity("U003"),
-            "namespace",
-            prefix,
-            f"the prefix {prefix}: is used but never declared; consumers read past it, but XML tools that know "
-            f'namespaces refuse the file: declare it on <robot> (xmlns:{prefix}="...")',
-            file,
-            line,
-        )
-        for prefix, line in first.items()
-    ]
+def _undeclared(prefix: str, line: int, file: str) -> Finding:
+    return Finding(
+        "U003",
+        severity("U003"),
+        "namespace",
+        prefix,
+        f"the prefix {prefix}: is used but never declared; consumers read past it, but XML tools that know "
+        f'namespaces refuse the file: declare it on <robot> (xmlns:{prefix}="...")',
+        file,
+        line,
+    )
 
 
 class Doc:

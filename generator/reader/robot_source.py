@@ -74,32 +74,25 @@ def declared(text: str, where: str = "<robot>") -> str:
     namespace ``urn:xacrokit:undeclared:PREFIX``.
 
     Raises:
-        XacrokitError: not well-formed XML (located: ``where:line:column``), or a root that is not ``<robot>``.
+        XacrokitError: not well-formed XML (located: ``where:line``), or a root that is not ``<robot>``.
     """
     from lxml import etree
 
-    data = text.encode("utf-8")
-    strict = etree.XMLParser(resolve_entities=False, no_network=True)
-    try:
-        root = etree.fromstring(data, strict)
-    except etree.XMLSyntaxError as exc:
-        log = strict.error_log
-        if not log or any(e.domain_name != "NAMESPACE" for e in log):
-            line, column = exc.position
-            raise XacrokitError(f"{where}:{line}:{column}: not well-formed XML: {exc.msg}") from None
-        root = etree.fromstring(data, etree.XMLParser(recover=True, resolve_entities=False, no_network=True))
-        for element in root.iter(etree.Element):
-            if ":" in element.tag and not element.tag.startswith("{"):
-                prefix, _, local = element.tag.partition(":")
-                element.tag = f"{{{UNDECLARED}{prefix}}}{local}"
-            for key in [k for k in element.attrib if ":" in k and not k.startswith("{")]:
-                prefix, _, local = key.partition(":")
-                element.set(f"{{{UNDECLARED}{prefix}}}{local}", element.attrib.pop(key))
-        text = str(etree.tostring(root, encoding="unicode"))
-    if root.tag != "robot":
-        line = root.sourceline or 1
-        raise XacrokitError(f"{where}:{line}: the root element is <{root.tag}>, not <robot>: not a URDF")
-    return text
+    from ..shared.xml_parse import parse_urdf
+
+    parsed = parse_urdf(text)
+    if parsed.root is None:
+        raise XacrokitError(f"{parsed.where(where)}: {parsed.error}: not a URDF")
+    if not parsed.undeclared:
+        return text
+    for element in parsed.root.iter(etree.Element):
+        if ":" in element.tag and not element.tag.startswith("{"):
+            prefix, _, local = element.tag.partition(":")
+            element.tag = f"{{{UNDECLARED}{prefix}}}{local}"
+        for key in [k for k in element.attrib if ":" in k and not k.startswith("{")]:
+            prefix, _, local = key.partition(":")
+            element.set(f"{{{UNDECLARED}{prefix}}}{local}", element.attrib.pop(key))
+    return str(etree.tostring(parsed.root, encoding="unicode"))
 
 
 def urdf_floats(text: str | None, count: int, default: float = 0.0, *, where: str = "") -> list[float]:

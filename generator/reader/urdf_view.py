@@ -20,7 +20,7 @@ from typing import Any
 
 from lxml import etree
 
-from .xml_parse import read_urdf_root
+from ..shared.xml_parse import read_urdf_root
 
 Attributes = Mapping[str, str]
 
@@ -160,7 +160,7 @@ class UrdfView:
 
 
 def read_view(text: str, where: str = "<robot>") -> UrdfView:
-    """The view of a URDF text (parsed once, hardened: :mod:`.xml_parse`).
+    """The view of a URDF text (parsed once, hardened: :mod:`xacrokit.shared.xml_parse`).
 
     Raises:
         XacrokitError: not well-formed XML, or not a ``<robot>`` (located at ``where``).

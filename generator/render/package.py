@@ -26,6 +26,7 @@ from ..shared.gc_pause import collector_paused
 from ..shared.package_data import macros_dir
 from ..shared.sim_sensors import XACRO_NAMESPACE, bridge_entries, sensor_element
 from ..shared.value_text import command_text, comment_text, material_name, xacro_text
+from ..shared.xml_parse import parse_xml
 from .control import controllers
 from .environment import MacroMode, RenderedFile, environment
 
@@ -72,7 +73,7 @@ def _copied_macros(files: list[str]) -> list[RenderedFile]:
         if name in copied:
             continue
         copied[name] = text = (folder / name).read_text(encoding="utf-8")
-        root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+        root = parse_xml(text, name)
         for include in root.iter(f"{XACRO_NS}include"):
             pending.append(posixpath.normpath(posixpath.join(posixpath.dirname(name), include.get("filename", ""))))
     return [RenderedFile(f"{COPIED_MACROS_DIR}/{name}", text) for name, text in copied.items()]

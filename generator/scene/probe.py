@@ -14,6 +14,7 @@ from ..errors import ExpandError, SpecError
 from ..load import PathKey, RawSpec
 from ..model import Instance, Origin, ThirdPartyMacro
 from ..render import render_probe
+from ..shared.xml_parse import read_urdf_root
 
 Found = tuple[tuple[str, ...], tuple[str, ...]]  # (links, joints)
 
@@ -23,7 +24,6 @@ def probe_names(
 ) -> tuple[Found | None, list[SpecError]]:
     """The links (all but ``parent``) and joints instance ``name`` makes on the link ``parent``, or None and the error
     (located at the instance's ``xacro`` entry) that says why the scene cannot use it."""
-    from lxml import etree
 
     from ..expansion.xacro_expand import expand_file
 
@@ -38,7 +38,7 @@ def probe_names(
         except ExpandError as exc:
             message = f"expanding {macro.macro} from {macro.file} failed: {exc.message}{_hint(exc, macro)}"
             return None, [raw.error(where, message)]
-    root = etree.fromstring(urdf.encode())
+    root = read_urdf_root(urdf, f"{macro.file} (expanded)")
     every_link = [e.get("name", "") for e in root.findall("link")]
     links = tuple(n for n in every_link if n != parent)
     joints = tuple(e.get("name", "") for e in root.findall("joint"))

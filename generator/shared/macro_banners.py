@@ -21,6 +21,7 @@ from pathlib import Path
 from lxml import etree
 
 from .package_data import PUBLIC_MACRO_FILES, macros_dir
+from .xml_parse import parser
 
 XACRO_NS = "http://www.ros.org/wiki/xacro"
 _PARAM_LINE = re.compile(
@@ -81,7 +82,7 @@ def read_macro_docs(folder: Path | None = None) -> list[MacroDoc]:
     folder = folder or macros_dir()
     docs: list[MacroDoc] = []
     for filename in PUBLIC_MACRO_FILES:
-        tree = etree.parse(str(folder / filename))
+        tree = etree.parse(str(folder / filename), parser())
         for macro in tree.getroot().iter(f"{{{XACRO_NS}}}macro"):
             name = macro.get("name", "")
             if name.startswith("_"):
@@ -123,7 +124,7 @@ def _markdown(text: str) -> str:
 
 def read_palette(folder: Path | None = None) -> list[tuple[str, str]]:
     """The colours of materials.xacro, (name, rgba), from its banner's ``palette:`` lines."""
-    banner = etree.parse(str((folder or macros_dir()) / "materials.xacro")).getroot().getprevious()
+    banner = etree.parse(str((folder or macros_dir()) / "materials.xacro"), parser()).getroot().getprevious()
     lines = (banner.text or "").splitlines() if isinstance(banner, etree._Comment) else []
     entries = [line.strip()[len("palette:") :].split(None, 1) for line in lines if line.strip().startswith("palette:")]
     return [(name, rgba) for name, rgba in entries]

@@ -20,9 +20,10 @@ def _package_name(folder: Path) -> str | None:
     """The <name> in ``folder``/package.xml, or None when there is none (or it is unreadable)."""
     from lxml import etree
 
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False)  # a file of someone else's
-    try:
-        name = etree.parse(str(folder / "package.xml"), parser).getroot().findtext("name")
+    from .xml_parse import parser
+
+    try:  # (a file of someone else's: the hardened parse)
+        name = etree.parse(str(folder / "package.xml"), parser()).getroot().findtext("name")
     except (OSError, etree.XMLSyntaxError):
         return None
     return name.strip() if name and name.strip() else None

@@ -85,10 +85,10 @@ def design_report(spec_path: str | Path) -> DesignReport:
 
 def _links(robot: Robot, urdf: str) -> list[Link]:
     """The robot's links as the model holds them (arms and wheels through their emitted form, ``urdf``)."""
-    from lxml import etree
+    from ..shared.xml_parse import read_urdf_root
 
     by_name = {link.name: link for link in robot.links}
-    root = etree.fromstring(urdf.encode("utf-8"))
+    root = read_urdf_root(urdf, f"{robot.name} (generated)")
     found = []
     for element in root.findall("link"):
         name = element.get("name")

@@ -70,9 +70,9 @@ class BaseSizing:
 def find_wheels(robot: SizingRobot, text: str, named: Sequence[str] = ()) -> list[Wheel]:
     """The wheels: continuous joints whose child link has a cylinder (or those ``named``), with radius, inertia about
     the axle (pinocchio's body inertia, moved to the joint's axis) and limits."""
-    from lxml import etree
+    from ..shared.xml_parse import read_urdf_root
 
-    root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+    root = read_urdf_root(text, "<robot>")
     radii = {}
     for link in root.findall("link"):
         cylinder = link.find("collision/geometry/cylinder")

@@ -21,6 +21,7 @@ import numpy as np
 
 from ..errors import XacrokitError
 from ..shared.value_text import did_you_mean
+from ..shared.xml_parse import read_urdf_root
 
 GRAVITY = 9.80665  # m/s^2, the standard acceleration of gravity (CGPM 1901), along -z of the root frame
 
@@ -114,7 +115,6 @@ def load_robot(
         SpecErrors: a spec is invalid.
     """
     import pinocchio as pin
-    from lxml import etree
 
     from ..reader.robot_source import robot_text
 
@@ -125,7 +125,7 @@ def load_robot(
         model = pin.buildModelFromXML(text)
     except (RuntimeError, ValueError) as exc:
         raise XacrokitError(f"{where}: pinocchio cannot read the robot: {exc}") from None
-    root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+    root = read_urdf_root(text, str(where))
     model.gravity = pin.Motion(np.array([0.0, 0.0, -GRAVITY, 0.0, 0.0, 0.0]))  # (pinocchio's default: 9.81)
     joints = _moving_joints(model, root)
     massless = _massless_moving_links(model, root)

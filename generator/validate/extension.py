@@ -13,6 +13,7 @@ from typing import Any
 from ..errors import SpecError
 from ..load import RawSpec
 from ..shared.input_files import InputError, read_input
+from ..shared.xml_parse import parser
 
 LIMIT = 4 * 1024 * 1024  # bytes: an extension of hand-added content, not a robot of its own
 SUFFIXES = (".xacro", ".xml", ".urdf")
@@ -39,9 +40,8 @@ def extension_body(raw: RawSpec, data: dict[str, Any]) -> tuple[str, list[SpecEr
         data_bytes = read_input(file, LIMIT)
     except InputError as exc:
         return "", [raw.error(("extension",), f"cannot read {name!r}: {exc.strerror}")]
-    parser = etree.XMLParser(resolve_entities=False, no_network=True, remove_comments=False)
     try:
-        root = etree.fromstring(data_bytes, parser)
+        root = etree.fromstring(data_bytes, parser())
     except etree.XMLSyntaxError as exc:
         line, column = exc.position
         return "", [raw.error(("extension",), f"{name}:{line}:{column}: not well-formed XML: {exc.msg}")]

@@ -29,6 +29,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import XacrokitError
+from ..reader.urdf_view import Geometry, Inertial, Joint, Link, Origin, Shape, number, numbers
 
 THREE_VERSION = "0.170.0"
 THREE_TARBALL = f"https://registry.npmjs.org/three/-/three-{THREE_VERSION}.tgz"
@@ -79,125 +80,106 @@ def robot_json(text: str, resolve: Any) -> dict[str, Any]:
     """The robot as the page reads it: links with their visuals, joints with their origin, axis, limits, mimic, and
     ``missing``: a line for each mesh that cannot be found or read (``resolve`` raising XacrokitError for it), whose
     visual the page goes without and lists."""
-    from lxml import etree
+    from ..reader.urdf_view import read_view
 
-    root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+    view = read_view(text)
     missing: list[str] = []  # (a mesh the page cannot show: said in the page and by the command)
-    colours = {m.get("name"): m.find("color").get("rgba") for m in root.iter("material") if m.find("color") is not None}
-    links = []
-    for link in root.findall("link"):
-        visuals = []
-        for visual in link.findall("visual"):
-            shape = _shape(visual)
-            if shape is None:
-                continue
-            entry: dict[str, Any] = {"origin": _origin(visual.find("origin")), "kind": shape.tag}
-            material = visual.find("material")
-            rgba = None
-            if material is not None:
-                colour = material.find("color")
-                rgba = colour.get("rgba") if colour is not None else colours.get(material.get("name"))
-            entry["rgba"] = _floats(rgba, [0.62, 0.64, 0.68, 1.0])
-            if shape.tag in ("box", "cylinder", "sphere"):
-                entry.update(_primitive(shape))
-            elif shape.tag == "mesh":
-                try:
-                    vertices, faces = _mesh(resolve, shape.get("filename", ""))
-                except XacrokitError as exc:
-                    missing.append(f"link {link.get('name')}: {exc}")
-                    continue
-                entry.update(
-                    scale=_floats(shape.get("scale"), [1.0, 1.0, 1.0]),
-                    vertices=base64.b64encode(vertices.astype("<f4").tobytes()).decode("ascii"),
-                    faces=base64.b64encode(faces.astype("<u4").tobytes()).decode("ascii"),
-                )
-            else:
-                continue
-            visuals.append(entry)
-        links.append(
-            {
-                "name": link.get("name"),
-                "visuals": visuals,
-                "collisions": _collisions(link),
-                "inertia": _inertia_box(link.find("inertial")),
-            }
-        )
-    joints = []
-    for joint in root.findall("joint"):
-        limit, mimic, axis = joint.find("limit"), joint.find("mimic"), joint.find("axis")
-        parent, child = joint.find("parent"), joint.find("child")
-        if parent is None or child is None:  # (not a URDF joint: check says so; the page draws the rest)
-            continue
-        entry = {
-            "name": joint.get("name"),
-            "type": joint.get("type"),
-            "parent": parent.get("link"),
-            "child": child.get("link"),
-            "origin": _origin(joint.find("origin")),
-            "axis": _floats(axis.get("xyz") if axis is not None else None, [1.0, 0.0, 0.0]),
+    colours = view.colours()
+    links = [
+        {
+            "name": link.name,
+            "visuals": [v for v in (_visual(g, colours, resolve, missing, link.name) for g in link.visuals) if v],
+            "collisions": _collisions(link),
+            "inertia": _inertia_box(link.inertial),
         }
-        if limit is not None and joint.get("type") in ("revolute", "prismatic"):
-            entry["lower"], entry["upper"] = _number(limit.get("lower"), 0.0), _number(limit.get("upper"), 0.0)
-        if mimic is not None:
-            entry["mimic"] = {
-                "joint": mimic.get("joint"),
-                "multiplier": _number(mimic.get("multiplier"), 1.0),
-                "offset": _number(mimic.get("offset"), 0.0),
-            }
-        joints.append(entry)
-    return {"name": root.get("name", "robot"), "links": links, "joints": joints, "missing": missing}
+        for link in view.links
+    ]
+    joints = [_joint(joint) for joint in view.joints if joint.parent is not None and joint.child is not None]
+    return {"name": view.name or "robot", "links": links, "joints": joints, "missing": missing}
 
 
-def _collisions(link: Any) -> list[dict[str, Any]]:
+def _visual(
+    visual: Geometry, colours: dict[str, str], resolve: Any, missing: list[str], link: str
+) -> dict[str, Any] | None:
+    """A visual as the page draws it, None for one it cannot (a mesh that is missing is added to ``missing``)."""
+    shape = visual.shape
+    if shape is None or shape.kind not in ("box", "cylinder", "sphere", "mesh"):
+        return None
+    entry: dict[str, Any] = {"origin": _origin(visual.origin), "kind": shape.kind}
+    material = visual.material
+    rgba = None
+    if material is not None:
+        rgba = material.rgba if material.rgba is not None else colours.get(material.name or "")
+    entry["rgba"] = numbers(rgba, [0.62, 0.64, 0.68, 1.0])
+    if shape.kind != "mesh":
+        entry.update(_primitive(shape))
+        return entry
+    try:
+        vertices, faces = _mesh(resolve, shape.get("filename") or "")
+    except XacrokitError as exc:
+        missing.append(f"link {link}: {exc}")
+        return None
+    entry.update(
+        scale=numbers(shape.get("scale"), [1.0, 1.0, 1.0]),
+        vertices=base64.b64encode(vertices.astype("<f4").tobytes()).decode("ascii"),
+        faces=base64.b64encode(faces.astype("<u4").tobytes()).decode("ascii"),
+    )
+    return entry
+
+
+def _joint(joint: Joint) -> dict[str, Any]:
+    entry: dict[str, Any] = {
+        "name": joint.name,
+        "type": joint.type,
+        "parent": joint.parent,
+        "child": joint.child,
+        "origin": _origin(joint.origin),
+        "axis": numbers(joint.axis, [1.0, 0.0, 0.0]),
+    }
+    if joint.limit is not None and joint.type in ("revolute", "prismatic"):
+        entry["lower"], entry["upper"] = number(joint.limit.get("lower"), 0.0), number(joint.limit.get("upper"), 0.0)
+    if joint.mimic is not None:
+        entry["mimic"] = {
+            "joint": joint.mimic.joint,
+            "multiplier": number(joint.mimic.multiplier, 1.0),
+            "offset": number(joint.mimic.offset, 0.0),
+        }
+    return entry
+
+
+def _collisions(link: Link) -> list[dict[str, Any]]:
     """A link's collision primitives (meshes are drawn as their visuals: the toggle shows the primitives)."""
     found = []
-    for collision in link.findall("collision"):
-        shape = _shape(collision)
-        if shape is None or shape.tag not in ("box", "cylinder", "sphere"):
+    for collision in link.collisions:
+        shape = collision.shape
+        if shape is None or shape.kind not in ("box", "cylinder", "sphere"):
             continue
-        entry: dict[str, Any] = {"origin": _origin(collision.find("origin")), "kind": shape.tag}
+        entry: dict[str, Any] = {"origin": _origin(collision.origin), "kind": shape.kind}
         entry.update(rgba=[1.0, 0.4, 0.0, 0.5], **_primitive(shape))
         found.append(entry)
     return found
 
 
-def _shape(element: Any) -> Any:
-    """The shape element of a visual or collision: the first element inside its <geometry> (comments skipped, as
-    in vendors' files that keep a commented-out shape above the one in use), None without one."""
-    from lxml import etree
-
-    geometry = element.find("geometry")
-    return None if geometry is None else next(geometry.iterchildren(etree.Element), None)
-
-
-def _primitive(shape: Any) -> dict[str, Any]:
+def _primitive(shape: Shape) -> dict[str, Any]:
     """A box's, cylinder's or sphere's sizes as the page reads them (a size that is not a number: a small default,
     so that the page still draws the rest; check says what is wrong)."""
-    if shape.tag == "box":
-        return {"size": _floats(shape.get("size"), [0.1, 0.1, 0.1])}
-    if shape.tag == "cylinder":
-        return {"radius": _number(shape.get("radius"), 0.05), "length": _number(shape.get("length"), 0.1)}
-    return {"radius": _number(shape.get("radius"), 0.05)}
+    if shape.kind == "box":
+        return {"size": numbers(shape.get("size"), [0.1, 0.1, 0.1])}
+    if shape.kind == "cylinder":
+        return {"radius": number(shape.get("radius"), 0.05), "length": number(shape.get("length"), 0.1)}
+    return {"radius": number(shape.get("radius"), 0.05)}
 
 
-def _number(text: str | None, default: float) -> float:
-    try:
-        value = float(text if text is not None else default)
-    except ValueError:
-        return default
-    return value if np.isfinite(value) else default
-
-
-def _inertia_box(inertial: Any) -> dict[str, Any] | None:
+def _inertia_box(inertial: Inertial | None) -> dict[str, Any] | None:
     """The box of uniform density with the link's mass and principal moments (sides sqrt(6 (I_j + I_k - I_i) / m)),
     at the centre of mass, along the principal axes: what the inertia toggle draws. None without a mass."""
     from ..shared.transforms import rpy_matrix
 
-    if inertial is None or inertial.find("mass") is None or inertial.find("inertia") is None:
+    if inertial is None or inertial.mass is None or inertial.inertia is None:
         return None
     try:
-        mass = float(inertial.find("mass").get("value"))
-        i = {k: float(inertial.find("inertia").get(k, 0.0)) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
+        mass = float(inertial.mass)
+        i = {k: float(inertial.inertia.get(k, 0.0)) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")}
     except ValueError:
         return None
     tensor = np.array([[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]])
@@ -206,23 +188,15 @@ def _inertia_box(inertial: Any) -> dict[str, Any] | None:
     moments, axes = np.linalg.eigh(tensor)
     total = moments.sum()
     sides = [float(np.sqrt(max(6.0 * (total - 2.0 * m) / mass, 0.0))) for m in moments]
-    origin = _origin(inertial.find("origin"))
+    origin = _origin(inertial.origin)
     rotation = rpy_matrix(*origin["rpy"]) @ axes
     return {"xyz": origin["xyz"], "rotation": rotation.reshape(-1).tolist(), "size": sides}
 
 
-def _floats(text: str | None, default: list[float]) -> list[float]:
-    try:
-        values = [float(v) for v in (text or "").split()]
-    except ValueError:
-        return default
-    return values if len(values) == len(default) else default
-
-
-def _origin(element: Any) -> dict[str, list[float]]:
-    if element is None:
+def _origin(origin: Origin | None) -> dict[str, list[float]]:
+    if origin is None:
         return {"xyz": [0.0, 0.0, 0.0], "rpy": [0.0, 0.0, 0.0]}
-    return {"xyz": _floats(element.get("xyz"), [0.0, 0.0, 0.0]), "rpy": _floats(element.get("rpy"), [0.0, 0.0, 0.0])}
+    return {"xyz": numbers(origin.xyz, [0.0, 0.0, 0.0]), "rpy": numbers(origin.rpy, [0.0, 0.0, 0.0])}
 
 
 def _mesh(resolve: Any, filename: str) -> tuple[np.ndarray, np.ndarray]:

@@ -84,10 +84,17 @@ def _placed_meshes(
 
 
 def _mesh_names(text: str) -> list[str]:
-    from lxml import etree
+    """The mesh files the robot's visuals name (what yourdfpy will open: each must be there)."""
+    from ..reader.urdf_view import read_view
 
-    root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
-    return sorted({m.get("filename", "") for m in root.iterfind("link/visual/geometry/mesh")})
+    return sorted(
+        {
+            visual.shape.get("filename") or ""
+            for link in read_view(text).links
+            for visual in link.visuals
+            if visual.shape is not None and visual.shape.kind == "mesh"
+        }
+    )
 
 
 def _colour(geometry: Any) -> tuple[float, float, float]:

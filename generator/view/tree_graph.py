@@ -13,8 +13,12 @@ import os
 import shutil
 import subprocess
 from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
 from ..errors import XacrokitError
+
+if TYPE_CHECKING:
+    from ..reader.urdf_view import Joint
 
 
 def dot_string(text: object) -> str:
@@ -34,43 +38,44 @@ def _number(value: str | None) -> str:
 
 def tree_dot(urdf: str, name: str | None = None) -> str:
     """The DOT text of the URDF's kinematic tree."""
-    from lxml import etree
+    from ..reader.urdf_view import read_view
 
-    root = etree.fromstring(urdf.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+    view = read_view(urdf)
     lines = [
-        f"digraph {dot_string(name or root.get('name', 'robot'))} {{",
+        f"digraph {dot_string(name or view.name or 'robot')} {{",
         "  rankdir=TB;",
         '  node [fontname="Helvetica", fontsize=10];',
     ]
-    for link in root.findall("link"):
-        mass = link.find("inertial/mass")
-        label = link.get("name", "") + (f"\n{_number(mass.get('value'))} kg" if mass is not None else "\nno mass")
-        lines.append(f"  {dot_string('link:' + link.get('name', ''))} [shape=box, label={dot_string(label)}];")
-    for joint in root.findall("joint"):
-        kind = joint.get("type", "")
-        parts = [joint.get("name", ""), kind]
-        axis = joint.find("axis")
-        if kind in ("revolute", "continuous", "prismatic", "planar"):
-            xyz = axis.get("xyz", "1 0 0") if axis is not None else "1 0 0"
-            parts.append("axis " + " ".join(_number(v) for v in xyz.split()))
-        limit = joint.find("limit")
-        if limit is not None and kind in ("revolute", "prismatic"):
-            parts.append(f"[{_number(limit.get('lower'))}, {_number(limit.get('upper'))}]")
-        if limit is not None and kind in ("revolute", "continuous", "prismatic"):
-            parts.append(f"effort {_number(limit.get('effort'))}, velocity {_number(limit.get('velocity'))}")
-        mimic = joint.find("mimic")
-        if mimic is not None:
-            parts.append(f"mimics {mimic.get('joint', '')}")
-        node = dot_string("joint:" + joint.get("name", ""))
-        style = "dashed" if kind == "fixed" else "solid"
-        lines.append(f"  {node} [shape=ellipse, style={style}, label={dot_string(chr(10).join(parts))}];")
-        parent, child = joint.find("parent"), joint.find("child")
-        if parent is not None:
-            lines.append(f"  {dot_string('link:' + parent.get('link', ''))} -> {node};")
-        if child is not None:
-            lines.append(f"  {node} -> {dot_string('link:' + child.get('link', ''))};")
+    for link in view.links:
+        mass = link.inertial.mass if link.inertial is not None else None
+        label = link.name + (f"\n{_number(mass)} kg" if mass is not None else "\nno mass")
+        lines.append(f"  {dot_string('link:' + link.name)} [shape=box, label={dot_string(label)}];")
+    for joint in view.joints:
+        node = dot_string("joint:" + joint.name)
+        style = "dashed" if joint.type == "fixed" else "solid"
+        lines.append(f"  {node} [shape=ellipse, style={style}, label={dot_string(chr(10).join(_joint_label(joint)))}];")
+        if joint.parent is not None:
+            lines.append(f"  {dot_string('link:' + joint.parent)} -> {node};")
+        if joint.child is not None:
+            lines.append(f"  {node} -> {dot_string('link:' + joint.child)};")
     lines.append("}")
     return "\n".join(lines) + "\n"
+
+
+def _joint_label(joint: Joint) -> list[str]:
+    """A joint node's lines: name, type, axis, range, effort and velocity, the joint it mimics."""
+    kind = joint.type or ""
+    parts = [joint.name, kind]
+    if kind in ("revolute", "continuous", "prismatic", "planar"):
+        parts.append("axis " + " ".join(_number(v) for v in (joint.axis or "1 0 0").split()))
+    limit = joint.limit
+    if limit is not None and kind in ("revolute", "prismatic"):
+        parts.append(f"[{_number(limit.get('lower'))}, {_number(limit.get('upper'))}]")
+    if limit is not None and kind in ("revolute", "continuous", "prismatic"):
+        parts.append(f"effort {_number(limit.get('effort'))}, velocity {_number(limit.get('velocity'))}")
+    if joint.mimic is not None:
+        parts.append(f"mimics {joint.mimic.joint or ''}")
+    return parts
 
 
 def graph(

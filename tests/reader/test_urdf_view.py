@@ -1,4 +1,4 @@
-"""The one view of a URDF (xacrokit.reader.urdf_view) and its hardened parse (xacrokit.reader.xml_parse): every part
+"""The one view of a URDF (xacrokit.reader.urdf_view) and its hardened parse (xacrokit.shared.xml_parse): every part
 read as the file gives it, with its line; the same robot as an independent reader (yourdfpy) sees; no entity, DTD or
 network ever followed."""
 
@@ -13,7 +13,7 @@ import xacrokit
 from conftest import ROBOT_EXAMPLES
 from xacrokit.errors import XacrokitError
 from xacrokit.reader.urdf_view import number, numbers, read_view
-from xacrokit.reader.xml_parse import parse_urdf
+from xacrokit.shared.xml_parse import parse_urdf
 
 URDF = """<?xml version="1.0"?>
 <robot name="demo">
@@ -142,7 +142,7 @@ def test_an_undeclared_prefix_is_read_past_and_named_with_its_line():
 @pytest.mark.parametrize(
     ("text", "said"),
     [
-        ("<robot name='r'><link name='a'></robot>", "not-a-urdf.xml:1: not well-formed XML"),
+        ("<robot name='r'><link name='a'></robot>", "not-a-urdf.xml:1:40: not well-formed XML: Opening and ending tag mismatch"),
         ("<sdf><model/></sdf>", "not-a-urdf.xml:1: the root element is <sdf>, not <robot>"),
     ],
 )

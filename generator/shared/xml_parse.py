@@ -50,7 +50,13 @@ class ParsedUrdf:
     root: etree._Element | None
     error: str = ""
     error_line: int | None = None
+    error_column: int | None = None
     undeclared: dict[str, int] = field(default_factory=dict)
+
+    def where(self, file: str) -> str:
+        """``file:line:column`` of the error (as much of it as is known)."""
+        place = f"{file}:{self.error_line or 1}"
+        return place + (f":{self.error_column}" if self.error_column else "")
 
 
 def parse_urdf(text: str) -> ParsedUrdf:
@@ -64,7 +70,8 @@ def parse_urdf(text: str) -> ParsedUrdf:
     except etree.XMLSyntaxError as exc:
         log = strict.error_log  # (this parse's own: the exception's may hold earlier parses' errors of the thread)
         if not log or any(e.domain_name != "NAMESPACE" for e in log):
-            return ParsedUrdf(None, f"not well-formed XML: {exc}", exc.lineno)
+            line, column = exc.position
+            return ParsedUrdf(None, f"not well-formed XML: {exc.msg}", line, column)
         root = etree.fromstring(data, parser(recover=True))
         undeclared = _undeclared_prefixes(log)
     if root is None or root.tag != "robot":
@@ -90,5 +97,5 @@ def read_urdf_root(text: str, where: str) -> etree._Element:
     """
     parsed = parse_urdf(text)
     if parsed.root is None:
-        raise XacrokitError(f"{where}:{parsed.error_line or 1}: {parsed.error}: not a URDF")
+        raise XacrokitError(f"{parsed.where(where)}: {parsed.error}: not a URDF")
     return parsed.root
