@@ -85,23 +85,18 @@ def _place(node: Any, origin: Any) -> None:
         node.set("quat", nums(quaternion((rpy[0], rpy[1], rpy[2]))))
 
 
-def mjcf(
-    text: str,
-    resolve: Any,
-    *,
-    base: str = "auto",
-    floor: bool = False,
-) -> Export:
-    """The MJCF of a URDF ``text``; ``resolve(filename)`` gives a mesh's file path; ``base``: auto, fixed or free.
+@dataclass(frozen=True)
+class _Tree:
+    """The URDF's links by name, its joints (those with a parent and a child), each link's child joints, the root."""
 
-    Raises:
-        XacrokitError: a URDF MuJoCo cannot take (not a tree, a mesh that cannot be found or read, bad numbers).
-    """
-    from lxml import etree
+    links: dict[str, Any]
+    joints: list[Any]
+    children: dict[str, list[Any]]
+    root: str
 
-    from .mjcf_actuators import actuators, commanded, gains, mimics
 
-    root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
+def _tree(root: Any) -> _Tree:
+    """The robot as one tree (MuJoCo's bodies nest), or XacrokitError saying why it is not one."""
     links = {link.get("name"): link for link in root.findall("link")}
     joints = [j for j in root.findall("joint") if j.find("parent") is not None and j.find("child") is not None]
     by_child: dict[str, Any] = {}
@@ -121,14 +116,15 @@ def mjcf(
         raise XacrokitError("every link is the child of a joint: the joints make a loop, MuJoCo needs a tree")
     if len(roots) != 1:
         raise XacrokitError(f"the robot has {len(roots)} root links ({', '.join(roots[:5])}): MuJoCo needs one tree")
-    (root_name,) = roots
-    free = base == "free" or (base == "auto" and root_name != "world" and _has_wheel(joints, links))
-    colours = {m.get("name"): m.find("color").get("rgba") for m in root.iter("material") if m.find("color") is not None}
-    friction = _frictions(root)
-    export = Export(xml="")
-    meshes = Meshes(resolve, export.meshes, export.notes)
+    return _Tree(links, joints, children, roots[0])
 
-    model = etree.Element("mujoco", model=root.get("name", "robot"))
+
+def _skeleton(name: str, floor: bool) -> tuple[Any, Any, Any]:
+    """The ``<mujoco>`` element with every compiler and option setting explicit, the visual and collision classes,
+    and its (empty) asset and worldbody: (model, asset, world)."""
+    from lxml import etree
+
+    model = etree.Element("mujoco", model=name)
     etree.SubElement(
         model,
         "compiler",
@@ -153,57 +149,111 @@ def mjcf(
     etree.SubElement(world, "light", pos="0 0 5", dir="0 0 -1", directional="true")
     if floor:
         etree.SubElement(world, "geom", name="floor", type="plane", size="0 0 1", rgba="0.85 0.85 0.85 1")
-    massless = export.massless
+    return model, asset, world
 
-    def body_of(name: str, parent: Any, joint: Any) -> None:
-        link = links[name]
+
+@dataclass
+class _Bodies:
+    """Writes the bodies of the tree, each inside its parent's (see :func:`mjcf`)."""
+
+    tree: _Tree
+    free: bool
+    colours: dict[str, str]
+    friction: dict[str, float]
+    meshes: Meshes
+    export: Export
+
+    def body(self, name: str, parent: Any, joint: Any) -> None:
+        from lxml import etree
+
+        link = self.tree.links[name]
         if joint is None and name == "world":
             body = parent  # (a root link called world is MuJoCo's world body)
         else:
             body = etree.SubElement(parent, "body", name=name)
             if joint is not None:
                 _place(body, joint.find("origin"))
-        moving = (joint is not None and _add_joint(body, joint)) or (joint is None and free)
-        if joint is None and free:
+        moving = (joint is not None and _add_joint(body, joint)) or (joint is None and self.free)
+        if joint is None and self.free:
             etree.SubElement(body, "freejoint", name=f"{name}_free")
         if body is not parent:
-            _inertial(body, link, moving, massless, export.repairs)
-        _geoms(body, link, colours, friction.get(name), meshes)
+            _inertial(body, link, moving, self.export.massless, self.export.repairs)
+        _geoms(body, link, self.colours, self.friction.get(name), self.meshes)
         if link.find("inertial") is None and body is not parent:
             etree.SubElement(body, "site", name=name)
-        for child in children.get(name, []):
-            body_of(child.find("child").get("link"), body, child)
+        for child in self.tree.children.get(name, []):
+            self.body(child.find("child").get("link"), body, child)
 
-    body_of(root_name, world, None)
+
+def mjcf(
+    text: str,
+    resolve: Any,
+    *,
+    base: str = "auto",
+    floor: bool = False,
+) -> Export:
+    """The MJCF of a URDF ``text``; ``resolve(filename)`` gives a mesh's file path; ``base``: auto, fixed or free.
+
+    Raises:
+        XacrokitError: a URDF MuJoCo cannot take (not a tree, a mesh that cannot be found or read, bad numbers).
+    """
+    from ..shared.xml_parse import read_urdf_root
+
+    root = read_urdf_root(text, "<robot>")
+    tree = _tree(root)
+    free = base == "free" or (base == "auto" and tree.root != "world" and _has_wheel(tree.joints, tree.links))
+    export = Export(xml="")
+    meshes = Meshes(resolve, export.meshes, export.notes)
+    model, asset, world = _skeleton(root.get("name", "robot"), floor)
+    colours = {m.get("name"): m.find("color").get("rgba") for m in root.iter("material") if m.find("color") is not None}
+    _Bodies(tree, free, colours, _frictions(root), meshes, export).body(tree.root, world, None)
     for mesh in meshes.assets:
         asset.append(mesh)
+    _constraints(model, root, text, tree, free, export)
+    for element in (asset, model.find("contact")):
+        if element is not None and len(element) == 0:
+            model.remove(element)
+    _header(model, export)
+    return export
+
+
+def _constraints(model: Any, root: Any, text: str, tree: _Tree, free: bool, export: Export) -> None:
+    """Contact exclusions (every joint's parent and child), mimic equalities and actuators."""
+    from lxml import etree
+
+    from .mjcf_actuators import actuators, commanded, gains, mimics
+
     contact = etree.SubElement(model, "contact")
-    for joint in joints:
+    for joint in tree.joints:
         parent, child = joint.find("parent").get("link"), joint.find("child").get("link")
-        if parent != "world" or root_name != "world":
+        if parent != "world" or tree.root != "world":
             etree.SubElement(contact, "exclude", body1=parent, body2=child)
-    equality = mimics(joints, export.notes)
+    equality = mimics(tree.joints, export.notes)
     if len(equality):
         model.append(equality)
     driven = list(commanded(root))
     inertia = gains(text, driven, free) if driven else {}
-    acts = actuators(root, {j.get("name"): j for j in joints}, inertia, export.notes)
+    acts = actuators(root, {j.get("name"): j for j in tree.joints}, inertia, export.notes)
     if len(acts):
         model.append(acts)
-    for element in (asset, contact):
-        if len(element) == 0:
-            model.remove(element)
+
+
+def _header(model: Any, export: Export) -> None:
+    """The notes on repaired inertias, the model's header comment, and the XML text."""
+    from lxml import etree
+
     for name, change in export.repairs.items():
         export.notes.append(
             f"link {name!r}: its inertia is not a rigid body's (gen-robot check says why); raised by "
             f"{change:.3g} kg m^2 (2-norm) for MuJoCo"
         )
     header = "Generated by xacrokit from the robot's URDF (gen-robot export, MJCF); see docs/export.md."
-    if massless:
-        header += f" Moving links without mass given {MASSLESS[0]} kg, {MASSLESS[1]} kg m^2: {', '.join(massless)}."
+    if export.massless:
+        header += (
+            f" Moving links without mass given {MASSLESS[0]} kg, {MASSLESS[1]} kg m^2: {', '.join(export.massless)}."
+        )
     model.insert(0, etree.Comment(" " + header.replace("--", "- -") + " "))
     export.xml = etree.tostring(model, pretty_print=True, encoding="unicode")
-    return export
 
 
 def _has_wheel(joints: list[Any], links: Mapping[str, Any]) -> bool:

@@ -111,15 +111,44 @@ def _shape(geometry: Any, where: str, problems: list[str]) -> dict[str, Any] | N
 def import_text(text: str, name_hint: str = "robot", source: str = "") -> Imported:
     """The spec of a URDF text (see the module's notes); ``source``: the file it was read from, which locates what
     is reported (``FILE:LINE: link 'x': ...``; a xacro document's lines are its expansion's)."""
-    from lxml import etree
+    from ..shared.xml_parse import read_urdf_root
 
+    root = read_urdf_root(text, source or "<robot>")
+    result = Imported(spec={})
+    result.spec["robot"] = _robot_name(root.get("name") or name_hint, result)
+    for kind in ("link", "joint"):
+        for element in root.findall(kind):
+            result.lines.setdefault((f"{kind}s", element.get("name", "")), element.sourceline or 0)
+    located = _Locator(result.lines, source)
+    colours = _Colours(root)
+    for material in root.findall("material"):  # (every colour the file defines, used or not, in its order)
+        colours.name_of(material, f"material {material.get('name')!r}")
+    links: dict[str, Any] = {}
+    for link in root.findall("link"):
+        entry = _import_link(link, located, colours, result.unsupported)
+        if entry is not None:
+            links[link.get("name", "")] = entry
+    joints = _import_joints(root, located, result)
+    found = {"links": links, "joints": joints}
+    result.wheels, absorbed = wheels(found, root)
+    result.extension = _extension(root, absorbed, result.leftovers)
+    if colours.colours:
+        result.spec["materials"] = colours.colours
+    result.spec["links"] = links
+    if joints:
+        result.spec["joints"] = joints
+    if "wheels" in found:
+        result.spec["wheels"] = found["wheels"]
+    _strictness(result, located)
+    return result
+
+
+def _robot_name(robot: str, result: Imported) -> str:
+    """The robot's name as the spec can take it: it names the package, the macro and the files (a name that is not
+    an identifier, too long, or a xacro keyword's is made one, and that is said in ``result.renamed``)."""
     from ..validate.names import RESERVED_ROBOT_NAMES
 
-    root = etree.fromstring(text.encode("utf-8"), etree.XMLParser(resolve_entities=False, no_network=True))
-    result = Imported(spec={})
-    problems = result.unsupported
-    robot = root.get("name") or name_hint
-    if not IDENTIFIER.fullmatch(robot) or len(robot) > 200:  # (it names the package, macro, files: made a name, said)
+    if not IDENTIFIER.fullmatch(robot) or len(robot) > 200:
         renamed = re.sub(r"[^A-Za-z0-9_]", "_", robot)[:200]
         renamed = renamed if IDENTIFIER.fullmatch(renamed) else f"robot_{renamed}"[:200]
     else:
@@ -128,93 +157,118 @@ def import_text(text: str, name_hint: str = "robot", source: str = "") -> Import
         renamed = f"{renamed[:194]}_robot"
     if renamed != robot:
         result.renamed = f"robot name {robot!r} written {renamed!r} (it names the package, the macro and the files)"
-        robot = renamed
-    result.spec["robot"] = robot
-    for kind in ("link", "joint"):
-        for element in root.findall(kind):
-            result.lines.setdefault((f"{kind}s", element.get("name", "")), element.sourceline or 0)
+    return renamed
 
-    def located(kind: str, name: str) -> str:
-        line = result.lines.get((kind, name))
-        return f"{source}:{line}: " if source and line else ""
 
-    colours: dict[str, list[float]] = {}
-    named = {m.get("name"): m for m in root.findall("material")}
+@dataclass(frozen=True)
+class _Locator:
+    """``FILE:LINE: `` of a link or joint (by its kind's plural and name), empty when it cannot be said."""
 
-    def colour_of(material: Any, where: str) -> str | None:
+    lines: Mapping[tuple[str, str], int]
+    source: str
+
+    def __call__(self, kind: str, name: str) -> str:
+        line = self.lines.get((kind, name))
+        return f"{self.source}:{line}: " if self.source and line else ""
+
+
+class _Colours:
+    """The spec's named colours, made as the file's materials are met: a material's own name when it is an
+    identifier not taken by another colour, else the name of an equal colour, else ``colour_N``."""
+
+    def __init__(self, root: Any) -> None:
+        self.colours: dict[str, list[float]] = {}
+        self.named = {m.get("name"): m for m in root.findall("material")}
+
+    def name_of(self, material: Any, where: str) -> str | None:
         if material is None:
             return None
         colour = material.find("color")
-        source = colour if colour is not None else named.get(material.get("name"), material).find("color")
+        source = colour if colour is not None else self.named.get(material.get("name"), material).find("color")
         if source is None:
             return None
         rgba = _floats(source.get("rgba"), 4, 1.0, f"{where} colour")
         name = (material.get("name") or "").rsplit("/", 1)[-1]  # (a generated robot's 'ur5/grey': grey)
-        if not IDENTIFIER.fullmatch(name) or (name in colours and colours[name] != rgba):
-            name = next((n for n, c in colours.items() if c == rgba), f"colour_{len(colours)}")
-        colours.setdefault(name, rgba)
+        if not IDENTIFIER.fullmatch(name) or (name in self.colours and self.colours[name] != rgba):
+            name = next((n for n, c in self.colours.items() if c == rgba), f"colour_{len(self.colours)}")
+        self.colours.setdefault(name, rgba)
         return name
 
-    for material in root.findall("material"):  # (every colour the file defines, used or not, in its order)
-        colour_of(material, f"material {material.get('name')!r}")
-    links: dict[str, Any] = {}
-    for link in root.findall("link"):
-        name = link.get("name", "")
-        where = f"{located('links', name)}link {name!r}"
-        if not NAME.fullmatch(name):
-            problems.append(f"{where}: the name is not a spec name (letters, digits and _, in parts joined by . / -)")
-            continue
-        entry: dict[str, Any] = {}
-        drawn = []  # (shape, origin, colour) of each visual the spec can say
-        for index, visual in enumerate(link.findall("visual")):
-            said = f"{where} visual" + (f" {index + 1}" if index else "")
-            shape = _shape(visual.find("geometry"), said, problems)
-            if shape is not None:
-                drawn.append((shape, _origin(visual.find("origin"), said), colour_of(visual.find("material"), where)))
-        if drawn:
-            shape, at, colour = drawn[0]
-            entry["shape"] = shape
-            if at:
-                entry["origin"] = at
-            if colour:
-                entry["material"] = colour
-            more = [_geometry(s, a, c if c != colour else None) for s, a, c in drawn[1:]]
-            for piece, (_, _, c) in zip(more, drawn[1:], strict=True):
-                if colour and c is None:
-                    piece["material"] = None  # (no colour, where the link's would be the default)
-            if more:
-                entry["visuals"] = more
-        touched = []
-        for index, collision in enumerate(link.findall("collision")):
-            said = f"{where} collision" + (f" {index + 1}" if index else "")
-            shape = _shape(collision.find("geometry"), said, problems)
-            if shape is not None:
-                touched.append((shape, _origin(collision.find("origin"), said)))
-        if drawn and touched == [drawn[0][:2]]:
-            pass  # ("same", the spec's default)
-        elif not touched:
+
+def _import_link(link: Any, located: _Locator, colours: _Colours, problems: list[str]) -> dict[str, Any] | None:
+    """A link's spec entry (None, said in ``problems``, for a name the spec does not take)."""
+    name = link.get("name", "")
+    where = f"{located('links', name)}link {name!r}"
+    if not NAME.fullmatch(name):
+        problems.append(f"{where}: the name is not a spec name (letters, digits and _, in parts joined by . / -)")
+        return None
+    entry: dict[str, Any] = {}
+    drawn = _drawn(link, where, colours, problems)
+    entry.update(_visual_fields(drawn))
+    touched = []
+    for index, collision in enumerate(link.findall("collision")):
+        said = f"{where} collision" + (f" {index + 1}" if index else "")
+        shape = _shape(collision.find("geometry"), said, problems)
+        if shape is not None:
+            touched.append((shape, _origin(collision.find("origin"), said)))
+    if not (drawn and touched == [drawn[0][:2]]):  # ("same", the spec's default, says nothing)
+        if not touched:
             if drawn:
                 entry["collision"] = "none"
         elif len(touched) == 1:
             entry["collision"] = _geometry(*touched[0])
         else:
             entry["collision"] = [_geometry(s, a) for s, a in touched]
-        entry.update(_inertial(link.find("inertial"), where))
-        if "inertia" in entry and "shape" in entry and _is_the_shapes(entry):
-            del entry["inertia"]  # (the shape's own: the spec computes it from the mass)
-        if "inertia" in entry and "origin" in entry and "origin" not in entry["inertia"]:
-            entry["inertia"]["origin"] = {"xyz": [0.0, 0.0, 0.0]}  # (else the spec takes the shape's origin for it)
-        links[name] = entry
+    entry.update(_inertial(link.find("inertial"), where))
+    if "inertia" in entry and "shape" in entry and _is_the_shapes(entry):
+        del entry["inertia"]  # (the shape's own: the spec computes it from the mass)
+    if "inertia" in entry and "origin" in entry and "origin" not in entry["inertia"]:
+        entry["inertia"]["origin"] = {"xyz": [0.0, 0.0, 0.0]}  # (else the spec takes the shape's origin for it)
+    return entry
+
+
+def _drawn(link: Any, where: str, colours: _Colours, problems: list[str]) -> list[tuple[Any, Any, str | None]]:
+    """(shape, origin, colour) of each visual of the link that the spec can say."""
+    drawn = []
+    for index, visual in enumerate(link.findall("visual")):
+        said = f"{where} visual" + (f" {index + 1}" if index else "")
+        shape = _shape(visual.find("geometry"), said, problems)
+        if shape is not None:
+            drawn.append((shape, _origin(visual.find("origin"), said), colours.name_of(visual.find("material"), where)))
+    return drawn
+
+
+def _visual_fields(drawn: list[tuple[Any, Any, str | None]]) -> dict[str, Any]:
+    """The first visual as the link's shape, origin and material; the others as ``visuals:``."""
+    if not drawn:
+        return {}
+    shape, at, colour = drawn[0]
+    entry: dict[str, Any] = {"shape": shape}
+    if at:
+        entry["origin"] = at
+    if colour:
+        entry["material"] = colour
+    more = [_geometry(s, a, c if c != colour else None) for s, a, c in drawn[1:]]
+    for piece, (_, _, c) in zip(more, drawn[1:], strict=True):
+        if colour and c is None:
+            piece["material"] = None  # (no colour, where the link's would be the default)
+    if more:
+        entry["visuals"] = more
+    return entry
+
+
+def _import_joints(root: Any, located: _Locator, result: Imported) -> dict[str, Any]:
+    """Every joint whose name the spec takes; the attributes URDF does not define are said in ``result.ignored``."""
     joints: dict[str, Any] = {}
     for joint in root.findall("joint"):
         name = joint.get("name", "")
         if not NAME.fullmatch(name):
-            problems.append(
+            result.unsupported.append(
                 f"{located('joints', name)}joint {name!r}: the name is not a spec name (letters, digits and _, in "
                 "parts joined by . / -)"
             )
             continue
-        joints[name] = _joint(joint, f"{located('joints', name)}joint {name!r}", problems)
+        joints[name] = _joint(joint, f"{located('joints', name)}joint {name!r}", result.unsupported)
         if joint.find("mimic") is not None and "mimic" not in joints[name]:
             result.ignored.append(f"joint {name!r} <mimic> (a {joint.get('type')} joint: nothing to move)")
         for tag, known in URDF_JOINT_ATTRIBUTES.items():
@@ -222,30 +276,28 @@ def import_text(text: str, name_hint: str = "robot", source: str = "") -> Import
                 extra = sorted(set(element.attrib) - known)
                 if extra:
                     result.ignored.append(f"joint {name!r} <{tag}> {', '.join(extra)}")
-    found = {"links": links, "joints": joints}
-    result.wheels, absorbed = wheels(found, root)
+    return joints
+
+
+def _extension(root: Any, absorbed: Any, leftovers: list[str]) -> str:
+    """The ``<robot>`` children the spec does not model (and no wheel absorbed), verbatim, as the extension file's
+    text ('' when there are none); each is named in ``leftovers``."""
+    from lxml import etree
+
     kept = etree.Element("robot")
     for child in root.iterchildren(etree.Element):
         if child.tag not in MODELLED and child not in absorbed:
-            result.leftovers.append(f"<{child.tag}{_label(child)}>")
+            leftovers.append(f"<{child.tag}{_label(child)}>")
             copy = etree.fromstring(etree.tostring(child))  # (its own document: namespaces it uses come along)
             copy.tail = None
             kept.append(copy)
-    if len(kept):
-        kept.text = "\n  "
-        for element in kept:
-            element.tail = "\n  "
-        kept[-1].tail = "\n"
-        result.extension = etree.tostring(kept, encoding="unicode") + "\n"
-    if colours:
-        result.spec["materials"] = colours
-    result.spec["links"] = links
-    if joints:
-        result.spec["joints"] = joints
-    if "wheels" in found:
-        result.spec["wheels"] = found["wheels"]
-    _strictness(result, located)
-    return result
+    if not len(kept):
+        return ""
+    kept.text = "\n  "
+    for element in kept:
+        element.tail = "\n  "
+    kept[-1].tail = "\n"
+    return etree.tostring(kept, encoding="unicode") + "\n"
 
 
 def _strictness(result: Imported, located: Any) -> None:

@@ -142,7 +142,10 @@ def test_an_undeclared_prefix_is_read_past_and_named_with_its_line():
 @pytest.mark.parametrize(
     ("text", "said"),
     [
-        ("<robot name='r'><link name='a'></robot>", "not-a-urdf.xml:1:40: not well-formed XML: Opening and ending tag mismatch"),
+        (
+            "<robot name='r'><link name='a'></robot>",
+            "not-a-urdf.xml:1:40: not well-formed XML: Opening and ending tag mismatch",
+        ),
         ("<sdf><model/></sdf>", "not-a-urdf.xml:1: the root element is <sdf>, not <robot>"),
     ],
 )
