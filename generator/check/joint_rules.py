@@ -84,75 +84,15 @@ def joint_rules(doc: Doc) -> Iterator[Finding]:
     yield from _mimic_cycles(doc)
     children = {j.find("child").get("link") for j in doc.joints if j.find("child") is not None}
     for joint in doc.joints:
-        name, kind = joint.get("name", ""), joint.get("type", "")
-
-        def found(
-            rule: str, message: str, name: str = name, joint: etree._Element = joint, level: Severity | None = None
-        ) -> Finding:
-            return doc.finding(rule, "joint", name, message, joint, level)
-
+        kind = joint.get("type", "")
+        found = _At(doc, joint)
         if kind not in JOINT_TYPES:
             yield found("J011", f"type {kind!r} is not a URDF joint type ({', '.join(JOINT_TYPES)})")
             continue
         limit = joint.find("limit")
-        if kind in LIMITED:
-            lower, upper = read_float(limit, "lower"), read_float(limit, "upper")
-            if limit is None:
-                yield found("J001", f"a {kind} joint needs <limit lower upper effort velocity>: urdfdom rejects it")
-            elif lower is None or upper is None:
-                missing = " and ".join(k for k, v in (("lower", lower), ("upper", upper)) if v is None)
-                yield found(
-                    "J001",
-                    f"<limit> has no {missing}; URDF reads a missing one as 0, so the joint's range is "
-                    f"[{lower or 0.0:g}, {upper or 0.0:g}]: give both (or make an endless joint continuous)",
-                    level="warning",
-                )
-            elif not lower <= upper:
-                yield found("J002", f"limit lower ({lower}) is greater than upper ({upper}); swap them")
-            elif lower == upper:
-                yield found(
-                    "J013", f"limit lower and upper are both {lower}: the joint cannot move; make it a fixed joint"
-                )
-        if (
-            kind == "continuous"
-            and limit is not None
-            and (limit.get("effort") is None or limit.get("velocity") is None)
-        ):
-            missing = " and ".join(k for k in ("effort", "velocity") if limit.get(k) is None)
-            yield found(
-                "J005",
-                f"<limit> has no {missing}; urdfdom rejects a limit without them: give effort and velocity, or leave "
-                "the <limit> out (a passive continuous joint needs none)",
-            )
-        if kind in MOVING and limit is not None:
-            for rule, key, unit, then in (
-                ("J003", "effort", "N*m or N", "Gazebo applies no force to the joint"),
-                ("J004", "velocity", "rad/s or m/s", "Gazebo holds the joint still"),
-            ):
-                value = read_float(limit, key)
-                if value is not None and value < 0:  # pinocchio rejects it (its lower bound, -value, is above it)
-                    yield found(
-                        rule, f"limit {key} is {value:g}; pinocchio rejects a negative one: give one > 0 ({unit})"
-                    )
-                elif value == 0:
-                    yield found(
-                        rule,
-                        f"limit {key} is 0: {then} (a placeholder?); give the real one > 0 ({unit})",
-                        level="warning",
-                    )
-                elif value is None and kind != "continuous":
-                    yield found(rule, f"<limit> has no {key}; urdfdom rejects it: give one > 0 ({unit})")
-        if kind in AXIAL:
-            axis = read_triple(joint.find("axis"), "xyz", "1 0 0")
-            norm = math.hypot(*axis)
-            if not math.isfinite(norm) or norm == 0:
-                yield found(
-                    "J006",
-                    f"axis {joint.find('axis').get('xyz') if joint.find('axis') is not None else ''!r}"
-                    " is zero or unreadable; give a direction such as '0 0 1'",
-                )
-            elif abs(norm - 1.0) > 1e-6:
-                yield found("J007", f"axis has length {norm:.6g}; consumers normalise it, write the unit vector")
+        yield from _range(found, kind, limit)
+        yield from _rates(found, kind, limit)
+        yield from _axis(found, kind, joint)
         if kind in MOVING and joint.find("dynamics") is None and joint.find("mimic") is None:
             yield found("J009", "no <dynamics damping friction>: simulators assume none (URDF makes it optional)")
         if kind == "floating" and joint.find("parent") is not None and joint.find("parent").get("link") in children:
@@ -161,29 +101,108 @@ def joint_rules(doc: Doc) -> Iterator[Finding]:
                 "floating joint below the root link; MuJoCo and most simulators accept a floating "
                 "joint only as the base: make it fixed, or the robot's root",
             )
-        mimic = joint.find("mimic")
-        if mimic is not None:
-            target = mimic.get("joint", "")
-            if target == name:
-                yield found("J008", "a joint cannot mimic itself")
-            elif target not in types:
-                yield found("J008", f"mimics {target!r}, which is not a joint of this robot")
-            elif (
-                types[target] not in MOVING
-                or kind not in MOVING
-                or (types[target] == "prismatic") != (kind == "prismatic")
-            ):
-                yield found(
-                    "J008",
-                    f"mimics {target!r} ({types[target]}) from a {kind} joint; consumers ignore such a mimic (both "
-                    "must move, and rotate or slide alike): remove it, or fix the joint types",
-                    level="warning",
-                )
-        safety = joint.find("safety_controller")
-        if safety is not None and limit is not None and kind in LIMITED:
-            lower, upper = read_float(limit, "lower"), read_float(limit, "upper")
-            soft_lower, soft_upper = read_float(safety, "soft_lower_limit"), read_float(safety, "soft_upper_limit")
-            if lower is not None and soft_lower is not None and soft_lower < lower:
-                yield found("J010", f"soft_lower_limit {soft_lower} is below the hard lower limit {lower}")
-            if upper is not None and soft_upper is not None and soft_upper > upper:
-                yield found("J010", f"soft_upper_limit {soft_upper} is above the hard upper limit {upper}")
+        yield from _mimic(found, kind, joint.find("mimic"), types)
+        yield from _safety(found, kind, limit, joint.find("safety_controller"))
+
+
+class _At:
+    """A finding about one joint: ``found(rule, message, level=None)``."""
+
+    def __init__(self, doc: Doc, joint: etree._Element) -> None:
+        self.doc, self.joint, self.name = doc, joint, joint.get("name", "")
+
+    def __call__(self, rule: str, message: str, level: Severity | None = None) -> Finding:
+        return self.doc.finding(rule, "joint", self.name, message, self.joint, level)
+
+
+def _range(found: _At, kind: str, limit: etree._Element | None) -> Iterator[Finding]:
+    """J001 (a limited joint's <limit> and its bounds), J002 (lower above upper), J013 (a range of one value)."""
+    if kind not in LIMITED:
+        return
+    lower, upper = read_float(limit, "lower"), read_float(limit, "upper")
+    if limit is None:
+        yield found("J001", f"a {kind} joint needs <limit lower upper effort velocity>: urdfdom rejects it")
+    elif lower is None or upper is None:
+        missing = " and ".join(k for k, v in (("lower", lower), ("upper", upper)) if v is None)
+        yield found(
+            "J001",
+            f"<limit> has no {missing}; URDF reads a missing one as 0, so the joint's range is "
+            f"[{lower or 0.0:g}, {upper or 0.0:g}]: give both (or make an endless joint continuous)",
+            level="warning",
+        )
+    elif not lower <= upper:
+        yield found("J002", f"limit lower ({lower}) is greater than upper ({upper}); swap them")
+    elif lower == upper:
+        yield found("J013", f"limit lower and upper are both {lower}: the joint cannot move; make it a fixed joint")
+
+
+def _rates(found: _At, kind: str, limit: etree._Element | None) -> Iterator[Finding]:
+    """J005 (a continuous joint's <limit> without effort or velocity), J003/J004 (effort and velocity)."""
+    if limit is None:
+        return
+    if kind == "continuous" and (limit.get("effort") is None or limit.get("velocity") is None):
+        missing = " and ".join(k for k in ("effort", "velocity") if limit.get(k) is None)
+        yield found(
+            "J005",
+            f"<limit> has no {missing}; urdfdom rejects a limit without them: give effort and velocity, or leave "
+            "the <limit> out (a passive continuous joint needs none)",
+        )
+    if kind not in MOVING:
+        return
+    for rule, key, unit, then in (
+        ("J003", "effort", "N*m or N", "Gazebo applies no force to the joint"),
+        ("J004", "velocity", "rad/s or m/s", "Gazebo holds the joint still"),
+    ):
+        value = read_float(limit, key)
+        if value is not None and value < 0:  # pinocchio rejects it (its lower bound, -value, is above it)
+            yield found(rule, f"limit {key} is {value:g}; pinocchio rejects a negative one: give one > 0 ({unit})")
+        elif value == 0:
+            yield found(
+                rule, f"limit {key} is 0: {then} (a placeholder?); give the real one > 0 ({unit})", level="warning"
+            )
+        elif value is None and kind != "continuous":
+            yield found(rule, f"<limit> has no {key}; urdfdom rejects it: give one > 0 ({unit})")
+
+
+def _axis(found: _At, kind: str, joint: etree._Element) -> Iterator[Finding]:
+    """J006 (a zero or unreadable axis), J007 (an axis that is not a unit vector)."""
+    if kind not in AXIAL:
+        return
+    element = joint.find("axis")
+    axis = read_triple(element, "xyz", "1 0 0")
+    norm = math.hypot(*axis)
+    if not math.isfinite(norm) or norm == 0:
+        written = element.get("xyz") if element is not None else ""
+        yield found("J006", f"axis {written!r} is zero or unreadable; give a direction such as '0 0 1'")
+    elif abs(norm - 1.0) > 1e-6:
+        yield found("J007", f"axis has length {norm:.6g}; consumers normalise it, write the unit vector")
+
+
+def _mimic(found: _At, kind: str, mimic: etree._Element | None, types: dict[str, str]) -> Iterator[Finding]:
+    """J008: a mimic of itself, of no joint, or between joints that do not move alike."""
+    if mimic is None:
+        return
+    target = mimic.get("joint", "")
+    if target == found.name:
+        yield found("J008", "a joint cannot mimic itself")
+    elif target not in types:
+        yield found("J008", f"mimics {target!r}, which is not a joint of this robot")
+    elif types[target] not in MOVING or kind not in MOVING or (types[target] == "prismatic") != (kind == "prismatic"):
+        yield found(
+            "J008",
+            f"mimics {target!r} ({types[target]}) from a {kind} joint; consumers ignore such a mimic (both "
+            "must move, and rotate or slide alike): remove it, or fix the joint types",
+            level="warning",
+        )
+
+
+def _safety(found: _At, kind: str, limit: etree._Element | None, safety: etree._Element | None) -> Iterator[Finding]:
+    """J010: soft limits outside the hard ones."""
+    if safety is None or limit is None or kind not in LIMITED:
+        return
+    lower, upper = read_float(limit, "lower"), read_float(limit, "upper")
+    soft_lower, soft_upper = read_float(safety, "soft_lower_limit"), read_float(safety, "soft_upper_limit")
+    if lower is not None and soft_lower is not None and soft_lower < lower:
+        yield found("J010", f"soft_lower_limit {soft_lower} is below the hard lower limit {lower}")
+    if upper is not None and soft_upper is not None and soft_upper > upper:
+        yield found("J010", f"soft_upper_limit {soft_upper} is above the hard upper limit {upper}")

@@ -17,7 +17,7 @@ import re
 import sys
 from collections.abc import Iterator, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, NoReturn
+from typing import TYPE_CHECKING, Any, NoReturn
 
 from .. import __version__
 from ..errors import XacrokitError
@@ -295,7 +295,15 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
+    _add_generate_commands(commands)
+    _add_check_command(commands)
+    add_commands(commands, _add_xacro_options)
+    _add_tool_commands(commands)
+    return parser
 
+
+def _add_generate_commands(commands: Any) -> None:
+    """generate, fleet and new: the commands that make a package or a spec."""
     gen = commands.add_parser(
         "generate",
         help="turn a YAML robot spec into a ROS 2 description package (also: gen-robot SPEC.yaml)",
@@ -342,6 +350,8 @@ def build_parser() -> argparse.ArgumentParser:
     )
     new.set_defaults(handler=_cmd_new)
 
+
+def _add_check_command(commands: Any) -> None:
     chk = commands.add_parser(
         "check",
         help="strictly verify a URDF, xacro document or spec (structure, joints, inertia, references, kinematics)",
@@ -365,8 +375,9 @@ def build_parser() -> argparse.ArgumentParser:
     _add_xacro_options(chk)
     chk.set_defaults(handler=_cmd_check)
 
-    add_commands(commands, _add_xacro_options)
 
+def _add_tool_commands(commands: Any) -> None:
+    """schema, expand, macros and materials."""
     schema = commands.add_parser(
         "schema",
         help="print a JSON Schema",
@@ -404,7 +415,6 @@ def build_parser() -> argparse.ArgumentParser:
         description="Print the built-in materials a body's `density:` may name: density (kg/m^3), grade, source.",
     )
     materials.set_defaults(handler=_cmd_materials)
-    return parser
 
 
 SCHEMA_KINDS = ("robot", "scene", "check-report", "size-report", "sizing")

@@ -158,9 +158,23 @@ def _not_a_mapping(path: PathKey, error: jsonschema.ValidationError) -> str:
     )
 
 
-def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bool]:
-    """(path, message, point-at-key) for one schema error, in words a spec author understands."""
+Message = tuple[PathKey, str, bool]  # (path, message, point-at-key)
+
+
+def _schema_message(error: jsonschema.ValidationError) -> Message:
+    """(path, message, point-at-key) for one schema error, in words a spec author understands: the first of the
+    wordings below that knows the error (in this order: names, quantities, scenes and shapes, bounds, types,
+    counts), else jsonschema's own message."""
     path: PathKey = tuple(error.absolute_path)
+    for wording in (_name_message, _quantity_message, _structure_message, _bound_message, _type_message):
+        said = wording(error, path)
+        if said is not None:
+            return said
+    return _count_message(error, path)
+
+
+def _name_message(error: jsonschema.ValidationError, path: PathKey) -> Message | None:
+    """Unknown keys, and names (keys or values) that are too long or not of the allowed form."""
     keyword = error.validator
     if keyword == "additionalProperties":
         allowed = sorted(error.schema.get("properties", {}))
@@ -168,41 +182,36 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
         where = (*path, extra[0]) if extra else path
         return where, f"unknown key {extra[0]!r}" + (f"; allowed here: {', '.join(allowed)}" if allowed else ""), True
     if keyword == "propertyNames":
-        name = error.instance
-        return (
-            (*path, name),
-            _bad_name(name),
-            True,
-        )
+        return (*path, error.instance), _bad_name(error.instance), True
+    in_key = "propertyNames" in error.absolute_schema_path
     if keyword == "maxLength" and isinstance(error.instance, str):
-        return (
-            path + ((error.instance,) if "propertyNames" in error.absolute_schema_path else ()),
-            _long_name(error),
-            ("propertyNames" in error.absolute_schema_path),
-        )
-    separated = keyword == "pattern" and "[./-]" in str(error.validator_value)  # (link and joint names' pattern)
-    if keyword == "pattern" and "propertyNames" in error.absolute_schema_path:
-        name = error.instance  # a mapping key that is not a valid name: point at the key itself
-        return (
-            (*path, name),
-            _bad_name(name, link_or_joint=separated),
-            True,
-        )
-    if keyword == "pattern":
-        return (
-            path,
-            _bad_name(error.instance, link_or_joint=separated),
-            False,
-        )
+        return path + ((error.instance,) if in_key else ()), _long_name(error), in_key
+    if keyword != "pattern":
+        return None
+    separated = "[./-]" in str(error.validator_value)  # (link and joint names' pattern)
+    if in_key:  # a mapping key that is not a valid name: point at the key itself
+        return (*path, error.instance), _bad_name(error.instance, link_or_joint=separated), True
+    return path, _bad_name(error.instance, link_or_joint=separated), False
+
+
+def _quantity_message(error: jsonschema.ValidationError, path: PathKey) -> Message | None:
+    """A length, angle or mass that is not a number or a quantity string, or a mass or rate not above 0."""
+    keyword = error.validator
     kind = _ref_name(error) if keyword in ("type", "minimum", "minLength") else None
-    if kind in ("length", "angle", "quantity", "mass"):
-        example = {"length": "150 mm", "angle": "90 deg", "quantity": "90 deg", "mass": "500 g"}[kind]
-        if keyword == "minimum":  # a mass, or a rate (the same schema: told apart by the key); 0 is physics' to say
-            key = path[-1] if path and isinstance(path[-1], str) and path[-1] != "mass" else "mass"
-            if key != "mass":  # (as validate.quantities says it, so that the two are said once)
-                return path, f"{key} must be > 0, got {error.instance!r}", False
-            return path, f"mass must be > 0 kg, got {float(error.instance)!r}", False  # as the physics check says it
-        return path, f"expected a number or a string such as {example!r}, got {error.instance!r}", False
+    if kind not in ("length", "angle", "quantity", "mass"):
+        return None
+    example = {"length": "150 mm", "angle": "90 deg", "quantity": "90 deg", "mass": "500 g"}[kind]
+    if keyword == "minimum":  # a mass, or a rate (the same schema: told apart by the key); 0 is physics' to say
+        key = path[-1] if path and isinstance(path[-1], str) and path[-1] != "mass" else "mass"
+        if key != "mass":  # (as validate.quantities says it, so that the two are said once)
+            return path, f"{key} must be > 0, got {error.instance!r}", False
+        return path, f"mass must be > 0 kg, got {float(error.instance)!r}", False  # as the physics check says it
+    return path, f"expected a number or a string such as {example!r}, got {error.instance!r}", False
+
+
+def _structure_message(error: jsonschema.ValidationError, path: PathKey) -> Message | None:
+    """A scene instance's spec or xacro, too many instances, a collision's forms, a shape's one kind."""
+    keyword = error.validator
     if keyword in ("oneOf", "anyOf") and len(path) == 2 and path[0] == "instances":
         given = [k for k in ("spec", "xacro") if isinstance(error.instance, dict) and k in error.instance]
         said = f"both {' and '.join(given)}" if len(given) == 2 else (given[0] if given else "neither")
@@ -222,6 +231,12 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
         )
     if keyword in ("minProperties", "maxProperties") and "box" in error.schema.get("properties", {}):
         return path, "a shape needs exactly one of box, cylinder, sphere, mesh", False
+    return None
+
+
+def _bound_message(error: jsonschema.ValidationError, path: PathKey) -> Message | None:
+    """A value beyond its schema's bounds (a colour of 0-255, a scale factor of 0 among them)."""
+    keyword = error.validator
     if keyword == "exclusiveMinimum":
         return path, f"must be > {error.validator_value}, got {error.instance!r}", False
     if keyword == "minimum":
@@ -231,6 +246,12 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
     if keyword == "maximum":
         colour = " (colours are 0..1: divide 0-255 values by 255)" if path[:1] == ("materials",) else ""
         return path, f"must be <= {error.validator_value}, got {error.instance!r}{colour}", False
+    return None
+
+
+def _type_message(error: jsonschema.ValidationError, path: PathKey) -> Message | None:
+    """A value of the wrong type: a unit string where only numbers go, a choice, a mapping, the spec itself."""
+    keyword = error.validator
     if keyword == "type" and error.validator_value == "number" and isinstance(error.instance, str):
         return (
             path,
@@ -251,6 +272,12 @@ def _schema_message(error: jsonschema.ValidationError) -> tuple[PathKey, str, bo
         return path, _not_a_mapping(path, error), False
     if keyword == "type" and not path:
         return path, f"a spec is a mapping (robot:, links:, ...), got {type(error.instance).__name__}", False
+    return None
+
+
+def _count_message(error: jsonschema.ValidationError, path: PathKey) -> Message:
+    """Too few or too many entries, an empty mapping, a missing key; else jsonschema's message."""
+    keyword = error.validator
     if keyword in ("minItems", "maxItems") and isinstance(error.instance, list):
         low, high = error.schema.get("minItems"), error.schema.get("maxItems")
         wanted = f"{low}" if low == high else f"{low} to {high}" if high is not None else f"at least {low}"
