@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator
+from dataclasses import dataclass, field
+from typing import Any
 
 from lxml import etree
 
@@ -119,7 +121,21 @@ class _Bodies:
         return ", ".join(rest[:4]) + (f" and {len(rest) - 4} more" if len(rest) > 4 else "")
 
 
-def inertia_rules(doc: Doc) -> Iterator[Finding]:
+@dataclass
+class _Context:
+    """What every link's inertia rules read: the links a joint moves, each link's tensor entries and principal
+    moments (None when it has none or they do not read), its mass, the rigid bodies and the bases said (I007)."""
+
+    moved: set[str]
+    entries: list[tuple[float, ...] | None]
+    moments: list[Any]
+    masses: dict[str, float | None]
+    bodies: _Bodies
+    moved_bodies: set[str]
+    said_base: set[str] = field(default_factory=set)
+
+
+def _context(doc: Doc) -> _Context:
     moved = {j.find("child").get("link") for j in doc.joints if j.get("type") in MOVING and j.find("child") is not None}
     # (ixx, ixy, ixz, iyy, iyz, izz) of every link that has them; the principal moments of all the finite ones in one
     # batched eigvalsh, consumed in link order below (per-link numpy calls cost ten times more)
@@ -134,88 +150,103 @@ def inertia_rules(doc: Doc) -> Iterator[Finding]:
         if moments is not None and max(moments) >= ZERO_MOMENT and moments_problem(moments) is None
     }
     bodies = _Bodies(doc, masses, solid)
-    moved_bodies = {bodies.body(n) for n in moved}
-    said_base: set[str] = set()  # (I007 once per base body)
-    for link, entry, moments in zip(doc.links, entries, moments_of, strict=True):
-        name = link.get("name", "")
-        body = bodies.body(name)
-        mass = masses[name]
-        has_geometry = link.find("visual") is not None or link.find("collision") is not None
-        inertial = link.find("inertial")
-        if inertial is not None and inertial.find("mass") is not None and inertial.find("inertia") is None:
+    return _Context(moved, entries, moments_of, masses, bodies, {bodies.body(n) for n in moved})
+
+
+def inertia_rules(doc: Doc) -> Iterator[Finding]:
+    context = _context(doc)
+    for link, entry, moments in zip(doc.links, context.entries, context.moments, strict=True):
+        yield from _link_inertia(doc, context, link, entry, moments)
+
+
+def _link_inertia(doc: Doc, context: _Context, link: Any, entry: Any, moments: Any) -> Iterator[Finding]:
+    """One link's I001-I007, in the order a reader fixes them: the mass, then the tensor, then its size."""
+    name = link.get("name", "")
+    body, mass = context.bodies.body(name), context.masses[name]
+    inertial = link.find("inertial")
+    if inertial is not None and inertial.find("mass") is not None and inertial.find("inertia") is None:
+        yield doc.finding(
+            "I006",
+            "link",
+            name,
+            "<inertial> has a mass but no <inertia>; urdfdom rejects it: give <inertia ixx iyy izz ixy ixz iyz> "
+            "(kg*m^2)",
+            link,
+        )
+    if mass is not None and not mass >= 0:
+        yield doc.finding("I001", "link", name, f"mass is {mass}; it must be > 0 kg (or 0 on a massless frame)", link)
+        return
+    if body not in context.bodies.massive:
+        yield from _massless(doc, context, link, name, body)
+        return
+    if entry is None or moments is None:
+        if entry is not None:
+            yield doc.finding("I002", "link", name, "the inertia tensor has unreadable entries", link)
+        return
+    if max(abs(m) for m in moments) < ZERO_MOMENT:  # (a point mass, or a massless frame's zeros)
+        if mass and body not in context.bodies.solid and body in context.moved_bodies:
             yield doc.finding(
-                "I006",
+                "I002",
                 "link",
                 name,
-                "<inertial> has a mass but no <inertia>; urdfdom rejects it: "
-                "give <inertia ixx iyy izz ixy ixz iyz> (kg*m^2)",
+                f"mass {mass:g} kg with no rotational inertia (all principal moments below {ZERO_MOMENT:g} "
+                "kg*m^2), and no link fixed to it has any: give the body its inertia",
                 link,
             )
-        if mass is not None and not mass >= 0:
-            yield doc.finding(
-                "I001", "link", name, f"mass is {mass}; it must be > 0 kg (or 0 on a massless frame)", link
-            )
-            continue
-        if body not in bodies.massive:
-            if name in moved:
-                fixed = bodies.others(name)
-                what = f"neither it nor a link fixed to it ({fixed}) has a mass" if fixed else "it has no mass"
-                yield doc.finding(
-                    "I001",
-                    "link",
-                    name,
-                    f"it is moved by a joint but {what}: give it <inertial> with mass > 0 (kg) and its inertia "
-                    "(simulators cannot move a massless body; MuJoCo rejects it, even between two joints)",
-                    link,
-                )
-            elif has_geometry and body not in moved_bodies and body not in said_base:
-                said_base.add(body)
-                yield doc.finding(
-                    "I007",
-                    "link",
-                    name,
-                    "the robot's base has geometry but no mass anywhere (it or a link fixed to it): enough for a "
-                    "fixed base, but a simulator that lets the robot move (a mobile base in Gazebo) needs its mass",
-                    link,
-                )
-            continue
-        if entry is None or moments is None:
-            if entry is not None:
-                yield doc.finding("I002", "link", name, "the inertia tensor has unreadable entries", link)
-            continue
-        if max(abs(m) for m in moments) < ZERO_MOMENT:  # (a point mass, or a massless frame's zeros)
-            if mass and body not in bodies.solid and body in moved_bodies:
-                yield doc.finding(
-                    "I002",
-                    "link",
-                    name,
-                    f"mass {mass:g} kg with no rotational inertia (all principal moments below {ZERO_MOMENT:g} "
-                    "kg*m^2), and no link fixed to it has any: give the body its inertia",
-                    link,
-                )
-            continue
-        problem = _tensor_problem(moments)
-        if problem is not None:
-            # per link, not per rigid body: MuJoCo reads each link's tensor before it fuses fixed links, and rejects
-            # any that is not all zero and not a rigid body's (a part's tensor fused into a solid body included)
-            rule, said = problem
-            yield doc.finding(rule, "link", name, said, link)
-            continue
-        ixx, ixy, ixz, iyy, iyz, izz = entry
-        # a link of a tenth of its body's mass or less (an IMU frame on a trunk) changes the body's dynamics by little:
-        # a placeholder or an odd size there is no mistake worth a warning
-        if not (mass and mass >= SIGNIFICANT * bodies.mass.get(body, 0.0)):
-            continue
-        if ixy == ixz == iyz == 0 and ixx == iyy == izz and ixx in _PLACEHOLDERS:
-            yield doc.finding(
-                "I005",
-                "link",
-                name,
-                f"inertia is {ixx:g} * identity, a common placeholder; "
-                "compute it from the body (e.g. xacrokit's inertia macros)",
-                link,
-            )
+        return
+    problem = _tensor_problem(moments)
+    if problem is not None:
+        # per link, not per rigid body: MuJoCo reads each link's tensor before it fuses fixed links, and rejects
+        # any that is not all zero and not a rigid body's (a part's tensor fused into a solid body included)
+        rule, said = problem
+        yield doc.finding(rule, "link", name, said, link)
+        return
+    # a link of a tenth of its body's mass or less (an IMU frame on a trunk) changes the body's dynamics by little:
+    # a placeholder or an odd size there is no mistake worth a warning
+    if mass and mass >= SIGNIFICANT * context.bodies.mass.get(body, 0.0):
+        yield from _placeholder(doc, link, name, entry)
         yield from _plausibility(doc, link, name, mass, sum(moments))
+
+
+def _massless(doc: Doc, context: _Context, link: Any, name: str, body: str) -> Iterator[Finding]:
+    """I001 for a moved link of a body without mass; I007 (once per base) for a base with geometry but no mass."""
+    if name in context.moved:
+        fixed = context.bodies.others(name)
+        what = f"neither it nor a link fixed to it ({fixed}) has a mass" if fixed else "it has no mass"
+        yield doc.finding(
+            "I001",
+            "link",
+            name,
+            f"it is moved by a joint but {what}: give it <inertial> with mass > 0 (kg) and its inertia "
+            "(simulators cannot move a massless body; MuJoCo rejects it, even between two joints)",
+            link,
+        )
+        return
+    has_geometry = link.find("visual") is not None or link.find("collision") is not None
+    if has_geometry and body not in context.moved_bodies and body not in context.said_base:
+        context.said_base.add(body)
+        yield doc.finding(
+            "I007",
+            "link",
+            name,
+            "the robot's base has geometry but no mass anywhere (it or a link fixed to it): enough for a "
+            "fixed base, but a simulator that lets the robot move (a mobile base in Gazebo) needs its mass",
+            link,
+        )
+
+
+def _placeholder(doc: Doc, link: Any, name: str, entry: tuple[float, ...]) -> Iterator[Finding]:
+    """I005: a round multiple of the identity, the placeholder tensor."""
+    ixx, ixy, ixz, iyy, iyz, izz = entry
+    if ixy == ixz == iyz == 0 and ixx == iyy == izz and ixx in _PLACEHOLDERS:
+        yield doc.finding(
+            "I005",
+            "link",
+            name,
+            f"inertia is {ixx:g} * identity, a common placeholder; compute it from the body (e.g. xacrokit's inertia "
+            "macros)",
+            link,
+        )
 
 
 def _tensor_problem(moments: tuple[float, ...] | list[float]) -> tuple[str, str] | None:
