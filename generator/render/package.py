@@ -133,33 +133,8 @@ def bridge_yaml(name: str, entries: list[dict[str, str]]) -> str:
 def render_package(robot: Robot, *, macros: MacroMode = "inline", spec_name: str = "spec.yaml") -> list[RenderedFile]:
     """Every file of ``NAME_description/`` except the expanded URDF (the expand stage adds that)."""
     env = environment()
-    macro_files = used_macro_files(robot)
-    include_prefix = "xacrokit/" if macros == "copy" else "$(find xacrokit)/macros/"
-    if macros == "inline":  # plain XML computed here: no library macros to include
-        macro_files = []
-    context = {
-        "robot": robot,
-        "fixed_frame": robot.root,  # RViz's (the launch file passes the prefixed one to rviz2 -f)
-        "version": __version__,
-        "spec_name": comment_text(spec_name),  # (a file name may hold a newline: it would end a comment)
-        "spec_command": command_text("gen-robot " + shlex.quote(spec_name)),
-        "macros": macros,
-        "macro_includes": [include_prefix + name for name in macro_files],
-        "mount_joint": mount_joint_name(robot.root),
-        **(_inline_parts(robot) if macros == "inline" else _library_parts(robot)),
-        "material_name": lambda name: material_name(robot, name),
-        "has_control": robot.ros2_control is not None,
-        **controllers(robot),
-        "prefix": "",
-        "fixed_base": not robot.wheels,  # (simulated, a robot without wheels stands fixed to the world)
-        "spawn_z": "0.0",
-        "sensor_xml": Markup(
-            "".join(
-                etree.tostring(sensor_element(s, PREFIX, XACRO_NAMESPACE), encoding="unicode", pretty_print=True)
-                for s in robot.sensors
-            )
-        ),
-    }
+    macro_files = used_macro_files(robot) if macros != "inline" else []  # (inline: plain XML, nothing to include)
+    context = _package_context(robot, macros, spec_name, macro_files)
     name = robot.name
     plan = {
         "package.xml": "package/package.xml.j2",
@@ -194,6 +169,34 @@ def render_package(robot: Robot, *, macros: MacroMode = "inline", spec_name: str
         parts = PurePosixPath(file.path).parts
         assert not PurePosixPath(file.path).is_absolute() and ".." not in parts, file.path
     return sorted(files, key=lambda f: f.path)
+
+
+def _package_context(robot: Robot, macros: MacroMode, spec_name: str, macro_files: list[str]) -> dict[str, Any]:
+    """What the package's templates read."""
+    include_prefix = "xacrokit/" if macros == "copy" else "$(find xacrokit)/macros/"
+    return {
+        "robot": robot,
+        "fixed_frame": robot.root,  # RViz's (the launch file passes the prefixed one to rviz2 -f)
+        "version": __version__,
+        "spec_name": comment_text(spec_name),  # (a file name may hold a newline: it would end a comment)
+        "spec_command": command_text("gen-robot " + shlex.quote(spec_name)),
+        "macros": macros,
+        "macro_includes": [include_prefix + name for name in macro_files],
+        "mount_joint": mount_joint_name(robot.root),
+        **(_inline_parts(robot) if macros == "inline" else _library_parts(robot)),
+        "material_name": lambda name: material_name(robot, name),
+        "has_control": robot.ros2_control is not None,
+        **controllers(robot),
+        "prefix": "",
+        "fixed_base": not robot.wheels,  # (simulated, a robot without wheels stands fixed to the world)
+        "spawn_z": "0.0",
+        "sensor_xml": Markup(
+            "".join(
+                etree.tostring(sensor_element(s, PREFIX, XACRO_NAMESPACE), encoding="unicode", pretty_print=True)
+                for s in robot.sensors
+            )
+        ),
+    }
 
 
 def _inline_parts(robot: Robot) -> dict[str, Any]:

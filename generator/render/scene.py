@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import dataclasses
 import shlex
+from dataclasses import dataclass, field
 from types import SimpleNamespace
 from typing import Any
 
@@ -31,17 +32,13 @@ ROBOT_FILES = ("urdf/", "config/")  # what a scene carries of each robot package
 def render_scene(scene: Scene, *, spec_name: str = "scene.yaml", macros: MacroMode = "inline") -> list[RenderedFile]:
     """Every file of the scene package except the expanded URDF; ``macros`` is how each robot's macro is written."""
     env = environment()
-    files: list[RenderedFile] = []
-    for robot in scene.robots:
-        for file in render_package(robot, macros=macros, spec_name=spec_name):
-            if file.path.startswith(ROBOT_FILES) and not file.path.endswith("_controllers.yaml"):
-                files.append(RenderedFile(f"robots/{robot.package}/{file.path}", file.content, seed=file.seed))
-        files += [RenderedFile(file.path, file.content) for file in robot.files]  # (its meshes, moved here)
+    files = _robot_files(scene, spec_name, macros)
+    said_name = comment_text(spec_name)  # (a file name may hold a newline: it would end a comment)
     has_control = any(i.robot is not None and i.robot.ros2_control is not None for i in scene.instances)
     context = {
         "scene": scene,
         "version": __version__,
-        "spec_name": comment_text(spec_name),  # (a file name may hold a newline: it would end a comment)
+        "spec_name": said_name,
         "spec_command": command_text(scene.command or "gen-robot " + shlex.quote(spec_name)),
         "has_control": has_control,
         "macros": macros,
@@ -57,27 +54,7 @@ def render_scene(scene: Scene, *, spec_name: str = "scene.yaml", macros: MacroMo
         (f"rviz/{scene.name}.rviz", "package/rviz/robot.rviz.j2"),
     ):
         files.append(RenderedFile(path, env.get_template(template).render(context)))
-    controllers_template = env.get_template("package/config/controllers.yaml.j2")
-    merged: dict[str, Any] = {"controller_manager": {"ros__parameters": {"update_rate": 100}}}
-    spawned: list[str] = []
-    inactive: list[str] = []
-    entries: list[dict[str, str]] = []
-    for instance in scene.instances:
-        ours = instance.robot
-        if ours is None:
-            continue
-        entries += [e for sensor in ours.sensors for e in bridge_entries(sensor, topic_namespace(instance.prefix))]
-        if ours.ros2_control is not None:
-            chosen = controllers(ours, instance.prefix, mounted=True)
-            text = controllers_template.render(
-                robot=ours, version=__version__, spec_name=context["spec_name"], prefix=instance.prefix, **chosen
-            )
-            files.append(RenderedFile(f"config/{instance.name}_controllers.yaml", text))
-            data = yaml.safe_load(text)
-            merged["controller_manager"]["ros__parameters"].update(data.pop("controller_manager")["ros__parameters"])
-            merged.update(data)
-            spawned += chosen["spawned"]
-            inactive += chosen["inactive"]
+    control = _instance_controllers(scene, said_name, files)
     name = scene.name
     if has_control:  # (the one gz_ros2_control plugin of a simulated scene reads every instance's controllers)
         header = (
@@ -85,12 +62,12 @@ def render_scene(scene: Scene, *, spec_name: str = "scene.yaml", macros: MacroMo
             "# its one gz_ros2_control plugin (ros2_control:=gazebo); config/INSTANCE_controllers.yaml hold them\n"
             "# one by one.\n"
         )
-        text = header + yaml.safe_dump(merged, sort_keys=False, default_flow_style=None, width=120)
+        text = header + yaml.safe_dump(control.merged, sort_keys=False, default_flow_style=None, width=120)
         files.append(RenderedFile(f"config/{name}_controllers.yaml", text))
-    files.append(RenderedFile(f"config/{name}_bridge.yaml", bridge_yaml(name, entries)))
-    stand_in = SimpleNamespace(name=name, package=scene.package, sensors=entries)  # (what the templates read)
-    simulated = {**context, "robot": stand_in, "fixed_base": False, "spawn_z": "0.0", "spawned": spawned}
-    simulated["inactive"] = inactive
+    files.append(RenderedFile(f"config/{name}_bridge.yaml", bridge_yaml(name, control.bridged)))
+    stand_in = SimpleNamespace(name=name, package=scene.package, sensors=control.bridged)  # (what the templates read)
+    simulated = {**context, "robot": stand_in, "fixed_base": False, "spawn_z": "0.0", "spawned": control.spawned}
+    simulated["inactive"] = control.inactive
     files.append(
         RenderedFile(
             "launch/gazebo.launch.py", env.get_template("package/launch/gazebo.launch.py.j2").render(simulated)
@@ -98,6 +75,56 @@ def render_scene(scene: Scene, *, spec_name: str = "scene.yaml", macros: MacroMo
     )
     files.append(RenderedFile(f"worlds/{name}.sdf", env.get_template("package/worlds/world.sdf.j2").render(simulated)))
     return sorted(files, key=lambda f: f.path)
+
+
+def _robot_files(scene: Scene, spec_name: str, macros: MacroMode) -> list[RenderedFile]:
+    """What the scene carries of each robot's package (its urdf/ and config/, its meshes)."""
+    files: list[RenderedFile] = []
+    for robot in scene.robots:
+        for file in render_package(robot, macros=macros, spec_name=spec_name):
+            if file.path.startswith(ROBOT_FILES) and not file.path.endswith("_controllers.yaml"):
+                files.append(RenderedFile(f"robots/{robot.package}/{file.path}", file.content, seed=file.seed))
+        files += [RenderedFile(file.path, file.content) for file in robot.files]  # (its meshes, moved here)
+    return files
+
+
+@dataclass
+class _Control:
+    """The instances' controllers merged for the scene's one controller manager, the controllers spawned and loaded
+    inactive, and the sensors' bridge entries."""
+
+    merged: dict[str, Any] = field(
+        default_factory=lambda: {"controller_manager": {"ros__parameters": {"update_rate": 100}}}
+    )
+    spawned: list[str] = field(default_factory=list)
+    inactive: list[str] = field(default_factory=list)
+    bridged: list[dict[str, str]] = field(default_factory=list)
+
+
+def _instance_controllers(scene: Scene, spec_name: str, files: list[RenderedFile]) -> _Control:
+    """config/INSTANCE_controllers.yaml of each instance of ours with ros2_control (added to ``files``), and what
+    the scene's files need of them."""
+    template = environment().get_template("package/config/controllers.yaml.j2")
+    control = _Control()
+    for instance in scene.instances:
+        ours = instance.robot
+        if ours is None:
+            continue
+        control.bridged += [
+            e for sensor in ours.sensors for e in bridge_entries(sensor, topic_namespace(instance.prefix))
+        ]
+        if ours.ros2_control is None:
+            continue
+        chosen = controllers(ours, instance.prefix, mounted=True)
+        text = template.render(robot=ours, version=__version__, spec_name=spec_name, prefix=instance.prefix, **chosen)
+        files.append(RenderedFile(f"config/{instance.name}_controllers.yaml", text))
+        data = yaml.safe_load(text)
+        managed = control.merged["controller_manager"]["ros__parameters"]
+        managed.update(data.pop("controller_manager")["ros__parameters"])
+        control.merged.update(data)
+        control.spawned += chosen["spawned"]
+        control.inactive += chosen["inactive"]
+    return control
 
 
 def render_probe(instance: Instance) -> str:
