@@ -87,33 +87,43 @@ def _problems(sensor, kind: str) -> Iterator[str]:
     if rate is not None and not rate >= 0:
         yield f"update_rate {rate:g} must be >= 0"
     if kind in LIDARS:
-        for axis in ("horizontal", "vertical"):
-            samples = _value(sensor, f"*/scan/{axis}/samples")
-            low, high = _value(sensor, f"*/scan/{axis}/min_angle"), _value(sensor, f"*/scan/{axis}/max_angle")
-            if samples is not None and not samples >= 1:
-                yield f"{axis} samples {samples:g} must be >= 1"
-            if low is not None and high is not None:
-                if not low <= high:
-                    yield f"{axis} min_angle {low:g} is beyond max_angle {high:g}"
-                elif high - low > 2 * math.pi + 1e-6:
-                    yield f"the {axis} scan spans {high - low:g} rad, more than a full turn"
-        low, high = _value(sensor, "*/range/min"), _value(sensor, "*/range/max")
-        resolution = _value(sensor, "*/range/resolution")
-        if low is not None and not low >= 0:
-            yield f"range min {low:g} m must be >= 0"
-        if low is not None and high is not None and not high > low:
-            yield f"range max {high:g} m must be beyond range min {low:g} m"
-        if resolution is not None and not resolution > 0:
-            yield f"range resolution {resolution:g} m must be > 0"
+        yield from _lidar_problems(sensor)
     if kind in CAMERAS:
-        fov = _value(sensor, "camera/horizontal_fov")
-        widest = 2 * math.pi if kind == "wide_angle_camera" else math.pi  # (a pinhole camera sees less than pi)
-        if fov is not None and not 0 < fov < widest:
-            yield f"horizontal_fov {fov:g} rad must be between 0 and {'2 pi' if widest > math.pi else 'pi'}"
-        for side in ("width", "height"):
-            pixels = _value(sensor, f"camera/image/{side}")
-            if pixels is not None and not pixels >= 1:
-                yield f"image {side} {pixels:g} must be >= 1 pixel"
-        near, far = _value(sensor, "camera/clip/near"), _value(sensor, "camera/clip/far")
-        if near is not None and far is not None and not 0 < near < far:
-            yield f"the clip needs 0 < near < far, got {near:g} m and {far:g} m"
+        yield from _camera_problems(sensor, kind)
+
+
+def _lidar_problems(sensor) -> Iterator[str]:
+    """A scan's samples and angles, and its range."""
+    for axis in ("horizontal", "vertical"):
+        samples = _value(sensor, f"*/scan/{axis}/samples")
+        low, high = _value(sensor, f"*/scan/{axis}/min_angle"), _value(sensor, f"*/scan/{axis}/max_angle")
+        if samples is not None and not samples >= 1:
+            yield f"{axis} samples {samples:g} must be >= 1"
+        if low is not None and high is not None:
+            if not low <= high:
+                yield f"{axis} min_angle {low:g} is beyond max_angle {high:g}"
+            elif high - low > 2 * math.pi + 1e-6:
+                yield f"the {axis} scan spans {high - low:g} rad, more than a full turn"
+    low, high = _value(sensor, "*/range/min"), _value(sensor, "*/range/max")
+    resolution = _value(sensor, "*/range/resolution")
+    if low is not None and not low >= 0:
+        yield f"range min {low:g} m must be >= 0"
+    if low is not None and high is not None and not high > low:
+        yield f"range max {high:g} m must be beyond range min {low:g} m"
+    if resolution is not None and not resolution > 0:
+        yield f"range resolution {resolution:g} m must be > 0"
+
+
+def _camera_problems(sensor, kind: str) -> Iterator[str]:
+    """A camera's field of view, image and clip."""
+    fov = _value(sensor, "camera/horizontal_fov")
+    widest = 2 * math.pi if kind == "wide_angle_camera" else math.pi  # (a pinhole camera sees less than pi)
+    if fov is not None and not 0 < fov < widest:
+        yield f"horizontal_fov {fov:g} rad must be between 0 and {'2 pi' if widest > math.pi else 'pi'}"
+    for side in ("width", "height"):
+        pixels = _value(sensor, f"camera/image/{side}")
+        if pixels is not None and not pixels >= 1:
+            yield f"image {side} {pixels:g} must be >= 1 pixel"
+    near, far = _value(sensor, "camera/clip/near"), _value(sensor, "camera/clip/far")
+    if near is not None and far is not None and not 0 < near < far:
+        yield f"the clip needs 0 < near < far, got {near:g} m and {far:g} m"

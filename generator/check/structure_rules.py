@@ -106,6 +106,29 @@ def structure_rules(doc: Doc) -> Iterator[Finding]:
     yield from _duplicate_names(doc, doc.links, "link", "S004")
     yield from _duplicate_names(doc, doc.joints, "joint", "S005")
     tree: Tree[str] = Tree()  # child -> (parent, joint)
+    yield from _joints_into(tree, doc)
+    roots = tree.roots(doc.link_names)
+    in_cycles = sorted(doc.link_names - tree.reachable(roots))
+    if in_cycles:
+        yield doc.finding(
+            "S002",
+            "link",
+            in_cycles[0],
+            f"links {', '.join(in_cycles)} form a cycle; break it by removing one of its joints",
+        )
+    if len(roots) != 1 and doc.links:
+        what = "no link" if not roots else f"{len(roots)} links ({', '.join(roots)})"
+        yield doc.finding(
+            "S001",
+            "robot",
+            doc.root.get("name", ""),
+            f"{what} have no parent; a robot has exactly one root: connect the trees with joints",
+        )
+
+
+def _joints_into(tree: Tree[str], doc: Doc) -> Iterator[Finding]:
+    """Add every joint to ``tree``: S003 for a joint naming no link, S002 for one that closes a cycle, S006 for a
+    second parent."""
     for joint in doc.joints:
         name = joint.get("name", "")
         parent = joint.find("parent").get("link", "") if joint.find("parent") is not None else ""
@@ -138,23 +161,6 @@ def structure_rules(doc: Doc) -> Iterator[Finding]:
                     "a tree: remove one of the joints",
                     joint,
                 )
-    roots = tree.roots(doc.link_names)
-    in_cycles = sorted(doc.link_names - tree.reachable(roots))
-    if in_cycles:
-        yield doc.finding(
-            "S002",
-            "link",
-            in_cycles[0],
-            f"links {', '.join(in_cycles)} form a cycle; break it by removing one of its joints",
-        )
-    if len(roots) != 1 and doc.links:
-        what = "no link" if not roots else f"{len(roots)} links ({', '.join(roots)})"
-        yield doc.finding(
-            "S001",
-            "robot",
-            doc.root.get("name", ""),
-            f"{what} have no parent; a robot has exactly one root: connect the trees with joints",
-        )
 
 
 _UNPLAIN = re.compile(r"[\s\x00-\x1f\x7f]")

@@ -258,6 +258,23 @@ def format_text(report: SizeReport) -> str:
             f"  {p.joint:<24} {p.torque:>12.4g} {p.load_torque:>12.4g} "
             f"{_num(effort):>13} {_num(margin, '.3g'):>8}{flag}  {pose}"
         )
+    lines += _motion_lines(report)
+    lines += _base_lines(report)
+    lines.append(
+        "  N*m (N for prismatic joints), rad/s, rad/s^2, W, J; the motors produce these torques; margin = limit / need"
+    )
+    if report.massless:
+        massless = ", ".join(report.massless)
+        lines.append(f"  note: moving links with a shape but no <inertial> (counted as massless): {massless}")
+    for joint, what in report.failures:
+        lines.append(f"  FAIL {joint}: {what}")
+    lines.append(f"FAILED: {', '.join(report.failed)}" if report.failed else "OK: every margin >= 1")
+    return "\n".join(lines) + "\n"
+
+
+def _motion_lines(report: SizeReport) -> list[str]:
+    """The motion's table and the drives' motor side, when the report has them."""
+    lines: list[str] = []
     if report.motions is not None:
         lines.append("  along the motion:")
         lines.append(
@@ -279,6 +296,12 @@ def format_text(report: SizeReport) -> str:
                     f"  {joint:<24} {side['motor_peak_torque']:>12.4g} {side['motor_rms_torque']:>11.4g} "
                     f"{side['motor_peak_speed']:>9.4g} {_num(side['inertia_ratio'], '.3g'):>14}"
                 )
+    return lines
+
+
+def _base_lines(report: SizeReport) -> list[str]:
+    """The mobile base's traction and power, with its closed-form check, and each wheel's torque and speed."""
+    lines: list[str] = []
     if report.base is not None and report.base_motion is not None:
         base, asked = report.base, report.base_motion
         lines.append(
@@ -296,16 +319,7 @@ def format_text(report: SizeReport) -> str:
                 f"  {wheel.joint:<24} torque {torque:.4g} N*m (limit {_num(wheel.effort)}), speed {speed:.4g} rad/s "
                 f"(limit {_num(wheel.velocity)}), radius {wheel.radius:g} m"
             )
-    lines.append(
-        "  N*m (N for prismatic joints), rad/s, rad/s^2, W, J; the motors produce these torques; margin = limit / need"
-    )
-    if report.massless:
-        massless = ", ".join(report.massless)
-        lines.append(f"  note: moving links with a shape but no <inertial> (counted as massless): {massless}")
-    for joint, what in report.failures:
-        lines.append(f"  FAIL {joint}: {what}")
-    lines.append(f"FAILED: {', '.join(report.failed)}" if report.failed else "OK: every margin >= 1")
-    return "\n".join(lines) + "\n"
+    return lines
 
 
 def _num(value: float | None, spec: str = ".4g") -> str:
