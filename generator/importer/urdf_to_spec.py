@@ -467,19 +467,19 @@ def import_robot(
 
         source = str(path) if input_kind(Path(path)) == "urdf" else f"{path} (as expanded)"
         imported = import_text(text, Path(path).stem.split(".")[0], source)
-        _relative_meshes(imported, Path(path).parent, packages, source)
+        _relative_meshes(imported, Path(path), packages, source)
     return imported
 
 
-def _relative_meshes(imported: Imported, base: Any, packages: Mapping[str, Any], source: str) -> None:
+def _relative_meshes(imported: Imported, urdf: Any, packages: Mapping[str, Any], source: str) -> None:
     """A mesh named by a path relative to the URDF (``meshes/arm.stl``) is copied beside the spec, under
     ``meshes/``, and the spec names the copy: gen-robot then carries it into the package. (A ``package://`` or
     ``file://`` URI stays as written: the package it names is the user's.) What is copied is read here, once, safely
-    (:func:`~xacrokit.reader.mesh_copies.mesh_to_copy`: no link, nothing outside the URDF's folder, a mesh of its
+    (:func:`~xacrokit.reader.mesh_copies.mesh_to_copy`: no link, nothing outside the robot's folder, a mesh of its
     kind); a mesh that is not is a located error, and nothing is imported."""
     from pathlib import Path, PurePosixPath
 
-    from ..reader.mesh_copies import mesh_to_copy
+    from ..reader.mesh_copies import mesh_to_copy, robot_folder
     from ..shared.mesh_solids import MESH_SUFFIXES, is_relative
     from ..shared.ros_packages import mesh_file
     from ..validate.bodies import geometries
@@ -490,7 +490,7 @@ def _relative_meshes(imported: Imported, base: Any, packages: Mapping[str, Any],
             mesh = holder.get("shape", {}).get("mesh")
             if not mesh or not is_relative(mesh["filename"]):
                 continue
-            path = mesh_file(mesh["filename"], base, packages)
+            path = mesh_file(mesh["filename"], urdf.parent, packages)
             line = imported.lines.get(("links", link_name))
             where = f"{source}:{line}: " if line else f"{source}: "
             if not Path(path).is_file() and not Path(path).is_symlink():
@@ -505,7 +505,8 @@ def _relative_meshes(imported: Imported, base: Any, packages: Mapping[str, Any],
                 imported.unsupported.append(f"mesh {mesh['filename']!r}: two meshes named {name!r}")
                 continue
             if target not in sources:
-                imported.meshes[target] = mesh_to_copy(base, path, where=f"{where}mesh {mesh['filename']!r}")
+                said = f"{where}mesh {mesh['filename']!r}"
+                imported.meshes[target] = mesh_to_copy(robot_folder(urdf), path, where=said)
                 sources[target] = path
             mesh["filename"] = target
 

@@ -208,3 +208,16 @@ def test_export_keeps_a_different_mesh_beside_the_model(tmp_path):
     code, err = run("export", urdf, "--mjcf", "-o", tmp_path / "fresh" / "m.xml")
     assert code == 0, err
     assert (tmp_path / "fresh" / "meshes").is_dir() and (tmp_path / "fresh" / "m.xml").is_file()
+
+
+@pytest.mark.parametrize("marker", ["urdf folder", "package.xml"])
+def test_import_copies_a_mesh_of_the_ros_layout_beside_the_urdfs_folder(tmp_path, marker):
+    """The robot's folder is the package (package.xml) or, without one, the folder above urdf/: ../meshes is in it."""
+    folder = tmp_path / "pkg" / ("urdf" if marker == "urdf folder" else "description")
+    urdf = mesh_robot(folder, "../meshes/part.stl")
+    if marker == "package.xml":
+        (tmp_path / "pkg" / "package.xml").write_text("<package><name>pkg</name></package>", encoding="utf-8")
+    part = box_stl(tmp_path / "pkg" / "meshes" / "part.stl")
+    code, err = run("import", urdf, "-o", tmp_path / "out" / "m.yaml")
+    assert code == 0, err
+    assert (tmp_path / "out" / "meshes" / "part.stl").read_bytes() == part
