@@ -93,17 +93,7 @@ def start_bounded(
     the thread that forks, and a lock another thread holds stays held in the child. With ``quiet``, what the work
     prints (C libraries included: file descriptors 1 and 2) goes nowhere instead of to the parent's stderr."""
     if not hasattr(os, "fork"):  # (no fork, no bounds: the work runs here, when its result is asked for)
-
-        def here() -> tuple[str | None, dict[str, Any] | None]:
-            try:
-                return work(), None
-            except BaseException as exc:
-                data = errors(exc)
-                if data is None:
-                    raise
-                return None, data
-
-        return here
+        return _unbounded(work, errors)
     for stream in (sys.stdout, sys.stderr):  # (else the child would print the parent's buffered output again)
         with contextlib.suppress(Exception):
             stream.flush()
@@ -125,27 +115,51 @@ def start_bounded(
             with contextlib.suppress(ProcessLookupError):
                 os.kill(pid, signal.SIGKILL)  # (a no-op for a child that has already exited and waits to be reaped)
             _, status = os.waitpid(pid, 0)
-        if timed_out:
-            raise OutOfBounds("seconds", bounds)
-        if overflowed:
-            raise OutOfBounds("output", bounds)
-        try:
-            message = json.loads(received.decode("utf-8"))
-        except ValueError:
-            raise ChildFailed(_status_words(status)) from None
-        if not quiet:
-            with contextlib.suppress(Exception):
-                sys.stderr.write(message.get("stderr", ""))
-        kind = message.get("kind")
-        if kind == "result":
-            return str(message["text"]), None
-        if kind == "error":
-            return None, dict(message["error"])
-        if kind in ("memory", "output"):
-            raise OutOfBounds(kind, bounds)
-        raise ChildFailed(str(message.get("detail", "no result")))
+        return _outcome(received, overflowed, timed_out, status, bounds, quiet=quiet)
 
     return wait
+
+
+def _unbounded(
+    work: Callable[[], str], errors: Callable[[BaseException], dict[str, Any] | None]
+) -> Callable[[], tuple[str | None, dict[str, Any] | None]]:
+    """The work run in this process when its result is asked for (where there is no fork)."""
+
+    def here() -> tuple[str | None, dict[str, Any] | None]:
+        try:
+            return work(), None
+        except BaseException as exc:
+            data = errors(exc)
+            if data is None:
+                raise
+            return None, data
+
+    return here
+
+
+def _outcome(
+    received: bytes, overflowed: bool, timed_out: bool, status: int, bounds: Bounds, *, quiet: bool
+) -> tuple[str | None, dict[str, Any] | None]:
+    """What the child's message says: its text, or the error it reported as data; the bounds it broke raised."""
+    if timed_out:
+        raise OutOfBounds("seconds", bounds)
+    if overflowed:
+        raise OutOfBounds("output", bounds)
+    try:
+        message = json.loads(received.decode("utf-8"))
+    except ValueError:
+        raise ChildFailed(_status_words(status)) from None
+    if not quiet:
+        with contextlib.suppress(Exception):
+            sys.stderr.write(message.get("stderr", ""))
+    kind = message.get("kind")
+    if kind == "result":
+        return str(message["text"]), None
+    if kind == "error":
+        return None, dict(message["error"])
+    if kind in ("memory", "output"):
+        raise OutOfBounds(kind, bounds)
+    raise ChildFailed(str(message.get("detail", "no result")))
 
 
 def _silence() -> None:

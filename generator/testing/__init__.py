@@ -282,6 +282,12 @@ def valid_specs(draw, max_links: int = 5) -> dict[str, Any]:
         follower, leader = moving[-1], moving[0]
         if spec["joints"][follower]["type"] == spec["joints"][leader]["type"]:
             spec["joints"][follower]["mimic"] = {"joint": leader, "multiplier": draw(st.floats(-2, 2)), "offset": 0.0}
+    _add_attachments(draw, spec, links, materials)
+    return spec
+
+
+def _add_attachments(draw: Any, spec: dict[str, Any], links: list[str], materials: list[str]) -> None:
+    """Arms, wheels, frames, ros2_control and Gazebo settings hung on ``links`` of ``spec`` (each maybe)."""
     all_links = list(links)
     arms = {}
     for k in range(draw(st.integers(0, 2))):
@@ -289,6 +295,19 @@ def valid_specs(draw, max_links: int = 5) -> dict[str, Any]:
         all_links += [row["link"] for row in arms[f"arm_{k}"]["joints"]]
     if arms:
         spec["arms"] = arms
+    wheels = _wheels(draw, links)
+    if wheels:
+        spec["wheels"] = wheels
+    frames = _frames(draw, links)
+    if frames:
+        spec["frames"] = frames
+    if draw(st.booleans()):
+        spec["ros2_control"] = {}
+    if draw(st.booleans()):
+        spec["gazebo"] = {"links": {draw(st.sampled_from(links)): {"mu1": draw(st.floats(0, 2)), "mu2": 0.5}}}
+
+
+def _wheels(draw: Any, links: list[str]) -> dict[str, Any]:
     wheels = {}
     for k in range(draw(st.integers(0, 2))):
         wheels[f"wheel_{k}"] = {
@@ -301,8 +320,10 @@ def valid_specs(draw, max_links: int = 5) -> dict[str, Any]:
         }
         if draw(st.booleans()):  # its joint named, as real robots name them
             wheels[f"wheel_{k}"]["joint"] = f"drive_{k}"
-    if wheels:
-        spec["wheels"] = wheels
+    return wheels
+
+
+def _frames(draw: Any, links: list[str]) -> dict[str, Any]:
     frames = {}
     for k in range(draw(st.integers(0, 2))):
         frame: dict[str, Any] = {"parent": draw(st.sampled_from(links)), "origin": draw(_origin())}
@@ -311,13 +332,7 @@ def valid_specs(draw, max_links: int = 5) -> dict[str, Any]:
         if draw(st.booleans()):
             frame["joint"] = f"mount_{k}"
         frames[f"frame_{k}"] = frame
-    if frames:
-        spec["frames"] = frames
-    if draw(st.booleans()):
-        spec["ros2_control"] = {}
-    if draw(st.booleans()):
-        spec["gazebo"] = {"links": {draw(st.sampled_from(links)): {"mu1": draw(st.floats(0, 2)), "mu2": 0.5}}}
-    return spec
+    return frames
 
 
 @st.composite
@@ -327,72 +342,136 @@ def invalid_specs(draw, faults: tuple[str, ...] = FAULTS) -> tuple[dict[str, Any
     fault = draw(st.sampled_from(faults))
     links = spec["links"]
     name = draw(st.sampled_from(sorted(links)))
-    if fault == "negative_mass":
-        links[name] = {"shape": {"sphere": {"radius": 0.1}}, "mass": -draw(_mass)}
-    elif fault == "swapped_limits":
-        spec.setdefault("joints", {})["bad_joint"] = {
-            "type": "revolute",
-            "parent": name,
-            "child": "bad_link",
-            "limit": {"lower": 1.0, "upper": -1.0, "effort": 1, "velocity": 1},
-        }
-        links["bad_link"] = {}
-    elif fault == "dangling_parent":
-        spec.setdefault("frames", {})["bad_frame"] = {"parent": "no_such_link"}
-    elif fault == "cycle":
-        links["loop_a"], links["loop_b"] = {}, {}
-        spec.setdefault("joints", {})["loop_ab"] = {"type": "fixed", "parent": "loop_a", "child": "loop_b"}
-        spec["joints"]["loop_ba"] = {"type": "fixed", "parent": "loop_b", "child": "loop_a"}
-    elif fault == "duplicate_name":
-        spec.setdefault("wheels", {})[name] = {"parent": name, "radius": 0.1, "width": 0.05, "mass": 1.0}
-    elif fault == "zero_axis":
-        spec.setdefault("joints", {})["bad_joint"] = {
-            "type": "continuous",
-            "parent": name,
-            "child": "bad_link",
-            "axis": [0, 0, 0],
-        }
-        links["bad_link"] = {}
-    elif fault == "not_positive_definite":
-        links[name] = {"mass": 1.0, "inertia": {"ixx": 1.0, "iyy": 1.0, "izz": 1.0, "ixy": 1.5}}
-    elif fault == "triangle_violation":
-        links[name] = {"mass": 1.0, "inertia": {"ixx": 1.0, "iyy": 1.0, "izz": 2.5}}
-    elif fault == "missing_gazebo_reference":
-        spec["gazebo"] = {"links": {"no_such_link": {"mu1": 1.0}}}
-    elif fault == "wrong_type":
-        links[name] = {"shape": {"box": {"size": [1, 1, 1]}}, "mass": draw(st.sampled_from([[1.0], {"kg": 1}, True]))}
-    elif fault == "bad_unit":
-        links[name] = {"shape": {"sphere": {"radius": draw(st.sampled_from(["3 parsecs", "90 deg", "1 kg", "x"]))}}}
-    elif fault == "injected_name":
-        bad = draw(st.sampled_from(["a${x}", "b$(find y)", "c<d", "e&f", "g h", "1st"]))
-        links[bad] = links.pop(name)
-        for joint in spec.get("joints", {}).values():
-            joint["parent"] = bad if joint["parent"] == name else joint["parent"]
-            joint["child"] = bad if joint["child"] == name else joint["child"]
-    elif fault == "unknown_material":
-        links[name] = {"shape": {"sphere": {"radius": 0.1}}, "mass": 1.0, "material": "no_such_colour"}
-    elif fault == "not_finite":  # (.nan, .inf in YAML; a quantity beyond any double)
-        value = draw(st.sampled_from([math.nan, math.inf, -math.inf, "1e400 kg", "1e300 * 1e300"]))
-        links[name] = {"shape": {"sphere": {"radius": 0.1}}, "mass": value}
-    elif fault == "extreme_axis":  # normalising it would divide by zero or overflow
-        spec.setdefault("joints", {})["bad_joint"] = {
-            "type": "continuous",
-            "parent": name,
-            "child": "bad_link",
-            "axis": draw(st.sampled_from([[0, 1e-320, 0], [1e308, 1e308, 0], [0, 0, 1e-12]])),
-            "limit": {"effort": 1, "velocity": 1},
-        }
-        links["bad_link"] = {"mass": 1.0, "inertia": {"ixx": 1.0, "iyy": 1.0, "izz": 1.0}}
-    elif fault == "deep_quantity":  # thousands of parentheses once exhausted the parser's recursion
-        depth = draw(st.integers(150, 3000))
-        links[name] = {"shape": {"sphere": {"radius": "(" * depth + "0.1" + ")" * depth}}, "mass": 1.0}
-    elif fault == "tube_inside_out":  # its bore as wide as the tube
-        radius = draw(_size)
-        tube = {"inner_radius": radius * draw(st.floats(1.0, 2.0)), "outer_radius": radius, "length": 0.1}
-        links[name] = {"shape": {"tube": tube}, "mass": 1.0}
-    elif fault == "composite_with_mass":  # a composite's mass is its parts'
-        links[name] = {"parts": [{"shape": {"sphere": {"radius": 0.1}}, "mass": 1.0}], "mass": 1.0}
+    _FAULT_MAKERS[fault](draw, spec, links, name)
     return spec, fault
+
+
+def _fault_negative_mass(draw: Any, spec: dict[str, Any], links: dict[str, Any], name: str) -> None:
+    links[name] = {"shape": {"sphere": {"radius": 0.1}}, "mass": -draw(_mass)}
+
+
+def _fault_swapped_limits(draw: Any, spec: dict[str, Any], links: dict[str, Any], name: str) -> None:
+    spec.setdefault("joints", {})["bad_joint"] = {
+        "type": "revolute",
+        "parent": name,
+        "child": "bad_link",
+        "limit": {"lower": 1.0, "upper": -1.0, "effort": 1, "velocity": 1},
+    }
+    links["bad_link"] = {}
+
+
+def _fault_dangling_parent(draw: Any, spec: dict[str, Any], links: dict[str, Any], name: str) -> None:
+    spec.setdefault("frames", {})["bad_frame"] = {"parent": "no_such_link"}
+
+
+def _fault_cycle(draw: Any, spec: dict[str, Any], links: dict[str, Any], name: str) -> None:
+    links["loop_a"], links["loop_b"] = {}, {}
+    spec.setdefault("joints", {})["loop_ab"] = {"type": "fixed", "parent": "loop_a", "child": "loop_b"}
+    spec["joints"]["loop_ba"] = {"type": "fixed", "parent": "loop_b", "child": "loop_a"}
+
+
+def _fault_duplicate_name(draw: Any, spec: dict[str, Any], links: dict[str, Any], name: str) -> None:
+    spec.setdefault("wheels", {})[name] = {"parent": name, "radius": 0.1, "width": 0.05, "mass": 1.0}
+
+
+def _fault_zero_axis(draw: Any, spec: dict[str, Any], links: dict[str, Any], name: str) -> None:
+    spec.setdefault("joints", {})["bad_joint"] = {
+        "type": "continuous",
+        "parent": name,
+        "child": "bad_link",
+        "axis": [0, 0, 0],
+    }
+    links["bad_link"] = {}
+
+
+def _fault_not_positive_definite(draw: Any, spec: dict[str, Any], links: dict[str, Any], name: str) -> None:
+    links[name] = {"mass": 1.0, "inertia": {"ixx": 1.0, "iyy": 1.0, "izz": 1.0, "ixy": 1.5}}
+
+
+def _fault_triangle_violation(draw: Any, spec: dict[str, Any], links: dict[str, Any], name: str) -> None:
+    links[name] = {"mass": 1.0, "inertia": {"ixx": 1.0, "iyy": 1.0, "izz": 2.5}}
+
+
+def _fault_missing_gazebo_reference(draw: Any, spec: dict[str, Any], links: dict[str, Any], name: str) -> None:
+    spec["gazebo"] = {"links": {"no_such_link": {"mu1": 1.0}}}
+
+
+def _fault_wrong_type(draw: Any, spec: dict[str, Any], links: dict[str, Any], name: str) -> None:
+    links[name] = {"shape": {"box": {"size": [1, 1, 1]}}, "mass": draw(st.sampled_from([[1.0], {"kg": 1}, True]))}
+
+
+def _fault_bad_unit(draw: Any, spec: dict[str, Any], links: dict[str, Any], name: str) -> None:
+    links[name] = {"shape": {"sphere": {"radius": draw(st.sampled_from(["3 parsecs", "90 deg", "1 kg", "x"]))}}}
+
+
+def _fault_injected_name(draw: Any, spec: dict[str, Any], links: dict[str, Any], name: str) -> None:
+    bad = draw(st.sampled_from(["a${x}", "b$(find y)", "c<d", "e&f", "g h", "1st"]))
+    links[bad] = links.pop(name)
+    for joint in spec.get("joints", {}).values():
+        joint["parent"] = bad if joint["parent"] == name else joint["parent"]
+        joint["child"] = bad if joint["child"] == name else joint["child"]
+
+
+def _fault_unknown_material(draw: Any, spec: dict[str, Any], links: dict[str, Any], name: str) -> None:
+    links[name] = {"shape": {"sphere": {"radius": 0.1}}, "mass": 1.0, "material": "no_such_colour"}
+
+
+def _fault_not_finite(draw: Any, spec: dict[str, Any], links: dict[str, Any], name: str) -> None:
+    # (.nan, .inf in YAML; a quantity beyond any double)
+    value = draw(st.sampled_from([math.nan, math.inf, -math.inf, "1e400 kg", "1e300 * 1e300"]))
+    links[name] = {"shape": {"sphere": {"radius": 0.1}}, "mass": value}
+
+
+def _fault_extreme_axis(draw: Any, spec: dict[str, Any], links: dict[str, Any], name: str) -> None:
+    # normalising it would divide by zero or overflow
+    spec.setdefault("joints", {})["bad_joint"] = {
+        "type": "continuous",
+        "parent": name,
+        "child": "bad_link",
+        "axis": draw(st.sampled_from([[0, 1e-320, 0], [1e308, 1e308, 0], [0, 0, 1e-12]])),
+        "limit": {"effort": 1, "velocity": 1},
+    }
+    links["bad_link"] = {"mass": 1.0, "inertia": {"ixx": 1.0, "iyy": 1.0, "izz": 1.0}}
+
+
+def _fault_deep_quantity(draw: Any, spec: dict[str, Any], links: dict[str, Any], name: str) -> None:
+    # thousands of parentheses once exhausted the parser's recursion
+    depth = draw(st.integers(150, 3000))
+    links[name] = {"shape": {"sphere": {"radius": "(" * depth + "0.1" + ")" * depth}}, "mass": 1.0}
+
+
+def _fault_tube_inside_out(draw: Any, spec: dict[str, Any], links: dict[str, Any], name: str) -> None:
+    # its bore as wide as the tube
+    radius = draw(_size)
+    tube = {"inner_radius": radius * draw(st.floats(1.0, 2.0)), "outer_radius": radius, "length": 0.1}
+    links[name] = {"shape": {"tube": tube}, "mass": 1.0}
+
+
+def _fault_composite_with_mass(draw: Any, spec: dict[str, Any], links: dict[str, Any], name: str) -> None:
+    # a composite's mass is its parts'
+    links[name] = {"parts": [{"shape": {"sphere": {"radius": 0.1}}, "mass": 1.0}], "mass": 1.0}
+
+
+_FAULT_MAKERS: dict[str, Any] = {  # (each puts its fault into the spec)
+    "negative_mass": _fault_negative_mass,
+    "swapped_limits": _fault_swapped_limits,
+    "dangling_parent": _fault_dangling_parent,
+    "cycle": _fault_cycle,
+    "duplicate_name": _fault_duplicate_name,
+    "zero_axis": _fault_zero_axis,
+    "not_positive_definite": _fault_not_positive_definite,
+    "triangle_violation": _fault_triangle_violation,
+    "missing_gazebo_reference": _fault_missing_gazebo_reference,
+    "wrong_type": _fault_wrong_type,
+    "bad_unit": _fault_bad_unit,
+    "injected_name": _fault_injected_name,
+    "unknown_material": _fault_unknown_material,
+    "not_finite": _fault_not_finite,
+    "extreme_axis": _fault_extreme_axis,
+    "deep_quantity": _fault_deep_quantity,
+    "tube_inside_out": _fault_tube_inside_out,
+    "composite_with_mass": _fault_composite_with_mass,
+}
 
 
 # ------------------------------------------------------------------------------------------------ URDF-level faults

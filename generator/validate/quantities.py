@@ -258,6 +258,34 @@ class Quantities:
                 for key in keys:
                     self.convert(sensor[group], key, (*path, group), kind, scale=False)  # type: ignore[arg-type]
 
+    def body(self, kind: str, path: PathKey, item: dict[str, Any]) -> None:
+        """Convert one body of the spec (a link, frame, wheel, arm row or tool)."""
+        if kind in ("link", "frame", "wheel", "row"):
+            self.density(item, path)
+        if kind == "row":  # (a row's pose is its DH parameters, not an origin)
+            for key, quantity in _ROW:
+                self.convert(item, key, path, quantity)
+            self.limits(item, path, item.get("type", "revolute"))
+            return
+        self.origin(item, "origin", path)
+        if kind == "wheel":
+            for key, quantity in _WHEEL:
+                self.convert(item, key, path, quantity)
+            if isinstance(item.get("limit"), dict):
+                self.rates(item["limit"], (*path, "limit"), "continuous")
+        elif kind in ("link", "frame"):
+            self.shape(item, path)
+            self.convert(item, "mass", path, "mass")
+        if kind == "frame" and isinstance(item.get("sensor"), dict):
+            self.sensor(item["sensor"], (*path, "sensor"))
+        if kind == "link":
+            self.origin(item, "com", path)
+            for where, geometry in geometries(path, item):
+                self.shape(geometry, where)
+                self.origin(geometry, "origin", where)
+            if isinstance(item.get("inertia"), dict):
+                self.origin(item["inertia"], "origin", (*path, "inertia"))
+
     def run(self) -> tuple[dict[str, Any], list[SpecError]]:
         """Convert the whole spec: the converted data and the errors (the warnings are in ``warnings``)."""
         data = self.raw.data
@@ -265,31 +293,7 @@ class Quantities:
             self.origin(joint, "origin", ("joints", name))
             self.limits(joint, ("joints", name), joint["type"])
         for kind, _, path, item in bodies(data):
-            if kind in ("link", "frame", "wheel", "row"):
-                self.density(item, path)
-            if kind == "row":  # (a row's pose is its DH parameters, not an origin)
-                for key, quantity in _ROW:
-                    self.convert(item, key, path, quantity)
-                self.limits(item, path, item.get("type", "revolute"))
-                continue
-            self.origin(item, "origin", path)
-            if kind == "wheel":
-                for key, quantity in _WHEEL:
-                    self.convert(item, key, path, quantity)
-                if isinstance(item.get("limit"), dict):
-                    self.rates(item["limit"], (*path, "limit"), "continuous")
-            elif kind in ("link", "frame"):
-                self.shape(item, path)
-                self.convert(item, "mass", path, "mass")
-            if kind == "frame" and isinstance(item.get("sensor"), dict):
-                self.sensor(item["sensor"], (*path, "sensor"))
-            if kind == "link":
-                self.origin(item, "com", path)
-                for where, geometry in geometries(path, item):
-                    self.shape(geometry, where)
-                    self.origin(geometry, "origin", where)
-                if isinstance(item.get("inertia"), dict):
-                    self.origin(item["inertia"], "origin", (*path, "inertia"))
+            self.body(kind, path, item)
         for _, _, path, part in parts(data):
             self.density(part, path)
             self.origin(part, "origin", path)

@@ -10,11 +10,12 @@ import pinocchio as pin
 import pytest
 import yaml
 from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 from lxml import etree
 
 import xacrokit
 from conftest import check_urdf_binary, parse_generated
-from xacrokit.testing import invalid_specs, valid_specs
+from xacrokit.testing import FAULTS, invalid_specs, valid_specs
 
 FAULT_WORDS = {
     "negative_mass": ["mass must be > 0"],
@@ -98,3 +99,12 @@ def test_invalid_specs_exit_2_from_the_command_line(tmp_path_factory, case):
     )
     assert result.returncode == 2 and "Traceback" not in result.stderr
     assert f"{path}:" in result.stderr and not (folder / "pkg").exists()
+
+
+@pytest.mark.parametrize("fault", FAULTS)
+@settings(max_examples=1)
+@given(data=st.data())
+def test_every_fault_is_made(data, fault):
+    """invalid_specs makes each fault it names (its maker is in the table, and says the fault it made)."""
+    _, made = data.draw(invalid_specs(faults=(fault,)))
+    assert made == fault
