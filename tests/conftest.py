@@ -124,6 +124,15 @@ def mesh_package_at(folder: Path) -> Path:
     return folder
 
 
+def assert_refused(code: int, err: str, words: str) -> None:
+    """A refusal of bad input: exit 2 with a message holding ``words``, never a traceback nor the internal-error exit.
+    ``words`` must say something of this refusal (not just "error", which every message holds), so that a changed
+    or wrong message fails the test."""
+    assert words.strip() and words.strip().lower() not in ("error", "gen-robot: error"), "say the refusal's words"
+    assert code == 2 and words in err, (code, err)
+    assert "internal error" not in err and "Traceback" not in err, err
+
+
 def gen_robot(*args, cwd=None) -> subprocess.CompletedProcess:
     """Run the gen-robot command line with this interpreter; text output captured."""
     command = [sys.executable, "-m", "xacrokit.cli", *map(str, args)]

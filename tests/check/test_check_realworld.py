@@ -1,4 +1,4 @@
-"""gen-robot check on real robots nobody here wrote (tests/check/realworld.py: pinned registry packages), against
+"""gen-robot check on real robots nobody here wrote (tests/realworld.py: pinned registry packages), against
 verdicts given by reading the files (realworld_verdicts.yaml): the rules find exactly what was judged, no error is
 false, at least 90% of warnings are true, and every file a consumer rejects gets an error from our rules alone."""
 
@@ -30,7 +30,7 @@ def judged(key: str) -> list[tuple[str, str]]:
 
 
 def test_the_corpus_is_the_recorded_one():
-    assert sorted(robots()) == sorted(FILES), "re-record: python tests/check/realworld.py --record --consumers"
+    assert sorted(robots()) == sorted(FILES), "re-record: python tests/realworld.py --record --consumers"
     assert len(FILES) >= 120
 
 

@@ -11,14 +11,13 @@ import sys
 import pytest
 
 import xacrokit.cli.app
-from conftest import ROBOT_EXAMPLES, XACRO_HEADER, gen_robot
+from conftest import ROBOT_EXAMPLES, XACRO_HEADER, assert_refused, gen_robot
 
 SPEC = next(p for p in ROBOT_EXAMPLES if p.stem == "two_dof_arm")
 
 
-def assert_refused(result: subprocess.CompletedProcess, words: str, code: int = 2) -> None:
-    assert result.returncode == code and words in result.stderr, (result.returncode, result.stderr)
-    assert "Traceback" not in result.stderr
+def refused(result: subprocess.CompletedProcess, words: str) -> None:
+    assert_refused(result.returncode, result.stderr, words)
 
 
 @pytest.fixture
@@ -53,7 +52,7 @@ def odd_files(tmp_path):
 )
 def test_inputs_that_are_no_document_are_refused_with_a_reason(odd_files, words, message):
     result = gen_robot(*(w.format(d=odd_files) for w in words))
-    assert_refused(result, message)
+    refused(result, message)
 
 
 def test_scene_paths_no_file_system_takes_and_macros_named_like_xacro_elements(tmp_path):
@@ -62,15 +61,13 @@ def test_scene_paths_no_file_system_takes_and_macros_named_like_xacro_elements(t
     )
     nul = tmp_path / "nul.yaml"
     nul.write_text('scene: s\ninstances:\n  a: {spec: "x\\0y.yaml", prefix: a_, parent: world}\n', encoding="utf-8")
-    assert_refused(
-        gen_robot(nul, "--dry-run"), "nul.yaml:3:13: $.instances.a.spec: cannot use this path: it holds a NUL"
-    )
+    refused(gen_robot(nul, "--dry-run"), "nul.yaml:3:13: $.instances.a.spec: cannot use this path: it holds a NUL")
     keyword = tmp_path / "keyword.yaml"
     keyword.write_text(
         "scene: s\ninstances:\n  a: {xacro: {file: m.xacro, macro: include}, prefix: a_, parent: world}\n",
         encoding="utf-8",
     )
-    assert_refused(gen_robot(keyword, "--dry-run"), "'include' is a xacro keyword")
+    refused(gen_robot(keyword, "--dry-run"), "'include' is a xacro keyword")
 
 
 def test_a_closed_output_is_exit_141_quietly():
@@ -99,7 +96,20 @@ def test_output_must_be_a_plain_path(tmp_path, command):
     source = doc if command == "expand" else SPEC
     words = ["expand", source] if command == "expand" else [source]
     device = "/dev/null: it is a device, FIFO or socket" if command == "expand" else "-o /dev/null: it exists and is"
-    assert_refused(gen_robot(*words, "-o", "/dev/null"), device)
+    refused(gen_robot(*words, "-o", "/dev/null"), device)
     empty = "not a file name to write" if command == "expand" else "-o needs a path"
-    assert_refused(gen_robot(*words, "-o", ""), empty)
+    refused(gen_robot(*words, "-o", ""), empty)
     assert os.path.exists("/dev/null") and not os.path.isfile("/dev/null")  # (still the device)
+
+
+def test_the_refusal_check_can_fail():
+    """assert_refused fails on another message, on words every message holds, on another exit code, on a traceback."""
+    assert_refused(2, "gen-robot: error: s.yaml:1:1: the spec is empty", "the spec is empty")
+    for code, err, words in [
+        (2, "gen-robot: error: s.yaml:1:1: something else", "the spec is empty"),
+        (2, "gen-robot: error: s.yaml:1:1: the spec is empty", "error"),
+        (1, "gen-robot: error: the spec is empty", "the spec is empty"),
+        (2, "Traceback (most recent call last): the spec is empty", "the spec is empty"),
+    ]:
+        with pytest.raises(AssertionError):
+            assert_refused(code, err, words)

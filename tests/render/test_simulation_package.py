@@ -1,5 +1,5 @@
 """The simulation half of every example's package (issue 18, item 2), checked statically against facts read from the
-ROS 2 Jazzy sources (tests/sim/ros_facts.yaml; no ROS here): the launch files are Python that imports only names the
+ROS 2 Jazzy sources (tests/render/ros_facts.yaml; no ROS here): the launch files are Python that imports only names the
 launch APIs define and runs only executables their packages install, with flags those executables take; package.xml
 lists every package they use; each controller's parameters exist in its definition with the right type; every joint
 and interface the controllers name is in the URDF's ros2_control block; the bridge file has the keys and type pairs

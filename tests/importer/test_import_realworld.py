@@ -1,5 +1,5 @@
-"""gen-robot import on the real-robot corpus (tests/check/realworld.py), first part: every file whose links and
-joints the spec can say is imported, generated again, and comes back as the same robot (tests/test_import.py's
+"""gen-robot import on the real-robot corpus (tests/realworld.py), first part: every file whose links and
+joints the spec can say is imported, generated again, and comes back as the same robot (tests/importer/test_import.py's
 comparison: names, FK at 20 random values, inertia per link, limits, visuals); the others are reported with the
 reasons the importer gives, counted here so that a change in either shows."""
 
@@ -7,10 +7,9 @@ from __future__ import annotations
 
 import collections
 
-from test_import import compare
-
 import xacrokit
 from realworld import corpus_or_skip
+from test_import import compare
 from xacrokit.errors import SpecErrors
 from xacrokit.importer.urdf_to_spec import import_robot, spec_yaml
 from xacrokit.reader.robot_source import robot_text

@@ -1,4 +1,4 @@
-"""gen-robot view on the real-robot corpus (tests/check/realworld.py: 129 URDFs of pinned registry packages, STL, OBJ
+"""gen-robot view on the real-robot corpus (tests/realworld.py: 129 URDFs of pinned registry packages, STL, OBJ
 and DAE meshes, undeclared namespace prefixes): every robot makes a page with every link and joint; the meshes it
 goes without are exactly those of the files the verdicts (realworld_verdicts.yaml, given by reading the files) hold
 an R003 mesh error for; and in headless chromium a few of them pose every link as pinocchio does (1e-9)."""

@@ -1,4 +1,4 @@
-"""gen-robot export --mjcf on the real-robot corpus (tests/check/realworld.py: 129 URDFs of pinned registry packages):
+"""gen-robot export --mjcf on the real-robot corpus (tests/realworld.py: 129 URDFs of pinned registry packages):
 every file is either exported and then has pinocchio's mass matrix and gravity torques in MuJoCo at random joint
 values (1e-9 relative, plus what the export's documented repairs of impossible inertias and massless moving links
 may change), or refused with a reason the verdicts (realworld_verdicts.yaml, given by reading the files) hold an
@@ -9,9 +9,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import yaml
-from test_mjcf import compare_dynamics
 
 from realworld import VERDICTS, corpus_or_skip
+from test_mjcf import compare_dynamics
 from xacrokit.errors import XacrokitError
 from xacrokit.export.mjcf import export_mjcf, write_export
 from xacrokit.reader.robot_source import robot_text

@@ -6,7 +6,7 @@ pip (no dependencies, no install) into a cache folder and unpacked there:
 - ``XACROKIT_CORPUS_CACHE`` names the folder (default ``~/.cache/xacrokit/corpus``);
 - ``XACROKIT_CORPUS=require`` makes a failed download an error instead of a skip (``.ci/run`` sets it).
 
-``python tests/check/realworld.py`` prints every warning and error of ``gen-robot check`` on the corpus; ``--record``
+``python tests/realworld.py`` prints every warning and error of ``gen-robot check`` on the corpus; ``--record``
 writes them into the verdict file (realworld_verdicts.yaml), keeping the verdicts already given.
 """
 
@@ -23,7 +23,7 @@ import zipfile
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-VERDICTS = HERE / "realworld_verdicts.yaml"
+VERDICTS = HERE / "check" / "realworld_verdicts.yaml"
 
 
 @dataclasses.dataclass(frozen=True)
@@ -202,13 +202,13 @@ def record(consumers: bool) -> None:
 
 
 HEADER = """\
-# Every warning and error gen-robot check's rules give on the real-robot corpus (tests/check/realworld.py: the URDFs
+# Every warning and error gen-robot check's rules give on the real-robot corpus (tests/realworld.py: the URDFs
 # of pinned registry packages nobody here wrote), each judged by reading the file: true (the file has the problem the
 # finding names) or false (it does not: noise). tests/check/test_check_realworld.py compares the rules' findings with
 # these lines, so a rule change that adds a finding or drops one fails until it is judged here; and it holds the
 # acceptance: no false error, at least 90% of warnings true, an error from our rules on every file a consumer rejects
 # (rejected_by: check_urdf, pinocchio, yourdfpy or MuJoCo without the mesh formats it cannot read).
-# Re-record after a rule change: python tests/check/realworld.py --record [--consumers]
+# Re-record after a rule change: python tests/realworld.py --record [--consumers]
 """
 
 
