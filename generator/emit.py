@@ -33,8 +33,6 @@ from .model import (
 )
 from .shared.gc_pause import collector_paused
 from .shared.sim_sensors import sensor_element, topic_namespace
-from .shared.solid_inertia import cylinder_moments, sphere_moment
-from .shared.transforms import dh_body_end
 from .shared.value_text import material_name, num, vec
 from .shared.xml_parse import parse_xml
 
@@ -172,27 +170,22 @@ def screw_origin(
     return xyz, f"{out_roll + 0.0} {out_pitch + 0.0} {out_yaw + 0.0}"
 
 
-def _dh_body(robot: Robot, link: etree._Element, row: DHRow, end: tuple[float, float, float]) -> None:
-    if row.mass is None:
+def _dh_body(robot: Robot, link: etree._Element, row: DHRow) -> None:
+    """The row's body as resolve made it (:attr:`DHRow.body`), written as the macro writes it: its numbers with
+    ``%r`` (what :func:`vec` writes), a sphere's inertial frame unrotated ("0 0 0")."""
+    body = row.body
+    if body is None:
         return
-    end_x, end_y, end_z = end
-    length = math.sqrt(end_x * end_x + end_y * end_y + end_z * end_z)
-    xyz = f"{end_x / 2.0 + 0.0!r} {end_y / 2.0 + 0.0!r} {end_z / 2.0 + 0.0!r}"  # as the macro's '%r %r %r' writes it
-    rpy = f"0.0 {math.atan2(math.hypot(end_x, end_y), end_z) + 0.0!r} {math.atan2(end_y, end_x) + 0.0!r}"
-    segment = length >= 1e-6
-    shape: Shape = Cylinder(row.radius, length) if segment else Sphere(row.radius)
+    xyz, rpy = vec(body.origin.xyz), vec(body.origin.rpy)
     for tag in ("visual", "collision"):
         part = _sub(link, tag)
         _sub(part, "origin", xyz=xyz, rpy=rpy)
-        _geometry(part, shape)
+        _geometry(part, body.shape)
         if tag == "visual" and row.material:
             _sub(part, "material", name=material_name(robot, row.material))
-    if segment:
-        axial, transverse = cylinder_moments(row.mass, row.radius, length)
-        _inertial(link, transverse, 0.0, 0.0, transverse, 0.0, axial, row.mass, xyz, rpy)
-    else:
-        moment = sphere_moment(row.mass, row.radius)
-        _inertial(link, moment, 0.0, 0.0, moment, 0.0, moment, row.mass, xyz, "0 0 0")
+    i = body.inertia
+    turned = vec(i.origin.rpy) if isinstance(body.shape, Cylinder) else "0 0 0"
+    _inertial(link, i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz, i.mass, vec(i.origin.xyz), turned)
 
 
 def _arm(robot: Robot, prefix: str, arm: Arm) -> Iterator[etree._Element]:
@@ -222,12 +215,8 @@ def _arm(robot: Robot, prefix: str, arm: Arm) -> Iterator[etree._Element]:
         if row.dynamics is not None and row.type != "fixed":
             _sub(joint, "dynamics", damping=num(row.dynamics.damping), friction=num(row.dynamics.friction))
         yield joint
-        following = rows[index + 1] if index + 1 < len(rows) else None
-        end = dh_body_end(
-            arm.convention, row.a, row.alpha, (following.a, following.alpha, following.d) if following else None
-        )
         link = etree.Element("link", name=prefix + row.link)
-        _dh_body(robot, link, row, end)
+        _dh_body(robot, link, row)
         yield link
         parent = prefix + row.link
     last = rows[-1]
@@ -260,9 +249,9 @@ def _wheel(robot: Robot, prefix: str, wheel: Wheel) -> Iterator[etree._Element]:
         _geometry(part, shape)
         if tag == "visual" and wheel.material:
             _sub(part, "material", name=material_name(robot, wheel.material))
-    axial, transverse = cylinder_moments(wheel.mass, wheel.radius, wheel.width)
-    moments = [axial if axis == wheel.axis else transverse for axis in "xyz"]
-    _inertial(link, moments[0], 0.0, 0.0, moments[1], 0.0, moments[2], wheel.mass, "0 0 0", "0 0 0")
+    i = wheel.inertia
+    assert i is not None  # (resolve gives every wheel its inertia)
+    _inertial(link, i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz, i.mass, "0 0 0", "0 0 0")
     yield link
     gazebo = etree.Element("gazebo", reference=prefix + wheel.name)
     _sub(gazebo, "mu1").text = num(wheel.mu1)

@@ -207,6 +207,17 @@ class DHRow:
     mass: float | None = None
     radius: float = DEFAULT_ROW_RADIUS
     material: str | None = None
+    body: DHBody | None = None  # (resolve's, from the mass, radius and the next row: None without a mass)
+
+
+@dataclass(frozen=True)
+class DHBody:
+    """A DH row's body: a cylinder from the row's link frame to where the next joint is (a sphere when they meet),
+    drawn, touched and weighed as that solid (resolve computes it; the macro dh_arm computes the same)."""
+
+    shape: Cylinder | Sphere
+    origin: Origin
+    inertia: Inertia
 
 
 @dataclass(frozen=True)
@@ -250,6 +261,7 @@ class Wheel:
     mu1: float = 1.0
     mu2: float = 1.0
     joint: str | None = None  # the spec's name for its joint (``joint:``), else NAME_joint
+    inertia: Inertia | None = None  # (resolve's: a solid cylinder about its axle, at the link's origin)
 
     @property
     def joint_name(self) -> str:

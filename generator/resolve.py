@@ -25,6 +25,7 @@ from .model import (
     Collision,
     ControlledJoint,
     Cylinder,
+    DHBody,
     DHRow,
     Dynamics,
     Inertia,
@@ -59,8 +60,9 @@ from .shared.solid_inertia import (
     sphere_moment,
     tensor,
     tube_moments,
+    wheel_moments,
 )
-from .shared.transforms import rpy_matrix
+from .shared.transforms import dh_body_end, dh_body_pose, rpy_matrix
 from .validate import Spec
 
 DEFAULT_INTERFACES = Interfaces(command=("position",), state=("position", "velocity"))
@@ -317,28 +319,58 @@ def _arm(name: str, data: dict[str, Any]) -> Arm:
             )
         )
     tool = data.get("tool", {})
+    convention = data.get("convention", "standard")
     return Arm(
         name=name,
         parent=data["parent"],
         origin=origin(data.get("origin")),
-        convention=data.get("convention", "standard"),
-        rows=tuple(rows),
+        convention=convention,
+        rows=_with_bodies(rows, convention),
         base=arm_base_name(name),
         tool=tool.get("name", DEFAULT_TOOL),
         tool_origin=origin(tool.get("origin")),
     )
 
 
+def _with_bodies(rows: list[DHRow], convention: str) -> tuple[DHRow, ...]:
+    """The rows with their bodies: each row with a mass gets the solid from its link frame to the next joint."""
+    bodied = []
+    for index, row in enumerate(rows):
+        following = rows[index + 1] if index + 1 < len(rows) else None
+        end = dh_body_end(
+            convention, row.a, row.alpha, (following.a, following.alpha, following.d) if following else None
+        )
+        bodied.append(dataclasses.replace(row, body=dh_body(row, end)) if row.mass is not None else row)
+    return tuple(bodied)
+
+
+def dh_body(row: DHRow, end: tuple[float, float, float]) -> DHBody:
+    """A row's body ending at ``end``: a cylinder along the segment, its inertia about its centre in its own axes
+    (axial about z); a sphere at the link's origin when the segment is shorter than a micrometre."""
+    assert row.mass is not None  # (the caller gives a row with a mass)
+    xyz, rpy, length = dh_body_pose(end)
+    if length >= 1e-6:
+        axial, transverse = cylinder_moments(row.mass, row.radius, length)
+        place = Origin(xyz, rpy)
+        inertia = Inertia(row.mass, transverse, 0.0, 0.0, transverse, 0.0, axial, place, "cylinder")
+        return DHBody(Cylinder(row.radius, length), place, inertia)
+    moment = sphere_moment(row.mass, row.radius)
+    inertia = Inertia(row.mass, moment, 0.0, 0.0, moment, 0.0, moment, Origin(xyz), "sphere")
+    return DHBody(Sphere(row.radius), Origin(xyz, rpy), inertia)
+
+
 def _wheel(name: str, data: dict[str, Any]) -> Wheel:
     limit, dynamics = data.get("limit", {}), data.get("dynamics", {})
+    mass, radius, width, axle = float(data["mass"]), float(data["radius"]), float(data["width"]), data.get("axis", "y")
+    xx, yy, zz = wheel_moments(mass, radius, width, axle)
     return Wheel(
         name=name,
         parent=data["parent"],
         origin=origin(data.get("origin")),
-        radius=float(data["radius"]),
-        width=float(data["width"]),
-        mass=float(data["mass"]),
-        axis=data.get("axis", "y"),
+        radius=radius,
+        width=width,
+        mass=mass,
+        axis=axle,
         material=data.get("material"),
         effort=float(limit.get("effort", 10.0)),
         velocity=float(limit.get("velocity", 10.0)),
@@ -347,6 +379,7 @@ def _wheel(name: str, data: dict[str, Any]) -> Wheel:
         mu1=float(data.get("mu1", 1.0)),
         mu2=float(data.get("mu2", 1.0)),
         joint=data.get("joint"),
+        inertia=Inertia(mass, xx, 0.0, 0.0, yy, 0.0, zz, Origin(), "cylinder"),
     )
 
 

@@ -79,7 +79,7 @@ def _axle(joint: dict[str, Any], link: dict[str, Any]) -> str | None:
 def _cylinders(link: dict[str, Any], axle: str) -> bool:
     """Whether a link's explicit inertia is the wheel's: a uniform cylinder's about its centre, in the link's axes
     (the wheel macro's), to 1e-12 of its largest moment."""
-    from ..shared.solid_inertia import cylinder_moments
+    from ..shared.solid_inertia import wheel_moments
 
     inertia = link["inertia"]
     if inertia.get("origin", {}) not in ({}, {"xyz": [0.0, 0.0, 0.0]}) or any(
@@ -87,9 +87,9 @@ def _cylinders(link: dict[str, Any], axle: str) -> bool:
     ):
         return False
     cylinder = link["shape"]["cylinder"]
-    axial, transverse = cylinder_moments(link["mass"], cylinder["radius"], cylinder["length"])
-    want = {f"i{a}{a}": axial if a == axle else transverse for a in "xyz"}
-    return all(abs(inertia.get(k, 0.0) - v) <= 1e-12 * max(axial, transverse) for k, v in want.items())
+    moments = wheel_moments(link["mass"], cylinder["radius"], cylinder["length"], axle)  # (what resolve gives a wheel)
+    want = dict(zip(("ixx", "iyy", "izz"), moments, strict=True))
+    return all(abs(inertia.get(k, 0.0) - v) <= 1e-12 * max(moments) for k, v in want.items())
 
 
 def _friction_blocks(root: Any) -> dict[str, Any]:

@@ -30,6 +30,15 @@ def cylinder_moments(mass: float, radius: float, length: float) -> tuple[float, 
     return mass * radius * radius / 2.0, mass * (3.0 * radius * radius + length * length) / 12.0
 
 
+def wheel_moments(mass: float, radius: float, width: float, axle: str) -> tuple[float, float, float]:
+    """(Ixx, Iyy, Izz) of a wheel, a solid cylinder of ``width`` spinning about the link axis ``axle`` (x, y or z):
+    the cylinder's axial moment about the axle, its transverse moment about the other two (macros/wheel.xacro writes
+    the same)."""
+    axial, transverse = cylinder_moments(mass, radius, width)
+    xx, yy, zz = (axial if axis == axle else transverse for axis in "xyz")
+    return xx, yy, zz
+
+
 def sphere_moment(mass: float, radius: float) -> float:
     """The moment of a solid sphere about any axis through its centre: 2 m r^2 / 5."""
     return 2.0 * mass * radius * radius / 5.0

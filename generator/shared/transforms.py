@@ -23,6 +23,19 @@ def dh_body_end(
     return (end_a, -math.sin(end_alpha) * end_d, math.cos(end_alpha) * end_d)
 
 
+def dh_body_pose(
+    end: tuple[float, float, float],
+) -> tuple[tuple[float, float, float], tuple[float, float, float], float]:
+    """(xyz, rpy, length) of a DH row's body, a cylinder from the link frame's origin to ``end``
+    (:func:`dh_body_end`): its centre halfway, its z axis along the segment (pitch, then yaw), its length. The macro
+    ``_xacrokit_dh_body`` (macros/dh.xacro) computes the same, operation for operation."""
+    end_x, end_y, end_z = end
+    length = math.sqrt(end_x * end_x + end_y * end_y + end_z * end_z)
+    xyz = (end_x / 2.0 + 0.0, end_y / 2.0 + 0.0, end_z / 2.0 + 0.0)  # (+ 0.0: no -0.0, as the macro)
+    rpy = (0.0, math.atan2(math.hypot(end_x, end_y), end_z) + 0.0, math.atan2(end_y, end_x) + 0.0)
+    return xyz, rpy, length
+
+
 def rotation_rpy(
     *,
     quaternion: tuple[float, float, float, float] | None = None,

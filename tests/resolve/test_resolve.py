@@ -49,7 +49,7 @@ SPEC = {
 
 def robot_of(spec: dict) -> Robot:
     spec = {k: v for k, v in spec.items() if v is not None}
-    spec["joints"] = {n: {k: v for k, v in j.items() if v is not None} for n, j in spec["joints"].items()}
+    spec["joints"] = {n: {k: v for k, v in j.items() if v is not None} for n, j in spec.get("joints", {}).items()}
     return resolve(validate(load_text(yaml.safe_dump(spec, sort_keys=False), file="spec.yaml")))
 
 
@@ -127,3 +127,60 @@ def test_the_model_is_frozen(robot):
     with pytest.raises(dataclasses.FrozenInstanceError):
         robot.name = "other"  # type: ignore[misc]
     assert all(math.isfinite(v) for joint in robot.joints for v in joint.origin.xyz)
+
+
+def limit() -> dict:
+    return {"limit": {"lower": -1.0, "upper": 1.0, "effort": 10.0, "velocity": 1.0}}
+
+
+def test_a_wheel_and_a_dh_rows_body_get_their_inertia_in_the_model():
+    """The model is the single source of every inertia: a wheel's (a solid cylinder about its axle) and a DH row's
+    body (a cylinder from its link frame to the next joint, or a sphere where they meet) are computed in resolve,
+    here checked against the closed forms written out."""
+    robot = robot_of(
+        {
+            "robot": "r",
+            "links": {"base": {"shape": {"box": {"size": [0.4, 0.3, 0.1]}}, "mass": 5.0}},
+            "wheels": {"w": {"parent": "base", "radius": 0.1, "width": 0.04, "mass": 0.8, "axis": "x"}},
+            "arms": {
+                "arm": {
+                    "parent": "base",
+                    "joints": [
+                        {
+                            "name": "j1",
+                            "link": "l1",
+                            "a": 0.0,
+                            "d": 0.3,
+                            "alpha": 0.0,
+                            "mass": 2.0,
+                            "radius": 0.05,
+                            **limit(),
+                        },
+                        {
+                            "name": "j2",
+                            "link": "l2",
+                            "a": 0.5,
+                            "d": 0.0,
+                            "alpha": 0.0,
+                            "mass": 1.0,
+                            "radius": 0.04,
+                            **limit(),
+                        },
+                    ],
+                }
+            },
+        }
+    )
+    (wheel,) = robot.wheels
+    axial, transverse = 0.8 * 0.1**2 / 2, 0.8 * (3 * 0.1**2 + 0.04**2) / 12
+    assert wheel.inertia is not None
+    assert (wheel.inertia.ixx, wheel.inertia.iyy, wheel.inertia.izz) == pytest.approx((axial, transverse, transverse))
+    first, second = robot.arms[0].rows
+    # standard DH: row 1 (a = 0) ends where it starts: a sphere; row 2 runs 0.5 m along x: a cylinder of that length
+    assert first.body is not None and isinstance(first.body.shape, Sphere)
+    assert first.body.inertia.ixx == pytest.approx(2 / 5 * 2.0 * 0.05**2)
+    assert second.body is not None and isinstance(second.body.shape, Cylinder)
+    assert second.body.shape.length == pytest.approx(0.5) and second.body.origin.xyz == pytest.approx((0.25, 0, 0))
+    assert second.body.origin.rpy == pytest.approx((0, math.pi / 2, 0))  # (its axis along x)
+    assert second.body.inertia.izz == pytest.approx(1.0 * 0.04**2 / 2)
+    assert second.body.inertia.ixx == pytest.approx(1.0 * (3 * 0.04**2 + 0.5**2) / 12)
