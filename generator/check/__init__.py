@@ -25,7 +25,7 @@ __all__ = ["RULES", "CheckReport", "Finding", "check", "input_kind"]
 
 _LAZY = {
     "check": "checker",
-    "input_kind": "checker",
+    "input_kind": "checker",  # (the reader's, as check sees it)
     "RULES": "rule_table",
     "CheckReport": "findings",
     "Finding": "findings",

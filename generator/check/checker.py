@@ -9,76 +9,23 @@ right. This module reads the input and runs the rule families in turn; each fami
 from __future__ import annotations
 
 import os
-import re
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
-from ..errors import SpecErrors, XacrokitError
+from ..errors import SpecErrors
 from ..expansion.expression_guard import trusting
+from ..reader import InputKind
+from ..reader.robot_source import input_kind, read_source
 from ..shared.gc_pause import collector_paused
-from ..shared.input_files import read_input, require_regular_file
-from ..shared.ros_packages import with_nearby_packages
 from ..write.atomic import staged_packages
 from .consumers import chosen, consumer_findings, start_verdicts
 from .document_rules import first_rules, other_rules
-from .findings import CheckReport, Finding, InputKind
+from .findings import CheckReport, Finding
 from .urdf_document import Doc, parse_robot
 
 if TYPE_CHECKING:
     from ..model import Robot
-
-MAX_URDF_BYTES = 256 * 1024 * 1024  # a URDF with meshes inlined runs to megabytes; 256 MiB is far beyond any robot
-
-
-def input_kind(path: Path) -> InputKind:
-    """spec, xacro or urdf: by the file's suffix, or for another suffix by its first 4 KiB (XML starts with '<'; a
-    xacro document declares the xacro namespace or uses a xacro: element)."""
-    name = path.name.lower()
-    if name.endswith((".yaml", ".yml")):
-        return "spec"
-    if name.endswith(".xacro"):
-        return "xacro"
-    if name.endswith((".urdf", ".xml")):
-        return "urdf"
-    try:
-        with path.open("rb") as file:
-            head = file.read(4096)
-    except OSError:
-        return "urdf"  # (reading it again says why it cannot be read)
-    text = head.decode("utf-8", "replace").lstrip("\ufeff \t\r\n")
-    if not text.startswith("<"):
-        return "spec"
-    return "xacro" if re.search(r"xmlns:xacro\s*=|<xacro:", text) else "urdf"
-
-
-def load_urdf(
-    path: Path,
-    kind: InputKind,
-    mappings: Mapping[str, str] | None,
-    package_paths: Mapping[str, str | os.PathLike[str]] | None,
-    carried: dict[str, Any],
-) -> tuple[str, Robot | None, dict[tuple[str, str], int] | None, tuple[Finding, ...]]:
-    """URDF text, and for spec input the robot model, the spec lines and the spec's warnings; a spec's package files
-    (meshes its package will carry) are added to ``carried``, by package."""
-    if kind == "spec":
-        from ..model import Robot
-        from ..pipeline import spec_urdf  # (the whole generator: loaded for spec input only)
-        from .spec_rules import spec_findings
-
-        described = spec_urdf(path)
-        robot = described.model if isinstance(described.model, Robot) else None  # (only a robot has DH arms)
-        carried.update(described.model.carried_files)
-        return described.urdf, robot, described.lines, spec_findings(described.warnings)
-    if kind == "xacro":
-        from ..expansion.xacro_expand import expand_file  # (xacro: loaded for xacro input only)
-
-        return expand_file(path, mappings, package_paths=package_paths), None, None, ()
-    try:
-        return read_input(path, MAX_URDF_BYTES).decode("utf-8"), None, None, ()
-    except (OSError, UnicodeDecodeError) as exc:
-        why = exc.strerror if isinstance(exc, OSError) and exc.strerror else "it is not UTF-8 text"
-        raise XacrokitError(f"cannot read {path}: {why}") from None
 
 
 @collector_paused()
@@ -115,31 +62,25 @@ def check(
     path = Path(path)
     say = progress or (lambda message: None)
     kind = input_kind(path)
-    if mappings and kind != "xacro":
-        raise XacrokitError("name:=value arguments only apply to xacro input")
     names = chosen(consumers)
-    if kind != "spec":  # (a spec's own reader says why it cannot be read, located)
-        try:
-            require_regular_file(path, MAX_URDF_BYTES)
-        except OSError as exc:
-            raise XacrokitError(f"cannot read {path}: {exc.strerror}") from None
-    packages: Mapping[str, str | os.PathLike[str]] | None = package_paths
-    if kind != "spec":  # a file inside a package finds that package (and its workspace siblings) by itself
-        packages = with_nearby_packages(path, package_paths)
     say(f"reading {path.name}")
-    carried: dict[str, Any] = {}
     try:
         with trusting(trust):
-            text, robot, lines, notes = load_urdf(path, kind, mappings, packages, carried)
+            source = read_source(path, mappings, package_paths)
     except SpecErrors as exc:
         if all(e.line is None for e in exc.errors):  # the file itself cannot be read: no report to give
             raise
         from .spec_rules import spec_findings
 
         return CheckReport(str(path), kind, None, spec_findings(exc.errors, "V002"))
-    with staged_packages(carried) as staged:  # (a spec's meshes, where its package will carry them)
-        packages = {**staged, **(packages or {})} if staged else packages
-        return _judge(path, kind, text, robot, lines, notes, names, packages, prefix, say)
+    notes: tuple[Finding, ...] = ()
+    if source.warnings:
+        from .spec_rules import spec_findings
+
+        notes = spec_findings(source.warnings)
+    with staged_packages(source.carried) as staged:  # (a spec's meshes, where its package will carry them)
+        packages = {**staged, **(source.packages or {})} if staged else source.packages
+        return _judge(path, kind, source.text, source.robot, source.lines, notes, names, packages, prefix, say)
 
 
 def _judge(

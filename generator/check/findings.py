@@ -9,11 +9,12 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Literal
 
+from ..reader import InputKind
+
 # error: a consumer rejects the file, or the physics is impossible for a body that moves; warning: a likely mistake an
 # expert would fix; info: style, or what a simulator assumes when the file is silent (never fails a check)
 Severity = Literal["error", "warning", "info"]
 Row = tuple[str, Severity, str]  # (name, severity, what it checks)
-InputKind = Literal["urdf", "xacro", "spec"]
 ConsumerStatus = Literal["accepted", "rejected", "crashed", "timeout", "skipped", "unavailable"]
 
 # rule id -> row, as each rule family's module enters it. The ids are stable: scripts may filter on them.

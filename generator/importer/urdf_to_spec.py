@@ -463,7 +463,7 @@ def import_robot(
     from ..reader.robot_source import robot_text
 
     with robot_text(path, mappings, package_paths, meshes=False) as (text, packages):
-        from ..check.checker import input_kind
+        from ..reader.robot_source import input_kind
 
         source = str(path) if input_kind(Path(path)) == "urdf" else f"{path} (as expanded)"
         imported = import_text(text, Path(path).stem.split(".")[0], source)

@@ -1,6 +1,9 @@
-"""What the commands that read a robot share (graph, view, render): a URDF, xacro document, spec or scene read as URDF
-text, with the packages its ``package://`` URIs may name (a spec's own meshes staged where its package will carry
-them). ``packages.mesh_file`` resolves a mesh URI with them.
+"""The one reader of robots: every command that takes a robot (check, view, render, graph, size, export, import)
+reads it here. A URDF, xacro document, spec or scene becomes URDF text (:func:`read_source`: with what it came from,
+a spec's model, lines and warnings and the files its package will carry), and :func:`robot_text` hands the text on
+with the packages its ``package://`` URIs may name (a spec's own meshes staged where its package will carry them);
+``shared.ros_packages.mesh_file`` resolves a mesh URI with them. The text is walked through
+:mod:`xacrokit.reader.urdf_view`.
 
 A URDF that uses a namespace prefix it never declares (``<limit drake:acceleration="..."/>``: check's U003; every
 URDF consumer reads past it) is handed on with those names in a namespace of their own
@@ -11,13 +14,98 @@ from __future__ import annotations
 import contextlib
 import math
 import os
+import re
 from collections.abc import Callable, Iterator, Mapping
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from ..errors import XacrokitError
+from ..errors import SpecError, XacrokitError
+from ..shared.input_files import read_input, require_regular_file
+from ..shared.ros_packages import with_nearby_packages
+from . import InputKind
+
+if TYPE_CHECKING:
+    from ..model import Robot
 
 Packages = dict[str, str | os.PathLike[str]]
+MAX_URDF_BYTES = 256 * 1024 * 1024  # a URDF with meshes inlined runs to megabytes; 256 MiB is far beyond any robot
+
+
+def input_kind(path: Path) -> InputKind:
+    """spec, xacro or urdf: by the file's suffix, or for another suffix by its first 4 KiB (XML starts with '<'; a
+    xacro document declares the xacro namespace or uses a xacro: element)."""
+    name = path.name.lower()
+    if name.endswith((".yaml", ".yml")):
+        return "spec"
+    if name.endswith(".xacro"):
+        return "xacro"
+    if name.endswith((".urdf", ".xml")):
+        return "urdf"
+    try:
+        with path.open("rb") as file:
+            head = file.read(4096)
+    except OSError:
+        return "urdf"  # (reading it again says why it cannot be read)
+    text = head.decode("utf-8", "replace").lstrip("\ufeff \t\r\n")
+    if not text.startswith("<"):
+        return "spec"
+    return "xacro" if re.search(r"xmlns:xacro\s*=|<xacro:", text) else "urdf"
+
+
+@dataclass(frozen=True)
+class RobotSource:
+    """A robot read as URDF text, and where it came from: the input's kind, the packages its URIs may name; for a
+    spec, its robot model (a scene's: None), the spec line of each link and joint, its warnings and the files its
+    package will carry (by package)."""
+
+    text: str
+    kind: InputKind
+    packages: Mapping[str, str | os.PathLike[str]] | None = None
+    robot: Robot | None = None
+    lines: dict[tuple[str, str], int] | None = None
+    warnings: tuple[SpecError, ...] = ()
+    carried: dict[str, Any] = field(default_factory=dict)
+
+
+def read_source(
+    path: Path,
+    mappings: Mapping[str, str] | None = None,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
+) -> RobotSource:
+    """The robot at ``path`` as URDF text: a spec generated in memory (never written), a xacro document expanded with
+    ``mappings``, a URDF read (a regular file of at most MAX_URDF_BYTES). A URDF or xacro file inside a ROS package
+    finds that package and its workspace siblings for ``package://`` and ``$(find)`` by itself.
+
+    Raises:
+        XacrokitError: unreadable input, or name:=value arguments for input that is not xacro.
+        SpecErrors: an invalid spec (located); ExpandError: a xacro document that does not expand.
+    """
+    kind = input_kind(path)
+    if mappings and kind != "xacro":
+        raise XacrokitError("name:=value arguments only apply to xacro input")
+    if kind == "spec":  # (a spec's own reader says why it cannot be read, located)
+        from ..model import Robot
+        from ..pipeline import spec_urdf  # (the whole generator: loaded for spec input only)
+
+        described = spec_urdf(path)
+        robot = described.model if isinstance(described.model, Robot) else None  # (only a robot has DH arms)
+        carried = dict(described.model.carried_files)
+        return RobotSource(described.urdf, kind, package_paths, robot, described.lines, described.warnings, carried)
+    try:
+        require_regular_file(path, MAX_URDF_BYTES)
+    except OSError as exc:
+        raise XacrokitError(f"cannot read {path}: {exc.strerror}") from None
+    packages = with_nearby_packages(path, package_paths)
+    if kind == "xacro":
+        from ..expansion.xacro_expand import expand_file  # (xacro: loaded for xacro input only)
+
+        return RobotSource(expand_file(path, mappings, package_paths=packages), kind, packages)
+    try:
+        return RobotSource(read_input(path, MAX_URDF_BYTES).decode("utf-8"), kind, packages)
+    except (OSError, UnicodeDecodeError) as exc:
+        why = exc.strerror if isinstance(exc, OSError) and exc.strerror else "it is not UTF-8 text"
+        raise XacrokitError(f"cannot read {path}: {why}") from None
 
 
 @contextlib.contextmanager
@@ -35,20 +123,13 @@ def robot_text(
         XacrokitError: unreadable input, or name:=value arguments for input that is not xacro.
         SpecErrors: an invalid spec (located).
     """
-    from ..check.checker import input_kind, load_urdf
-    from ..shared.ros_packages import with_nearby_packages
     from ..write.atomic import staged_packages
 
     where = Path(path)
-    kind = input_kind(where)
-    if mappings and kind != "xacro":
-        raise XacrokitError("name:=value arguments only apply to xacro input")
-    packages = package_paths if kind == "spec" else with_nearby_packages(where, package_paths)
-    carried: dict[str, Any] = {}
-    text, _, _, _ = load_urdf(where, kind, mappings, packages, carried)
-    text = declared(text, str(where) if kind == "urdf" else f"{where} (as expanded)")
-    with staged_packages(carried if meshes else {}) as staged:
-        yield text, {**staged, **(packages or {})}
+    source = read_source(where, mappings, package_paths)
+    text = declared(source.text, str(where) if source.kind == "urdf" else f"{where} (as expanded)")
+    with staged_packages(source.carried if meshes else {}) as staged:
+        yield text, {**staged, **(source.packages or {})}
 
 
 def mesh_resolver(base: Path, packages: Mapping[str, str | os.PathLike[str]]) -> Callable[[str], str]:

@@ -23,9 +23,9 @@ from xacrokit.testing import valid_specs
 
 
 def urdf_of(path) -> str:
-    from xacrokit.check.checker import input_kind, load_urdf
+    from xacrokit.reader.robot_source import read_source
 
-    return load_urdf(path, input_kind(path), None, None, {})[0]
+    return read_source(path).text
 
 
 def floats(text, count, default):

@@ -18,11 +18,11 @@ from xacrokit.view.page import page, robot_json
 @browser_only
 @pytest.mark.parametrize("example", [*ROBOT_EXAMPLES, *SCENE_EXAMPLES], ids=lambda p: p.stem)
 def test_every_example_opens_offline_and_its_kinematics_are_pinocchios(browser, example, tmp_path):
-    from xacrokit.check.checker import input_kind, load_urdf
+    from xacrokit.reader.robot_source import read_source
 
     html = tmp_path / f"{example.stem}.html"
     html.write_text(page(example), encoding="utf-8")
-    urdf = load_urdf(example, input_kind(example), None, None, {})[0]
+    urdf = read_source(example).text
     open_page(browser, html)
     assert [e for e in browser.get_log("browser") if e["level"] == "SEVERE"] == []
     assert [u for u in requests_made(browser) if not u.startswith(("file://", "data:"))] == []
@@ -187,9 +187,9 @@ def test_a_sizing_motion_plays_with_its_torque_plot(browser, tmp_path):
     html = tmp_path / "motion.html"
     result = gen_robot("view", robot, "--sizing", REPO / "examples" / "sizing" / "planar_2dof_payload.yaml", "-o", html)
     assert result.returncode == 0, result.stderr
-    from xacrokit.check.checker import input_kind, load_urdf
+    from xacrokit.reader.robot_source import read_source
 
-    urdf = load_urdf(robot, input_kind(robot), None, None, {})[0]
+    urdf = read_source(robot).text
     open_page(browser, html)
     assert [e for e in browser.get_log("browser") if e["level"] == "SEVERE"] == []
     assert browser.execute_script("return document.getElementById('plot-image').naturalWidth") == 290
