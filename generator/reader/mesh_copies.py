@@ -5,8 +5,8 @@ A robot folder is someone else's, and a copy carries its files on: a ``meshes/pa
 ``/etc/passwd`` would put the password file beside the spec and then into a package. So a copied mesh is read
 
 * without following a symbolic link, neither the file itself nor a folder on its way below the robot's folder;
-* only inside the robot's folder (:func:`robot_folder`: the ROS package that holds the URDF, else the folder above
-  a ``urdf/`` folder, else the URDF's own; no ``..`` out of it, no absolute path);
+* only inside the robot's folder (:func:`robot_folder`: the ROS or Python package that ships the URDF, else the
+  folder above a ``urdf/`` folder, else the URDF's own; no ``..`` out of it, no absolute path);
 * only as a plain file of at most :data:`~xacrokit.shared.mesh_solids.MAX_MESH_BYTES` (a larger one is refused before
   it is read);
 * and it must read, with trimesh, as a mesh of the kind its suffix says, with at least one triangle.
@@ -25,13 +25,14 @@ from ..shared.mesh_solids import MAX_MESH_BYTES, MESH_SUFFIXES
 
 
 def robot_folder(urdf: Path) -> Path:
-    """The folder a robot's relative meshes must lie in: the ROS package that holds the URDF (the nearest folder
-    above it with a package.xml), else the folder above the URDF's when that is named ``urdf`` (the ROS layout:
-    ``urdf/robot.urdf`` names ``../meshes/part.stl``), else the URDF's own folder. Never above what the path names
-    (no link is resolved)."""
+    """The folder a robot's relative meshes must lie in: the package that ships the URDF, that is the nearest folder
+    above it that is a ROS package (a package.xml) or a Python package (an ``__init__.py``: robot descriptions
+    installed from PyPI, whose grippers name a sibling's meshes); else the folder above the URDF's when that is named
+    ``urdf`` (the ROS layout: ``urdf/robot.urdf`` names ``../meshes/part.stl``); else the URDF's own folder. Found
+    from the path as given (no link is resolved)."""
     here = Path(os.path.abspath(urdf)).parent
     for folder in (here, *here.parents):
-        if (folder / "package.xml").is_file():
+        if (folder / "package.xml").is_file() or (folder / "__init__.py").is_file():
             return folder
     return here.parent if here.name == "urdf" else here
 

@@ -221,3 +221,19 @@ def test_import_copies_a_mesh_of_the_ros_layout_beside_the_urdfs_folder(tmp_path
     code, err = run("import", urdf, "-o", tmp_path / "out" / "m.yaml")
     assert code == 0, err
     assert (tmp_path / "out" / "meshes" / "part.stl").read_bytes() == part
+
+
+def test_import_copies_a_sibling_robots_mesh_inside_the_python_package_that_ships_both(tmp_path):
+    """A gripper of a robot-description distribution names its sibling's mesh (airo-models: ../schunk_egk40/...):
+    the Python package (an __init__.py) is the robot's folder; a mesh outside it is still refused."""
+    (tmp_path / "models").mkdir()
+    (tmp_path / "models" / "__init__.py").write_text("", encoding="utf-8")
+    part = box_stl(tmp_path / "models" / "grippers" / "finger" / "meshes" / "part.stl")
+    urdf = mesh_robot(tmp_path / "models" / "grippers" / "hand", "../finger/meshes/part.stl")
+    code, err = run("import", urdf, "-o", tmp_path / "out" / "m.yaml")
+    assert code == 0, err
+    assert (tmp_path / "out" / "meshes" / "part.stl").read_bytes() == part
+    box_stl(tmp_path / "outside.stl")
+    escaping = mesh_robot(tmp_path / "models" / "grippers" / "other", "../../../outside.stl")
+    code, err = run("import", escaping, "-o", tmp_path / "out2" / "m.yaml")
+    assert code == 2 and "it lies outside the robot's folder" in err, err
