@@ -13,8 +13,8 @@ from pathlib import Path
 from ..errors import ExpandError, SpecError
 from ..load import PathKey, RawSpec
 from ..model import Instance, Origin, ThirdPartyMacro
+from ..reader.urdf_view import read_view
 from ..render import render_probe
-from ..shared.xml_parse import read_urdf_root
 
 Found = tuple[tuple[str, ...], tuple[str, ...]]  # (links, joints)
 
@@ -38,10 +38,10 @@ def probe_names(
         except ExpandError as exc:
             message = f"expanding {macro.macro} from {macro.file} failed: {exc.message}{_hint(exc, macro)}"
             return None, [raw.error(where, message)]
-    root = read_urdf_root(urdf, f"{macro.file} (expanded)")
-    every_link = [e.get("name", "") for e in root.findall("link")]
+    view = read_view(urdf, f"{macro.file} (expanded)")
+    every_link = [link.name for link in view.links]
     links = tuple(n for n in every_link if n != parent)
-    joints = tuple(e.get("name", "") for e in root.findall("joint"))
+    joints = tuple(joint.name for joint in view.joints)
     problems = []
     if every_link.count(parent) > 1:
         problems.append(f"it makes a link {parent!r} itself, the name of the link it is mounted on")
@@ -52,7 +52,7 @@ def probe_names(
             f"its names {shown} do not hold the prefix {prefix!r} (if its prefix parameter is not called "
             f"{macro.prefix_param!r}, set prefix_param)"
         )
-    hanging = [e.get("link") for e in root.findall("joint/parent")]  # (each joint's parent element, if it has one)
+    hanging = [joint.parent for joint in view.joints]
     if parent not in hanging:
         problems.append(
             f"no joint of it hangs from the link it is mounted on, {parent!r} (if its parent parameter is not called "

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -23,6 +23,9 @@ from ..shared.solid_inertia import tensor
 from ..validate import validate
 from ..validate.bodies import bodies, parts
 from ..validate.solids import body_solids
+
+if TYPE_CHECKING:
+    from ..reader.urdf_view import Link as ViewLink
 
 FORMULAS = {
     "box": "solid box, m/12 (b^2 + c^2)",
@@ -85,43 +88,37 @@ def design_report(spec_path: str | Path) -> DesignReport:
 
 def _links(robot: Robot, urdf: str) -> list[Link]:
     """The robot's links as the model holds them (arms and wheels through their emitted form, ``urdf``)."""
-    from ..shared.xml_parse import read_urdf_root
+    from ..reader.urdf_view import read_view
 
     by_name = {link.name: link for link in robot.links}
-    root = read_urdf_root(urdf, f"{robot.name} (generated)")
-    found = []
-    for element in root.findall("link"):
-        name = element.get("name")
-        found.append(by_name.get(name) or _from_urdf(element))
-    return found
+    return [by_name.get(link.name) or _from_urdf(link) for link in read_view(urdf, f"{robot.name} (generated)").links]
 
 
-def _from_urdf(element: Any) -> Link:
+def _from_urdf(link: ViewLink) -> Link:
     """A generated link (an arm's, a wheel's) read back from the emitted URDF, with its shapes and inertial."""
 
     def floats(text: str | None) -> list[float]:
         return [float(v) for v in (text or "0 0 0").split()]
 
-    inertial = element.find("inertial")
-    found = None
-    if inertial is not None:
-        i = {k: float(v) for k, v in inertial.find("inertia").attrib.items()}
-        place = inertial.find("origin")
-        xyz, rpy = floats(place.get("xyz")), floats(place.get("rpy"))
-        found = Inertia(
-            mass=float(inertial.find("mass").get("value")),
-            **{k: i[k] for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")},
-            origin=origin({"xyz": xyz, "rpy": rpy}),
-            kind="cylinder" if element.find("visual/geometry/cylinder") is not None else "sphere",
-        )
     shapes: list[Shape] = []
-    for geometry in element.findall("visual/geometry"):
-        child = geometry[0]
-        if child.tag == "cylinder":
-            shapes.append(Cylinder(float(child.get("radius")), float(child.get("length"))))
-        elif child.tag == "sphere":
-            shapes.append(Sphere(float(child.get("radius"))))
-    return Link(name=element.get("name"), visuals=tuple(Visual(shape=s) for s in shapes), inertial=found)
+    for visual in link.visuals:
+        shape = visual.shape
+        if shape is not None and shape.kind == "cylinder":
+            shapes.append(Cylinder(float(shape.get("radius") or ""), float(shape.get("length") or "")))
+        elif shape is not None and shape.kind == "sphere":
+            shapes.append(Sphere(float(shape.get("radius") or "")))
+    found = None
+    inertial = link.inertial
+    if inertial is not None and inertial.inertia is not None:
+        place = inertial.origin
+        xyz, rpy = (floats(place.xyz), floats(place.rpy)) if place is not None else ([0.0] * 3, [0.0] * 3)
+        found = Inertia(
+            mass=float(inertial.mass or ""),
+            **{k: float(inertial.inertia[k]) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")},
+            origin=origin({"xyz": xyz, "rpy": rpy}),
+            kind="cylinder" if any(isinstance(s, Cylinder) for s in shapes) else "sphere",
+        )
+    return Link(name=link.name, visuals=tuple(Visual(shape=s) for s in shapes), inertial=found)
 
 
 def _link_report(link: Link, volume: float | None, shapes: list[str] | None) -> LinkReport:

@@ -70,28 +70,23 @@ class BaseSizing:
 def find_wheels(robot: SizingRobot, text: str, named: Sequence[str] = ()) -> list[Wheel]:
     """The wheels: continuous joints whose child link has a cylinder (or those ``named``), with radius, inertia about
     the axle (pinocchio's body inertia, moved to the joint's axis) and limits."""
-    from ..shared.xml_parse import read_urdf_root
+    from ..reader.urdf_view import read_view
 
-    root = read_urdf_root(text, "<robot>")
+    view = read_view(text)
     radii = {}
-    for link in root.findall("link"):
-        cylinder = link.find("collision/geometry/cylinder")
-        cylinder = cylinder if cylinder is not None else link.find("visual/geometry/cylinder")
-        if cylinder is not None and cylinder.get("radius"):
-            radii[link.get("name")] = float(cylinder.get("radius"))
-    children = {
-        j.get("name"): j.find("child").get("link") for j in root.findall("joint") if j.find("child") is not None
-    }
-
-    axes = {j.get("name"): j.find("axis") for j in root.findall("joint")}
+    for link in view.links:  # (its first cylinder collision's radius, else its first cylinder visual's)
+        cylinders = [g.shape for g in (*link.collisions, *link.visuals) if g.shape and g.shape.kind == "cylinder"]
+        if cylinders and cylinders[0].get("radius"):
+            radii[link.name] = float(cylinders[0].get("radius") or "")
+    children = {j.name: j.child for j in view.joints if j.child is not None}
+    axes = {j.name: j.axis for j in view.joints}
     found = []
     for joint in robot.joints:
         child = children.get(joint.name)
         wanted = joint.name in named if named else joint.kind == "continuous" and child in radii
         if not wanted or child not in radii:
             continue
-        axis_element = axes.get(joint.name)
-        axis = np.array([float(v) for v in (axis_element.get("xyz") if axis_element is not None else "1 0 0").split()])
+        axis = np.array([float(v) for v in (axes.get(joint.name) or "1 0 0").split()])
         axis = axis / np.linalg.norm(axis)
         body = robot.model.inertias[robot.model.getJointId(joint.name)]
         lever = np.asarray(body.lever)

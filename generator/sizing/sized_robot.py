@@ -20,8 +20,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import XacrokitError
+from ..reader.urdf_view import UrdfView, read_view
 from ..shared.value_text import did_you_mean
-from ..shared.xml_parse import read_urdf_root
 
 GRAVITY = 9.80665  # m/s^2, the standard acceleration of gravity (CGPM 1901), along -z of the root frame
 
@@ -125,18 +125,18 @@ def load_robot(
         model = pin.buildModelFromXML(text)
     except (RuntimeError, ValueError) as exc:
         raise XacrokitError(f"{where}: pinocchio cannot read the robot: {exc}") from None
-    root = read_urdf_root(text, str(where))
+    view = read_view(text, str(where))
     model.gravity = pin.Motion(np.array([0.0, 0.0, -GRAVITY, 0.0, 0.0, 0.0]))  # (pinocchio's default: 9.81)
-    joints = _moving_joints(model, root)
-    massless = _massless_moving_links(model, root)
-    robot = SizingRobot(name=root.get("name", where.stem), model=model, joints=joints, massless=massless, text=text)
+    joints = _moving_joints(model, view)
+    massless = _massless_moving_links(model, view)
+    robot = SizingRobot(name=view.name or where.stem, model=model, joints=joints, massless=massless, text=text)
     add_loads(robot, payloads, loads)
     if not joints:
         raise XacrokitError(f"{where}: the robot has no revolute, continuous or prismatic joint to size")
     if all(model.inertias[j].mass == 0.0 for j in range(1, model.njoints)):
         raise XacrokitError(
             f"{where}: no moving link has a mass, so every torque would be 0; give <inertial> to the links "
-            f"{', '.join(_moved_links(model, root)[:10])} ..."
+            f"{', '.join(_moved_links(model, view)[:10])} ..."
         )
     return robot
 
@@ -159,9 +159,9 @@ def frame_names(robot: SizingRobot) -> list[str]:
     return [f.name for f in robot.model.frames if f.name != "universe"]
 
 
-def _moving_joints(model: Any, root: Any) -> list[MovingJoint]:
-    limits = {j.get("name"): j.find("limit") for j in root.findall("joint")}
-    kinds = {j.get("name"): j.get("type") for j in root.findall("joint")}
+def _moving_joints(model: Any, view: UrdfView) -> list[MovingJoint]:
+    limits = {j.name: j.limit for j in view.joints}
+    kinds = {j.name: j.type or "" for j in view.joints}
     found = []
     for index in range(1, model.njoints):
         name = model.names[index]
@@ -185,39 +185,38 @@ def _moving_joints(model: Any, root: Any) -> list[MovingJoint]:
     return found
 
 
-def _bounds(limit: Any) -> tuple[float, float]:
+def _bounds(limit: Mapping[str, str] | None) -> tuple[float, float]:
     """A joint's range: its limits, or one turn either way where the URDF gives none."""
     try:
-        lower, upper = float(limit.get("lower", "")), float(limit.get("upper", ""))
-    except (AttributeError, ValueError):
+        lower, upper = float((limit or {}).get("lower", "")), float((limit or {}).get("upper", ""))
+    except ValueError:
         return -math.pi, math.pi
     return (lower, upper) if lower <= upper else (upper, lower)
 
 
-def _given(limit: Any, key: str) -> float | None:
+def _given(limit: Mapping[str, str] | None, key: str) -> float | None:
     """A limit's effort or velocity; None when not given or not a number >= 0 (a limit of 0 is a limit: its margin
     is 0, not "no limit")."""
     try:
-        value = float(limit.get(key, ""))
-    except (AttributeError, ValueError):
+        value = float((limit or {}).get(key, ""))
+    except ValueError:
         return None
     return value if 0 <= value < math.inf else None
 
 
-def _massless_moving_links(model: Any, root: Any) -> list[str]:
+def _massless_moving_links(model: Any, view: UrdfView) -> list[str]:
     """The links moved by a joint that have a shape but no <inertial>, in the URDF's order (a link with neither is a
     frame, such as tool0: massless by design)."""
-    shaped = {link.get("name") for link in root.findall("link") if link.find("visual") is not None}
-    without = {link.get("name") for link in root.findall("link") if link.find("inertial") is None}
-    return [name for name in _moved_links(model, root) if name in shaped & without]
+    shaped_without = {link.name for link in view.links if link.visuals and link.inertial is None}
+    return [name for name in _moved_links(model, view) if name in shaped_without]
 
 
-def _moved_links(model: Any, root: Any) -> list[str]:
+def _moved_links(model: Any, view: UrdfView) -> list[str]:
     """The links below a joint (pinocchio's body frames with a parent joint), in the URDF's order."""
     import pinocchio as pin
 
     moving = {f.name for f in model.frames if f.type == pin.FrameType.BODY and f.parentJoint > 0}
-    return [link.get("name") for link in root.findall("link") if link.get("name") in moving]
+    return [link.name for link in view.links if link.name in moving]
 
 
 def _frame_id(robot: SizingRobot, name: str, option: str) -> int:
