@@ -6,12 +6,11 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from lxml import etree
-
+from ..reader.urdf_view import Attributes, Joint, Mimic
 from ..shared.joint_types import AXIAL, JOINT_TYPES, LIMITED, MOVING
 from ..shared.kinematic_tree import cycles
 from .findings import Finding, Severity, rule_table
-from .urdf_document import Doc, read_float, read_triple
+from .urdf_document import Doc, number_of
 
 RULES = rule_table(
     {
@@ -72,7 +71,7 @@ RULES = rule_table(
 
 def _mimic_cycles(doc: Doc) -> Iterator[Finding]:
     """J008 for mimic joints that follow each other round a loop (none of them moves by itself)."""
-    mimics = {j.get("name", ""): m.get("joint", "") for j in doc.joints if (m := j.find("mimic")) is not None}
+    mimics = {j.name: j.mimic.joint or "" for j in doc.view.joints if j.mimic is not None}
     for loop in cycles(mimics):
         if len(loop) > 1:  # (a joint that mimics itself has its own message)
             message = f"mimic joints {' -> '.join([*loop, loop[0]])} form a cycle: none of them moves by itself"
@@ -80,46 +79,45 @@ def _mimic_cycles(doc: Doc) -> Iterator[Finding]:
 
 
 def joint_rules(doc: Doc) -> Iterator[Finding]:
-    types = {j.get("name", ""): j.get("type", "") for j in doc.joints}
+    types = {j.name: j.type or "" for j in doc.view.joints}
     yield from _mimic_cycles(doc)
-    children = {j.find("child").get("link") for j in doc.joints if j.find("child") is not None}
-    for joint in doc.joints:
-        kind = joint.get("type", "")
+    children = {j.child for j in doc.view.joints if j.child is not None}
+    for joint in doc.view.joints:
+        kind = joint.type or ""
         found = _At(doc, joint)
         if kind not in JOINT_TYPES:
             yield found("J011", f"type {kind!r} is not a URDF joint type ({', '.join(JOINT_TYPES)})")
             continue
-        limit = joint.find("limit")
-        yield from _range(found, kind, limit)
-        yield from _rates(found, kind, limit)
+        yield from _range(found, kind, joint.limit)
+        yield from _rates(found, kind, joint.limit)
         yield from _axis(found, kind, joint)
-        if kind in MOVING and joint.find("dynamics") is None and joint.find("mimic") is None:
+        if kind in MOVING and joint.dynamics is None and joint.mimic is None:
             yield found("J009", "no <dynamics damping friction>: simulators assume none (URDF makes it optional)")
-        if kind == "floating" and joint.find("parent") is not None and joint.find("parent").get("link") in children:
+        if kind == "floating" and joint.parent in children:
             yield found(
                 "J012",
                 "floating joint below the root link; MuJoCo and most simulators accept a floating "
                 "joint only as the base: make it fixed, or the robot's root",
             )
-        yield from _mimic(found, kind, joint.find("mimic"), types)
-        yield from _safety(found, kind, limit, joint.find("safety_controller"))
+        yield from _mimic(found, kind, joint.mimic, types)
+        yield from _safety(found, kind, joint.limit, joint.safety_controller)
 
 
 class _At:
     """A finding about one joint: ``found(rule, message, level=None)``."""
 
-    def __init__(self, doc: Doc, joint: etree._Element) -> None:
-        self.doc, self.joint, self.name = doc, joint, joint.get("name", "")
+    def __init__(self, doc: Doc, joint: Joint) -> None:
+        self.doc, self.joint, self.name = doc, joint, joint.name
 
     def __call__(self, rule: str, message: str, level: Severity | None = None) -> Finding:
-        return self.doc.finding(rule, "joint", self.name, message, self.joint, level)
+        return self.doc.finding(rule, "joint", self.name, message, self.joint.element, level)
 
 
-def _range(found: _At, kind: str, limit: etree._Element | None) -> Iterator[Finding]:
+def _range(found: _At, kind: str, limit: Attributes | None) -> Iterator[Finding]:
     """J001 (a limited joint's <limit> and its bounds), J002 (lower above upper), J013 (a range of one value)."""
     if kind not in LIMITED:
         return
-    lower, upper = read_float(limit, "lower"), read_float(limit, "upper")
+    lower, upper = number_of(limit, "lower"), number_of(limit, "upper")
     if limit is None:
         yield found("J001", f"a {kind} joint needs <limit lower upper effort velocity>: urdfdom rejects it")
     elif lower is None or upper is None:
@@ -136,7 +134,7 @@ def _range(found: _At, kind: str, limit: etree._Element | None) -> Iterator[Find
         yield found("J013", f"limit lower and upper are both {lower}: the joint cannot move; make it a fixed joint")
 
 
-def _rates(found: _At, kind: str, limit: etree._Element | None) -> Iterator[Finding]:
+def _rates(found: _At, kind: str, limit: Attributes | None) -> Iterator[Finding]:
     """J005 (a continuous joint's <limit> without effort or velocity), J003/J004 (effort and velocity)."""
     if limit is None:
         return
@@ -153,7 +151,7 @@ def _rates(found: _At, kind: str, limit: etree._Element | None) -> Iterator[Find
         ("J003", "effort", "N*m or N", "Gazebo applies no force to the joint"),
         ("J004", "velocity", "rad/s or m/s", "Gazebo holds the joint still"),
     ):
-        value = read_float(limit, key)
+        value = number_of(limit, key)
         if value is not None and value < 0:  # pinocchio rejects it (its lower bound, -value, is above it)
             yield found(rule, f"limit {key} is {value:g}; pinocchio rejects a negative one: give one > 0 ({unit})")
         elif value == 0:
@@ -164,25 +162,27 @@ def _rates(found: _At, kind: str, limit: etree._Element | None) -> Iterator[Find
             yield found(rule, f"<limit> has no {key}; urdfdom rejects it: give one > 0 ({unit})")
 
 
-def _axis(found: _At, kind: str, joint: etree._Element) -> Iterator[Finding]:
+def _axis(found: _At, kind: str, joint: Joint) -> Iterator[Finding]:
     """J006 (a zero or unreadable axis), J007 (an axis that is not a unit vector)."""
     if kind not in AXIAL:
         return
-    element = joint.find("axis")
-    axis = read_triple(element, "xyz", "1 0 0")
-    norm = math.hypot(*axis)
+    try:
+        axis = [float(v) for v in (joint.axis if joint.axis is not None else "1 0 0").split()]
+    except ValueError:
+        axis = []
+    norm = math.hypot(*axis) if len(axis) == 3 else math.nan
     if not math.isfinite(norm) or norm == 0:
-        written = element.get("xyz") if element is not None else ""
+        written = joint.axis if joint.axis is not None else ""
         yield found("J006", f"axis {written!r} is zero or unreadable; give a direction such as '0 0 1'")
     elif abs(norm - 1.0) > 1e-6:
         yield found("J007", f"axis has length {norm:.6g}; consumers normalise it, write the unit vector")
 
 
-def _mimic(found: _At, kind: str, mimic: etree._Element | None, types: dict[str, str]) -> Iterator[Finding]:
+def _mimic(found: _At, kind: str, mimic: Mimic | None, types: dict[str, str]) -> Iterator[Finding]:
     """J008: a mimic of itself, of no joint, or between joints that do not move alike."""
     if mimic is None:
         return
-    target = mimic.get("joint", "")
+    target = mimic.joint or ""
     if target == found.name:
         yield found("J008", "a joint cannot mimic itself")
     elif target not in types:
@@ -196,12 +196,12 @@ def _mimic(found: _At, kind: str, mimic: etree._Element | None, types: dict[str,
         )
 
 
-def _safety(found: _At, kind: str, limit: etree._Element | None, safety: etree._Element | None) -> Iterator[Finding]:
+def _safety(found: _At, kind: str, limit: Attributes | None, safety: Attributes | None) -> Iterator[Finding]:
     """J010: soft limits outside the hard ones."""
     if safety is None or limit is None or kind not in LIMITED:
         return
-    lower, upper = read_float(limit, "lower"), read_float(limit, "upper")
-    soft_lower, soft_upper = read_float(safety, "soft_lower_limit"), read_float(safety, "soft_upper_limit")
+    lower, upper = number_of(limit, "lower"), number_of(limit, "upper")
+    soft_lower, soft_upper = number_of(safety, "soft_lower_limit"), number_of(safety, "soft_upper_limit")
     if lower is not None and soft_lower is not None and soft_lower < lower:
         yield found("J010", f"soft_lower_limit {soft_lower} is below the hard lower limit {lower}")
     if upper is not None and soft_upper is not None and soft_upper > upper:

@@ -9,6 +9,7 @@ from typing import overload
 
 from lxml import etree
 
+from ..reader.urdf_view import view_of
 from ..shared.xml_parse import parse_urdf
 from .findings import Finding, Severity, rule_table, severity
 
@@ -49,7 +50,8 @@ def _undeclared(prefix: str, line: int, file: str) -> Finding:
 
 
 class Doc:
-    """The parts of a URDF the rules read, with source lines."""
+    """The URDF the rules read: its typed view (:mod:`xacrokit.reader.urdf_view`, what the rules walk), and where
+    each finding is placed (its element's line; for a spec, the spec's line of the link or joint it is about)."""
 
     def __init__(
         self, root: etree._Element, file: str | None, lines: Mapping[tuple[str, str], int] | None, *, source_lines: bool
@@ -58,10 +60,11 @@ class Doc:
         self.file = file
         self.spec_lines = lines  # for spec input: (kind, name) -> line in the spec
         self.source_lines = source_lines  # URDF input: element lines are the file's own
-        self.links = [e for e in root if e.tag == "link"]
-        self.joints = [e for e in root if e.tag == "joint"]
-        self.link_names = {e.get("name", "") for e in self.links}
-        self.joint_by_name = {e.get("name", ""): e for e in self.joints}
+        self.view = view_of(root)
+        self.links = [link.element for link in self.view.links]  # (the lxml elements, for rules that read raw text)
+        self.joints = [joint.element for joint in self.view.joints]
+        self.link_names = {link.name for link in self.view.links}
+        self.joint_by_name = {joint.name: joint.element for joint in self.view.joints}
 
     def finding(
         self,
@@ -97,6 +100,17 @@ def read_float(element: etree._Element | None, attribute: str, default: float | 
         return default
     try:
         return float(element.get(attribute, ""))
+    except ValueError:
+        return math.nan
+
+
+def number_of(attributes: Mapping[str, str] | None, key: str, default: float | None = None) -> float | None:
+    """An attribute of the view (``limit``, ``dynamics`` ...) as a number: ``default`` when it (or its element) is
+    missing, NaN when it does not read (as :func:`read_float` reads an element's)."""
+    if attributes is None or attributes.get(key) is None:
+        return default
+    try:
+        return float(attributes[key])
     except ValueError:
         return math.nan
 
