@@ -9,12 +9,11 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
-from lxml import etree
-
+from ..reader.urdf_view import Link, Shape
 from ..shared.joint_types import MOVING
 from ..shared.solid_inertia import TOLERANCE, describe_problem, format_moments, moments_problem, principal_moments
 from .findings import Finding, rule_table
-from .urdf_document import Doc, read_float, read_triple
+from .urdf_document import Doc, number_of, triple_of
 
 RULES = rule_table(
     {
@@ -64,17 +63,18 @@ _INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
 _PLACEHOLDERS = (1.0, 0.1, 0.01, 1e-3, 1e-4, 1e-5, 1e-6)
 
 
-def _geometry_extent(geometry: etree._Element | None) -> tuple[float, float, float] | None:
-    """Edge lengths of the geometry's own bounding box, or None when unknown (meshes)."""
-    if geometry is None:
+def _geometry_extent(shape: Shape | None) -> tuple[float, float, float] | None:
+    """Edge lengths of the shape's own bounding box, or None when unknown (meshes)."""
+    if shape is None:
         return None
-    if (box := geometry.find("box")) is not None:
-        return read_triple(box, "size")
-    if (cylinder := geometry.find("cylinder")) is not None:
-        r, length = read_float(cylinder, "radius", math.nan), read_float(cylinder, "length", math.nan)
+    if shape.kind == "box":
+        return triple_of(shape.get("size"))
+    if shape.kind == "cylinder":
+        r, length = number_of(shape.attributes, "radius", math.nan), number_of(shape.attributes, "length", math.nan)
+        assert r is not None and length is not None  # (a default is given)
         return (2 * r, 2 * r, length)
-    if (sphere := geometry.find("sphere")) is not None:
-        diameter = 2 * (read_float(sphere, "radius", math.nan) or math.nan)
+    if shape.kind == "sphere":
+        diameter = 2 * (number_of(shape.attributes, "radius", math.nan) or math.nan)
         return (diameter, diameter, diameter)
     return None
 
@@ -91,12 +91,11 @@ class _Bodies:
 
     def __init__(self, doc: Doc, masses: dict[str, float | None], solid: set[str]) -> None:
         self.owner: dict[str, str] = {name: name for name in doc.link_names}  # union-find: link -> representative
-        for joint in doc.joints:
-            parent, child = joint.find("parent"), joint.find("child")
-            if joint.get("type") == "fixed" and parent is not None and child is not None:
-                self._join(parent.get("link", ""), child.get("link", ""))
+        for joint in doc.view.joints:
+            if joint.type == "fixed" and joint.parent is not None and joint.child is not None:
+                self._join(joint.parent, joint.child)
         self.members: dict[str, list[str]] = {}
-        for name in (link.get("name", "") for link in doc.links):  # (in the document's order: messages list them)
+        for name in (link.name for link in doc.view.links):  # (in the document's order: messages list them)
             self.members.setdefault(self.body(name), []).append(name)
         self.massive = {self.body(n) for n, m in masses.items() if m is not None and m > 0}
         self.mass: dict[str, float] = {}  # body -> the sum of its links' masses
@@ -136,17 +135,17 @@ class _Context:
 
 
 def _context(doc: Doc) -> _Context:
-    moved = {j.find("child").get("link") for j in doc.joints if j.get("type") in MOVING and j.find("child") is not None}
+    moved = {j.child for j in doc.view.joints if j.type in MOVING and j.child is not None}
     # (ixx, ixy, ixz, iyy, iyz, izz) of every link that has them; the principal moments of all the finite ones in one
     # batched eigvalsh, consumed in link order below (per-link numpy calls cost ten times more)
-    entries = [_inertia_entries(link) for link in doc.links]
+    entries = [_inertia_entries(link) for link in doc.view.links]
     finite = [e is not None and all(math.isfinite(v) for v in e) for e in entries]
     moments_in_order = iter(principal_moments([e for e in entries if e is not None and all(map(math.isfinite, e))]))
     moments_of = [next(moments_in_order) if ok else None for ok in finite]
-    masses = {link.get("name", ""): _mass(link) for link in doc.links}
+    masses = {link.name: _mass(link) for link in doc.view.links}
     solid = {
-        link.get("name", "")
-        for link, moments in zip(doc.links, moments_of, strict=True)
+        link.name
+        for link, moments in zip(doc.view.links, moments_of, strict=True)
         if moments is not None and max(moments) >= ZERO_MOMENT and moments_problem(moments) is None
     }
     bodies = _Bodies(doc, masses, solid)
@@ -155,16 +154,16 @@ def _context(doc: Doc) -> _Context:
 
 def inertia_rules(doc: Doc) -> Iterator[Finding]:
     context = _context(doc)
-    for link, entry, moments in zip(doc.links, context.entries, context.moments, strict=True):
+    for link, entry, moments in zip(doc.view.links, context.entries, context.moments, strict=True):
         yield from _link_inertia(doc, context, link, entry, moments)
 
 
-def _link_inertia(doc: Doc, context: _Context, link: Any, entry: Any, moments: Any) -> Iterator[Finding]:
+def _link_inertia(doc: Doc, context: _Context, view: Link, entry: Any, moments: Any) -> Iterator[Finding]:
     """One link's I001-I007, in the order a reader fixes them: the mass, then the tensor, then its size."""
-    name = link.get("name", "")
+    name, link = view.name, view.element
     body, mass = context.bodies.body(name), context.masses[name]
-    inertial = link.find("inertial")
-    if inertial is not None and inertial.find("mass") is not None and inertial.find("inertia") is None:
+    inertial = view.inertial
+    if inertial is not None and inertial.mass_line is not None and inertial.inertia is None:
         yield doc.finding(
             "I006",
             "link",
@@ -177,7 +176,7 @@ def _link_inertia(doc: Doc, context: _Context, link: Any, entry: Any, moments: A
         yield doc.finding("I001", "link", name, f"mass is {mass}; it must be > 0 kg (or 0 on a massless frame)", link)
         return
     if body not in context.bodies.massive:
-        yield from _massless(doc, context, link, name, body)
+        yield from _massless(doc, context, view, body)
         return
     if entry is None or moments is None:
         if entry is not None:
@@ -205,11 +204,12 @@ def _link_inertia(doc: Doc, context: _Context, link: Any, entry: Any, moments: A
     # a placeholder or an odd size there is no mistake worth a warning
     if mass and mass >= SIGNIFICANT * context.bodies.mass.get(body, 0.0):
         yield from _placeholder(doc, link, name, entry)
-        yield from _plausibility(doc, link, name, mass, sum(moments))
+        yield from _plausibility(doc, view, mass, sum(moments))
 
 
-def _massless(doc: Doc, context: _Context, link: Any, name: str, body: str) -> Iterator[Finding]:
+def _massless(doc: Doc, context: _Context, view: Link, body: str) -> Iterator[Finding]:
     """I001 for a moved link of a body without mass; I007 (once per base) for a base with geometry but no mass."""
+    name, link = view.name, view.element
     if name in context.moved:
         fixed = context.bodies.others(name)
         what = f"neither it nor a link fixed to it ({fixed}) has a mass" if fixed else "it has no mass"
@@ -222,7 +222,7 @@ def _massless(doc: Doc, context: _Context, link: Any, name: str, body: str) -> I
             link,
         )
         return
-    has_geometry = link.find("visual") is not None or link.find("collision") is not None
+    has_geometry = bool(view.visuals or view.collisions)
     if has_geometry and body not in context.moved_bodies and body not in context.said_base:
         context.said_base.add(body)
         yield doc.finding(
@@ -271,31 +271,32 @@ def _tensor_problem(moments: tuple[float, ...] | list[float]) -> tuple[str, str]
     )
 
 
-def _mass(link: etree._Element) -> float | None:
-    inertial = link.find("inertial")
-    return read_float(inertial.find("mass"), "value") if inertial is not None else None
+def _mass(link: Link) -> float | None:
+    inertial = link.inertial
+    if inertial is None or inertial.mass_line is None:
+        return None
+    return number_of({"value": inertial.mass} if inertial.mass is not None else None, "value")
 
 
-def _inertia_entries(link: etree._Element) -> tuple[float, ...] | None:
-    inertial = link.find("inertial")
-    inertia = inertial.find("inertia") if inertial is not None else None
-    return None if inertia is None else tuple(read_float(inertia, key, 0.0) for key in _INERTIA)
+def _inertia_entries(link: Link) -> tuple[float, ...] | None:
+    inertia = link.inertial.inertia if link.inertial is not None else None
+    return None if inertia is None else tuple(number_of(inertia, key, 0.0) or 0.0 for key in _INERTIA)
 
 
-def _plausibility(doc: Doc, link: etree._Element, name: str, mass: float, trace: float) -> Iterator[Finding]:
+def _plausibility(doc: Doc, view: Link, mass: float, trace: float) -> Iterator[Finding]:
     """Compare trace(I) with a solid box filling the collision geometry: m * diagonal^2 / 6, the box bounding every
     collision geometry where it sits (several small spheres far apart make a large body)."""
     low, high = [math.inf] * 3, [-math.inf] * 3
-    collisions = link.findall("collision")
+    collisions = view.collisions
     for collision in collisions:
-        extent = _geometry_extent(collision.find("geometry"))
+        extent = _geometry_extent(collision.shape)
         if extent is None or not all(math.isfinite(v) for v in extent):
             return  # (a mesh, or an unreadable size: the body's size is not known)
         if max(extent) <= MARKER:
             return  # (a dummy collision, a 1 mm sphere some exporters write: it says nothing of the body's size)
-        origin = collision.find("origin")
-        centre = read_triple(origin, "xyz")
-        turned = any(v != 0 for v in read_triple(origin, "rpy")) if origin is not None else False
+        origin = collision.origin
+        centre = triple_of(origin.xyz if origin is not None else None)
+        turned = any(v != 0 for v in triple_of(origin.rpy)) if origin is not None else False
         radius = 0.5 * math.sqrt(sum(v * v for v in extent))  # (turned: the bounding sphere holds it in any pose)
         half = (radius, radius, radius) if turned else tuple(v / 2 for v in extent)
         for axis in range(3):
@@ -309,9 +310,9 @@ def _plausibility(doc: Doc, link: etree._Element, name: str, mass: float, trace:
         yield doc.finding(
             "I004",
             "link",
-            name,
+            view.name,
             f"inertia (trace {trace:.3g} kg*m^2) is {trace / expected:.3g} times "
             f"that of a solid body filling the collision geometry ({expected:.3g}); "
             "a units mistake (mm for m, g for kg)?",
-            link,
+            view.element,
         )

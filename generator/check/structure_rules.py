@@ -3,10 +3,9 @@
 from __future__ import annotations
 
 import re
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 
-from lxml import etree
-
+from ..reader.urdf_view import Joint, Link
 from ..shared.kinematic_tree import Tree
 from .findings import Finding, rule_table
 from .urdf_document import Doc
@@ -41,14 +40,13 @@ RULES = rule_table(
 )
 
 
-def _duplicate_names(doc: Doc, elements: list[etree._Element], kind: str, rule: str) -> Iterator[Finding]:
-    seen: dict[str, etree._Element] = {}
-    for element in elements:
-        name = element.get("name", "")
-        if name in seen:
-            message = f"{kind} {name!r} is defined twice (also on line {seen[name].sourceline}); rename one"
-            yield doc.finding(rule, kind, name, message, element)
-        seen[name] = element
+def _duplicate_names(doc: Doc, parts: Sequence[Link | Joint], kind: str, rule: str) -> Iterator[Finding]:
+    seen: dict[str, Link | Joint] = {}
+    for part in parts:
+        if part.name in seen:
+            message = f"{kind} {part.name!r} is defined twice (also on line {seen[part.name].line}); rename one"
+            yield doc.finding(rule, kind, part.name, message, part.element)
+        seen[part.name] = part
 
 
 XACRO_NAMESPACE = "http://www.ros.org/wiki/xacro"
@@ -93,7 +91,9 @@ def xacro_rules(doc: Doc) -> Iterator[Finding]:
 
 
 def structure_rules(doc: Doc) -> Iterator[Finding]:
-    missing = [what for what, gone in (("name", not doc.root.get("name", "").strip()), ("link", not doc.links)) if gone]
+    missing = [
+        what for what, gone in (("name", not (doc.view.name or "").strip()), ("link", not doc.view.links)) if gone
+    ]
     if missing:
         yield doc.finding(
             "S007",
@@ -103,8 +103,8 @@ def structure_rules(doc: Doc) -> Iterator[Finding]:
             "to its macro?)",
             doc.root,
         )
-    yield from _duplicate_names(doc, doc.links, "link", "S004")
-    yield from _duplicate_names(doc, doc.joints, "joint", "S005")
+    yield from _duplicate_names(doc, doc.view.links, "link", "S004")
+    yield from _duplicate_names(doc, doc.view.joints, "joint", "S005")
     tree: Tree[str] = Tree()  # child -> (parent, joint)
     yield from _joints_into(tree, doc)
     roots = tree.roots(doc.link_names)
@@ -116,7 +116,7 @@ def structure_rules(doc: Doc) -> Iterator[Finding]:
             in_cycles[0],
             f"links {', '.join(in_cycles)} form a cycle; break it by removing one of its joints",
         )
-    if len(roots) != 1 and doc.links:
+    if len(roots) != 1 and doc.view.links:
         what = "no link" if not roots else f"{len(roots)} links ({', '.join(roots)})"
         yield doc.finding(
             "S001",
@@ -129,15 +129,14 @@ def structure_rules(doc: Doc) -> Iterator[Finding]:
 def _joints_into(tree: Tree[str], doc: Doc) -> Iterator[Finding]:
     """Add every joint to ``tree``: S003 for a joint naming no link, S002 for one that closes a cycle, S006 for a
     second parent."""
-    for joint in doc.joints:
-        name = joint.get("name", "")
-        parent = joint.find("parent").get("link", "") if joint.find("parent") is not None else ""
-        child = joint.find("child").get("link", "") if joint.find("child") is not None else ""
+    for joint in doc.view.joints:
+        name, parent, child = joint.name, joint.parent or "", joint.child or ""
         missing = [
             f"{role} {value!r}" for role, value in (("parent", parent), ("child", child)) if value not in doc.link_names
         ]
         if missing:
-            yield doc.finding("S003", "joint", name, f"{' and '.join(missing)} not a link of this robot", joint)
+            said = f"{' and '.join(missing)} not a link of this robot"
+            yield doc.finding("S003", "joint", name, said, joint.element)
             continue
         first = tree.add(parent, child, name)
         if first is not None:
@@ -148,7 +147,7 @@ def _joints_into(tree: Tree[str], doc: Doc) -> Iterator[Finding]:
                     "joint",
                     name,
                     f"joint {name!r} closes a cycle {' -> '.join([*reversed(loop), child])}; remove it",
-                    joint,
+                    joint.element,
                 )
             else:
                 first_parent, first_joint = first
@@ -159,7 +158,7 @@ def _joints_into(tree: Tree[str], doc: Doc) -> Iterator[Finding]:
                     f"link {child!r} has two parents: {first_parent!r} (joint "
                     f"{first_joint!r}) and {parent!r} (joint {name!r}); a URDF is "
                     "a tree: remove one of the joints",
-                    joint,
+                    joint.element,
                 )
 
 
@@ -167,9 +166,10 @@ _UNPLAIN = re.compile(r"[\s\x00-\x1f\x7f]")
 
 
 def name_rules(doc: Doc) -> Iterator[Finding]:
-    for kind, elements in (("link", doc.links), ("joint", doc.joints)):
-        for element in elements:
-            name = element.get("name", "")
+    parts: tuple[tuple[str, Sequence[Link | Joint]], ...] = (("link", doc.view.links), ("joint", doc.view.joints))
+    for kind, named in parts:
+        for part in named:
+            name, element = part.name, part.element
             if not name:
                 problem = "has no name"
             elif _UNPLAIN.search(name):

@@ -115,6 +115,16 @@ def number_of(attributes: Mapping[str, str] | None, key: str, default: float | N
         return math.nan
 
 
+def triple_of(text: str | None, default: str = "0 0 0") -> tuple[float, float, float]:
+    """Three numbers from an attribute's text of the view (xyz, rpy, size): ``default`` when it is missing, NaNs
+    when it does not hold exactly three (as :func:`read_triple` reads an element's)."""
+    try:
+        x, y, z = (float(v) for v in (default if text is None else text).split())
+    except ValueError:
+        return (math.nan, math.nan, math.nan)
+    return (x, y, z)
+
+
 def read_triple(element: etree._Element | None, attribute: str, default: str = "0 0 0") -> tuple[float, float, float]:
     """Three numbers from an attribute such as xyz or size; NaNs when it does not hold exactly three."""
     text = default if element is None else element.get(attribute, default)
