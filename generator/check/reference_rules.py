@@ -8,6 +8,7 @@ import os
 import re
 from collections.abc import Iterator, Mapping
 from pathlib import Path
+from typing import Any
 
 from lxml import etree
 
@@ -38,8 +39,8 @@ RULES = rule_table(
 def reference_rules(
     doc: Doc, package_paths: Mapping[str, str | os.PathLike[str]] | None, base_dir: Path | None
 ) -> Iterator[Finding]:
-    for gazebo in doc.root.findall("gazebo"):
-        reference = gazebo.get("reference")
+    for block in doc.view.gazebo:
+        reference, gazebo = block.reference, block.element
         if reference is not None and reference not in doc.link_names and reference not in doc.joint_by_name:
             yield doc.finding(
                 "R001",
@@ -134,11 +135,12 @@ def _mesh_problem(
 
 
 def prefix_rules(doc: Doc, prefix: str) -> Iterator[Finding]:
-    named = [("link", e) for e in doc.links] + [("joint", e) for e in doc.joints]
-    named += [("gazebo", g) for g in doc.root.findall("gazebo") if g.get("reference") is not None]
-    named += [("ros2_control", j) for j in doc.root.findall("ros2_control/joint")]
-    for kind, element in named:
-        name = element.get("reference") if kind == "gazebo" else element.get("name", "")
+    view = doc.view
+    named: list[tuple[str, str, Any]] = [("link", link.name, link.element) for link in view.links]
+    named += [("joint", joint.name, joint.element) for joint in view.joints]
+    named += [("gazebo", g.reference, g.element) for g in view.gazebo if g.reference is not None]
+    named += [("ros2_control", j.get("name", ""), j) for c in view.ros2_control for j in c.element.findall("joint")]
+    for kind, name, element in named:
         if not (name or "").startswith(prefix):
             yield doc.finding(
                 "P001", kind, name or "", f"{kind} {name!r} does not start with the prefix {prefix!r}", element
