@@ -36,6 +36,7 @@ import numpy as np
 
 from ..errors import XacrokitError
 from ..reader.robot_source import urdf_floats as _floats
+from ..reader.urdf_view import Joint, Link, Origin, UrdfView
 from .mjcf_actuators import num
 from .mjcf_meshes import FlatMesh, Meshes
 
@@ -70,13 +71,13 @@ def quaternion(rpy: tuple[float, float, float]) -> list[float]:
     ]
 
 
-def _origin(element: Any) -> tuple[list[float], list[float]]:
-    if element is None:
+def _origin(origin: Origin | None) -> tuple[list[float], list[float]]:
+    if origin is None:
         return [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]
-    return _floats(element.get("xyz"), 3), _floats(element.get("rpy"), 3)
+    return _floats(origin.xyz, 3), _floats(origin.rpy, 3)
 
 
-def _place(node: Any, origin: Any) -> None:
+def _place(node: Any, origin: Origin | None) -> None:
     """Set ``pos`` and ``quat`` of an MJCF element from a URDF <origin> (nothing for the identity)."""
     xyz, rpy = _origin(origin)
     if any(xyz):
@@ -89,24 +90,24 @@ def _place(node: Any, origin: Any) -> None:
 class _Tree:
     """The URDF's links by name, its joints (those with a parent and a child), each link's child joints, the root."""
 
-    links: dict[str, Any]
-    joints: list[Any]
-    children: dict[str, list[Any]]
+    links: dict[str, Link]
+    joints: list[Joint]
+    children: dict[str, list[Joint]]
     root: str
 
 
-def _tree(root: Any) -> _Tree:
+def _tree(view: UrdfView) -> _Tree:
     """The robot as one tree (MuJoCo's bodies nest), or XacrokitError saying why it is not one."""
-    links = {link.get("name"): link for link in root.findall("link")}
-    joints = [j for j in root.findall("joint") if j.find("parent") is not None and j.find("child") is not None]
-    by_child: dict[str, Any] = {}
-    children: dict[str, list[Any]] = {}
+    links = {link.name: link for link in view.links}
+    joints = [j for j in view.joints if j.parent is not None and j.child is not None]
+    by_child: dict[str, Joint] = {}
+    children: dict[str, list[Joint]] = {}
     for joint in joints:
-        child, parent = joint.find("child").get("link"), joint.find("parent").get("link")
+        child, parent = joint.child or "", joint.parent or ""
         if child in by_child:
             raise XacrokitError(f"link {child!r} is the child of two joints: not a tree, MuJoCo needs one")
         if child not in links or parent not in links:
-            raise XacrokitError(f"joint {joint.get('name')!r} names a link that is not in the robot")
+            raise XacrokitError(f"joint {joint.name!r} names a link that is not in the robot")
         by_child[child] = joint
         children.setdefault(parent, []).append(joint)
     roots = [name for name in links if name not in by_child]
@@ -163,7 +164,7 @@ class _Bodies:
     meshes: Meshes
     export: Export
 
-    def body(self, name: str, parent: Any, joint: Any) -> None:
+    def body(self, name: str, parent: Any, joint: Joint | None) -> None:
         from lxml import etree
 
         link = self.tree.links[name]
@@ -172,17 +173,17 @@ class _Bodies:
         else:
             body = etree.SubElement(parent, "body", name=name)
             if joint is not None:
-                _place(body, joint.find("origin"))
+                _place(body, joint.origin)
         moving = (joint is not None and _add_joint(body, joint)) or (joint is None and self.free)
         if joint is None and self.free:
             etree.SubElement(body, "freejoint", name=f"{name}_free")
         if body is not parent:
             _inertial(body, link, moving, self.export.massless, self.export.repairs)
         _geoms(body, link, self.colours, self.friction.get(name), self.meshes)
-        if link.find("inertial") is None and body is not parent:
+        if link.inertial is None and body is not parent:
             etree.SubElement(body, "site", name=name)
         for child in self.tree.children.get(name, []):
-            self.body(child.find("child").get("link"), body, child)
+            self.body(child.child or "", body, child)
 
 
 def mjcf(
@@ -197,19 +198,18 @@ def mjcf(
     Raises:
         XacrokitError: a URDF MuJoCo cannot take (not a tree, a mesh that cannot be found or read, bad numbers).
     """
-    from ..shared.xml_parse import read_urdf_root
+    from ..reader.urdf_view import read_view
 
-    root = read_urdf_root(text, "<robot>")
-    tree = _tree(root)
+    view = read_view(text)
+    tree = _tree(view)
     free = base == "free" or (base == "auto" and tree.root != "world" and _has_wheel(tree.joints, tree.links))
     export = Export(xml="")
     meshes = Meshes(resolve, export.meshes, export.notes)
-    model, asset, world = _skeleton(root.get("name", "robot"), floor)
-    colours = {m.get("name"): m.find("color").get("rgba") for m in root.iter("material") if m.find("color") is not None}
-    _Bodies(tree, free, colours, _frictions(root), meshes, export).body(tree.root, world, None)
+    model, asset, world = _skeleton(view.name if view.name is not None else "robot", floor)
+    _Bodies(tree, free, view.colours(), _frictions(view), meshes, export).body(tree.root, world, None)
     for mesh in meshes.assets:
         asset.append(mesh)
-    _constraints(model, root, text, tree, free, export)
+    _constraints(model, view, text, tree, free, export)
     for element in (asset, model.find("contact")):
         if element is not None and len(element) == 0:
             model.remove(element)
@@ -217,7 +217,7 @@ def mjcf(
     return export
 
 
-def _constraints(model: Any, root: Any, text: str, tree: _Tree, free: bool, export: Export) -> None:
+def _constraints(model: Any, view: UrdfView, text: str, tree: _Tree, free: bool, export: Export) -> None:
     """Contact exclusions (every joint's parent and child), mimic equalities and actuators."""
     from lxml import etree
 
@@ -225,15 +225,15 @@ def _constraints(model: Any, root: Any, text: str, tree: _Tree, free: bool, expo
 
     contact = etree.SubElement(model, "contact")
     for joint in tree.joints:
-        parent, child = joint.find("parent").get("link"), joint.find("child").get("link")
+        parent, child = joint.parent or "", joint.child or ""
         if parent != "world" or tree.root != "world":
             etree.SubElement(contact, "exclude", body1=parent, body2=child)
     equality = mimics(tree.joints, export.notes)
     if len(equality):
         model.append(equality)
-    driven = list(commanded(root))
+    driven = list(commanded(view))
     inertia = gains(text, driven, free) if driven else {}
-    acts = actuators(root, {j.get("name"): j for j in tree.joints}, inertia, export.notes)
+    acts = actuators(view, {j.name: j for j in tree.joints}, inertia, export.notes)
     if len(acts):
         model.append(acts)
 
@@ -256,46 +256,42 @@ def _header(model: Any, export: Export) -> None:
     export.xml = etree.tostring(model, pretty_print=True, encoding="unicode")
 
 
-def _has_wheel(joints: list[Any], links: Mapping[str, Any]) -> bool:
+def _has_wheel(joints: list[Joint], links: Mapping[str, Link]) -> bool:
     return any(
-        j.get("type") == "continuous"
-        and links[j.find("child").get("link")].find("collision/geometry/cylinder") is not None
+        j.type == "continuous"
+        and any(c.shape is not None and c.shape.kind == "cylinder" for c in links[j.child or ""].collisions)
         for j in joints
     )
 
 
-def _frictions(root: Any) -> dict[str, float]:
+def _frictions(view: UrdfView) -> dict[str, float]:
     found = {}
-    for gazebo in root.findall("gazebo"):
-        mu = gazebo.find("mu1")
-        if gazebo.get("reference") and mu is not None and mu.text:
+    for gazebo in view.gazebo:
+        mu = gazebo.element.find("mu1")
+        if gazebo.reference and mu is not None and mu.text:
             try:
-                found[gazebo.get("reference")] = float(mu.text)
+                found[gazebo.reference] = float(mu.text)
             except ValueError:
                 continue
     return found
 
 
-def _add_joint(body: Any, joint: Any) -> bool:
+def _add_joint(body: Any, joint: Joint) -> bool:
     """The MJCF joint(s) of a URDF joint inside its child's body; False for a fixed joint (the body is welded)."""
     from lxml import etree
 
-    kind, name = joint.get("type"), joint.get("name")
+    kind, name = joint.type, joint.name
     if kind == "fixed":
         return False
-    axis_element = joint.find("axis")
-    axis = np.array(_floats(axis_element.get("xyz") if axis_element is not None else None, 3, 0.0))
-    if axis_element is None:
-        axis = np.array([1.0, 0.0, 0.0])
+    axis = np.array(_floats(joint.axis, 3, 0.0)) if joint.axis is not None else np.array([1.0, 0.0, 0.0])
     if not np.linalg.norm(axis) > 0:
         raise XacrokitError(f"joint {name!r}: its axis is zero")
     axis = axis / np.linalg.norm(axis)
-    dynamics = joint.find("dynamics")
     extra = {}
-    if dynamics is not None:
-        for urdf_key, mjcf_key in (("damping", "damping"), ("friction", "frictionloss")):
-            if dynamics.get(urdf_key):
-                extra[mjcf_key] = num(_floats(dynamics.get(urdf_key), 1)[0])
+    for urdf_key, mjcf_key in (("damping", "damping"), ("friction", "frictionloss")):
+        given = joint.dynamics.get(urdf_key) if joint.dynamics is not None else None
+        if given:
+            extra[mjcf_key] = num(_floats(given, 1)[0])
     if kind == "floating":
         etree.SubElement(body, "joint", name=name, type="free")
         return True
@@ -313,27 +309,26 @@ def _add_joint(body: Any, joint: Any) -> bool:
     element = etree.SubElement(
         body, "joint", name=name, type="slide" if kind == "prismatic" else "hinge", axis=nums(axis), **extra
     )
-    limit = joint.find("limit")
+    limit = joint.limit
     if kind != "continuous" and limit is not None and limit.get("lower") is not None and limit.get("upper") is not None:
-        lower, upper = _floats(limit.get("lower"), 1)[0], _floats(limit.get("upper"), 1)[0]
+        lower, upper = _floats(limit["lower"], 1)[0], _floats(limit["upper"], 1)[0]
         if lower < upper:
             element.set("range", f"{num(lower)} {num(upper)}")
     return True
 
 
-def _inertial(body: Any, link: Any, moving: bool, massless: list[str], repairs: dict[str, float]) -> None:
+def _inertial(body: Any, link: Link, moving: bool, massless: list[str], repairs: dict[str, float]) -> None:
     from lxml import etree
 
-    inertial = link.find("inertial")
-    where = f"link {link.get('name')!r}: inertial"
-    mass_element = inertial.find("mass") if inertial is not None else None
-    mass = _floats(mass_element.get("value", "0"), 1, where=where)[0] if mass_element is not None else 0.0
-    tensor = inertial.find("inertia") if inertial is not None else None
+    inertial = link.inertial
+    where = f"link {link.name!r}: inertial"
+    mass = _floats(inertial.mass or "0", 1, where=where)[0] if inertial is not None else 0.0
+    tensor = inertial.inertia if inertial is not None else None
     keys = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
     i = {k: _floats(tensor.get(k, "0"), 1, where=where)[0] if tensor is not None else 0.0 for k in keys}
     matrix = np.array([[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]])
     if not mass > 0 and moving:
-        massless.append(link.get("name"))
+        massless.append(link.name)
         mass = MASSLESS[0]
         if not matrix.any():
             value = num(MASSLESS[1])
@@ -342,7 +337,7 @@ def _inertial(body: Any, link: Any, moving: bool, massless: list[str], repairs: 
     if not mass > 0 and not matrix.any():
         return
     element = etree.SubElement(body, "inertial", mass=num(max(mass, 0.0)))  # (no mass, moments: pinocchio keeps them)
-    xyz, rpy = _origin(inertial.find("origin"))
+    xyz, rpy = _origin(inertial.origin if inertial is not None else None)
     element.set("pos", nums(xyz))
     if any(rpy):  # (MJCF takes fullinertia in the body's axes only: R I R^T, R the inertial origin's rotation)
         from ..shared.transforms import rpy_matrix
@@ -354,7 +349,7 @@ def _inertial(body: Any, link: Any, moving: bool, massless: list[str], repairs: 
         element.set("fullinertia", nums(matrix[[0, 1, 2, 0, 0, 1], [0, 1, 2, 1, 2, 2]]))
         return
     moments, axes = fixed  # (principal moments and axes: MuJoCo's own eigensolver stumbles on near-equal tiny ones)
-    repairs[link.get("name")] = float(np.linalg.norm(axes @ np.diag(moments) @ axes.T - matrix, 2))
+    repairs[link.name] = float(np.linalg.norm(axes @ np.diag(moments) @ axes.T - matrix, 2))
     from scipy.spatial.transform import Rotation
 
     x, y, z, w = Rotation.from_matrix(axes).as_quat()
@@ -379,44 +374,42 @@ def physical(matrix: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
     return raised, axes
 
 
-def _geoms(body: Any, link: Any, colours: Mapping[str, str], mu: float | None, meshes: Meshes) -> None:
+def _geoms(body: Any, link: Link, colours: Mapping[str, str], mu: float | None, meshes: Meshes) -> None:
     from lxml import etree
 
-    for kind in ("visual", "collision"):
-        for element in link.findall(kind):
-            geometry = element.find("geometry")
-            shape = None if geometry is None else next(geometry.iterchildren(etree.Element), None)
+    for kind, parts in (("visual", link.visuals), ("collision", link.collisions)):
+        for part in parts:
+            shape = part.shape
             if shape is None:
                 continue
             geom = etree.Element("geom", {"class": kind})
-            if shape.tag == "box":
+            if shape.kind == "box":
                 geom.set("type", "box")
                 geom.set("size", nums(v / 2.0 for v in _floats(shape.get("size"), 3)))
-            elif shape.tag == "cylinder":
+            elif shape.kind == "cylinder":
                 radius, length = _floats(shape.get("radius"), 1)[0], _floats(shape.get("length"), 1)[0]
                 geom.set("type", "cylinder")
                 geom.set("size", f"{num(radius)} {num(length / 2.0)}")
-            elif shape.tag == "sphere":
+            elif shape.kind == "sphere":
                 geom.set("type", "sphere")
                 geom.set("size", num(_floats(shape.get("radius"), 1)[0]))
-            elif shape.tag == "mesh":
+            elif shape.kind == "mesh":
                 geom.set("type", "mesh")
                 try:
-                    geom.set("mesh", meshes.name(shape.get("filename", ""), shape.get("scale")))
+                    geom.set("mesh", meshes.name(shape.get("filename") or "", shape.get("scale")))
                 except XacrokitError as exc:
                     if kind == "collision" and not isinstance(exc, FlatMesh):
-                        raise XacrokitError(f"link {link.get('name')!r}: collision {exc}") from None
-                    meshes.notes.append(f"link {link.get('name')!r}: {kind} left out: {exc}")
+                        raise XacrokitError(f"link {link.name!r}: collision {exc}") from None
+                    meshes.notes.append(f"link {link.name!r}: {kind} left out: {exc}")
                     continue
             else:
                 continue
-            _place(geom, element.find("origin"))
+            _place(geom, part.origin)
             if kind == "visual":
-                material = element.find("material")
+                material = part.material
                 rgba = None
                 if material is not None:
-                    colour = material.find("color")
-                    rgba = colour.get("rgba") if colour is not None else colours.get(material.get("name"))
+                    rgba = material.rgba if material.rgba is not None else colours.get(material.name or "")
                 if rgba:
                     geom.set("rgba", nums(_floats(rgba, 4)))
             elif mu is not None:

@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import XacrokitError
+from ..reader.urdf_view import Joint, UrdfView
 
 BANDWIDTH = 10.0  # Hz
 SLIP = 0.1  # a velocity servo gives its full effort when it lags by this fraction of the velocity limit
@@ -40,23 +41,23 @@ def num(value: float) -> str:
     return str(int(value)) if value.is_integer() and abs(value) < 1e15 else repr(value)
 
 
-def _limit(joint: Any, key: str) -> float | None:
-    limit = joint.find("limit")
-    if limit is None or limit.get(key) is None:
+def _limit(joint: Joint, key: str) -> float | None:
+    text = joint.limit.get(key) if joint.limit is not None else None
+    if text is None:
         return None
     try:
-        value = float(limit.get(key))
+        value = float(text)
     except ValueError:
         return None
     return value if math.isfinite(value) else None
 
 
-def commanded(root: Any) -> dict[str, str]:
+def commanded(view: UrdfView) -> dict[str, str]:
     """Each joint of the ``<ros2_control>`` blocks with its actuator kind (the first of position, velocity, effort
     among its command interfaces)."""
     found: dict[str, str] = {}
-    for block in root.findall("ros2_control"):
-        for joint in block.findall("joint"):
+    for block in view.ros2_control:
+        for joint in block.element.findall("joint"):
             names = [c.get("name") for c in joint.findall("command_interface")]
             kind = next((k for k in KINDS if k in names), None)
             if kind is not None and joint.get("name"):
@@ -84,18 +85,18 @@ def gains(text: str, joints: Sequence[str], free: bool) -> dict[str, float]:
     return found
 
 
-def actuators(root: Any, joints: Mapping[str, Any], inertia: Mapping[str, float], notes: list[str]) -> Any:
+def actuators(view: UrdfView, joints: Mapping[str, Joint], inertia: Mapping[str, float], notes: list[str]) -> Any:
     """The ``<actuator>`` element (empty when nothing is commanded)."""
     from lxml import etree
 
     element = etree.Element("actuator")
     omega = 2.0 * math.pi * BANDWIDTH
-    for name, kind in commanded(root).items():
+    for name, kind in commanded(view).items():
         joint = joints.get(name)
-        if joint is None or joint.get("type") not in ("revolute", "continuous", "prismatic"):
+        if joint is None or joint.type not in ("revolute", "continuous", "prismatic"):
             notes.append(f"ros2_control joint {name!r} is not a moving joint of the robot: no actuator")
             continue
-        if joint.find("mimic") is not None:
+        if joint.mimic is not None:
             notes.append(f"ros2_control joint {name!r} mimics another: it follows it, no actuator of its own")
             continue
         effort, velocity = _limit(joint, "effort"), _limit(joint, "velocity")
@@ -105,7 +106,7 @@ def actuators(root: Any, joints: Mapping[str, Any], inertia: Mapping[str, float]
             actuator = etree.SubElement(element, "position", name=name, joint=name)
             actuator.set("kp", num(m_ii * omega**2))
             actuator.set("dampratio", "1")
-            if joint.get("type") != "continuous" and lower is not None and upper is not None and lower < upper:
+            if joint.type != "continuous" and lower is not None and upper is not None and lower < upper:
                 actuator.set("ctrlrange", f"{num(lower)} {num(upper)}")
         elif kind == "velocity":
             gain = abs(effort) / (SLIP * abs(velocity)) if effort and velocity else m_ii * omega
@@ -123,32 +124,31 @@ def actuators(root: Any, joints: Mapping[str, Any], inertia: Mapping[str, float]
     return element
 
 
-def mimics(joints: Sequence[Any], notes: list[str]) -> Any:
+def mimics(joints: Sequence[Joint], notes: list[str]) -> Any:
     """The ``<equality>`` element of the mimic joints (empty without one); a mimic of a joint that is not there (or
     does not move) is said in ``notes`` and left unconstrained."""
     from lxml import etree
 
     element = etree.Element("equality")
-    names = {j.get("name") for j in joints if j.get("type") in ("revolute", "continuous", "prismatic")}
+    names = {j.name for j in joints if j.type in ("revolute", "continuous", "prismatic")}
     for joint in joints:
-        mimic = joint.find("mimic")
-        if mimic is None or joint.get("name") not in names:
+        mimic = joint.mimic
+        if mimic is None or joint.name not in names:
             continue
-        leader = mimic.get("joint")
+        leader = mimic.joint
         if leader not in names:
-            notes.append(f"joint {joint.get('name')!r} mimics {leader!r}, which is not a moving joint: it moves freely")
+            notes.append(f"joint {joint.name!r} mimics {leader!r}, which is not a moving joint: it moves freely")
             continue
         try:
-            multiplier, offset = float(mimic.get("multiplier", 1)), float(mimic.get("offset", 0))
+            multiplier = float(mimic.multiplier if mimic.multiplier is not None else 1)
+            offset = float(mimic.offset if mimic.offset is not None else 0)
         except ValueError:
-            raise XacrokitError(
-                f"joint {joint.get('name')!r}: its mimic multiplier or offset is not a number"
-            ) from None
+            raise XacrokitError(f"joint {joint.name!r}: its mimic multiplier or offset is not a number") from None
         etree.SubElement(
             element,
             "joint",
-            name=f"{joint.get('name')}_mimic",
-            joint1=joint.get("name"),
+            name=f"{joint.name}_mimic",
+            joint1=joint.name,
             joint2=leader,
             polycoef=f"{num(offset)} {num(multiplier)} 0 0 0",
         )

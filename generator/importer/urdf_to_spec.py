@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..reader.robot_source import urdf_floats
+from ..reader.urdf_view import Inertial, Joint, Link, Material, MaterialRef, Origin, Shape, UrdfView
 from .wheel_match import wheels
 
 IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -65,12 +66,12 @@ def _floats(text: str | None, count: int, default: float, where: str) -> list[fl
     return urdf_floats(text, count, default, where=where)
 
 
-def _origin(element: Any, where: str) -> dict[str, list[float]] | None:
+def _origin(origin: Origin | None, where: str) -> dict[str, list[float]] | None:
     """A URDF <origin> as the spec's (None for the identity or no origin)."""
-    if element is None:
+    if origin is None:
         return None
-    xyz = _floats(element.get("xyz"), 3, 0.0, f"{where} origin xyz")
-    rpy = _floats(element.get("rpy"), 3, 0.0, f"{where} origin rpy")
+    xyz = _floats(origin.xyz, 3, 0.0, f"{where} origin xyz")
+    rpy = _floats(origin.rpy, 3, 0.0, f"{where} origin rpy")
     found: dict[str, list[float]] = {}
     if any(xyz):
         found["xyz"] = xyz
@@ -79,23 +80,20 @@ def _origin(element: Any, where: str) -> dict[str, list[float]] | None:
     return found or None
 
 
-def _shape(geometry: Any, where: str, problems: list[str]) -> dict[str, Any] | None:
-    from lxml import etree
-
-    shape = None if geometry is None else next(geometry.iterchildren(etree.Element), None)
+def _shape(shape: Shape | None, where: str, problems: list[str]) -> dict[str, Any] | None:
     if shape is None:
         problems.append(f"{where}: no geometry")
         return None
-    if shape.tag == "box":
+    if shape.kind == "box":
         return {"box": {"size": _floats(shape.get("size"), 3, 0.0, f"{where} box size")}}
-    if shape.tag == "cylinder":
+    if shape.kind == "cylinder":
         radius = _floats(shape.get("radius"), 1, 0.0, f"{where} cylinder radius")[0]
         length = _floats(shape.get("length"), 1, 0.0, f"{where} cylinder length")[0]
         return {"cylinder": {"radius": radius, "length": length}}
-    if shape.tag == "sphere":
+    if shape.kind == "sphere":
         return {"sphere": {"radius": _floats(shape.get("radius"), 1, 0.0, f"{where} sphere radius")[0]}}
-    if shape.tag == "mesh":
-        mesh: dict[str, Any] = {"filename": shape.get("filename", "")}
+    if shape.kind == "mesh":
+        mesh: dict[str, Any] = {"filename": shape.get("filename") or ""}
         if shape.get("scale") is not None:
             scale = _floats(shape.get("scale"), 3, 1.0, f"{where} mesh scale")
             if 0.0 in scale:
@@ -104,34 +102,35 @@ def _shape(geometry: Any, where: str, problems: list[str]) -> dict[str, Any] | N
             if scale != [1.0, 1.0, 1.0]:
                 mesh["scale"] = scale
         return {"mesh": mesh}
-    problems.append(f"{where}: geometry <{shape.tag}> is not one the spec has")
+    problems.append(f"{where}: geometry <{shape.kind}> is not one the spec has")
     return None
 
 
 def import_text(text: str, name_hint: str = "robot", source: str = "") -> Imported:
     """The spec of a URDF text (see the module's notes); ``source``: the file it was read from, which locates what
     is reported (``FILE:LINE: link 'x': ...``; a xacro document's lines are its expansion's)."""
-    from ..shared.xml_parse import read_urdf_root
+    from ..reader.urdf_view import read_view
 
-    root = read_urdf_root(text, source or "<robot>")
+    view = read_view(text, source or "<robot>")
     result = Imported(spec={})
-    result.spec["robot"] = _robot_name(root.get("name") or name_hint, result)
-    for kind in ("link", "joint"):
-        for element in root.findall(kind):
-            result.lines.setdefault((f"{kind}s", element.get("name", "")), element.sourceline or 0)
+    result.spec["robot"] = _robot_name(view.name or name_hint, result)
+    for link in view.links:
+        result.lines.setdefault(("links", link.name), link.line or 0)
+    for joint in view.joints:
+        result.lines.setdefault(("joints", joint.name), joint.line or 0)
     located = _Locator(result.lines, source)
-    colours = _Colours(root)
-    for material in root.findall("material"):  # (every colour the file defines, used or not, in its order)
-        colours.name_of(material, f"material {material.get('name')!r}")
+    colours = _Colours(view)
+    for material in view.materials:  # (every colour the file defines, used or not, in its order)
+        colours.name_of(material, f"material {material.name!r}")
     links: dict[str, Any] = {}
-    for link in root.findall("link"):
+    for link in view.links:
         entry = _import_link(link, located, colours, result.unsupported)
         if entry is not None:
-            links[link.get("name", "")] = entry
-    joints = _import_joints(root, located, result)
+            links[link.name] = entry
+    joints = _import_joints(view, located, result)
     found = {"links": links, "joints": joints}
-    result.wheels, absorbed = wheels(found, root)
-    result.extension = _extension(root, absorbed, result.leftovers)
+    result.wheels, absorbed = wheels(found, view)
+    result.extension = _extension(view.root, absorbed, result.leftovers)
     if colours.colours:
         result.spec["materials"] = colours.colours
     result.spec["links"] = links
@@ -176,28 +175,28 @@ class _Colours:
     """The spec's named colours, made as the file's materials are met: a material's own name when it is an
     identifier not taken by another colour, else the name of an equal colour, else ``colour_N``."""
 
-    def __init__(self, root: Any) -> None:
+    def __init__(self, view: UrdfView) -> None:
         self.colours: dict[str, list[float]] = {}
-        self.named = {m.get("name"): m for m in root.findall("material")}
+        self.named = {m.name: m for m in view.materials}
 
-    def name_of(self, material: Any, where: str) -> str | None:
+    def name_of(self, material: Material | MaterialRef | None, where: str) -> str | None:
         if material is None:
             return None
-        colour = material.find("color")
-        source = colour if colour is not None else self.named.get(material.get("name"), material).find("color")
-        if source is None:
+        own = material.element.find("color") is not None  # (a <color> without rgba is white, as urdfdom reads it)
+        source = material if own else self.named.get(material.name or "")
+        if source is None or (not own and source.element.find("color") is None):
             return None
-        rgba = _floats(source.get("rgba"), 4, 1.0, f"{where} colour")
-        name = (material.get("name") or "").rsplit("/", 1)[-1]  # (a generated robot's 'ur5/grey': grey)
+        rgba = _floats(source.rgba, 4, 1.0, f"{where} colour")
+        name = (material.name or "").rsplit("/", 1)[-1]  # (a generated robot's 'ur5/grey': grey)
         if not IDENTIFIER.fullmatch(name) or (name in self.colours and self.colours[name] != rgba):
             name = next((n for n, c in self.colours.items() if c == rgba), f"colour_{len(self.colours)}")
         self.colours.setdefault(name, rgba)
         return name
 
 
-def _import_link(link: Any, located: _Locator, colours: _Colours, problems: list[str]) -> dict[str, Any] | None:
+def _import_link(link: Link, located: _Locator, colours: _Colours, problems: list[str]) -> dict[str, Any] | None:
     """A link's spec entry (None, said in ``problems``, for a name the spec does not take)."""
-    name = link.get("name", "")
+    name = link.name
     where = f"{located('links', name)}link {name!r}"
     if not NAME.fullmatch(name):
         problems.append(f"{where}: the name is not a spec name (letters, digits and _, in parts joined by . / -)")
@@ -206,11 +205,11 @@ def _import_link(link: Any, located: _Locator, colours: _Colours, problems: list
     drawn = _drawn(link, where, colours, problems)
     entry.update(_visual_fields(drawn))
     touched = []
-    for index, collision in enumerate(link.findall("collision")):
+    for index, collision in enumerate(link.collisions):
         said = f"{where} collision" + (f" {index + 1}" if index else "")
-        shape = _shape(collision.find("geometry"), said, problems)
+        shape = _shape(collision.shape, said, problems)
         if shape is not None:
-            touched.append((shape, _origin(collision.find("origin"), said)))
+            touched.append((shape, _origin(collision.origin, said)))
     if not (drawn and touched == [drawn[0][:2]]):  # ("same", the spec's default, says nothing)
         if not touched:
             if drawn:
@@ -219,7 +218,7 @@ def _import_link(link: Any, located: _Locator, colours: _Colours, problems: list
             entry["collision"] = _geometry(*touched[0])
         else:
             entry["collision"] = [_geometry(s, a) for s, a in touched]
-    entry.update(_inertial(link.find("inertial"), where))
+    entry.update(_inertial(link.inertial, where))
     if "inertia" in entry and "shape" in entry and _is_the_shapes(entry):
         del entry["inertia"]  # (the shape's own: the spec computes it from the mass)
     if "inertia" in entry and "origin" in entry and "origin" not in entry["inertia"]:
@@ -227,14 +226,14 @@ def _import_link(link: Any, located: _Locator, colours: _Colours, problems: list
     return entry
 
 
-def _drawn(link: Any, where: str, colours: _Colours, problems: list[str]) -> list[tuple[Any, Any, str | None]]:
+def _drawn(link: Link, where: str, colours: _Colours, problems: list[str]) -> list[tuple[Any, Any, str | None]]:
     """(shape, origin, colour) of each visual of the link that the spec can say."""
     drawn = []
-    for index, visual in enumerate(link.findall("visual")):
+    for index, visual in enumerate(link.visuals):
         said = f"{where} visual" + (f" {index + 1}" if index else "")
-        shape = _shape(visual.find("geometry"), said, problems)
+        shape = _shape(visual.shape, said, problems)
         if shape is not None:
-            drawn.append((shape, _origin(visual.find("origin"), said), colours.name_of(visual.find("material"), where)))
+            drawn.append((shape, _origin(visual.origin, said), colours.name_of(visual.material, where)))
     return drawn
 
 
@@ -257,11 +256,11 @@ def _visual_fields(drawn: list[tuple[Any, Any, str | None]]) -> dict[str, Any]:
     return entry
 
 
-def _import_joints(root: Any, located: _Locator, result: Imported) -> dict[str, Any]:
+def _import_joints(view: UrdfView, located: _Locator, result: Imported) -> dict[str, Any]:
     """Every joint whose name the spec takes; the attributes URDF does not define are said in ``result.ignored``."""
     joints: dict[str, Any] = {}
-    for joint in root.findall("joint"):
-        name = joint.get("name", "")
+    for joint in view.joints:
+        name = joint.name
         if not NAME.fullmatch(name):
             result.unsupported.append(
                 f"{located('joints', name)}joint {name!r}: the name is not a spec name (letters, digits and _, in "
@@ -269,10 +268,10 @@ def _import_joints(root: Any, located: _Locator, result: Imported) -> dict[str, 
             )
             continue
         joints[name] = _joint(joint, f"{located('joints', name)}joint {name!r}", result.unsupported)
-        if joint.find("mimic") is not None and "mimic" not in joints[name]:
-            result.ignored.append(f"joint {name!r} <mimic> (a {joint.get('type')} joint: nothing to move)")
+        if joint.mimic is not None and "mimic" not in joints[name]:
+            result.ignored.append(f"joint {name!r} <mimic> (a {joint.type} joint: nothing to move)")
         for tag, known in URDF_JOINT_ATTRIBUTES.items():
-            for element in joint.findall(tag):
+            for element in joint.element.findall(tag):  # (every such element, the view's first and any other)
                 extra = sorted(set(element.attrib) - known)
                 if extra:
                     result.ignored.append(f"joint {name!r} <{tag}> {', '.join(extra)}")
@@ -380,65 +379,61 @@ def _geometry(shape: dict[str, Any], at: dict[str, Any] | None, colour: str | No
     return found
 
 
-def _inertial(inertial: Any, where: str) -> dict[str, Any]:
-    if inertial is None or inertial.find("mass") is None:
+def _inertial(inertial: Inertial | None, where: str) -> dict[str, Any]:
+    if inertial is None or inertial.mass_line is None:
         return {}
-    mass = _floats(inertial.find("mass").get("value"), 1, 0.0, f"{where} mass")[0]
-    tensor = inertial.find("inertia")
+    mass = _floats(inertial.mass, 1, 0.0, f"{where} mass")[0]
+    tensor = inertial.inertia
     keys = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
     values = {k: _floats(tensor.get(k) if tensor is not None else None, 1, 0.0, f"{where} {k}")[0] for k in keys}
     if mass == 0.0 and not any(values.values()):
         return {}  # (a frame: no mass, no inertia)
     inertia: dict[str, Any] = {k: v for k, v in values.items() if v or k in ("ixx", "iyy", "izz")}
-    at = _origin(inertial.find("origin"), f"{where} inertial")
+    at = _origin(inertial.origin, f"{where} inertial")
     if at:
         inertia["origin"] = at
     return {"mass": mass, "inertia": inertia}
 
 
-def _joint(joint: Any, where: str, problems: list[str]) -> dict[str, Any]:
-    entry: dict[str, Any] = {
-        "type": joint.get("type"),
-        "parent": joint.find("parent").get("link") if joint.find("parent") is not None else None,
-        "child": joint.find("child").get("link") if joint.find("child") is not None else None,
-    }
-    at = _origin(joint.find("origin"), where)
+def _joint(joint: Joint, where: str, problems: list[str]) -> dict[str, Any]:
+    entry: dict[str, Any] = {"type": joint.type, "parent": joint.parent, "child": joint.child}
+    at = _origin(joint.origin, where)
     if at:
         entry["origin"] = at
-    if joint.find("axis") is not None and joint.get("type") not in ("fixed", "floating"):
-        entry["axis"] = _floats(joint.find("axis").get("xyz"), 3, 0.0, f"{where} axis")
-    limit = joint.find("limit")
-    if limit is not None and joint.get("type") in ("revolute", "prismatic", "continuous"):
+    if joint.axis is not None and joint.type not in ("fixed", "floating"):
+        entry["axis"] = _floats(joint.axis, 3, 0.0, f"{where} axis")
+    limit = joint.limit
+    if limit is not None and joint.type in ("revolute", "prismatic", "continuous"):
         entry["limit"] = {
             key: _floats(limit.get(key), 1, 0.0, f"{where} limit {key}")[0]
             for key in ("lower", "upper", "effort", "velocity")
-            if limit.get(key) is not None and not (joint.get("type") == "continuous" and key in ("lower", "upper"))
+            if limit.get(key) is not None and not (joint.type == "continuous" and key in ("lower", "upper"))
         }
-        if joint.get("type") != "continuous":  # (urdfdom reads a range not given as 0: the spec says it)
+        if joint.type != "continuous":  # (urdfdom reads a range not given as 0: the spec says it)
             entry["limit"] = {"lower": 0.0, "upper": 0.0, **entry["limit"]}
-    moving = joint.get("type") in ("revolute", "prismatic", "continuous")
-    dynamics = joint.find("dynamics")
+    moving = joint.type in ("revolute", "prismatic", "continuous")
+    dynamics = joint.dynamics
     if dynamics is not None and moving:  # (URDF readers ignore a fixed joint's dynamics)
         entry["dynamics"] = {
             key: _floats(dynamics.get(key), 1, 0.0, f"{where} {key}")[0]
             for key in ("damping", "friction")
             if dynamics.get(key) is not None
         }
-    mimic = joint.find("mimic")
+    mimic = joint.mimic
     if mimic is not None and moving:  # (a fixed joint's mimic moves nothing: left out, said in the header)
-        entry["mimic"] = {"joint": mimic.get("joint")}
+        entry["mimic"] = {"joint": mimic.joint}
         for key, default in (("multiplier", 1.0), ("offset", 0.0)):
-            value = _floats(mimic.get(key), 1, default, f"{where} mimic {key}")[0]
+            value = _floats(getattr(mimic, key), 1, default, f"{where} mimic {key}")[0]
             if value != default:
                 entry["mimic"][key] = value
-    safety = joint.find("safety_controller")
+    safety = joint.safety_controller
     if safety is not None and moving:
         entry["safety_controller"] = {
             key: _floats(safety.get(key), 1, 0.0, f"{where} {key}")[0]
             for key in ("soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity")
             if safety.get(key) is not None
         }
-    calibration = joint.find("calibration")
+    calibration = joint.calibration
     if calibration is not None:
         given = [k for k in ("rising", "falling") if calibration.get(k) is not None]
         if given:

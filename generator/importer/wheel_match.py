@@ -14,7 +14,10 @@ from __future__ import annotations
 
 import math
 import re
-from typing import Any
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from ..reader.urdf_view import UrdfView
 
 AXLES = {"x": ([1.0, 0.0, 0.0], [0.0, math.pi / 2, 0.0]), "y": ([0.0, 1.0, 0.0], [math.pi / 2, 0.0, 0.0])}
 AXLES["z"] = ([0.0, 0.0, 1.0], [0.0, 0.0, 0.0])
@@ -23,13 +26,13 @@ JOINT_KEYS = {"type", "parent", "child", "origin", "axis", "limit", "dynamics"}
 LINK_KEYS = {"shape", "origin", "material", "mass", "inertia"}
 
 
-def wheels(spec: dict[str, Any], root: Any) -> tuple[list[str], set[Any]]:
+def wheels(spec: dict[str, Any], view: UrdfView) -> tuple[list[str], set[Any]]:
     """Move each wheel of ``spec`` (links and joints) into ``spec['wheels']``: the wheels' names, and the
-    ``<gazebo>`` elements of ``root`` now said by them (not to be kept in the extension file)."""
+    ``<gazebo>`` elements of ``view`` now said by them (not to be kept in the extension file)."""
     links, joints = spec.get("links", {}), spec.get("joints", {})
     parents = {j.get("parent") for j in joints.values()}
     mimicked = {j["mimic"]["joint"] for j in joints.values() if j.get("mimic")}
-    friction = _friction_blocks(root)
+    friction = _friction_blocks(view)
     found: dict[str, Any] = {}
     absorbed: set[Any] = set()
     for name, joint in list(joints.items()):
@@ -92,12 +95,12 @@ def _cylinders(link: dict[str, Any], axle: str) -> bool:
     return all(abs(inertia.get(k, 0.0) - v) <= 1e-12 * max(moments) for k, v in want.items())
 
 
-def _friction_blocks(root: Any) -> dict[str, Any]:
+def _friction_blocks(view: UrdfView) -> dict[str, Any]:
     """Per referenced link: (its <gazebo> element, (mu1, mu2)) when it holds only those two numbers, else None (a
     block that says more: that link is left a link, and the block is kept in the extension file)."""
     found: dict[str, Any] = {}
-    for element in root.findall("gazebo"):
-        reference = element.get("reference")
+    for block in view.gazebo:
+        reference, element = block.reference, block.element
         if reference is None:
             continue
         children = {c.tag: (c.text or "").strip() for c in element.iterchildren() if isinstance(c.tag, str)}
