@@ -6,6 +6,7 @@ import math
 import re
 from collections.abc import Iterator
 
+from ..reader.urdf_view import Shape
 from ..shared.units import NUMBER
 from .findings import Finding, rule_table
 from .urdf_document import Doc
@@ -91,28 +92,33 @@ _SIZES = {"box": ("size",), "cylinder": ("radius", "length"), "sphere": ("radius
 
 def geometry_rules(doc: Doc) -> Iterator[Finding]:
     """G001: a primitive of size 0 (or less), or a mesh scaled by 0, in a link's visual or collision."""
-    for link in doc.links:
-        for geometry in link.iter("geometry"):
-            for shape in geometry:
-                for attribute in _SIZES.get(shape.tag, ()):
-                    text = shape.get(attribute)
-                    if text is None:
-                        continue
-                    try:
-                        values = [float(v) for v in text.split()]
-                    except ValueError:
-                        continue  # (U002 says it)
-                    finite = [v for v in values if math.isfinite(v)]
-                    # a negative mesh scale mirrors the mesh (CAD exports of left/right parts): only 0 collapses it
-                    mirror = shape.tag == "mesh"
-                    if any(v == 0 if mirror else not v > 0 for v in finite):
-                        kind = geometry.getparent().tag if geometry.getparent() is not None else "geometry"
-                        must = "be nonzero (a negative scale mirrors; 0 flattens the mesh)" if mirror else "be > 0"
-                        yield doc.finding(
-                            "G001",
-                            "link",
-                            link.get("name", ""),
-                            f'{kind} <{shape.tag} {attribute}="{text}">: every value must {must}; a size of 0 has no '
-                            "volume, which MuJoCo rejects: give the real size, or leave the geometry out",
-                            shape,
-                        )
+    for link in doc.view.links:
+        for kind, geometry in [("visual", g) for g in link.visuals] + [("collision", g) for g in link.collisions]:
+            shape = geometry.shape
+            for attribute, text, must in _size_problems(shape) if shape is not None else ():
+                assert shape is not None  # (for mypy: no problems without a shape)
+                yield doc.finding(
+                    "G001",
+                    "link",
+                    link.name,
+                    f'{kind} <{shape.kind} {attribute}="{text}">: every value must {must}; a size of 0 has no '
+                    "volume, which MuJoCo rejects: give the real size, or leave the geometry out",
+                    shape.element,
+                )
+
+
+def _size_problems(shape: Shape) -> Iterator[tuple[str, str, str]]:
+    """(attribute, its text, what it must be) for each size of ``shape`` that has no volume."""
+    for attribute in _SIZES.get(shape.kind, ()):
+        text = shape.get(attribute)
+        if text is None:
+            continue
+        try:
+            values = [float(v) for v in text.split()]
+        except ValueError:
+            continue  # (U002 says it)
+        finite = [v for v in values if math.isfinite(v)]
+        # a negative mesh scale mirrors the mesh (CAD exports of left/right parts): only 0 collapses it
+        mirror = shape.kind == "mesh"
+        if any(v == 0 if mirror else not v > 0 for v in finite):
+            yield attribute, text, "be nonzero (a negative scale mirrors; 0 flattens the mesh)" if mirror else "be > 0"

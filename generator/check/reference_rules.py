@@ -52,15 +52,13 @@ def reference_rules(
             )
     # urdfdom registers a material for the whole robot wherever it is given a colour or texture, a link's visual
     # included (the Allegro hand defines its colours in its first visuals and names them in later ones)
-    defined = {m.get("name") for m in doc.root.findall("material")}
-    defined |= {
-        m.get("name") for m in doc.root.iter("material") if m.find("color") is not None or m.find("texture") is not None
+    used = [g.material for link in doc.view.links for g in link.visuals if g.material is not None]
+    coloured = [m.element.find("color") is not None or m.element.find("texture") is not None for m in used]
+    defined = {m.name for m in doc.view.materials} | {
+        m.name or "" for m, own in zip(used, coloured, strict=True) if own
     }
-    for material in doc.root.iter("material"):
-        if material.getparent() is doc.root:
-            continue
-        name = material.get("name")
-        has_own = material.find("color") is not None or material.find("texture") is not None
+    for material, has_own in zip(used, coloured, strict=True):
+        name = material.name
         if name and not has_own and name not in defined:
             yield doc.finding(
                 "R002",
@@ -68,13 +66,14 @@ def reference_rules(
                 name,
                 f"material {name!r} is used but not defined, so viewers draw it in their default colour; add "
                 f"<material name={name!r}><color rgba=.../></material>",
-                material,
+                material.element,
             )
     # one finding per kind of problem: a file whose 180 mesh URIs all miss the package name says it once, with the
     # count (a missing folder, an unknown package and a malformed URI are each one mistake, not one per mesh)
     groups: dict[tuple[str, str], list[tuple[etree._Element, str, str, Severity]]] = {}
     folders: dict[str, str | None] = {}  # package -> its folder (None: not known), looked up once
-    for mesh in doc.root.iter("mesh"):
+    shapes = [g.shape for link in doc.view.links for g in (*link.visuals, *link.collisions) if g.shape is not None]
+    for mesh in (shape.element for shape in shapes if shape.kind == "mesh"):
         filename = mesh.get("filename", "")
         problem, severity, group = _mesh_problem(filename, package_paths, base_dir, folders)
         if problem:

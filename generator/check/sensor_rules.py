@@ -56,9 +56,9 @@ def _value(element, path: str) -> float | None:
 
 
 def sensor_rules(doc: Doc) -> Iterator[Finding]:
-    for gazebo in doc.root.findall("gazebo"):
-        for sensor in gazebo.findall("sensor"):
-            name = sensor.get("name") or gazebo.get("reference") or ""
+    for gazebo in doc.view.gazebo:
+        for sensor in gazebo.element.findall("sensor"):  # (a sensor block is Gazebo's, not URDF's: read as written)
+            name = sensor.get("name") or gazebo.reference or ""
             kind = sensor.get("type", "")
             if kind not in KNOWN:
                 yield doc.finding(
