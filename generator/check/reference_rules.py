@@ -53,12 +53,9 @@ def reference_rules(
     # urdfdom registers a material for the whole robot wherever it is given a colour or texture, a link's visual
     # included (the Allegro hand defines its colours in its first visuals and names them in later ones)
     used = [g.material for link in doc.view.links for g in link.visuals if g.material is not None]
-    coloured = [m.element.find("color") is not None or m.element.find("texture") is not None for m in used]
-    defined = {m.name for m in doc.view.materials} | {
-        m.name or "" for m, own in zip(used, coloured, strict=True) if own
-    }
-    for material, has_own in zip(used, coloured, strict=True):
-        name = material.name
+    defined = {m.name for m in doc.view.materials} | {m.name or "" for m in used if m.defines}
+    for material in used:
+        name, has_own = material.name, material.defines
         if name and not has_own and name not in defined:
             yield doc.finding(
                 "R002",

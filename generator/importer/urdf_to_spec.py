@@ -182,9 +182,9 @@ class _Colours:
     def name_of(self, material: Material | MaterialRef | None, where: str) -> str | None:
         if material is None:
             return None
-        own = material.element.find("color") is not None  # (a <color> without rgba is white, as urdfdom reads it)
+        own = material.color_given  # (a <color> without rgba is white, as urdfdom reads it)
         source = material if own else self.named.get(material.name or "")
-        if source is None or (not own and source.element.find("color") is None):
+        if source is None or not source.color_given:
             return None
         rgba = _floats(source.rgba, 4, 1.0, f"{where} colour")
         name = (material.name or "").rsplit("/", 1)[-1]  # (a generated robot's 'ur5/grey': grey)

@@ -57,8 +57,15 @@ class MaterialRef(Part):
     """A visual's ``<material>``: by name, with its own colour or texture when it gives one."""
 
     name: str | None = None
-    rgba: str | None = None
+    rgba: str | None = None  # (None without <color>, or a <color> without rgba: color_given tells them apart)
     texture: str | None = None
+    color_given: bool = False  # a <color> element (urdfdom reads one without rgba as white)
+    texture_given: bool = False
+
+    @property
+    def defines(self) -> bool:
+        """Whether it gives its own colour or texture (urdfdom then registers it for the whole robot by name)."""
+        return self.color_given or self.texture_given
 
 
 @dataclass(frozen=True)
@@ -119,6 +126,8 @@ class Material(Part):
     name: str = ""
     rgba: str | None = None
     texture: str | None = None
+    color_given: bool = False
+    texture_given: bool = False
 
 
 @dataclass(frozen=True)
@@ -210,6 +219,8 @@ def _material_ref(element: etree._Element | None) -> MaterialRef | None:
         element.get("name"),
         colour.get("rgba") if colour is not None else None,
         texture.get("filename") if texture is not None else None,
+        colour is not None,
+        texture is not None,
     )
 
 
@@ -278,6 +289,8 @@ def _material(element: etree._Element) -> Material:
         element.get("name", ""),
         colour.get("rgba") if colour is not None else None,
         texture.get("filename") if texture is not None else None,
+        colour is not None,
+        texture is not None,
     )
 
 

@@ -67,6 +67,7 @@ def test_every_part_is_read_as_written_with_its_line():
     assert visual.name == "body" and visual.line == 10
     assert visual.shape is not None and visual.shape.kind == "box" and visual.shape.get("size") == "0.4 0.3 0.1"
     assert visual.material is not None and visual.material.name == "blue" and visual.material.rgba is None
+    assert not visual.material.defines and view.materials[0].color_given
     assert base.collisions[0].shape is not None and base.collisions[0].shape.attributes == {
         "radius": "0.2",
         "length": "0.1",
@@ -85,6 +86,8 @@ def test_every_part_is_read_as_written_with_its_line():
     assert follower.limit is not None and follower.limit["upper"] == "not-a-number"  # (kept: each reader decides)
     assert follower.axis is None and follower.origin is None
     assert view.colours() == {"blue": "0 0 1 1", "rubber": "0.1 0.1 0.1 1"}
+    wheel_visual = view.links[1].visuals[0].material
+    assert wheel_visual is not None and wheel_visual.color_given and wheel_visual.defines
     assert [(g.reference, g.line) for g in view.gazebo] == [("wheel", 34)]
     assert [(c.reference, c.joints) for c in view.ros2_control] == [("Demo", ("wheel_joint", "follower"))]
 
