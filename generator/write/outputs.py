@@ -78,14 +78,17 @@ def write_outputs(folder: Path, files: Sequence[OutputFile], *, force: bool = Fa
     if conflicts:
         raise OutputConflict(folder, conflicts)
     remove_leftover_temporaries(folder, [item.relative for item in files])
+    digests = {item.relative: _digest(item.content) for item in files}
+    # first recorded with both digests, the file's last and this run's: a run killed among its writes leaves files
+    # that are each one or the other, and the next run takes them over (as the package writer does)
+    _write_record(folder, {**record, **{k: [*record.get(k, []), v] for k, v in digests.items()}})
     for item, action in zip(files, actions, strict=True):
-        record[item.relative] = [_digest(item.content)]
         if action.action in ("create", "update", "overwrite"):
             try:
                 write_text_atomic(folder / item.relative, item.content)
             except OSError as exc:
                 raise XacrokitError(f"cannot write {folder / item.relative}: {exc.strerror or exc}") from None
-    _write_record(folder, record)
+    _write_record(folder, {**record, **{k: [v] for k, v in digests.items()}})
     return actions
 
 
@@ -100,14 +103,14 @@ def _plan(folder: Path, item: OutputFile, record: dict[str, list[str]], *, force
     status = _refuse_special(target, folder=False)
     if status is None:
         return FileAction(item.relative, "create")
+    new = item.content.encode("utf-8") if isinstance(item.content, str) else item.content
     try:
-        held = target.read_bytes()
+        held = _file_digest(target)  # (read in pieces: an -o naming a large file of someone else's costs no memory)
     except OSError as exc:
         raise XacrokitError(f"cannot read {target}: {exc.strerror or exc}") from None
-    new = item.content.encode("utf-8") if isinstance(item.content, str) else item.content
-    if held == new:
+    if status.st_size == len(new) and held == _digest(new):
         return FileAction(item.relative, "identical")
-    if _digest(held) in record.get(item.relative, []):
+    if held in record.get(item.relative, []):
         return FileAction(item.relative, "update")
     return FileAction(item.relative, "overwrite" if force else "conflict", NOT_OURS)
 
@@ -134,6 +137,14 @@ def _refuse_special(path: Path, *, folder: bool) -> os.stat_result | None:
 
 def _digest(content: str | bytes) -> str:
     return hashlib.sha256(content.encode("utf-8") if isinstance(content, str) else content).hexdigest()
+
+
+def _file_digest(path: Path) -> str:
+    digest = hashlib.sha256()
+    with path.open("rb") as handle:
+        for piece in iter(lambda: handle.read(1 << 20), b""):
+            digest.update(piece)
+    return digest.hexdigest()
 
 
 def _read_record(folder: Path) -> dict[str, list[str]]:

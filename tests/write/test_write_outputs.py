@@ -4,6 +4,7 @@ updated."""
 
 from __future__ import annotations
 
+import hashlib
 import json
 import os
 import stat
@@ -95,3 +96,39 @@ def test_a_record_that_is_a_link_is_refused(tmp_path):
     with pytest.raises(OutputRefused, match="symbolic link"):
         output_file(tmp_path / "a.txt", "x")
     assert (tmp_path / "other.json").read_text() == "{}"
+
+
+def test_a_run_killed_among_its_writes_is_taken_over_by_the_next(tmp_path, monkeypatch):
+    """The record holds both digests while files are written: whatever a killed run left (the old file or its new
+    one), the next run, with new content again, updates it without a false conflict."""
+    import xacrokit.write.outputs as outputs
+
+    write_outputs(tmp_path, [OutputFile("model.xml", "v1"), OutputFile("meshes/a.obj", "mesh v1")])
+    real = outputs.write_text_atomic
+    calls = []
+
+    def dying(path, content):
+        if path.name != RECORD:
+            calls.append(path)
+        if len(calls) == 2:
+            raise KeyboardInterrupt  # (killed after the first file of the run)
+        real(path, content)
+
+    monkeypatch.setattr(outputs, "write_text_atomic", dying)
+    with pytest.raises(KeyboardInterrupt):
+        write_outputs(tmp_path, [OutputFile("model.xml", "v2"), OutputFile("meshes/a.obj", "mesh v2")])
+    monkeypatch.setattr(outputs, "write_text_atomic", real)
+    assert (tmp_path / "model.xml").read_text() == "v2" and (tmp_path / "meshes/a.obj").read_text() == "mesh v1"
+    actions = write_outputs(tmp_path, [OutputFile("model.xml", "v3"), OutputFile("meshes/a.obj", "mesh v3")])
+    assert [a.action for a in actions] == ["update", "update"]
+    assert json.loads((tmp_path / RECORD).read_text())["files"]["model.xml"] == [hashlib.sha256(b"v3").hexdigest()]
+
+
+def test_a_large_file_of_someone_elses_is_compared_without_reading_it_whole(tmp_path):
+    big = tmp_path / "big.bin"
+    with big.open("wb") as handle:  # (sparse: 64 MiB on the file system's word, nothing on disk)
+        handle.seek(64 * 2**20)
+        handle.write(b"\0")
+    with pytest.raises(OutputConflict):
+        output_file(big, "page")
+    assert big.stat().st_size == 64 * 2**20 + 1
