@@ -12,10 +12,18 @@ from ..render import environment
 KINDS = ("arm", "mobile", "humanoid")
 
 
+MAX_NAME = 200  # (the schema's limit on a robot name: the files made from it must fit the file system)
+
+
 def starter_text(name: str, kind: str = "arm") -> str:
     """The starter spec for robot ``name`` of ``kind`` (arm, mobile or humanoid)."""
     if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*", name):
         raise XacrokitError(f"robot name {name!r} must be letters, digits and _, not starting with a digit")
+    from ..validate.names import robot_name_problem  # (the spec's own rule: a starter the spec refuses is no start)
+
+    problem = robot_name_problem(name)
+    if problem is not None or len(name) > MAX_NAME:
+        raise XacrokitError(f"robot name {name!r} {problem or f'is over {MAX_NAME} characters'}; choose another name")
     if kind not in KINDS:
         raise XacrokitError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
     # No schema modeline: the only schema file we could name is the installed copy, an absolute path of this machine

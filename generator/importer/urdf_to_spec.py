@@ -145,14 +145,16 @@ def import_text(text: str, name_hint: str = "robot", source: str = "") -> Import
 def _robot_name(robot: str, result: Imported) -> str:
     """The robot's name as the spec can take it: it names the package, the macro and the files (a name that is not
     an identifier, too long, or a xacro keyword's is made one, and that is said in ``result.renamed``)."""
-    from ..validate.names import RESERVED_ROBOT_NAMES
+    from ..validate.names import robot_name_problem
 
     if not IDENTIFIER.fullmatch(robot) or len(robot) > 200:
         renamed = re.sub(r"[^A-Za-z0-9_]", "_", robot)[:200]
         renamed = renamed if IDENTIFIER.fullmatch(renamed) else f"robot_{renamed}"[:200]
     else:
         renamed = robot
-    if renamed in RESERVED_ROBOT_NAMES or renamed.startswith("_xacrokit"):  # (its macro would be a xacro keyword's)
+    if renamed.startswith("__"):  # (xacro refuses the names made from it)
+        renamed = f"robot{renamed}"[:200]
+    if robot_name_problem(renamed) is not None:  # (its macro would be a xacro keyword's)
         renamed = f"{renamed[:194]}_robot"
     if renamed != robot:
         result.renamed = f"robot name {robot!r} written {renamed!r} (it names the package, the macro and the files)"

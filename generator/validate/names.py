@@ -101,13 +101,24 @@ def repeated_paths(named: list[Named]) -> list[PathKey]:
     return again
 
 
-def robot_name_errors(raw: RawSpec, data: dict[str, Any]) -> Iterator[SpecError]:
-    if data["robot"] in RESERVED_ROBOT_NAMES or data["robot"].startswith("_xacrokit"):
-        yield raw.error(
-            ("robot",),
-            f"robot name {data['robot']!r} is taken by a xacrokit macro or a xacro "
-            "keyword (the robot's macro is named after it); choose another name",
+def robot_name_problem(name: str) -> str | None:
+    """Why xacro cannot take ``name`` as a robot's (its macro, and properties such as NAME_materials_defined, are
+    named after it), None when it can: the schema has already checked it is an identifier of at most 200 characters.
+    Asked by validate, by ``gen-robot new`` and by the importer, so that all three accept the same names."""
+    if name in RESERVED_ROBOT_NAMES or name.startswith("_xacrokit"):
+        return "is taken by a xacrokit macro or a xacro keyword (the robot's macro is named after it)"
+    if name.startswith("__"):
+        return (
+            "starts with two underscores, which xacro refuses in the macro and property names made from it "
+            "(names of Python's internals)"
         )
+    return None
+
+
+def robot_name_errors(raw: RawSpec, data: dict[str, Any]) -> Iterator[SpecError]:
+    problem = robot_name_problem(data["robot"])
+    if problem is not None:
+        yield raw.error(("robot",), f"robot name {data['robot']!r} {problem}; choose another name")
 
 
 def edges(data: dict[str, Any], bodies: Sequence[Body]) -> list[tuple[str, str, PathKey]]:

@@ -34,6 +34,17 @@ def test_new_writes_a_starter_that_generates(tmp_path, kind):
     assert gen_robot("new", "bad name", cwd=tmp_path).returncode == 2
 
 
+@pytest.mark.parametrize(
+    ("name", "words"),
+    [("include", "is taken by a xacrokit macro or a xacro keyword"), ("__bot", "starts with two underscores")],
+)
+def test_new_refuses_a_name_the_spec_refuses(tmp_path, name, words):
+    """gen-robot new writes no starter that gen-robot would then refuse (the same rule: validate.names)."""
+    result = gen_robot("new", name, cwd=tmp_path)
+    assert result.returncode == 2 and words in result.stderr, result.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_plain_new_writes_the_arm_starter(tmp_path):
     assert gen_robot("new", "bot", cwd=tmp_path).returncode == 0
     assert (tmp_path / "bot.yaml").read_text(encoding="utf-8") == starter_text("bot", "arm")

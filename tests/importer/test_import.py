@@ -404,3 +404,19 @@ def test_what_cannot_be_imported_is_said_at_its_line_in_the_file(tmp_path):
         said[1]
         == f"gen-robot import: not imported: {urdf}:4: the spec refuses joints.j.child: child 'zz' is not in links"
     )
+
+
+@pytest.mark.parametrize(("name", "written"), [("__bot", "robot__bot"), ("if", "if_robot"), ("9lives", "robot_9lives")])
+def test_a_robot_name_xacro_cannot_hold_is_renamed_to_one_the_package_expands_with(tmp_path, name, written):
+    """The importer renames to a name the spec accepts and xacro holds: the package expands with the real xacro."""
+    urdf = tmp_path / "r.urdf"
+    urdf.write_text(
+        f'<robot name="{name}"><link name="base_link"><inertial><mass value="1"/>'
+        '<inertia ixx="0.1" iyy="0.1" izz="0.1"/></inertial></link></robot>',
+        encoding="utf-8",
+    )
+    result = gen_robot("import", urdf, "-o", tmp_path / "r.yaml")
+    assert result.returncode == 0, result.stderr
+    assert yaml.safe_load((tmp_path / "r.yaml").read_text(encoding="utf-8"))["robot"] == written
+    generated = gen_robot(tmp_path / "r.yaml", "--via-xacro", "-o", tmp_path / "pkg")
+    assert generated.returncode == 0, generated.stderr

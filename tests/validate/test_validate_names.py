@@ -16,6 +16,7 @@ CASES = [
     # (what is changed, new value or "DELETE", expected JSON path, words of the message)
     ("robot", "wheel", "$.robot", "robot name 'wheel' is taken by a xacrokit macro"),
     ("robot", "if", "$.robot", "robot name 'if' is taken"),
+    ("robot", "__bot", "$.robot", "robot name '__bot' starts with two underscores, which xacro refuses"),
     ("links.base_link.material", "grey", "$.links.base_link.material", "material 'grey' is not in materials"),
     ("joints.shoulder.parent", "base_lnk", "$.joints.shoulder.parent", "did you mean 'base_link'"),
     ("joints.shoulder.child", "nothing", "$.joints.shoulder.child", "child 'nothing' is not in links"),
