@@ -79,7 +79,7 @@ def _require_mesh(data: bytes, suffix: str, said: str) -> None:
     import trimesh
 
     try:
-        mesh: Any = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh")
+        mesh: Any = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh", process=False)
         triangles = len(mesh.faces)
     except Exception:  # noqa: BLE001  (trimesh raises what its readers raise: every one means "not this kind")
         triangles = 0

@@ -298,3 +298,20 @@ def _example(kind: str) -> str:
         "force": "200 N",
         "density": "2.7 g/cm3",
     }[kind]
+
+
+# The largest magnitude of each kind of quantity xacrokit takes, in specs and in sizing's payloads and loads: far
+# beyond any robot (the heaviest industrial payloads are about 2.3 t, the longest arms a few metres), and small enough
+# that no inertia, torque or power computed from them overflows a double (a box of 1e200 m wrote inf into the URDF;
+# a payload of 1e308 kg gave inf - inf = NaN torques).
+INPUT_BOUNDS = {"mass": 1e6, "length": 1e4, "force": 1e9, "torque": 1e9}  # kg, m, N, N*m
+_BOUND_UNITS = {"mass": "kg", "length": "m", "force": "N", "torque": "N*m"}
+
+
+def bound_problem(kind: str, value: float) -> str | None:
+    """Why ``value`` (SI) is beyond what xacrokit takes for a quantity of ``kind``, or None."""
+    bound = INPUT_BOUNDS.get(kind)
+    if bound is None or not abs(value) > bound:
+        return None
+    unit = _BOUND_UNITS[kind]
+    return f"{value:g} {unit} is beyond what xacrokit takes (at most {bound:g} {unit}; a value in the wrong unit?)"

@@ -15,7 +15,7 @@ import os
 from collections.abc import Mapping, Sequence
 
 from ..errors import SpecErrors, XacrokitError
-from ..shared.units import UnitError, parse_quantity
+from ..shared.units import UnitError, bound_problem, parse_quantity
 from .mobile import base_of
 from .motion import inverse_dynamics, joint_motions, trajectory
 from .size_results import SizeReport, format_text
@@ -88,6 +88,9 @@ def parse_payload(text: str) -> Payload:
         raise XacrokitError(f"--payload {text!r}: {exc}") from None
     if not mass > 0:
         raise XacrokitError(f"--payload {text!r}: the mass must be > 0 kg")
+    beyond = bound_problem("mass", mass)
+    if beyond is not None:
+        raise XacrokitError(f"--payload {text!r}: {beyond}")
     return Payload(frame=frame, mass=mass)
 
 
@@ -103,6 +106,9 @@ def parse_load(text: str) -> Load:
         force = tuple(parse_quantity(p if len(p.split()) == 2 or not unit else f"{p} {unit}", "force") for p in parts)
     except UnitError as exc:
         raise XacrokitError(f"--force {text!r}: {exc}") from None
+    beyond = next((p for p in (bound_problem("force", f) for f in force) if p is not None), None)
+    if beyond is not None:
+        raise XacrokitError(f"--force {text!r}: {beyond}")
     return Load(frame=frame, force=(force[0], force[1], force[2]))
 
 

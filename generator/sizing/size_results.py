@@ -116,11 +116,18 @@ class SizeReport:
 
     @property
     def failures(self) -> list[tuple[str, str]]:
-        """(joint, what) for every margin below 1."""
+        """(joint, what) for every margin below 1, and for every result that is not a finite number (a margin of NaN
+        is no pass)."""
         found = []
         for peak in self.peaks:
+            if not math.isfinite(peak.torque) or not math.isfinite(peak.load_torque):
+                found.append((peak.joint, "static torque not a finite number"))
             checks = [("static torque over the effort limit", self.margin(peak))]
             moved = self.motion_of(peak.joint)
+            if moved is not None and not all(
+                map(math.isfinite, (moved.peak_torque, moved.rms_torque, moved.peak_speed, moved.energy))
+            ):
+                found.append((peak.joint, "motion result not a finite number"))
             if moved is not None:
                 checks += [
                     (
@@ -136,14 +143,14 @@ class SizeReport:
                     ("motor RMS torque over the motor's rated torque", side["rated_torque_margin"]),
                     ("motor speed over the motor's maximum speed", side["speed_margin"]),
                 ]
-            found += [(peak.joint, what) for what, margin in checks if margin is not None and margin < 1.0]
+            found += [(peak.joint, what) for what, margin in checks if margin is not None and not margin >= 1.0]
         if self.base is not None:
             for wheel, torque, speed in zip(self.base.wheels, self.base.torques, self.base.speeds, strict=True):
                 for what, margin in (
                     ("wheel torque over the effort limit", self._ratio(wheel.effort, torque)),
                     ("wheel speed over the velocity limit", self._ratio(wheel.velocity, speed)),
                 ):
-                    if margin is not None and margin < 1.0:
+                    if margin is not None and not margin >= 1.0:
                         found.append((wheel.joint, what))
         return found
 

@@ -14,7 +14,7 @@ from typing import Any
 from ..errors import SpecError, SpecErrors
 from ..load import PathKey, RawSpec, load_file
 from ..shared.package_data import schemas_dir
-from ..shared.units import Kind, UnitError, parse_quantity
+from ..shared.units import Kind, UnitError, bound_problem, parse_quantity
 from ..shared.value_text import did_you_mean
 from ..validate.schema import SchemaValidator, inline_refs, schema_errors
 from .mobile import BaseMotion
@@ -67,6 +67,9 @@ class _Reader:
             return math.nan
         if positive and not number > 0:
             self.errors.append(self.raw.error(path, f"must be > 0, got {value!r}"))
+        beyond = bound_problem(kind, number)
+        if beyond is not None:
+            self.errors.append(self.raw.error(path, beyond))
         return number
 
 

@@ -11,7 +11,7 @@ from ..errors import SpecError
 from ..load import PathKey, RawSpec
 from ..shared.materials import MATERIALS, find_material, material_key
 from ..shared.transforms import rotation_rpy
-from ..shared.units import Kind, UnitError, parse_quantity, plain_number
+from ..shared.units import Kind, UnitError, bound_problem, parse_quantity, plain_number
 from ..shared.value_text import did_you_mean
 from .bodies import bodies, geometries, parts
 from .physics import AXIS_LENGTHS, implausible
@@ -88,14 +88,21 @@ class Quantities:
                     )
                 )
         if type(value) is float and math.isfinite(value) and (value != 0.0 or math.copysign(1.0, value) > 0):
+            self._bound(value, kind, (*path, key))
             return  # already SI: what parse_quantity would return
         try:
             converted = parse_quantity(value, kind) + 0.0  # (+ 0.0: a -0.0 in the spec is written 0.0)
         except UnitError as exc:
             self.errors.append(self.raw.error((*path, key), str(exc)))
             return
+        self._bound(converted, kind, (*path, key))
         self._changes.setdefault(path, {})[key] = converted
         self._count += 1
+
+    def _bound(self, value: float, kind: Kind, path: PathKey) -> None:
+        beyond = bound_problem(kind, value)
+        if beyond is not None:
+            self.errors.append(self.raw.error(path, beyond))
 
     def _turns(self, value: float, key: str | int, path: PathKey) -> None:
         what = "limit" if key in _TURNS else "angle"

@@ -79,16 +79,20 @@ def geometries(root) -> dict[str, list[tuple[str, str, list, np.ndarray]]]:
     return found
 
 
-def poses(urdf: str, values: dict[str, float]) -> dict[str, np.ndarray]:
-    """Every link's world pose at ``values`` (yourdfpy's forward kinematics: every link, whether or not it has an
-    inertial; mimic joints follow their leaders)."""
+def fk_robot(urdf: str):
+    """yourdfpy's model of ``urdf``, loaded once for :func:`poses` (every link, whether or not it has an inertial;
+    mimic joints follow their leaders)."""
     import io
 
     import yourdfpy
 
-    robot = yourdfpy.URDF.load(
+    return yourdfpy.URDF.load(
         io.BytesIO(urdf.encode()), load_meshes=False, build_scene_graph=True, build_collision_scene_graph=False
     )
+
+
+def poses(robot, values: dict[str, float]) -> dict[str, np.ndarray]:
+    """Every link's world pose at ``values`` (every moving joint's value: none is left from an earlier call)."""
     robot.update_cfg({name: value for name, value in values.items() if name in robot.actuated_joint_names})
     return {name: robot.get_transform(name) for name in robot.link_map}
 
@@ -140,9 +144,10 @@ def compare(original: str, again: str) -> None:
                     assert theirs.get(key) == value or float(theirs.get(key)) == float(value), (tag, key)
     moving = [j.get("name") for j in a.findall("joint") if j.get("type") in ("revolute", "continuous", "prismatic")]
     rng = np.random.default_rng(20)
+    first, second = fk_robot(original), fk_robot(again)
     for _ in range(20):
         values = dict(zip(moving, rng.uniform(-1.5, 1.5, len(moving)), strict=True))
-        want, got = poses(original, values), poses(again, values)
+        want, got = poses(first, values), poses(second, values)
         assert set(want) == set(got)
         for link, pose in want.items():
             assert np.abs(got[link] - pose).max() < 1e-9, link

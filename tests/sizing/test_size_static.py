@@ -181,6 +181,8 @@ def test_the_command_line_reports_json_by_its_schema_and_fails_on_a_margin(arm_f
         (["--force", "0,0@tool"], "three components"),
         (["--force", "0,0,-5 kg@tool"], "--force '0,0,-5 kg@tool'"),
         (["x:=1"], "only apply to xacro input"),
+        (["--payload", "1e308 kg@tool"], "1e+308 kg is beyond what xacrokit takes (at most 1e+06 kg"),
+        (["--force", "0,0,-1e300@tool"], "-1e+300 N is beyond what xacrokit takes (at most 1e+09 N"),
     ],
 )
 def test_bad_sizing_input_is_a_clear_error_with_exit_2(arm_file, args, words):
@@ -252,3 +254,23 @@ def test_an_effort_limit_of_0_is_a_limit_whose_margin_is_0(tmp_path):
     assert result.returncode == 1, result.stderr
     (joint,) = json.loads(result.stdout)["joints"]
     assert joint["effort_limit"] == 0.0 and joint["static"]["margin"] == 0.0 and joint["static"]["pass"] is False
+
+
+def test_a_result_that_is_not_a_number_fails_and_is_listed(arm_file, monkeypatch):
+    """A torque that came out NaN or infinite is a failure (exit 1, in failed), never "OK: every margin >= 1"; and
+    without an effort limit to compare it with, too."""
+    import dataclasses
+
+    import xacrokit.sizing as sizing
+
+    real = sizing.static_peaks
+
+    def broken(robot, *args, **kwargs):
+        peaks = real(robot, *args, **kwargs)
+        return [dataclasses.replace(peaks[0], torque=math.nan), *peaks[1:]]
+
+    monkeypatch.setattr(sizing, "static_peaks", broken)
+    report = sizing.size(arm_file(effort=100.0))
+    assert report.failed == ["shoulder"] and report.exit_code == 1
+    assert ("shoulder", "static torque not a finite number") in report.failures
+    assert "FAILED: shoulder" in sizing.format_text(report)

@@ -24,6 +24,15 @@ CASES = [
         "is an angle, expected a length",
     ),
     ("arms.dh.joints.0.alpha", "90 mm", "$.arms.dh.joints[0].alpha", "is a length, expected an angle"),
+    # (a box of 1e200 m wrote inf into the URDF's inertia; a mass of 1e300 kg overflows every torque)
+    ("links.base_link.mass", 1e300, "$.links.base_link.mass", "1e+300 kg is beyond what xacrokit takes (at most 1e+06"),
+    ("links.base_link.mass", "1e12 g", "$.links.base_link.mass", "1e+09 kg is beyond what xacrokit takes"),
+    (
+        "links.base_link.origin",
+        {"xyz": [0, 0, 1e200]},
+        "$.links.base_link.origin.xyz[2]",
+        "1e+200 m is beyond what xacrokit takes (at most 10000 m",
+    ),
 ]
 
 
