@@ -116,6 +116,12 @@ class RobotSpecs:
             if is_scene(robot_raw):
                 message = f"{spec_file} is a scene spec, not a robot spec (scenes do not nest)"
                 return None, spec_file, [raw.error((*path, "spec"), message)], []
+            if not isinstance(robot_raw.data, dict) or "robot" not in robot_raw.data:
+                # (a scene from elsewhere may name any file: its content is not quoted back in the error)
+                message = (
+                    f"{spec_file} is not a robot spec (a YAML mapping with robot: and links:); its content is not shown"
+                )
+                return None, spec_file, [raw.error((*path, "spec"), message)], []
             valid = validate(robot_raw)
         except SpecErrors as problems:  # the robot's own problems, located in its own file
             unreadable = [e.message for e in problems.errors if e.message.startswith("cannot read the spec")]

@@ -143,3 +143,18 @@ def test_a_name_taken_by_the_world_link_is_said_so(tmp_path):
         xacrokit.generate(scene, tmp_path / "out")
     messages = [e.message for e in caught.value.errors]
     assert any("instance a would have link world, the scene's world link" in m for m in messages), messages
+
+
+@pytest.mark.parametrize(
+    "content",
+    ["root:$6$SECRETHASH:19000:0:99999:7:::\n", "SECRET words on one line\n", "- SECRET\n- more\n", "{x: SECRET}\n"],
+)
+def test_an_instance_naming_a_file_that_is_no_spec_is_refused_without_quoting_it(tmp_path, content):
+    """A scene from elsewhere may name any file as an instance's spec (/etc/shadow): the error says what it is not,
+    where the scene names it, and never quotes what the file holds."""
+    (tmp_path / "shadow").write_text(content, encoding="utf-8")
+    path = scene_file(tmp_path, {"a": {"spec": "shadow", "prefix": "a_", "parent": "world"}})
+    result = gen_robot(path, "--dry-run")
+    assert result.returncode == 2, result.stderr
+    assert "is not a robot spec" in result.stderr and "$.instances.a.spec" in result.stderr
+    assert "SECRET" not in result.stderr + result.stdout
