@@ -4,6 +4,12 @@ xacro document or URDF, a mesh) changes, and reloaded by the browser.
 The page asks ``/version`` twice a second (its Content-Security-Policy allows that one origin in this mode only) and
 reloads when the number changes. A change that does not build (a spec with a mistake) serves a page that shows the
 error, located, until the next change builds: never a blank page, never the old robot without a word.
+
+The server holds against what a browser or another page may do: it listens on 127.0.0.1 only; it answers only a
+request whose ``Host`` is its own address and port (a page of another site whose name is made to resolve to
+127.0.0.1, DNS rebinding, sends its own name and gets 403); a connection idle for ``IDLE_TIMEOUT`` seconds is closed;
+at most ``MAX_CONNECTIONS`` are served at once (the others are closed at once); a client that goes away mid-answer is
+forgotten without a word (no traceback).
 """
 
 from __future__ import annotations
@@ -11,17 +17,21 @@ from __future__ import annotations
 import contextlib
 import html
 import os
+import sys
 import threading
 import time
 from collections.abc import Callable
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
+from typing import Any
 
 from ..errors import SpecErrors, XacrokitError
 
 WATCHED = (".yaml", ".yml", ".xacro", ".urdf", ".xml", ".stl", ".obj", ".ply", ".dae")
 POLL = 0.5  # s, both the files' and the page's
 MAX_ENTRIES = 20_000  # files and folders looked at per poll: a folder this large is not a robot's
+IDLE_TIMEOUT = 10.0  # s a connection may stay silent (a browser's poll comes every POLL)
+MAX_CONNECTIONS = 16  # served at once: one browser tab needs one or two
 
 POLLER = """<script>
 const shown = {version};
@@ -101,27 +111,7 @@ class Watcher:
 
     def serve(self, port: int, *, announce: Callable[[str], None], stop: threading.Event | None = None) -> None:
         """Serve on 127.0.0.1:``port`` (0: any free one) until ``stop`` is set (or forever)."""
-        watcher = self
-
-        class Handler(BaseHTTPRequestHandler):
-            def do_GET(self) -> None:  # noqa: N802  (http.server's name)
-                with watcher.lock:
-                    body = {"/": watcher.page, "/version": str(watcher.version)}.get(self.path.split("?")[0])
-                if body is None:
-                    self.send_error(404)
-                    return
-                data = body.encode("utf-8")
-                self.send_response(200)
-                self.send_header("Content-Type", "text/html; charset=utf-8" if self.path == "/" else "text/plain")
-                self.send_header("Cache-Control", "no-store")
-                self.send_header("Content-Length", str(len(data)))
-                self.end_headers()
-                self.wfile.write(data)
-
-            def log_message(self, format: str, *args: object) -> None:  # noqa: A002  (quiet: the terminal is the user's)
-                return
-
-        server = ThreadingHTTPServer(("127.0.0.1", port), Handler)
+        server = _Server(("127.0.0.1", port), _handler(self))
         thread = threading.Thread(target=server.serve_forever, daemon=True)
         thread.start()
         announce(f"serving http://127.0.0.1:{server.server_address[1]}/ ; watching {self.folder} (Ctrl-C stops)")
@@ -133,3 +123,61 @@ class Watcher:
         finally:
             server.shutdown()
             server.server_close()
+
+
+class _Server(ThreadingHTTPServer):
+    """At most MAX_CONNECTIONS at once; a client gone mid-answer is no error to print."""
+
+    daemon_threads = True
+
+    def __init__(self, address: tuple[str, int], handler: type[BaseHTTPRequestHandler]) -> None:
+        super().__init__(address, handler)
+        self.slots = threading.BoundedSemaphore(MAX_CONNECTIONS)
+
+    def process_request(self, request: Any, client_address: Any) -> None:
+        if not self.slots.acquire(blocking=False):
+            self.shutdown_request(request)  # (too many at once: closed, the browser retries)
+            return
+        super().process_request(request, client_address)
+
+    def process_request_thread(self, request: Any, client_address: Any) -> None:
+        try:
+            super().process_request_thread(request, client_address)
+        finally:
+            self.slots.release()
+
+    def handle_error(self, request: Any, client_address: Any) -> None:
+        error = sys.exc_info()[1]
+        if isinstance(error, (ConnectionError, TimeoutError)):
+            return  # (the browser closed the tab, or went silent: nothing to say)
+        print(f"gen-robot view: a request failed: {type(error).__name__}: {error}", file=sys.stderr)
+
+
+def _handler(watcher: Watcher) -> type[BaseHTTPRequestHandler]:
+    """The request handler: the page at /, its version at /version, for this server's own Host only."""
+
+    class Handler(BaseHTTPRequestHandler):
+        timeout = IDLE_TIMEOUT  # (socketserver: the connection's timeout, read and write)
+
+        def do_GET(self) -> None:  # noqa: N802  (http.server's name)
+            port = self.connection.getsockname()[1]  # (the port this request came in on: the server's own)
+            if self.headers.get("Host", "") not in (f"127.0.0.1:{port}", f"localhost:{port}"):
+                self.send_error(403, "the Host header names another site")  # (DNS rebinding)
+                return
+            with watcher.lock:
+                body = {"/": watcher.page, "/version": str(watcher.version)}.get(self.path.split("?")[0])
+            if body is None:
+                self.send_error(404)
+                return
+            data = body.encode("utf-8")
+            self.send_response(200)
+            self.send_header("Content-Type", "text/html; charset=utf-8" if self.path == "/" else "text/plain")
+            self.send_header("Cache-Control", "no-store")
+            self.send_header("Content-Length", str(len(data)))
+            self.end_headers()
+            self.wfile.write(data)
+
+        def log_message(self, format: str, *args: object) -> None:  # noqa: A002  (quiet: the terminal is the user's)
+            return
+
+    return Handler
