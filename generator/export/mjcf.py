@@ -71,15 +71,15 @@ def quaternion(rpy: tuple[float, float, float]) -> list[float]:
     ]
 
 
-def _origin(origin: Origin | None) -> tuple[list[float], list[float]]:
+def _origin(origin: Origin | None, where: str) -> tuple[list[float], list[float]]:
     if origin is None:
         return [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]
-    return _floats(origin.xyz, 3), _floats(origin.rpy, 3)
+    return _floats(origin.xyz, 3, where=f"{where} origin xyz"), _floats(origin.rpy, 3, where=f"{where} origin rpy")
 
 
-def _place(node: Any, origin: Origin | None) -> None:
+def _place(node: Any, origin: Origin | None, where: str) -> None:
     """Set ``pos`` and ``quat`` of an MJCF element from a URDF <origin> (nothing for the identity)."""
-    xyz, rpy = _origin(origin)
+    xyz, rpy = _origin(origin, where)
     if any(xyz):
         node.set("pos", nums(xyz))
     if any(rpy):
@@ -173,7 +173,7 @@ class _Bodies:
         else:
             body = etree.SubElement(parent, "body", name=name)
             if joint is not None:
-                _place(body, joint.origin)
+                _place(body, joint.origin, f"joint {joint.name!r}")
         moving = (joint is not None and _add_joint(body, joint)) or (joint is None and self.free)
         if joint is None and self.free:
             etree.SubElement(body, "freejoint", name=f"{name}_free")
@@ -283,7 +283,8 @@ def _add_joint(body: Any, joint: Joint) -> bool:
     kind, name = joint.type, joint.name
     if kind == "fixed":
         return False
-    axis = np.array(_floats(joint.axis, 3, 0.0)) if joint.axis is not None else np.array([1.0, 0.0, 0.0])
+    said = f"joint {name!r}"
+    axis = np.array(_floats(joint.axis, 3, where=f"{said} axis")) if joint.axis is not None else np.array([1.0, 0, 0])
     if not np.linalg.norm(axis) > 0:
         raise XacrokitError(f"joint {name!r}: its axis is zero")
     axis = axis / np.linalg.norm(axis)
@@ -291,7 +292,7 @@ def _add_joint(body: Any, joint: Joint) -> bool:
     for urdf_key, mjcf_key in (("damping", "damping"), ("friction", "frictionloss")):
         given = joint.dynamics.get(urdf_key) if joint.dynamics is not None else None
         if given:
-            extra[mjcf_key] = num(_floats(given, 1)[0])
+            extra[mjcf_key] = num(_floats(given, 1, where=f"{said} dynamics {urdf_key}")[0])
     if kind == "floating":
         etree.SubElement(body, "joint", name=name, type="free")
         return True
@@ -311,7 +312,8 @@ def _add_joint(body: Any, joint: Joint) -> bool:
     )
     limit = joint.limit
     if kind != "continuous" and limit is not None and limit.get("lower") is not None and limit.get("upper") is not None:
-        lower, upper = _floats(limit["lower"], 1)[0], _floats(limit["upper"], 1)[0]
+        lower = _floats(limit["lower"], 1, where=f"{said} limit lower")[0]
+        upper = _floats(limit["upper"], 1, where=f"{said} limit upper")[0]
         if lower < upper:
             element.set("range", f"{num(lower)} {num(upper)}")
     return True
@@ -337,7 +339,7 @@ def _inertial(body: Any, link: Link, moving: bool, massless: list[str], repairs:
     if not mass > 0 and not matrix.any():
         return
     element = etree.SubElement(body, "inertial", mass=num(max(mass, 0.0)))  # (no mass, moments: pinocchio keeps them)
-    xyz, rpy = _origin(inertial.origin if inertial is not None else None)
+    xyz, rpy = _origin(inertial.origin if inertial is not None else None, where)
     element.set("pos", nums(xyz))
     if any(rpy):  # (MJCF takes fullinertia in the body's axes only: R I R^T, R the inertial origin's rotation)
         from ..shared.transforms import rpy_matrix
@@ -378,6 +380,7 @@ def _geoms(body: Any, link: Link, colours: Mapping[str, str], mu: float | None, 
     from lxml import etree
 
     for kind, parts in (("visual", link.visuals), ("collision", link.collisions)):
+        said = f"link {link.name!r} {kind}"
         for part in parts:
             shape = part.shape
             if shape is None:
@@ -385,14 +388,15 @@ def _geoms(body: Any, link: Link, colours: Mapping[str, str], mu: float | None, 
             geom = etree.Element("geom", {"class": kind})
             if shape.kind == "box":
                 geom.set("type", "box")
-                geom.set("size", nums(v / 2.0 for v in _floats(shape.get("size"), 3)))
+                geom.set("size", nums(v / 2.0 for v in _floats(shape.get("size"), 3, where=f"{said} box size")))
             elif shape.kind == "cylinder":
-                radius, length = _floats(shape.get("radius"), 1)[0], _floats(shape.get("length"), 1)[0]
+                radius = _floats(shape.get("radius"), 1, where=f"{said} cylinder radius")[0]
+                length = _floats(shape.get("length"), 1, where=f"{said} cylinder length")[0]
                 geom.set("type", "cylinder")
                 geom.set("size", f"{num(radius)} {num(length / 2.0)}")
             elif shape.kind == "sphere":
                 geom.set("type", "sphere")
-                geom.set("size", num(_floats(shape.get("radius"), 1)[0]))
+                geom.set("size", num(_floats(shape.get("radius"), 1, where=f"{said} sphere radius")[0]))
             elif shape.kind == "mesh":
                 geom.set("type", "mesh")
                 try:
@@ -404,14 +408,14 @@ def _geoms(body: Any, link: Link, colours: Mapping[str, str], mu: float | None, 
                     continue
             else:
                 continue
-            _place(geom, part.origin)
+            _place(geom, part.origin, said)
             if kind == "visual":
                 material = part.material
                 rgba = None
                 if material is not None:
                     rgba = material.rgba if material.rgba is not None else colours.get(material.name or "")
                 if rgba:
-                    geom.set("rgba", nums(_floats(rgba, 4)))
+                    geom.set("rgba", nums(_floats(rgba, 4, where=f"{said} colour")))
             elif mu is not None:
                 geom.set("friction", f"{num(mu)} 0.005 0.0001")
                 geom.set("priority", "1")  # (its friction, not the larger of the two, decides the contact)

@@ -5,6 +5,8 @@ under gravity with its position actuators; a scene simulates with every robot; t
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pinocchio as pin
 import pytest
@@ -233,3 +235,25 @@ def test_bad_robots_are_refused_with_nothing_written(tmp_path):
     assert mujoco.MjModel.from_xml_path(str(tmp_path / "out" / "m.xml")).ngeom == 0  # (its one visual left out)
     with pytest.raises(XacrokitError, match="auto, fixed or free"):
         export_mjcf(two_roots, base="floating")
+
+
+@pytest.mark.parametrize(
+    ("element", "said"),
+    [
+        ('<limit lower="-inf" upper="1" effort="1" velocity="1"/>', "joint 'j' limit lower: '-inf' is not 1 finite"),
+        ('<origin xyz="0 0 nan"/>', "joint 'j' origin xyz: '0 0 nan' is not 3 finite"),
+        ('<axis xyz="0 1"/>', "joint 'j' axis: '0 1' is not 3 finite"),
+    ],
+)
+def test_a_number_that_does_not_read_is_named_by_its_element_and_attribute(tmp_path, element, said):
+    urdf = tmp_path / "r.urdf"
+    urdf.write_text(
+        '<robot name="r"><link name="a"/><joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+        + element
+        + ('<limit lower="-1" upper="1" effort="1" velocity="1"/>' if "limit" not in element else "")
+        + '</joint><link name="b"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1"/></inertial></link>'
+        "</robot>",
+        encoding="utf-8",
+    )
+    with pytest.raises(XacrokitError, match=re.escape(said)):
+        export_mjcf(urdf)
