@@ -37,11 +37,13 @@ import numpy as np
 from ..errors import XacrokitError
 from ..reader.robot_source import urdf_floats as _floats
 from ..reader.urdf_view import Joint, Link, Origin, UrdfView
+from ..shared.units import INPUT_BOUNDS, bound_problem
 from .mjcf_actuators import num
 from .mjcf_meshes import FlatMesh, Meshes
 
 MASSLESS = (1e-12, 1e-14)  # (kg, kg m^2): what a moving link without mass gets, MuJoCo needing more than 1e-15
 GRAVITY = 9.80665
+MAX_MOMENT = INPUT_BOUNDS["mass"] * INPUT_BOUNDS["length"] ** 2  # kg m^2: the largest mass at the largest distance
 
 
 @dataclass
@@ -97,7 +99,8 @@ class _Tree:
 
 
 def _tree(view: UrdfView) -> _Tree:
-    """The robot as one tree (MuJoCo's bodies nest), or XacrokitError saying why it is not one."""
+    """The robot as one tree (MuJoCo's bodies nest), or XacrokitError saying why it is not one (a link named world
+    that is not the root is one too: MuJoCo's world body has that name)."""
     links = {link.name: link for link in view.links}
     joints = [j for j in view.joints if j.parent is not None and j.child is not None]
     by_child: dict[str, Joint] = {}
@@ -117,6 +120,11 @@ def _tree(view: UrdfView) -> _Tree:
         raise XacrokitError("every link is the child of a joint: the joints make a loop, MuJoCo needs a tree")
     if len(roots) != 1:
         raise XacrokitError(f"the robot has {len(roots)} root links ({', '.join(roots[:5])}): MuJoCo needs one tree")
+    if "world" in by_child:
+        raise XacrokitError(
+            f"link 'world' hangs from joint {by_child['world'].name!r}: MuJoCo's world body is called world and is "
+            "the root; rename the link"
+        )
     return _Tree(links, joints, children, roots[0])
 
 
@@ -329,6 +337,7 @@ def _inertial(body: Any, link: Link, moving: bool, massless: list[str], repairs:
     keys = ("ixx", "iyy", "izz", "ixy", "ixz", "iyz")
     i = {k: _floats(tensor.get(k, "0"), 1, where=where)[0] if tensor is not None else 0.0 for k in keys}
     matrix = np.array([[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]])
+    _require_bounded(link.name, mass, matrix)
     if not mass > 0 and moving:
         massless.append(link.name)
         mass = MASSLESS[0]
@@ -357,6 +366,16 @@ def _inertial(body: Any, link: Link, moving: bool, massless: list[str], repairs:
     x, y, z, w = Rotation.from_matrix(axes).as_quat()
     element.set("quat", nums((w, x, y, z)))
     element.set("diaginertia", nums(moments))
+
+
+def _require_bounded(link: str, mass: float, matrix: np.ndarray) -> None:
+    """Refuse a mass or tensor beyond what xacrokit takes (1e6 kg; 1e14 kg m^2, that mass 1e4 m away): MuJoCo's
+    and numpy's arithmetic on 1e308 overflows (an eigensolver that does not converge)."""
+    beyond = bound_problem("mass", mass)
+    if beyond is None and np.abs(matrix).max() > MAX_MOMENT:
+        beyond = f"a moment of {np.abs(matrix).max():g} kg m^2 is beyond what xacrokit takes (at most {MAX_MOMENT:g})"
+    if beyond is not None:
+        raise XacrokitError(f"link {link!r}: inertial: {beyond}")
 
 
 def physical(matrix: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:

@@ -257,3 +257,43 @@ def test_a_number_that_does_not_read_is_named_by_its_element_and_attribute(tmp_p
     )
     with pytest.raises(XacrokitError, match=re.escape(said)):
         export_mjcf(urdf)
+
+
+@pytest.mark.parametrize(
+    ("link_b", "said"),
+    [
+        (
+            '<link name="b"><inertial><mass value="1"/><inertia ixx="1e308" iyy="1e308" izz="1e308"/>'
+            "</inertial></link>",
+            "link 'b': inertial: a moment of 1e+308 kg m^2 is beyond what xacrokit takes",
+        ),
+        (
+            '<link name="b"><inertial><mass value="1e300"/><inertia ixx="1" iyy="1" izz="1"/></inertial></link>',
+            "link 'b': inertial: 1e+300 kg is beyond what xacrokit takes",
+        ),
+    ],
+)
+def test_an_inertial_beyond_the_bounds_is_refused_not_a_crash(tmp_path, link_b, said):
+    """1e308 inertias crashed the export (numpy's eigensolver: exit 70): refused, naming the link."""
+    urdf = tmp_path / "r.urdf"
+    urdf.write_text(
+        '<robot name="r"><link name="a"/><joint name="j" type="revolute"><parent link="a"/><child link="b"/>'
+        '<limit lower="-1" upper="1" effort="1" velocity="1"/></joint>' + link_b + "</robot>",
+        encoding="utf-8",
+    )
+    result = gen_robot("export", urdf, "--mjcf", "-o", tmp_path / "r.xml")
+    assert result.returncode == 2 and said in result.stderr, result.stderr
+    assert not (tmp_path / "r.xml").exists()
+
+
+def test_a_link_named_world_below_the_root_is_refused(tmp_path):
+    """MuJoCo refuses a body called world that is not its world body: the export said exit 0 and wrote it."""
+    urdf = tmp_path / "r.urdf"
+    urdf.write_text(
+        '<robot name="r"><link name="base"/><joint name="j" type="fixed"><parent link="base"/>'
+        '<child link="world"/></joint><link name="world"/></robot>',
+        encoding="utf-8",
+    )
+    result = gen_robot("export", urdf, "--mjcf", "-o", tmp_path / "r.xml")
+    assert result.returncode == 2 and "link 'world' hangs from joint 'j'" in result.stderr, result.stderr
+    assert not (tmp_path / "r.xml").exists()
