@@ -1,8 +1,9 @@
 """``gen-robot``: a thin command-line shell over the public Python API.
 
 Exit codes (the same words in ``gen-robot --help``, one list: :data:`EXIT_CODES`): 0 success; 1 errors found by
-``check`` (its warnings too with --strict) or files refused because they were edited since generated (generate,
-fleet); 2 bad input or usage; 70 internal error (a bug; reported in two lines); 130 interrupted; 141 output closed.
+``check`` (its warnings too with --strict), files refused because they were edited since generated (generate, fleet), a
+margin below 1 (size) or parts not imported (import); 2 bad input or usage; 70 internal error (a bug; reported in two
+lines); 130 interrupted; 141 output closed.
 Errors are one located message, never a traceback.
 Imports stay light here: heavy libraries load inside the commands that use them.
 """
@@ -271,8 +272,9 @@ def _add_xacro_options(parser: argparse.ArgumentParser) -> None:
 
 
 EXIT_CODES = (
-    "Exit codes: 0 success; 1 errors found (check; with --strict its warnings too) or files refused because they were "
-    "edited since generated (generate, fleet); 2 bad input or usage; 70 internal error (a bug: please report it); "
+    "Exit codes: 0 success; 1 errors found (check; with --strict its warnings too), files refused because they were "
+    "edited since generated (generate, fleet), a margin below 1 (size) or parts not imported (import); 2 bad input or "
+    "usage; 70 internal error (a bug: please report it); "
     "130 interrupted; 141 output closed."
 )
 

@@ -9,6 +9,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from ..errors import XacrokitError
 from .arguments import add_force_option, parse_mappings, parse_packages
 
 
@@ -19,7 +20,9 @@ def add_import_command(commands: Any, add_xacro_options: Callable[[argparse.Argu
         help="read a URDF or xacro document back as a robot spec (links, joints, colours, inertials, meshes)",
         description="Write the robot spec of FILE (a URDF or xacro document with its name:=value arguments): each "
         "link's shape, origin, colour, collision and inertial, each joint with its limits, dynamics, mimic and safety "
-        "controller, numbers exact. What the spec cannot say is listed at the top of the spec and on standard error.",
+        "controller, numbers exact. What the spec cannot say is listed at the top of the spec and on standard error, "
+        "and the exit code is 1; a robot the spec refuses (a cycle, a link with two parents, a mimic cycle) is an "
+        "error, exit 2, and nothing is written.",
     )
     imported.add_argument("path", help="a .urdf or .xacro file")
     imported.add_argument("-o", "--output", help="the spec to write (atomically); standard output without it")
@@ -33,6 +36,10 @@ def _cmd_import(args: argparse.Namespace) -> int:
     from ..write.outputs import OutputFile, write_outputs
 
     result = import_robot(args.path, parse_mappings(args.mappings), package_paths=parse_packages(args.package))
+    if result.refused:  # (the spec written would not generate: nothing is written, exit 2)
+        raise XacrokitError(
+            f"{args.path}: the robot cannot be imported, the spec refuses it:\n  " + "\n  ".join(result.refused)
+        )
     for line in result.unsupported:
         print(f"gen-robot import: not imported: {line}", file=sys.stderr)
     if result.renamed:
@@ -60,4 +67,4 @@ def _cmd_import(args: argparse.Namespace) -> int:
                 file=sys.stderr,
             )
         sys.stdout.write(text)
-    return 0
+    return 1 if result.unsupported else 0  # (written, but not all of it: the list above, and in the spec's header)

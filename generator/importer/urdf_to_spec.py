@@ -59,6 +59,7 @@ class Imported:
     ignored: list[str] = field(default_factory=list)  # attributes URDF does not define (its readers ignore them)
     wheels: list[str] = field(default_factory=list)  # the links recognised as wheels (the spec's `wheels:`)
     renamed: str = ""  # the robot's name made a spec name, said
+    refused: list[str] = field(default_factory=list)  # what the spec refuses of the robot: the spec would not generate
     lines: dict[tuple[str, str], int] = field(default_factory=dict)  # (links or joints, name) -> its line in the file
 
 
@@ -287,7 +288,9 @@ def _extension(root: Any, absorbed: Any, leftovers: list[str]) -> str:
 
     kept = etree.Element("robot")
     for child in root.iterchildren(etree.Element):
-        if child.tag not in MODELLED and child not in absorbed:
+        if child.tag not in MODELLED and child not in absorbed and _holds_xacro(child):
+            leftovers.append(f"<{child.tag}{_label(child)}> left out: it holds xacro, which an extension may not")
+        elif child.tag not in MODELLED and child not in absorbed:
             leftovers.append(f"<{child.tag}{_label(child)}>")
             copy = etree.fromstring(etree.tostring(child))  # (its own document: namespaces it uses come along)
             copy.tail = None
@@ -323,7 +326,9 @@ def _strictness(result: Imported, located: Any) -> None:
             if not isinstance(error, Implausible) and not error.path.endswith(".filename"):
                 found = SPEC_ITEM.match(error.path)  # (at the link's or joint's line in the file)
                 where = located(found[1], found[2] or found[3]) if found else ""
-                result.unsupported.append(f"{where}the spec refuses {error.path.removeprefix('$.')}: {error.message}")
+                said = f"{where}the spec refuses {error.path.removeprefix('$.')}: {error.message}"
+                result.unsupported.append(said)
+                result.refused.append(said)
     if doubts:
         result.spec = {"robot": result.spec["robot"], "strict": False, **result.spec}
         result.as_given = [f"{e.path.removeprefix('$.')}: {e.message}" for e in doubts]
@@ -362,6 +367,17 @@ def _zero_origin() -> Any:
     from ..model import Origin
 
     return Origin()
+
+
+def _holds_xacro(element: Any) -> bool:
+    """Whether an element holds a xacro element or attribute (an extension file is copied verbatim: no xacro)."""
+    from lxml import etree
+
+    xacro = "{http://www.ros.org/wiki/xacro}"
+    return any(
+        str(e.tag).startswith(xacro) or any(str(k).startswith(xacro) for k in e.attrib)
+        for e in element.iter(etree.Element)
+    )
 
 
 def _label(element: Any) -> str:

@@ -425,3 +425,39 @@ def test_a_robot_name_xacro_cannot_hold_is_renamed_to_one_the_package_expands_wi
     assert yaml.safe_load((tmp_path / "r.yaml").read_text(encoding="utf-8"))["robot"] == written
     generated = gen_robot(tmp_path / "r.yaml", "--via-xacro", "-o", tmp_path / "pkg")
     assert generated.returncode == 0, generated.stderr
+
+
+@pytest.mark.parametrize(
+    ("body", "words"),
+    [
+        ('<link name="a"/><link name="b"/>'
+         '<joint name="ab" type="fixed"><parent link="a"/><child link="b"/></joint>'
+         '<joint name="ba" type="fixed"><parent link="b"/><child link="a"/></joint>', "the spec refuses"),
+        ('<link name="a"/><joint name="aa" type="fixed"><parent link="a"/><child link="a"/></joint>',
+         "the spec refuses"),
+    ],
+)  # fmt: skip
+def test_a_robot_the_spec_refuses_is_exit_2_with_nothing_written(tmp_path, body, words):
+    """A cycle, a joint from a link to itself: the spec written would not generate, so none is (it said exit 0)."""
+    urdf = tmp_path / "r.urdf"
+    urdf.write_text(f'<robot name="r">{body}</robot>', encoding="utf-8")
+    result = gen_robot("import", urdf, "-o", tmp_path / "out" / "r.yaml")
+    assert result.returncode == 2 and words in result.stderr, result.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_parts_not_imported_are_exit_1_and_xacro_in_a_gazebo_block_is_left_out(tmp_path):
+    urdf = tmp_path / "r.urdf"
+    urdf.write_text(
+        '<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro"><link name="a">'
+        '<visual><geometry><mesh filename="meshes/gone.stl"/></geometry></visual></link>'
+        '<gazebo><xacro:if value="true"><plugin name="p" filename="x.so"/></xacro:if></gazebo>'
+        "<gazebo><static>true</static></gazebo></robot>",
+        encoding="utf-8",
+    )
+    result = gen_robot("import", urdf, "-o", tmp_path / "r.yaml")
+    assert result.returncode == 1, result.stderr
+    assert "mesh 'meshes/gone.stl': not found" in result.stderr
+    extension = (tmp_path / "r_extension.xacro").read_text(encoding="utf-8")
+    assert "<static>true</static>" in extension and "xacro:if" not in extension
+    assert "left out: it holds xacro" in (tmp_path / "r.yaml").read_text(encoding="utf-8")
