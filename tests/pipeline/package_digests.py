@@ -24,6 +24,11 @@ CASES = [
 ]
 
 
+# meshes gen-robot makes with trimesh (a tube's OBJ): their bytes are trimesh's writer's, which a new trimesh release
+# may format otherwise; they are recorded by name only (the URDF that names them is compared byte for byte)
+MADE_BY_TRIMESH = "meshes/xacrokit/"
+
+
 def digests(relative: str, mode: str) -> dict[str, str]:
     """File (relative to the package root) -> SHA-256 of what ``generate`` writes for the example."""
     import xacrokit
@@ -32,7 +37,9 @@ def digests(relative: str, mode: str) -> dict[str, str]:
         out = Path(scratch, "pkg")
         xacrokit.generate(REPO / "examples" / relative, out, macros=mode)  # type: ignore[arg-type]
         return {
-            str(p.relative_to(out)): hashlib.sha256(p.read_bytes()).hexdigest()
+            str(p.relative_to(out)): "made by trimesh"
+            if str(p.relative_to(out)).startswith(MADE_BY_TRIMESH)
+            else hashlib.sha256(p.read_bytes()).hexdigest()
             for p in sorted(out.rglob("*"))
             if p.is_file()
         }
