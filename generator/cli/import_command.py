@@ -36,9 +36,9 @@ def _cmd_import(args: argparse.Namespace) -> int:
     from ..write.outputs import OutputFile, write_outputs
 
     result = import_robot(args.path, parse_mappings(args.mappings), package_paths=parse_packages(args.package))
-    if result.refused:  # (the spec written would not generate: nothing is written, exit 2)
+    if result.refused:  # (the spec written would not generate: nothing is written, exit 2; every reason said)
         raise XacrokitError(
-            f"{args.path}: the robot cannot be imported, the spec refuses it:\n  " + "\n  ".join(result.refused)
+            f"{args.path}: the robot cannot be imported, the spec refuses it:\n  " + "\n  ".join(result.unsupported)
         )
     for line in result.unsupported:
         print(f"gen-robot import: not imported: {line}", file=sys.stderr)

@@ -182,7 +182,7 @@ def test_what_the_spec_cannot_hold_is_reported(tmp_path):
         encoding="utf-8",
     )
     result = gen_robot("import", urdf, "-o", tmp_path / "odd.yaml")
-    assert result.returncode == 0, result.stderr
+    assert result.returncode == 1, result.stderr  # (written, with parts not imported: listed)
     said = result.stderr
     assert "link 'base link': the name is not a spec name" in said
     assert "calibration" not in said and "mirror" not in said  # (both imported: the spec has them)
@@ -403,12 +403,11 @@ def test_what_cannot_be_imported_is_said_at_its_line_in_the_file(tmp_path):
         '<joint name="j" type="fixed"><parent link="a"/><child link="zz"/></joint>\n</robot>\n',
         encoding="utf-8",
     )
-    said = gen_robot("import", urdf).stderr.splitlines()
-    assert f"gen-robot import: not imported: {urdf}:3: link 'b c': the name is not a spec name" in said[0]
-    assert (
-        said[1]
-        == f"gen-robot import: not imported: {urdf}:4: the spec refuses joints.j.child: child 'zz' is not in links"
-    )
+    result = gen_robot("import", urdf)
+    said = result.stderr.splitlines()
+    assert result.returncode == 2 and said[0].endswith("loc.urdf: the robot cannot be imported, the spec refuses it:")
+    assert f"  {urdf}:3: link 'b c': the name is not a spec name" in said[1]
+    assert said[2] == f"  {urdf}:4: the spec refuses joints.j.child: child 'zz' is not in links"
 
 
 @pytest.mark.parametrize(("name", "written"), [("__bot", "robot__bot"), ("if", "if_robot"), ("9lives", "robot_9lives")])
