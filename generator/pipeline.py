@@ -6,6 +6,7 @@ scratch folder first, so a spec that does not validate, or a package xacro canno
 
 from __future__ import annotations
 
+import functools
 import tempfile
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -188,17 +189,8 @@ def generate(
     if is_scene(raw):
         progress("checking the scene and its robots")
         with trusting(trust):
-            scene = build_scene(raw)
-            return generate_scene(
-                scene,
-                output,
-                dry_run=dry_run,
-                force=force,
-                spec_name=Path(spec_path).name,
-                macros=macros,
-                via_xacro=via_xacro,
-                progress=progress,
-            )
+            write = functools.partial(generate_scene, dry_run=dry_run, force=force, macros=macros, via_xacro=via_xacro)
+            return write(build_scene(raw), output, spec_name=Path(spec_path).name, progress=progress)
     progress("validating")
     spec = validate(raw)
     robot = resolve(spec)

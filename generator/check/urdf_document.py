@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from typing import overload
 
 from lxml import etree
 
@@ -61,8 +60,6 @@ class Doc:
         self.spec_lines = lines  # for spec input: (kind, name) -> line in the spec
         self.source_lines = source_lines  # URDF input: element lines are the file's own
         self.view = view_of(root)
-        self.links = [link.element for link in self.view.links]  # (the lxml elements, for rules that read raw text)
-        self.joints = [joint.element for joint in self.view.joints]
         self.link_names = {link.name for link in self.view.links}
         self.joint_by_name = {joint.name: joint.element for joint in self.view.joints}
 
@@ -90,23 +87,9 @@ class Doc:
         return Finding(rule, level or severity(rule), kind, name, message, self.file, line)
 
 
-@overload
-def read_float(element: etree._Element | None, attribute: str, default: float) -> float: ...
-@overload
-def read_float(element: etree._Element | None, attribute: str, default: None = None) -> float | None: ...
-def read_float(element: etree._Element | None, attribute: str, default: float | None = None) -> float | None:
-    """An attribute as a number: ``default`` when it (or the element) is missing, NaN when it does not read."""
-    if element is None or element.get(attribute) is None:
-        return default
-    try:
-        return float(element.get(attribute, ""))
-    except ValueError:
-        return math.nan
-
-
 def number_of(attributes: Mapping[str, str] | None, key: str, default: float | None = None) -> float | None:
     """An attribute of the view (``limit``, ``dynamics`` ...) as a number: ``default`` when it (or its element) is
-    missing, NaN when it does not read (as :func:`read_float` reads an element's)."""
+    missing, NaN when it does not read."""
     if attributes is None or attributes.get(key) is None:
         return default
     try:
@@ -117,19 +100,9 @@ def number_of(attributes: Mapping[str, str] | None, key: str, default: float | N
 
 def triple_of(text: str | None, default: str = "0 0 0") -> tuple[float, float, float]:
     """Three numbers from an attribute's text of the view (xyz, rpy, size): ``default`` when it is missing, NaNs
-    when it does not hold exactly three (as :func:`read_triple` reads an element's)."""
+    when it does not hold exactly three."""
     try:
         x, y, z = (float(v) for v in (default if text is None else text).split())
     except ValueError:
-        return (math.nan, math.nan, math.nan)
-    return (x, y, z)
-
-
-def read_triple(element: etree._Element | None, attribute: str, default: str = "0 0 0") -> tuple[float, float, float]:
-    """Three numbers from an attribute such as xyz or size; NaNs when it does not hold exactly three."""
-    text = default if element is None else element.get(attribute, default)
-    try:
-        x, y, z = (float(v) for v in text.split())
-    except ValueError:  # (not numbers, or not three of them)
         return (math.nan, math.nan, math.nan)
     return (x, y, z)

@@ -15,7 +15,7 @@ from __future__ import annotations
 import contextlib
 import os
 import xml.parsers.expat
-from collections.abc import Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -174,6 +174,11 @@ def expand_file(
             return expand()
         except MemoryError:
             raise ExpandError("expanding it ran out of memory", file=where) from None
+    return _expand_bounded(expand, where)
+
+
+def _expand_bounded(expand: Callable[[], str], where: str) -> str:
+    """``expand()`` run in a bounded child (an untrusted document): its text, or its error raised as an ExpandError."""
     try:
         text, error = run_bounded(expand, EXPAND_BOUNDS, errors=_error_fields)
     except OutOfBounds as exc:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 import glob
+import hashlib
 import os
 import re
 import tempfile
@@ -71,3 +72,17 @@ def remove_leftover_temporaries(root: Path, paths: Iterable[str]) -> list[Path]:
                     candidate.unlink()
                     removed.append(candidate)
     return removed
+
+
+def digest(content: str | bytes) -> str:
+    """SHA-256 of a file's content (text as UTF-8): what the package manifest and the outputs record hold."""
+    return hashlib.sha256(content.encode("utf-8") if isinstance(content, str) else content).hexdigest()
+
+
+def file_digest(path: Path) -> str:
+    """:func:`digest` of a file's content, read in pieces (a large file costs no memory)."""
+    hashed = hashlib.sha256()
+    with path.open("rb") as handle:
+        for piece in iter(lambda: handle.read(1 << 20), b""):
+            hashed.update(piece)
+    return hashed.hexdigest()

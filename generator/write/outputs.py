@@ -17,7 +17,6 @@ Every file is replaced atomically (a temporary file beside it, then ``os.replace
 from __future__ import annotations
 
 import contextlib
-import hashlib
 import json
 import os
 import stat
@@ -26,7 +25,7 @@ from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 
 from ..errors import XacrokitError
-from .atomic import remove_leftover_temporaries, write_text_atomic
+from .atomic import digest, file_digest, remove_leftover_temporaries, write_text_atomic
 from .package_writer import FileAction
 
 RECORD = ".xacrokit-outputs.json"
@@ -78,7 +77,7 @@ def write_outputs(folder: Path, files: Sequence[OutputFile], *, force: bool = Fa
     if conflicts:
         raise OutputConflict(folder, conflicts)
     remove_leftover_temporaries(folder, [item.relative for item in files])
-    digests = {item.relative: _digest(item.content) for item in files}
+    digests = {item.relative: digest(item.content) for item in files}
     # first recorded with both digests, the file's last and this run's: a run killed among its writes leaves files
     # that are each one or the other, and the next run takes them over (as the package writer does)
     _write_record(folder, {**record, **{k: [*record.get(k, []), v] for k, v in digests.items()}})
@@ -105,10 +104,10 @@ def _plan(folder: Path, item: OutputFile, record: dict[str, list[str]], *, force
         return FileAction(item.relative, "create")
     new = item.content.encode("utf-8") if isinstance(item.content, str) else item.content
     try:
-        held = _file_digest(target)  # (read in pieces: an -o naming a large file of someone else's costs no memory)
+        held = file_digest(target)  # (read in pieces: an -o naming a large file of someone else's costs no memory)
     except OSError as exc:
         raise XacrokitError(f"cannot read {target}: {exc.strerror or exc}") from None
-    if status.st_size == len(new) and held == _digest(new):
+    if status.st_size == len(new) and held == digest(new):
         return FileAction(item.relative, "identical")
     if held in record.get(item.relative, []):
         return FileAction(item.relative, "update")
@@ -133,18 +132,6 @@ def _refuse_special(path: Path, *, folder: bool) -> os.stat_result | None:
     if not folder and not stat.S_ISREG(mode):
         raise OutputRefused(f"{path}: it is a device, FIFO or socket, which gen-robot never writes (nor replaces)")
     return status
-
-
-def _digest(content: str | bytes) -> str:
-    return hashlib.sha256(content.encode("utf-8") if isinstance(content, str) else content).hexdigest()
-
-
-def _file_digest(path: Path) -> str:
-    digest = hashlib.sha256()
-    with path.open("rb") as handle:
-        for piece in iter(lambda: handle.read(1 << 20), b""):
-            digest.update(piece)
-    return digest.hexdigest()
 
 
 def _read_record(folder: Path) -> dict[str, list[str]]:

@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import contextlib
 import fcntl
-import hashlib
 import json
 import math
 import os
@@ -37,7 +36,7 @@ from typing import TYPE_CHECKING, Literal
 from .. import __version__
 from ..errors import XacrokitError
 from ..shared.input_files import open_folders, read_below
-from .atomic import remove_leftover_temporaries, write_text_atomic
+from .atomic import digest, remove_leftover_temporaries, write_text_atomic
 
 if TYPE_CHECKING:  # (the files only: the writer needs no renderer loaded)
     from ..render.environment import RenderedFile
@@ -79,11 +78,6 @@ class ConflictError(XacrokitError):
         if any(c.reason != NOT_OURS for c in conflicts):
             lines.append("Keep your edits by moving them into the spec, or run again with --force to overwrite.")
         super().__init__("\n".join(lines))
-
-
-def _digest(content: str | bytes) -> str:
-    """SHA-256 of a file's content (text as UTF-8), as the manifest records it."""
-    return hashlib.sha256(content.encode("utf-8") if isinstance(content, str) else content).hexdigest()
 
 
 Manifest = dict[str, frozenset[str]]  # path -> the SHA-256 digests of the contents we wrote there
@@ -144,7 +138,7 @@ def plan(
             current = None
         if current == file.content:
             actions.append(FileAction(file.path, "identical"))
-        elif current is not None and _digest(current) in manifest.get(file.path, ()):
+        elif current is not None and digest(current) in manifest.get(file.path, ()):
             actions.append(FileAction(file.path, "update"))
         else:
             reason = "edited since it was generated" if file.path in manifest else NOT_OURS
@@ -171,7 +165,7 @@ def _stale(manifest: Manifest, files: list[RenderedFile], root: Path) -> list[Fi
         except (OSError, ValueError) as exc:
             actions.append(FileAction(path, "keep", f"no longer generated, but not removable: {_why(exc)}"))
             continue
-        if _digest(data) in manifest[path]:
+        if digest(data) in manifest[path]:
             actions.append(FileAction(path, "remove", "no longer generated"))
         else:
             actions.append(FileAction(path, "keep", "no longer generated, but edited since: kept"))
@@ -314,7 +308,7 @@ def _write_planned(
     listed = [path for path in previous if _normal(path) and (root / path).resolve().is_relative_to(root.resolve())]
     remove_leftover_temporaries(root, [a.path for a in actions] + listed + [MANIFEST])
     by_path = {f.path: f for f in files}
-    digests = {f.path: _digest(f.content) for f in files if not f.seed}  # (a seed is the user's: not in the manifest)
+    digests = {f.path: digest(f.content) for f in files if not f.seed}  # (a seed is the user's: not in the manifest)
     manifest_path = root / MANIFEST
     done = 0
     try:
@@ -383,7 +377,7 @@ def _remove(root: Path, action: FileAction, digests: frozenset[str], written: se
             return FileAction(
                 action.path, "keep", "no longer generated under this name, but the same file as one that is"
             )
-        if _digest(data) not in digests:
+        if digest(data) not in digests:
             return FileAction(action.path, "keep", "no longer generated, but changed while we ran: kept")
         fds = open_folders(root, parts)
     except (OSError, ValueError) as exc:
