@@ -26,6 +26,7 @@ from .sized_robot import SizingRobot, configurations
 
 QUINTIC_SPEED = 15.0 / 8.0  # peak ds/du of 10u^3 - 15u^4 + 6u^5
 QUINTIC_ACCELERATION = 10.0 / math.sqrt(3.0)  # peak |d2s/du2|
+DEFAULT_STEP = 1e-3  # s: the sampling step when the sizing file gives none
 
 
 @dataclass(frozen=True)
@@ -38,7 +39,7 @@ class Motion:
     acceleration: tuple[float, ...]
     scaling: str = "quintic"
     dwell: float = 0.0
-    step: float = 1e-3
+    step: float = DEFAULT_STEP
 
 
 @dataclass(frozen=True)
@@ -99,26 +100,78 @@ def _trapezoid(
     return duration, s, ds, dds
 
 
+def _path_limits(motion: Motion, delta: np.ndarray) -> tuple[float, float, int, int]:
+    """The path's speed and acceleration limits per unit s (the tightest joint's) and which joints set them."""
+    moving = np.flatnonzero(np.abs(delta) > 0)
+    with np.errstate(divide="ignore", over="ignore"):  # (a limit of 1e-320 is a path speed of 0: an endless segment)
+        speeds = np.array(motion.velocity)[moving] / np.abs(delta[moving])
+        accelerations = np.array(motion.acceleration)[moving] / np.abs(delta[moving])
+    slow, sluggish = int(np.argmin(speeds)), int(np.argmin(accelerations))
+    return float(speeds[slow]), float(accelerations[sluggish]), int(moving[slow]), int(moving[sluggish])
+
+
+@dataclass(frozen=True)
+class SegmentTiming:
+    """A segment's shortest duration (s), and the limit that sets it: "velocity" or "acceleration" of ``joint``
+    (its index in the motion's joints); duration 0 and joint -1 for a segment that does not move."""
+
+    duration: float
+    limit: str = ""
+    joint: int = -1
+
+
 def segment_duration(motion: Motion, delta: np.ndarray) -> float:
-    """The shortest duration of a segment that keeps every joint within its speed and acceleration limits."""
-    moving = np.abs(delta) > 0
-    if not moving.any():
-        return 0.0
-    speed = float(np.min(np.array(motion.velocity)[moving] / np.abs(delta[moving])))  # the path's, per unit s
-    acceleration = float(np.min(np.array(motion.acceleration)[moving] / np.abs(delta[moving])))
+    """The shortest duration of a segment that keeps every joint within its speed and acceleration limits (inf when
+    a limit is too small for a float to say how long)."""
+    return segment_timing(motion, delta).duration
+
+
+def segment_timing(motion: Motion, delta: np.ndarray) -> SegmentTiming:
+    """:func:`segment_duration` with the limit and joint that set it."""
+    if not (np.abs(delta) > 0).any():
+        return SegmentTiming(0.0)
+    speed, acceleration, slow, sluggish = _path_limits(motion, delta)
+    if not (speed > 0 and acceleration > 0):
+        return SegmentTiming(
+            math.inf, "velocity" if not speed > 0 else "acceleration", slow if not speed > 0 else sluggish
+        )
     if motion.scaling == "quintic":
-        return max(QUINTIC_SPEED / speed, math.sqrt(QUINTIC_ACCELERATION / acceleration))
-    return _trapezoid(speed, acceleration, np.zeros(1))[0]
+        cruising, ramping = QUINTIC_SPEED / speed, math.sqrt(QUINTIC_ACCELERATION / acceleration)
+        if cruising >= ramping:
+            return SegmentTiming(cruising, "velocity", slow)
+        return SegmentTiming(ramping, "acceleration", sluggish)
+    duration = _trapezoid(speed, acceleration, np.zeros(1))[0]
+    triangle = (speed / acceleration) * speed >= 1.0
+    return SegmentTiming(duration, "acceleration" if triangle else "velocity", sluggish if triangle else slow)
+
+
+MAX_SAMPLES = 200_000  # a cycle of 200 s at the default 1 ms step; memory and time grow with it (docs/size.md)
+
+
+def sample_count(motion: Motion, durations: Sequence[float]) -> float:
+    """How many samples :func:`trajectory` takes for the cycle whose segments last ``durations`` (inf when a
+    duration is): the start, every dwell, every segment (at least 2 samples each)."""
+    ratios = [motion.dwell / motion.step, *(d / motion.step for d in durations if d > 0)]
+    if not all(math.isfinite(r) for r in ratios):
+        return math.inf
+    held = max(math.ceil(ratios[0]), 1) if motion.dwell > 0 else 0
+    moving = sum(max(math.ceil(r), 2) for r in ratios[1:])
+    return float(1 + held * len(motion.waypoints) + moving)
 
 
 def trajectory(motion: Motion) -> Trajectory:
-    """The sampled cycle: each segment at its shortest duration, a dwell at every waypoint (the first included)."""
+    """The sampled cycle: each segment at its shortest duration, a dwell at every waypoint (the first included).
+    Raises ValueError for a cycle of more than MAX_SAMPLES samples (:func:`sample_count`; the sizing file's reader
+    refuses those first, located)."""
+    points = [np.array(w, dtype=float) for w in motion.waypoints]
+    durations = [segment_duration(motion, end - start) for start, end in zip(points, points[1:], strict=False)]
+    if not sample_count(motion, durations) <= MAX_SAMPLES:
+        raise ValueError(f"the cycle needs more than {MAX_SAMPLES:,} samples")
     times: list[np.ndarray] = []
     positions: list[np.ndarray] = []
     speeds: list[np.ndarray] = []
     accelerations: list[np.ndarray] = []
     clock = 0.0
-    points = [np.array(w, dtype=float) for w in motion.waypoints]
     n = len(points[0])
 
     def hold(point: np.ndarray, duration: float) -> None:
@@ -137,18 +190,15 @@ def trajectory(motion: Motion) -> Trajectory:
     speeds.append(np.zeros((1, n)))
     accelerations.append(np.zeros((1, n)))
     hold(points[0], motion.dwell)
-    for start, end in zip(points, points[1:], strict=False):
+    for start, end, duration in zip(points, points[1:], durations, strict=False):
         delta = end - start
-        duration = segment_duration(motion, delta)
         if duration > 0:
             count = max(int(math.ceil(duration / motion.step)), 2)
             local = np.linspace(0.0, duration, count + 1)[1:]
             if motion.scaling == "quintic":
                 s, ds, dds = _quintic(duration, local)
             else:
-                moving = np.abs(delta) > 0
-                speed = float(np.min(np.array(motion.velocity)[moving] / np.abs(delta[moving])))
-                acceleration = float(np.min(np.array(motion.acceleration)[moving] / np.abs(delta[moving])))
+                speed, acceleration, _, _ = _path_limits(motion, delta)
                 _, s, ds, dds = _trapezoid(speed, acceleration, local)
             times.append(clock + local)
             positions.append(start + s[:, None] * delta)

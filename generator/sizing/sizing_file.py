@@ -11,6 +11,8 @@ from dataclasses import dataclass, field
 from functools import cache
 from typing import Any
 
+import numpy as np
+
 from ..errors import SpecError, SpecErrors
 from ..load import PathKey, RawSpec, load_file
 from ..shared.package_data import schemas_dir
@@ -18,7 +20,16 @@ from ..shared.units import Kind, UnitError, bound_problem, parse_quantity
 from ..shared.value_text import did_you_mean
 from ..validate.schema import SchemaValidator, inline_refs, schema_errors
 from .mobile import BaseMotion
-from .motion import Motion, reach, waypoint_errors
+from .motion import (
+    DEFAULT_STEP,
+    MAX_SAMPLES,
+    Motion,
+    SegmentTiming,
+    reach,
+    sample_count,
+    segment_timing,
+    waypoint_errors,
+)
 from .sized_robot import Load, Payload, SizingRobot, frame_names
 
 
@@ -156,13 +167,67 @@ def motion_of(sizing: Sizing, robot: SizingRobot) -> Motion | None:
         read.errors += [raw.error(("motion", "waypoints"), problem) for problem in waypoint_errors(robot, waypoints)]
     if read.errors:
         raise SpecErrors(read.errors)
-    return Motion(
+    motion = Motion(
         waypoints=tuple(waypoints),
         velocity=tuple(velocity),
         acceleration=tuple(acceleration),
         scaling=data.get("scaling", "quintic"),
         dwell=float(data.get("dwell", 0.0)),
-        step=float(data.get("step", 1e-3)),
+        step=float(data.get("step", DEFAULT_STEP)),
+    )
+    too_long = _sampling_error(raw, motion, robot, data)
+    if too_long is not None:
+        raise SpecErrors([too_long])
+    return motion
+
+
+def _sampling_error(raw: RawSpec, motion: Motion, robot: SizingRobot, data: dict[str, Any]) -> SpecError | None:
+    """The cycle sampled beyond MAX_SAMPLES, located at what makes it long (:func:`_why_long`); None when it is
+    within the cap."""
+    points = [np.array(w, dtype=float) for w in motion.waypoints]
+    timings = [segment_timing(motion, end - start) for start, end in zip(points, points[1:], strict=False)]
+    needed = sample_count(motion, [t.duration for t in timings])
+    if needed <= MAX_SAMPLES:
+        return None
+    cycle = motion.dwell * len(points) + sum(t.duration for t in timings)
+    cap = f"xacrokit samples a cycle at most {MAX_SAMPLES:,} times ({MAX_SAMPLES * motion.step:g} s at this step)"
+    if math.isfinite(needed):
+        head = f"the cycle would take {cycle:.4g} s, {needed:,.0f} samples at a step of {motion.step:g} s; {cap}"
+    else:
+        head = f"the cycle would take more samples at a step of {motion.step:g} s than a number can hold; {cap}"
+    where, why = _why_long(motion, robot, data, timings)
+    return raw.error(where, f"{head}: {why}")
+
+
+def _why_long(
+    motion: Motion, robot: SizingRobot, data: dict[str, Any], timings: list[SegmentTiming]
+) -> tuple[PathKey, str]:
+    """Where a cycle too long to sample comes from, and why: a step finer than the default, the dwell, the limit
+    that sets its longest segment, or many segments."""
+    held, moving = motion.dwell * len(motion.waypoints), sum(t.duration for t in timings)
+    if "step" in data and (held + moving) / DEFAULT_STEP <= MAX_SAMPLES:
+        return ("motion", "step"), f"the step of {motion.step:g} s is finer than it needs; leave it out (1 ms)"
+    if held >= moving:
+        why = f"the dwell of {motion.dwell:g} s is held at each of the {len(motion.waypoints)} waypoints"
+        return ("motion", "dwell"), f"{why} (milliseconds typed as seconds?); shorten it or give a coarser step"
+    longest = max(range(len(timings)), key=lambda k: timings[k].duration)
+    timing = timings[longest]
+    if not timing.duration >= moving / 2:
+        why = f"its {len(timings)} segments take {moving:.4g} s together"
+        return ("motion", "waypoints"), f"{why}; split the cycle or give a coarser step"
+    joint = robot.joints[timing.joint]
+    given = data.get(timing.limit)
+    where: PathKey = ("motion",)  # (the URDF's velocity limit: the file has no field for it)
+    if isinstance(given, dict) and joint.name in given:
+        where = ("motion", timing.limit, joint.name)
+    elif given is not None and not isinstance(given, dict):
+        where = ("motion", timing.limit)
+    value = getattr(motion, timing.limit)[timing.joint]
+    unit = ("m" if joint.kind == "prismatic" else "rad") + ("/s" if timing.limit == "velocity" else "/s^2")
+    source = "" if where != ("motion",) else " (the URDF's)"
+    return where, (
+        f"waypoint {longest} to {longest + 1} alone takes {timing.duration:.4g} s at {joint.name}'s "
+        f"{timing.limit} limit of {value:g} {unit}{source} (a value in the wrong unit?)"
     )
 
 

@@ -206,6 +206,11 @@ def test_drives_give_the_motor_side_and_fail_the_motor_that_is_too_small(tmp_pat
     assert "FAIL shoulder_lift_joint: motor peak torque over the motor's peak torque" in failing.stdout
 
 
+def _moving(**motion):
+    """A sizing file moving the UR5's elbow by 1 rad at 1 rad/s^2, with ``motion``'s fields in place of these."""
+    return {"motion": {"acceleration": 1.0, "waypoints": [{"elbow_joint": 0}, {"elbow_joint": 1}], **motion}}
+
+
 @pytest.mark.parametrize(
     ("change", "path", "words"),
     [
@@ -224,6 +229,15 @@ def test_drives_give_the_motor_side_and_fail_the_motor_that_is_too_small(tmp_pat
         ({"drives": {"elbow_joint": {"gear_ratio": -5}}}, "$.drives.elbow_joint.gear_ratio", "> 0"),
         ({"drives": {"elbo_joint": {"gear_ratio": 5}}}, "$.drives.elbo_joint", "did you mean 'elbow_joint'"),
         ({"payloads": [{"frame": "tool0", "mass": "5 parsecs"}]}, "$.payloads[0].mass", "unknown unit"),
+        # cycles too long to sample (issue 28): refused before sampling, at the field that makes them long
+        (_moving(dwell=1e4), "$.motion.dwell", "20,0"),
+        (_moving(dwell=1e9), "$.motion.dwell", "at most 200,000 times"),
+        (_moving(velocity={"elbow_joint": 1e-12}), "$.motion.velocity.elbow_joint", "elbow_joint's velocity limit"),
+        (_moving(velocity=1e-320), "$.motion.velocity", "than a number can hold"),
+        (_moving(acceleration="1e-300"), "$.motion.acceleration", "acceleration limit of 1e-300"),
+        (_moving(step=1e-9), "$.motion.step", "leave it out"),
+        (_moving(waypoints=[{"elbow_joint": k % 2 * 2.0} for k in range(300)]), "$.motion.waypoints", "299 segments"),
+        (_moving(waypoints=[{"elbow_joint": 0} for _ in range(1001)]), "$.motion.waypoints", "2 to 1000 entries"),
     ],
 )
 def test_bad_sizing_files_are_located_errors(tmp_path, change, path, words):
@@ -261,6 +275,41 @@ def test_pose_waypoints_are_reached_by_inverse_kinematics(tmp_path_factory, seed
     assert error < 1e-9
     assert np.abs(reached.translation - goal.translation).max() < 1e-9
     assert np.abs(reached.rotation - goal.rotation).max() < 1e-9
+
+
+@settings(max_examples=30, deadline=None)
+@given(
+    points=st.lists(st.lists(st.floats(-3, 3), min_size=2, max_size=2), min_size=2, max_size=5),
+    velocity=st.floats(0.05, 20),
+    acceleration=st.floats(0.05, 50),
+    dwell=st.sampled_from([0.0, 0.0004, 0.25]),
+    step=st.sampled_from([1e-3, 7e-3, 0.05]),
+    scaling=st.sampled_from(["quintic", "trapezoid"]),
+)
+def test_the_sample_count_the_cap_is_checked_on_is_the_trajectorys(
+    points, velocity, acceleration, dwell, step, scaling
+):
+    """sample_count, which the sizing file's reader compares with MAX_SAMPLES before sampling, is the number of
+    samples the trajectory then takes: the cap refuses exactly the cycles that would exceed it."""
+    from xacrokit.sizing.motion import MAX_SAMPLES, sample_count, segment_duration
+
+    motion = Motion(tuple(map(tuple, points)), (velocity, velocity), (acceleration, acceleration), scaling, dwell, step)
+    durations = [segment_duration(motion, np.subtract(b, a)) for a, b in zip(points, points[1:], strict=False)]
+    needed = sample_count(motion, durations)
+    if needed > MAX_SAMPLES:
+        with pytest.raises(ValueError, match="more than 200,000 samples"):
+            trajectory(motion)
+    else:
+        assert needed == len(trajectory(motion).t)
+
+
+def test_a_cycle_beyond_the_cap_is_never_sampled():
+    from xacrokit.sizing.motion import MAX_SAMPLES
+
+    motion = Motion(((0.0,), (1.0,)), (1.0,), (1.0,), dwell=MAX_SAMPLES * 1e-3)
+    with pytest.raises(ValueError, match="more than 200,000 samples"):
+        trajectory(motion)
+    assert len(trajectory(Motion(((0.0,), (1.0,)), (1.0,), (1.0,), dwell=10.0)).t) < MAX_SAMPLES
 
 
 def test_an_unreachable_pose_is_a_located_error(tmp_path):
