@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from pathlib import Path, PurePosixPath
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -50,7 +50,7 @@ from .model import (
     attach_joint_name,
 )
 from .shared.gc_pause import collector_paused
-from .shared.mesh_solids import MESH_FOLDER, is_relative, tube_obj
+from .shared.mesh_solids import MESH_FOLDER, is_relative, package_mesh_path, tube_obj
 from .shared.sim_sensors import resolve_sensor
 from .shared.solid_inertia import (
     box_moments,
@@ -109,7 +109,7 @@ def shape(data: dict[str, Any], package: _Package) -> Shape:
     mesh = data["mesh"]
     filename = mesh["filename"]
     if is_relative(filename):  # (validate saw the file there)
-        path = f"{MESH_FOLDER}/{PurePosixPath(filename).name}"
+        path = package_mesh_path(filename)
         package.files[path] = (package.spec_folder / filename).read_bytes()
         filename = f"package://{package.name}/{path}"
     return Mesh(filename=filename, scale=_vec3(mesh.get("scale"), (1.0, 1.0, 1.0)))

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -35,8 +35,10 @@ from typing import Any
 import numpy as np
 
 from ..errors import XacrokitError
+from ..reader.mesh_copies import MeshRead
 from ..reader.robot_source import urdf_floats as _floats
 from ..reader.urdf_view import Joint, Link, Origin, UrdfView
+from ..shared.input_files import CopiedFile, copied_pieces
 from ..shared.units import INPUT_BOUNDS, bound_problem
 from .mjcf_actuators import num
 from .mjcf_meshes import FlatMesh, Meshes
@@ -48,10 +50,11 @@ MAX_MOMENT = INPUT_BOUNDS["mass"] * INPUT_BOUNDS["length"] ** 2  # kg m^2: the l
 
 @dataclass
 class Export:
-    """The model's XML and the mesh files it names (meshes/NAME -> bytes), and what the writer had to say."""
+    """The model's XML and the mesh files it names (NAME in meshes/ -> bytes, or the robot's file, streamed when
+    written), and what the writer had to say."""
 
     xml: str
-    meshes: dict[str, bytes] = field(default_factory=dict)
+    meshes: dict[str, bytes | CopiedFile] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
     repairs: dict[str, float] = field(default_factory=dict)  # link -> |change| (2-norm, kg m^2) of its inertia
     massless: list[str] = field(default_factory=list)  # moving links given MASSLESS
@@ -196,12 +199,13 @@ class _Bodies:
 
 def mjcf(
     text: str,
-    resolve: Any,
+    read: Callable[[str], MeshRead],
     *,
     base: str = "auto",
     floor: bool = False,
 ) -> Export:
-    """The MJCF of a URDF ``text``; ``resolve(filename)`` gives a mesh's file path; ``base``: auto, fixed or free.
+    """The MJCF of a URDF ``text``; ``read(filename)`` reads a mesh (:func:`~xacrokit.reader.mesh_copies.mesh_reader`:
+    safely, below the robot's folder); ``base``: auto, fixed or free.
 
     Raises:
         XacrokitError: a URDF MuJoCo cannot take (not a tree, a mesh that cannot be found or read, bad numbers).
@@ -212,7 +216,7 @@ def mjcf(
     tree = _tree(view)
     free = base == "free" or (base == "auto" and tree.root != "world" and _has_wheel(tree.joints, tree.links))
     export = Export(xml="")
-    meshes = Meshes(resolve, export.meshes, export.notes)
+    meshes = Meshes(read, export.meshes, export.notes)
     model, asset, world = _skeleton(view.name if view.name is not None else "robot", floor)
     _Bodies(tree, free, view.colours(), _frictions(view), meshes, export).body(tree.root, world, None)
     for mesh in meshes.assets:
@@ -471,9 +475,15 @@ def export_mjcf(
         XacrokitError: unreadable input, a mesh that cannot be found or read, a robot MuJoCo cannot take.
         SpecErrors: an invalid spec (located).
     """
-    from ..reader.robot_source import mesh_resolver, robot_text
+    from ..reader.mesh_copies import mesh_reader
+    from ..reader.robot_source import robot_text
+    from ..write.atomic import is_staged
 
     if base not in ("auto", "fixed", "free"):
         raise XacrokitError(f"--base {base!r}: auto, fixed or free")
     with robot_text(path, mappings, package_paths) as (text, packages):
-        return mjcf(text, mesh_resolver(Path(path).parent, packages), base=base, floor=floor)
+        export = mjcf(text, mesh_reader(Path(path), packages), base=base, floor=floor)
+        for name, mesh in export.meshes.items():  # (a spec's meshes, staged for the block: read while they last)
+            if isinstance(mesh, CopiedFile) and is_staged(mesh.root):
+                export.meshes[name] = b"".join(copied_pieces(mesh))
+        return export

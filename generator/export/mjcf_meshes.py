@@ -3,13 +3,15 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from ..errors import XacrokitError
-from ..shared.mesh_solids import read_mesh
+from ..reader.mesh_copies import MeshRead
+from ..shared.input_files import CopiedFile
 from .mjcf_actuators import num
 
 READABLE = (".obj", ".msh")  # what MuJoCo reads as it is (binary STL too: decided by looking at the file)
@@ -34,23 +36,30 @@ class FlatMesh(XacrokitError):
 class Meshes:
     """The mesh assets: one per (file, scale), the file copied into meshes/ (converted when MuJoCo cannot read it)."""
 
-    def __init__(self, resolve: Any, written: dict[str, bytes], notes: list[str]) -> None:
-        self.resolve = resolve
-        self.written = written  # meshes/NAME -> bytes
+    def __init__(
+        self, read: Callable[[str], MeshRead], written: dict[str, bytes | CopiedFile], notes: list[str]
+    ) -> None:
+        self.read = read  # (mesh_copies.mesh_reader: safe, bounded, one read per file)
+        self.written = written  # NAME in meshes/ -> bytes, or the file streamed there
         self.notes = notes
         self.assets: list[Any] = []
         self.names: dict[tuple[str, str], str] = {}
-        self.files: dict[str, str] = {}  # resolved path -> file name in meshes/
+        self.files: dict[str, str] = {}  # the file read -> its file name in meshes/
+        self.found: dict[str, str] = {}  # the URI as written -> the file read
 
     def name(self, filename: str, scale: str | None) -> str:
         from lxml import etree
 
-        path = str(self.resolve(filename))
+        path = self.found.get(filename)
+        if path is None:
+            read = self.read(filename)
+            path = str(read.copy.root / read.copy.relative)
+            if path not in self.files:
+                self.files[path] = self._copy(read, filename)  # (raises FlatMesh again on the next visit)
+            self.found[filename] = path
         key = (path, " ".join(scale.split()) if scale else "1 1 1")
         if key in self.names:
             return self.names[key]
-        if path not in self.files:
-            self.files[path] = self._copy(Path(path), filename)
         name = f"mesh{len(self.assets)}_{Path(self.files[path]).stem}"
         element = etree.Element("mesh", name=name, file=self.files[path], inertia="shell")
         if scale:
@@ -59,17 +68,18 @@ class Meshes:
         self.names[key] = name
         return name
 
-    def _copy(self, path: Path, filename: str) -> str:
-        if not path.is_file():
-            raise XacrokitError(f"mesh {filename!r} is not there ({path})")
-        data = path.read_bytes()
-        mesh = read_mesh(path, filename)
+    def _copy(self, read: MeshRead, filename: str) -> str:
+        mesh = read.mesh
         spread = np.linalg.svd(mesh.vertices - mesh.vertices.mean(axis=0), compute_uv=False)
         if len(mesh.vertices) < 4 or spread[-1] <= 1e-9 * spread[0]:
             raise FlatMesh(f"mesh {filename!r} is flat (all its vertices in one plane): MuJoCo cannot take it")
-        stem = "".join(c if c.isalnum() or c in "_-" else "_" for c in path.stem)[:60] or "mesh"
-        suffix = path.suffix.lower()
-        if suffix in READABLE or (suffix == ".stl" and _binary_stl_faces(data) in range(1, STL_FACES + 1)):
+        source = Path(read.copy.relative)
+        stem = "".join(c if c.isalnum() or c in "_-" else "_" for c in source.stem)[:60] or "mesh"
+        suffix = source.suffix.lower()
+        data: bytes | CopiedFile = read.copy
+        if suffix in READABLE or (
+            suffix == ".stl" and _binary_stl_faces(read.head, read.copy.size) in range(1, STL_FACES + 1)
+        ):
             out = f"{stem}{suffix}"
         else:
             exported = mesh.export(file_type="obj", include_normals=False, include_texture=False)
@@ -85,11 +95,11 @@ class Meshes:
         return out
 
 
-def _binary_stl_faces(data: bytes) -> int:
-    """The triangle count of a binary STL (its header's count, when the size agrees), -1 for anything else (an STL
-    in text, which MuJoCo cannot read)."""
-    if len(data) >= 84:
-        count = int.from_bytes(data[80:84], "little")
-        if 84 + 50 * count == len(data):
+def _binary_stl_faces(head: bytes, size: int) -> int:
+    """The triangle count of a binary STL of ``size`` bytes that starts with ``head`` (its header's count, when the
+    size agrees), -1 for anything else (an STL in text, which MuJoCo cannot read)."""
+    if len(head) >= 84:
+        count = int.from_bytes(head[80:84], "little")
+        if 84 + 50 * count == size:
             return count
     return -1

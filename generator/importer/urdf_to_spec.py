@@ -13,7 +13,7 @@ What the spec says, the spec keeps, with its numbers written exactly (YAML float
 - values no real body has under ``strict: false`` (:attr:`Imported.as_given`).
 
 What the spec cannot say is reported at its element's line, not dropped silently (:attr:`Imported.unsupported`): a
-name the spec does not take, two relative meshes of one file name, a relative mesh that is not there, and whatever
+name the spec does not take, a relative mesh that is not there, and whatever
 else the spec would refuse. Attributes URDF does not define are named (:attr:`Imported.ignored`). Every element URDF
 readers do not model (``<gazebo>``, ``<transmission>``, ``<ros2_control>``, others) is kept verbatim in
 :attr:`Imported.extension`, which ``gen-robot import -o SPEC`` writes beside the spec as ``SPEC_extension.xacro`` and
@@ -30,6 +30,7 @@ from typing import Any
 
 from ..reader.robot_source import urdf_floats
 from ..reader.urdf_view import Inertial, Joint, Link, Material, MaterialRef, Origin, Shape, UrdfView
+from ..shared.input_files import CopiedFile
 from .wheel_match import wheels
 
 IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -53,7 +54,7 @@ class Imported:
     spec: dict[str, Any]
     unsupported: list[str] = field(default_factory=list)
     leftovers: list[str] = field(default_factory=list)
-    meshes: dict[str, bytes] = field(default_factory=dict)  # a relative mesh path in the spec -> what to copy there
+    meshes: dict[str, CopiedFile] = field(default_factory=dict)  # a relative mesh path in the spec -> the file copied
     extension: str = ""  # the left-out elements as a <robot> document: the spec's `extension` file, verbatim
     as_given: list[str] = field(default_factory=list)  # values no real body has, kept under `strict: false`
     ignored: list[str] = field(default_factory=list)  # attributes URDF does not define (its readers ignore them)
@@ -486,10 +487,12 @@ def import_robot(
 
 def _relative_meshes(imported: Imported, urdf: Any, packages: Mapping[str, Any], source: str) -> None:
     """A mesh named by a path relative to the URDF (``meshes/arm.stl``) is copied beside the spec, under
-    ``meshes/``, and the spec names the copy: gen-robot then carries it into the package. (A ``package://`` or
-    ``file://`` URI stays as written: the package it names is the user's.) What is copied is read here, once, safely
+    ``meshes/``, and the spec names the copy: gen-robot then carries it into the package. The robot's folders below
+    the one all its copied meshes share are kept (``visual/wrist3.obj`` and ``collision/wrist3.obj`` become
+    ``meshes/visual/wrist3.obj`` and ``meshes/collision/wrist3.obj``). (A ``package://`` or ``file://`` URI stays as
+    written: the package it names is the user's.) What is copied is read here, once, safely
     (:func:`~xacrokit.reader.mesh_copies.mesh_to_copy`: no link, nothing outside the robot's folder, a mesh of its
-    kind); a mesh that is not is a located error, and nothing is imported."""
+    kind) and streamed when the spec is written; a mesh that is not is a located error, and nothing is imported."""
     from pathlib import Path, PurePosixPath
 
     from ..reader.mesh_copies import mesh_to_copy, robot_folder
@@ -497,7 +500,7 @@ def _relative_meshes(imported: Imported, urdf: Any, packages: Mapping[str, Any],
     from ..shared.ros_packages import mesh_file
     from ..validate.bodies import geometries
 
-    sources: dict[str, Path] = {}
+    found: list[tuple[dict[str, Any], str, str]] = []  # (the spec's mesh, the file, where the URDF names it)
     for link_name, link in imported.spec.get("links", {}).items():
         for holder in [link, *(geometry for _, geometry in geometries((), link))]:
             mesh = holder.get("shape", {}).get("mesh")
@@ -505,23 +508,21 @@ def _relative_meshes(imported: Imported, urdf: Any, packages: Mapping[str, Any],
                 continue
             path = mesh_file(mesh["filename"], urdf.parent, packages)
             line = imported.lines.get(("links", link_name))
-            where = f"{source}:{line}: " if line else f"{source}: "
             if not Path(path).is_file() and not Path(path).is_symlink():
                 imported.unsupported.append(f"mesh {mesh['filename']!r}: not found (looked for {str(path)!r})")
-                continue
-            name = PurePosixPath(mesh["filename"]).name
-            if PurePosixPath(name).suffix.lower() not in MESH_SUFFIXES:
+            elif PurePosixPath(mesh["filename"]).suffix.lower() not in MESH_SUFFIXES:
                 imported.unsupported.append(f"mesh {mesh['filename']!r}: not a mesh file the spec copies")
-                continue
-            target = f"meshes/{name}"
-            if sources.get(target, path) != path:
-                imported.unsupported.append(f"mesh {mesh['filename']!r}: two meshes named {name!r}")
-                continue
-            if target not in sources:
-                said = f"{where}mesh {mesh['filename']!r}"
-                imported.meshes[target] = mesh_to_copy(robot_folder(urdf), path, where=said)
-                sources[target] = path
-            mesh["filename"] = target
+            else:
+                where = f"{source}:{line}: " if line else f"{source}: "
+                found.append((mesh, os.path.normpath(os.path.abspath(path)), f"{where}mesh {mesh['filename']!r}"))
+    if not found:
+        return
+    shared = os.path.commonpath([os.path.dirname(file) for _, file, _ in found])
+    for mesh, file, said in found:
+        target = "meshes/" + Path(os.path.relpath(file, shared)).as_posix()
+        if target not in imported.meshes:
+            imported.meshes[target] = mesh_to_copy(robot_folder(urdf), Path(file), where=said)
+        mesh["filename"] = target
 
 
 def spec_yaml(imported: Imported, source: str) -> str:

@@ -1,27 +1,36 @@
-"""Mesh files a command copies out of a robot's folder (``gen-robot import -o``; the spec's meshes then travel into
-its package): read only when they are what they claim to be.
+"""A robot's mesh files, as the commands that copy or show them read them (``gen-robot import -o`` copies them
+beside the spec, and they then travel into its package; ``export --mjcf`` copies them beside the model; ``view`` and
+``render`` draw them into a page or picture): read only when they are what they claim to be.
 
 A robot folder is someone else's, and a copy carries its files on: a ``meshes/part.stl`` that is a symbolic link to
-``/etc/passwd`` would put the password file beside the spec and then into a package. So a copied mesh is read
+``/etc/passwd`` would put the password file beside the spec and then into a package. So a mesh is read
 
 * without following a symbolic link, neither the file itself nor a folder on its way below the robot's folder;
 * only inside the robot's folder (:func:`robot_folder`: the ROS or Python package that ships the URDF, else the
-  folder above a ``urdf/`` folder, else the URDF's own; no ``..`` out of it, no absolute path);
+  folder above a ``urdf/`` folder, else the URDF's own; no ``..`` out of it), or inside the package a
+  ``package://`` URI names (:func:`mesh_root`);
 * only as a plain file of at most :data:`~xacrokit.shared.mesh_solids.MAX_MESH_BYTES` (a larger one is refused before
   it is read);
 * and it must read, with trimesh, as a mesh of the kind its suffix says, with at least one triangle.
+
+What is copied is streamed from the file when the output is written (:class:`~xacrokit.shared.input_files.CopiedFile`),
+and only if it is still the file that was read: a run holds one mesh in memory at a time, whatever the robot's count.
 """
 
 from __future__ import annotations
 
+import errno
+import hashlib
 import io
 import os
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 from typing import Any
 
 from ..errors import XacrokitError
-from ..shared.input_files import InputError, Linked, read_below
-from ..shared.mesh_solids import MAX_MESH_BYTES, MESH_SUFFIXES
+from ..shared.input_files import CopiedFile, InputError, Linked, open_below, read_below
+from ..shared.mesh_solids import MAX_MESH_BYTES, MESH_SUFFIXES, is_relative
 
 
 def robot_folder(urdf: Path) -> Path:
@@ -41,50 +50,140 @@ class MeshCopyRefused(XacrokitError):
     """A mesh file that is not copied: a link, outside the robot's folder, too large, or not a mesh."""
 
 
-def mesh_to_copy(root: Path, source: Path, *, where: str = "") -> bytes:
-    """The bytes of ``source``, a mesh file inside the robot's folder ``root``, once they are safe to copy.
+@dataclass(frozen=True)
+class MeshRead:
+    """A robot's mesh file, read safely once: the mesh trimesh reads from it, the file to stream into an output, and
+    its first bytes (a binary STL's header and triangle count)."""
+
+    mesh: Any
+    copy: CopiedFile
+    head: bytes
+
+
+def mesh_to_copy(root: Path, source: Path, *, where: str = "") -> CopiedFile:
+    """The file ``source``, a mesh inside the robot's folder ``root``, once it is safe to copy (streamed when it is
+    written: :func:`read_mesh_below` says what is refused)."""
+    return read_mesh_below(root, source, where=where, process=False).copy
+
+
+def read_mesh_below(root: Path, source: Path, *, where: str = "", process: bool = True) -> MeshRead:
+    """``source``, a mesh file inside the robot's folder ``root``, read once and safely.
 
     Args:
-        root: the robot's folder (:func:`robot_folder`).
+        root: the robot's folder (:func:`robot_folder`), or the package a ``package://`` URI names.
         source: the mesh file (absolute, or relative to the working folder), not resolved.
         where: how the messages name the mesh (``robot.urdf:12: mesh 'meshes/part.stl'``).
+        process: trimesh's ``process`` (merge duplicate vertices), for the reader that draws or converts it.
 
     Raises:
         MeshCopyRefused: it is reached through a symbolic link, lies outside ``root``, is not a plain file of at most
-            MAX_MESH_BYTES, or does not read as a mesh of its suffix's kind.
+            MAX_MESH_BYTES, or does not read as a mesh of its suffix's kind with a triangle.
     """
     said = where or str(source)
+    pure = _inside(root, source, said)
+    try:
+        data, identity = read_below(root, pure.as_posix(), MAX_MESH_BYTES)
+    except Linked as exc:
+        raise MeshCopyRefused(
+            f"{said}: {exc.strerror}; a robot's mesh is never read through a symbolic link (copy the file itself "
+            "into the robot's folder, or name it by package://)"
+        ) from None
+    except InputError as exc:
+        raise MeshCopyRefused(
+            f"{said}: {exc.strerror}; a part's mesh is expected below {MAX_MESH_BYTES >> 20} MiB (simplify it in the "
+            "CAD tool or a mesh tool)"
+        ) from None
+    except OSError as exc:
+        raise MeshCopyRefused(f"{said}: cannot be read: {exc.strerror or exc}") from None
+    suffix = pure.suffix.lower()
+    mesh = _require_mesh(data, suffix, said, process)
+    copy = CopiedFile(root, pure.as_posix(), identity, len(data), hashlib.sha256(data).hexdigest())
+    return MeshRead(mesh, copy, data[:84])
+
+
+def _inside(root: Path, source: Path, said: str) -> PurePosixPath:
+    """``source`` relative to ``root`` (a POSIX path), refused when it leaves root or is no mesh file by its name."""
     relative = os.path.relpath(os.path.abspath(source), os.path.abspath(root))
     pure = PurePosixPath(Path(relative).as_posix())
     if pure.is_absolute() or pure.parts[:1] == ("..",):
-        raise MeshCopyRefused(f"{said}: it lies outside the robot's folder {root}; only files inside it are copied")
-    suffix = pure.suffix.lower()
-    if suffix not in MESH_SUFFIXES:
-        raise MeshCopyRefused(f"{said}: not a mesh file by its name (copied: {', '.join(MESH_SUFFIXES)})")
+        raise MeshCopyRefused(f"{said}: it lies outside the robot's folder {root}; only files inside it are read")
+    if pure.suffix.lower() not in MESH_SUFFIXES:
+        raise MeshCopyRefused(f"{said}: not a mesh file by its name (read: {', '.join(MESH_SUFFIXES)})")
+    return pure
+
+
+def require_mesh_file(root: Path, source: Path, *, where: str = "") -> None:
+    """Refuse (MeshCopyRefused) what :func:`read_mesh_below` refuses without reading the file: a link, a path out of
+    ``root``, no mesh by its name, not a plain file, larger than MAX_MESH_BYTES (for a reader that opens the file
+    itself: yourdfpy drawing a picture)."""
+    said = where or str(source)
+    pure = _inside(root, source, said)
     try:
-        data, _ = read_below(root, pure.as_posix(), MAX_MESH_BYTES)
+        with open_below(root, pure.as_posix()) as (_, status):
+            if status.st_size > MAX_MESH_BYTES:
+                raise InputError(errno.EFBIG, f"it is larger than {MAX_MESH_BYTES:,} bytes")
     except Linked as exc:
-        raise MeshCopyRefused(
-            f"{said}: {exc.strerror}; a copied mesh is never reached through a symbolic link (copy the file itself "
-            "into the robot's folder, or name it by package://)"
-        ) from None
-    except (InputError, OSError) as exc:
-        raise MeshCopyRefused(f"{said}: cannot be copied: {exc.strerror or exc}") from None
-    _require_mesh(data, suffix, said)
-    return data
+        raise MeshCopyRefused(f"{said}: {exc.strerror}; a robot's mesh is never read through a symbolic link") from None
+    except OSError as exc:
+        raise MeshCopyRefused(f"{said}: cannot be read: {exc.strerror or exc}") from None
 
 
-def _require_mesh(data: bytes, suffix: str, said: str) -> None:
-    """Refuse bytes that trimesh does not read as a mesh of the kind ``suffix`` says, with a triangle."""
+def _require_mesh(data: bytes, suffix: str, said: str, process: bool) -> Any:
+    """The mesh trimesh reads from ``data`` as the kind ``suffix`` says; refused when it reads none with a triangle."""
     import trimesh
 
     try:
-        mesh: Any = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh", process=False)
+        mesh: Any = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh", process=process)
         triangles = len(mesh.faces)
     except Exception:  # noqa: BLE001  (trimesh raises what its readers raise: every one means "not this kind")
         triangles = 0
     if not triangles:
         raise MeshCopyRefused(
-            f"{said}: it does not read as a {suffix[1:].upper()} mesh with a triangle; a file copied as a mesh must "
+            f"{said}: it does not read as a {suffix[1:].upper()} mesh with a triangle; a file read as a mesh must "
             "be one"
         )
+    return mesh
+
+
+def mesh_root(urdf: Path, filename: str, packages: Mapping[str, str | os.PathLike[str]]) -> Path:
+    """The folder a robot's mesh ``filename`` must lie in to be read: the package a ``package://`` URI names (found
+    as :func:`~xacrokit.shared.ros_packages.mesh_file` finds it), else the robot's folder (:func:`robot_folder`);
+    for an absolute path or a ``file://`` URI, also a package folder the command was given that holds it.
+
+    Raises:
+        LookupError: the package is not known here. ValueError: another URI scheme.
+    """
+    from ..shared.ros_packages import find_package, mesh_file
+
+    if filename.startswith("package://"):
+        return Path(find_package(filename[len("package://") :].partition("/")[0], packages))
+    own = robot_folder(urdf)
+    if is_relative(filename):
+        return own
+    target = os.path.abspath(mesh_file(filename, urdf.parent, packages))
+    for folder in packages.values():
+        if _holds(os.path.abspath(folder), target):
+            return Path(os.path.abspath(folder))
+    return own
+
+
+def _holds(folder: str, path: str) -> bool:
+    return os.path.commonpath([folder, path]) == folder
+
+
+def mesh_reader(urdf: Path, packages: Mapping[str, str | os.PathLike[str]]) -> Callable[[str], MeshRead]:
+    """A reader of the meshes the robot at ``urdf`` names (by the URI as written): each found as
+    :func:`~xacrokit.shared.ros_packages.mesh_file` finds it and read by :func:`read_mesh_below` below its
+    :func:`mesh_root`. The reader raises XacrokitError naming the mesh: not there, its package not known, or refused."""
+    from ..shared.ros_packages import mesh_file
+
+    def read(filename: str) -> MeshRead:
+        try:
+            path, root = mesh_file(filename, urdf.parent, packages), mesh_root(urdf, filename, packages)
+        except (LookupError, ValueError) as exc:
+            raise XacrokitError(f"mesh {filename!r}: {exc}") from None
+        if not path.is_file() and not path.is_symlink():
+            raise XacrokitError(f"mesh {filename!r} is not there ({path})")
+        return read_mesh_below(root, path, where=f"mesh {filename!r}")
+
+    return read

@@ -15,7 +15,7 @@ import contextlib
 import math
 import os
 import re
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -130,20 +130,6 @@ def robot_text(
     text = declared(source.text, str(where) if source.kind == "urdf" else f"{where} (as expanded)")
     with staged_packages(source.carried if meshes else {}) as staged:
         yield text, {**staged, **(source.packages or {})}
-
-
-def mesh_resolver(base: Path, packages: Mapping[str, str | os.PathLike[str]]) -> Callable[[str], str]:
-    """The file of a mesh URI (``package://``, ``file://``, relative to ``base``), as a path; XacrokitError naming the
-    mesh when its package is not known or the URI is malformed (whether the file is there is the caller's to say)."""
-    from ..shared.ros_packages import mesh_file
-
-    def resolve(filename: str) -> str:
-        try:
-            return str(mesh_file(filename, base, packages))
-        except (LookupError, ValueError) as exc:
-            raise XacrokitError(f"mesh {filename!r}: {exc}") from None
-
-    return resolve
 
 
 UNDECLARED = "urn:xacrokit:undeclared:"

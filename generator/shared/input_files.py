@@ -2,10 +2,14 @@
 
 from __future__ import annotations
 
+import contextlib
 import errno
 import os
 import stat
+from collections.abc import Iterator
+from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
+from typing import BinaryIO
 
 
 class InputError(OSError):
@@ -79,14 +83,14 @@ def open_folders(root: Path, parts: tuple[str, ...]) -> list[int]:
     return fds
 
 
-def read_below(root: Path, relative: str, limit: int | None = None) -> tuple[bytes, tuple[int, int]]:
-    """The bytes and (device, inode) of the file ``relative`` (a POSIX path) below ``root``, read without following
-    any symbolic link below root; at most ``limit`` bytes (a larger file is refused before it is read).
+@contextlib.contextmanager
+def open_below(root: Path, relative: str) -> Iterator[tuple[BinaryIO, os.stat_result]]:
+    """The plain file ``relative`` (a POSIX path) below ``root``, open for reading, and its status; opened without
+    following any symbolic link below root, and without blocking on a FIFO.
 
     Raises:
         Linked: the file or a folder on the way is a symbolic link, or the file is not a plain file.
-        InputError: the file is larger than ``limit``.
-        OSError: it cannot be read.
+        OSError: it cannot be opened.
     """
     parts = PurePosixPath(relative).parts
     fds = open_folders(root, parts)
@@ -101,12 +105,54 @@ def read_below(root: Path, relative: str, limit: int | None = None) -> tuple[byt
             status = os.fstat(handle.fileno())
             if not stat.S_ISREG(status.st_mode):
                 raise Linked(errno.EISDIR, "it is not a plain file")
-            if limit is not None and status.st_size > limit:
-                raise InputError(errno.EFBIG, f"it is larger than {limit:,} bytes")
-            data = handle.read() if limit is None else handle.read(limit + 1)
-            if limit is not None and len(data) > limit:
-                raise InputError(errno.EFBIG, f"it is larger than {limit:,} bytes")
-            return data, (status.st_dev, status.st_ino)
+            yield handle, status
     finally:
         for fd in fds:
             os.close(fd)
+
+
+def read_below(root: Path, relative: str, limit: int | None = None) -> tuple[bytes, tuple[int, int]]:
+    """The bytes and (device, inode) of the file ``relative`` (a POSIX path) below ``root``, read without following
+    any symbolic link below root; at most ``limit`` bytes (a larger file is refused before it is read).
+
+    Raises:
+        Linked: the file or a folder on the way is a symbolic link, or the file is not a plain file.
+        InputError: the file is larger than ``limit``.
+        OSError: it cannot be read.
+    """
+    with open_below(root, relative) as (handle, status):
+        if limit is not None and status.st_size > limit:
+            raise InputError(errno.EFBIG, f"it is larger than {limit:,} bytes")
+        data = handle.read() if limit is None else handle.read(limit + 1)
+        if limit is not None and len(data) > limit:
+            raise InputError(errno.EFBIG, f"it is larger than {limit:,} bytes")
+        return data, (status.st_dev, status.st_ino)
+
+
+@dataclass(frozen=True)
+class CopiedFile:
+    """A file an output copies as it is, streamed at write time (never held in memory): ``relative`` below ``root``,
+    read again there without following a link, and written only if it is still the file that was checked (its
+    device and inode, its size and its SHA-256)."""
+
+    root: Path
+    relative: str
+    identity: tuple[int, int]
+    size: int
+    sha256: str
+
+
+PIECE = 1 << 20  # bytes read at a time when a file is copied or hashed
+
+
+def copied_pieces(copied: CopiedFile) -> Iterator[bytes]:
+    """The bytes of ``copied``, a piece at a time, as :func:`open_below` reads them.
+
+    Raises:
+        InputError: it is no longer the file that was checked (another file, another size).
+        Linked, OSError: as :func:`open_below`.
+    """
+    with open_below(copied.root, copied.relative) as (handle, status):
+        if (status.st_dev, status.st_ino) != copied.identity or status.st_size != copied.size:
+            raise InputError(errno.ESTALE, "it changed after it was checked; run again")
+        yield from iter(lambda: handle.read(PIECE), b"")

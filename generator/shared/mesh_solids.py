@@ -12,14 +12,13 @@ import functools
 import os
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
-from typing import Any
 
 import numpy as np
 
-from ..errors import XacrokitError
 from .ros_packages import mesh_file, with_nearby_packages
 
-MAX_MESH_BYTES = 256 * 1024 * 1024  # a CAD part's mesh is a few MB; a file this large is not one
+MAX_MESH_BYTES = 32 * 1024 * 1024  # a CAD part's mesh is a few MB (the largest of 600 in the corpus: 15 MB); trimesh
+# takes about 13 times a binary STL's size in memory to read it, so this keeps a read under 0.5 GB
 MESH_FOLDER = "meshes"  # where a package keeps the meshes gen-robot copies or makes
 MESH_SUFFIXES = (".stl", ".obj", ".ply", ".dae", ".glb", ".gltf", ".off")  # what a copied mesh file may be
 
@@ -43,6 +42,15 @@ def is_relative(filename: str) -> bool:
     """Whether a spec's mesh file name is a path relative to the spec (no URI scheme, not absolute): gen-robot copies
     such a file into the package it writes."""
     return "://" not in filename and not PurePosixPath(filename).is_absolute() and not Path(filename).is_absolute()
+
+
+def package_mesh_path(filename: str) -> str:
+    """Where gen-robot copies a spec's relative mesh in the package it writes: below ``meshes/``, the spec's own
+    folders kept (``cad/bracket.stl`` -> ``meshes/cad/bracket.stl``), a leading ``meshes/`` not doubled
+    (``meshes/visual/arm.obj`` -> ``meshes/visual/arm.obj``). ``filename`` stays inside the spec's folder (validate
+    refuses one that leaves it), so its normal form has no ``..``."""
+    parts = PurePosixPath(os.path.normpath(PurePosixPath(filename).as_posix())).parts
+    return PurePosixPath(MESH_FOLDER, *(parts[1:] if parts[:1] == (MESH_FOLDER,) else parts)).as_posix()
 
 
 def mesh_path(filename: str, spec_path: str | os.PathLike[str]) -> Path:
@@ -125,24 +133,6 @@ def _solid(path: str, size: int, mtime: int, scale: tuple[float, float, float]) 
 
 
 TUBE_SIDES = 64  # a tube's mesh: its circles as 64-gons (the radius' error at mid-side: 1 - cos(pi/64) = 0.12%)
-
-
-def read_mesh(path: Path, filename: str) -> Any:
-    """A mesh file as one trimesh mesh (the commands that show or export a robot read any URDF's meshes with it;
-    ``filename``: the mesh as the URDF names it, for the messages).
-
-    Raises:
-        XacrokitError: trimesh cannot read it, or finds no triangle in it (a COLLADA file can hold none it reads).
-    """
-    import trimesh
-
-    try:
-        mesh: Any = trimesh.load(path, force="mesh")
-    except Exception as exc:  # noqa: BLE001  (trimesh raises what its readers raise)
-        raise XacrokitError(f"mesh {filename!r} cannot be read ({type(exc).__name__}: {exc})") from None
-    if len(mesh.faces) == 0:
-        raise XacrokitError(f"mesh {filename!r} has no triangles that trimesh can read")
-    return mesh
 
 
 def tube_obj(inner: float, outer: float, length: float) -> str:

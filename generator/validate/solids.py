@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
-from pathlib import Path, PurePosixPath
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -23,7 +23,15 @@ import numpy as np
 from ..errors import SpecError
 from ..load import PathKey, RawSpec
 from ..model import DEFAULT_ROW_RADIUS
-from ..shared.mesh_solids import MESH_SUFFIXES, MeshError, MeshSolid, is_relative, mesh_path, mesh_solid
+from ..shared.mesh_solids import (
+    MESH_SUFFIXES,
+    MeshError,
+    MeshSolid,
+    is_relative,
+    mesh_path,
+    mesh_solid,
+    package_mesh_path,
+)
 from ..shared.solid_inertia import capsule_volume, tube_volume
 from ..shared.transforms import dh_body_end, rpy_matrix
 from .bodies import Body, geometries
@@ -118,8 +126,9 @@ def _not_copyable(raw: RawSpec, filename: str) -> str | None:
 
 
 def mesh_files_errors(raw: RawSpec, data: dict[str, Any]) -> list[SpecError]:
-    """The relative mesh paths gen-robot cannot copy into the package's meshes/: a file that is not there, or two
-    files of the same name (both would be meshes/NAME)."""
+    """The relative mesh paths gen-robot cannot copy into the package: a file that is not there or that it must not
+    copy, or two files that would land on one path in the package (``arm.stl`` and ``meshes/arm.stl``: both
+    ``meshes/arm.stl``, :func:`~xacrokit.shared.mesh_solids.package_mesh_path`)."""
     errors: list[SpecError] = []
     copied: dict[str, Path] = {}
     for path, filename in _mesh_names(data):
@@ -131,14 +140,13 @@ def mesh_files_errors(raw: RawSpec, data: dict[str, Any]) -> list[SpecError]:
         if refused:
             errors.append(raw.error(where, refused))
             continue
-        name = PurePosixPath(filename).name
-        first = copied.setdefault(name, file.resolve())
+        target = package_mesh_path(filename)
+        first = copied.setdefault(target, file.resolve())
         if first != file.resolve():
             errors.append(
                 raw.error(
                     where,
-                    f"{filename!r} and {first} have the same file name, and both would be copied to the package as "
-                    f"meshes/{name}; rename one",
+                    f"{filename!r} and {first} would both be copied to the package as {target}; rename or move one",
                 )
             )
     return errors

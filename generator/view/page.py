@@ -76,10 +76,11 @@ def _check(data: bytes) -> None:
         raise XacrokitError(f"the three.js tarball does not have the npm registry's integrity {THREE_INTEGRITY}")
 
 
-def robot_json(text: str, resolve: Any) -> dict[str, Any]:
+def robot_json(text: str, read: Any) -> dict[str, Any]:
     """The robot as the page reads it: links with their visuals, joints with their origin, axis, limits, mimic, and
-    ``missing``: a line for each mesh that cannot be found or read (``resolve`` raising XacrokitError for it), whose
-    visual the page goes without and lists."""
+    ``missing``: a line for each mesh that cannot be found or read (``read``, a
+    :func:`~xacrokit.reader.mesh_copies.mesh_reader`, raising XacrokitError for it), whose visual the page goes
+    without and lists."""
     from ..reader.urdf_view import read_view
 
     view = read_view(text)
@@ -88,7 +89,7 @@ def robot_json(text: str, resolve: Any) -> dict[str, Any]:
     links = [
         {
             "name": link.name,
-            "visuals": [v for v in (_visual(g, colours, resolve, missing, link.name) for g in link.visuals) if v],
+            "visuals": [v for v in (_visual(g, colours, read, missing, link.name) for g in link.visuals) if v],
             "collisions": _collisions(link),
             "inertia": _inertia_box(link.inertial),
         }
@@ -99,7 +100,7 @@ def robot_json(text: str, resolve: Any) -> dict[str, Any]:
 
 
 def _visual(
-    visual: Geometry, colours: dict[str, str], resolve: Any, missing: list[str], link: str
+    visual: Geometry, colours: dict[str, str], read: Any, missing: list[str], link: str
 ) -> dict[str, Any] | None:
     """A visual as the page draws it, None for one it cannot (a mesh that is missing is added to ``missing``)."""
     shape = visual.shape
@@ -115,7 +116,7 @@ def _visual(
         entry.update(_primitive(shape))
         return entry
     try:
-        vertices, faces = _mesh(resolve, shape.get("filename") or "")
+        vertices, faces = _mesh(read, shape.get("filename") or "")
     except XacrokitError as exc:
         missing.append(f"link {link}: {exc}")
         return None
@@ -199,13 +200,8 @@ def _origin(origin: Origin | None) -> dict[str, list[float]]:
     return {"xyz": numbers(origin.xyz, [0.0, 0.0, 0.0]), "rpy": numbers(origin.rpy, [0.0, 0.0, 0.0])}
 
 
-def _mesh(resolve: Any, filename: str) -> tuple[np.ndarray, np.ndarray]:
-    from ..shared.mesh_solids import read_mesh
-
-    file = Path(resolve(filename))
-    if not file.is_file():
-        raise XacrokitError(f"mesh {filename!r} is not there ({file}); the page would miss it")
-    mesh = read_mesh(file, filename)  # (one without triangles is said, not drawn as nothing)
+def _mesh(read: Any, filename: str) -> tuple[np.ndarray, np.ndarray]:
+    mesh = read(filename).mesh  # (one not there, refused or without triangles is said, not drawn as nothing)
     return np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64)
 
 
@@ -226,11 +222,12 @@ def page(
         XacrokitError: unreadable input, a sizing file without a motion, or three.js unavailable.
         SpecErrors: an invalid sizing file (located).
     """
-    from ..reader.robot_source import mesh_resolver, robot_text
+    from ..reader.mesh_copies import mesh_reader
+    from ..reader.robot_source import robot_text
     from ..render import environment
 
     with robot_text(path, mappings, package_paths) as (text, packages):
-        robot = robot_json(text, mesh_resolver(Path(path).parent, packages))
+        robot = robot_json(text, mesh_reader(Path(path), packages))
     if missing is not None:
         missing.extend(robot["missing"])
     if sizing is not None:

@@ -39,28 +39,34 @@ def render(
     from ..reader.robot_source import robot_text
 
     with robot_text(path, mappings, package_paths) as (text, packages):
-        meshes = _placed_meshes(text, packages, Path(path).parent, joints or {})
+        meshes = _placed_meshes(text, packages, Path(path), joints or {})
     return _draw(meshes, size)
 
 
 def _placed_meshes(
-    text: str, packages: Mapping[str, str | os.PathLike[str]], base: Path, joints: Mapping[str, float]
+    text: str, packages: Mapping[str, str | os.PathLike[str]], urdf: Path, joints: Mapping[str, float]
 ) -> list[tuple[np.ndarray, np.ndarray, tuple[float, float, float]]]:
-    """(vertices, faces, colour) of every visual, placed in the root link's frame."""
+    """(vertices, faces, colour) of every visual of the robot read from ``urdf``, placed in the root link's frame."""
     import yourdfpy
 
+    from ..reader.mesh_copies import mesh_root, require_mesh_file
     from ..shared.ros_packages import mesh_file
 
     def resolve(fname: str) -> str:  # (yourdfpy passes it by this name)
         try:
-            return str(mesh_file(fname, base, packages))
+            return str(mesh_file(fname, urdf.parent, packages))
         except (LookupError, ValueError) as exc:
             raise XacrokitError(f"mesh {fname!r}: {exc}") from None
 
-    for element in _mesh_names(text):
+    for element in _mesh_names(text):  # (yourdfpy opens them itself: each checked first, as mesh_reader would)
         file = Path(resolve(element))
         if not file.is_file():
             raise XacrokitError(f"mesh {element!r} is not there ({file}); the picture would miss it")
+        try:
+            root = mesh_root(urdf, element, packages)
+        except (LookupError, ValueError) as exc:
+            raise XacrokitError(f"mesh {element!r}: {exc}") from None
+        require_mesh_file(root, file, where=f"mesh {element!r}")
     try:
         robot = yourdfpy.URDF.load(io.StringIO(text), filename_handler=resolve, build_scene_graph=True)
     except XacrokitError:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import contextlib
+import errno
 import glob
 import hashlib
 import os
@@ -10,20 +11,29 @@ import re
 import tempfile
 from collections.abc import Iterable, Iterator, Mapping
 from pathlib import Path
-from typing import Any
+from typing import Any, BinaryIO
+
+from ..shared.input_files import PIECE, CopiedFile, InputError, copied_pieces
 
 TEMPORARY = re.compile(r"\..+\.[A-Za-z0-9_]{8}\.tmp")  # what mkstemp names ours: .NAME.XXXXXXXX.tmp
 
 
-def write_text_atomic(path: Path, text: str | bytes) -> None:
-    """Write ``text`` (UTF-8; bytes as they are) to ``path`` through a temporary file in the same folder and
-    ``os.replace``; the file gets the permissions a plain ``open`` would give (0644 under umask 022: mkstemp makes it
-    0600)."""
+def write_text_atomic(path: Path, text: str | bytes | CopiedFile) -> None:
+    """Write ``text`` (UTF-8; bytes as they are; a :class:`CopiedFile` streamed from its source) to ``path`` through
+    a temporary file in the same folder and ``os.replace``; the file gets the permissions a plain ``open`` would give
+    (0644 under umask 022: mkstemp makes it 0600).
+
+    Raises:
+        OSError: the write failed, or a copied file is no longer what was checked (InputError): nothing replaced.
+    """
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     try:
         os.fchmod(fd, 0o666 & ~_umask())
-        if isinstance(text, bytes):
+        if isinstance(text, CopiedFile):
+            with os.fdopen(fd, "wb") as binary:
+                _stream(text, binary)
+        elif isinstance(text, bytes):
             with os.fdopen(fd, "wb") as binary:
                 binary.write(text)
         else:
@@ -42,13 +52,23 @@ def staged_packages(files: Mapping[str, Iterable[Any]]) -> Iterator[dict[str, Pa
     if not files:
         yield {}
         return
-    with tempfile.TemporaryDirectory(prefix="xacrokit-staged-") as scratch:
+    with tempfile.TemporaryDirectory(prefix=STAGED_PREFIX) as scratch:
         found: dict[str, Path] = {}
         for package, items in files.items():
             found[package] = root = Path(scratch, package)
             for item in items:
                 write_text_atomic(root / item.path, item.content)
         yield found
+
+
+STAGED_PREFIX = "xacrokit-staged-"
+
+
+def is_staged(folder: Path) -> bool:
+    """Whether ``folder`` is a package :func:`staged_packages` made (gone after its ``with`` block: a file of it to
+    copy later must be read while it lasts)."""
+    parent = Path(os.path.abspath(folder)).parent
+    return parent.name.startswith(STAGED_PREFIX) and parent.parent == Path(tempfile.gettempdir()).resolve()
 
 
 def _umask() -> int:
@@ -74,8 +94,21 @@ def remove_leftover_temporaries(root: Path, paths: Iterable[str]) -> list[Path]:
     return removed
 
 
-def digest(content: str | bytes) -> str:
-    """SHA-256 of a file's content (text as UTF-8): what the package manifest and the outputs record hold."""
+def _stream(copied: CopiedFile, out: BinaryIO) -> None:
+    """Copy ``copied`` into ``out`` a piece at a time; InputError when its SHA-256 is not the one checked."""
+    hashed = hashlib.sha256()
+    for piece in copied_pieces(copied):
+        hashed.update(piece)
+        out.write(piece)
+    if hashed.hexdigest() != copied.sha256:
+        raise InputError(errno.ESTALE, f"{copied.root / copied.relative} changed after it was checked; run again")
+
+
+def digest(content: str | bytes | CopiedFile) -> str:
+    """SHA-256 of a file's content (text as UTF-8; a copied file's as checked): what the package manifest and the
+    outputs record hold."""
+    if isinstance(content, CopiedFile):
+        return content.sha256
     return hashlib.sha256(content.encode("utf-8") if isinstance(content, str) else content).hexdigest()
 
 
@@ -83,6 +116,6 @@ def file_digest(path: Path) -> str:
     """:func:`digest` of a file's content, read in pieces (a large file costs no memory)."""
     hashed = hashlib.sha256()
     with path.open("rb") as handle:
-        for piece in iter(lambda: handle.read(1 << 20), b""):
+        for piece in iter(lambda: handle.read(PIECE), b""):
             hashed.update(piece)
     return hashed.hexdigest()

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 
 from ..errors import XacrokitError
+from ..shared.input_files import CopiedFile
 from .atomic import digest, file_digest, remove_leftover_temporaries, write_text_atomic
 from .package_writer import FileAction
 
@@ -37,7 +38,7 @@ class OutputFile:
     """One file to write: ``relative`` is a POSIX path below the output's folder (``robot.xml``, ``meshes/a.obj``)."""
 
     relative: str
-    content: str | bytes
+    content: str | bytes | CopiedFile  # (a CopiedFile is streamed from its source when written)
 
 
 class OutputRefused(XacrokitError):
@@ -81,7 +82,10 @@ def write_outputs(folder: Path, files: Sequence[OutputFile], *, force: bool = Fa
     # first recorded with both digests, the file's last and this run's: a run killed among its writes leaves files
     # that are each one or the other, and the next run takes them over (as the package writer does)
     _write_record(folder, {**record, **{k: [*record.get(k, []), v] for k, v in digests.items()}})
-    for item, action in zip(files, actions, strict=True):
+    # copies first: a source that changed since it was read stops the run before the files that name it are written
+    for item, action in sorted(
+        zip(files, actions, strict=True), key=lambda pair: not isinstance(pair[0].content, CopiedFile)
+    ):
         if action.action in ("create", "update", "overwrite"):
             try:
                 write_text_atomic(folder / item.relative, item.content)
@@ -102,12 +106,17 @@ def _plan(folder: Path, item: OutputFile, record: dict[str, list[str]], *, force
     status = _refuse_special(target, folder=False)
     if status is None:
         return FileAction(item.relative, "create")
-    new = item.content.encode("utf-8") if isinstance(item.content, str) else item.content
+    content = item.content
+    size = (
+        content.size
+        if isinstance(content, CopiedFile)
+        else len(content.encode() if isinstance(content, str) else content)
+    )
     try:
         held = file_digest(target)  # (read in pieces: an -o naming a large file of someone else's costs no memory)
     except OSError as exc:
         raise XacrokitError(f"cannot read {target}: {exc.strerror or exc}") from None
-    if status.st_size == len(new) and held == digest(new):
+    if status.st_size == size and held == digest(content):
         return FileAction(item.relative, "identical")
     if held in record.get(item.relative, []):
         return FileAction(item.relative, "update")

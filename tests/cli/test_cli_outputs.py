@@ -237,3 +237,78 @@ def test_import_copies_a_sibling_robots_mesh_inside_the_python_package_that_ship
     escaping = mesh_robot(tmp_path / "models" / "grippers" / "other", "../../../outside.stl")
     code, err = run("import", escaping, "-o", tmp_path / "out2" / "m.yaml")
     assert code == 2 and "it lies outside the robot's folder" in err, err
+
+
+# how a robot's mesh may reach outside its folder (issue 28): each is refused by every command that reads meshes
+OUTSIDE = {
+    "a link out": lambda src, outside: (src / "meshes").mkdir() or (src / "meshes" / "part.stl").symlink_to(outside),
+    "a linked folder": lambda src, outside: (src / "meshes").symlink_to(outside.parent),
+    "a path out": lambda src, outside: (src / "m.urdf").write_text(
+        (src / "m.urdf").read_text(encoding="utf-8").replace("meshes/part.stl", "../outside/part.stl")
+    ),
+    "a file:// URI": lambda src, outside: (src / "m.urdf").write_text(
+        (src / "m.urdf").read_text(encoding="utf-8").replace("meshes/part.stl", outside.as_uri())
+    ),
+}
+
+
+@pytest.mark.parametrize("how", sorted(OUTSIDE))
+@pytest.mark.parametrize("command", ["export", "view", "render"])
+def test_no_command_reads_a_mesh_from_outside_the_robots_folder(tmp_path, how, command):
+    """A real box STL outside the robot's folder, reached four ways: export copies nothing of it (the visual left out
+    with a note), view does not draw it (listed as not shown), render refuses; the outside file is named, not read."""
+    src = tmp_path / "src"
+    mesh_robot(src)
+    outside = tmp_path / "outside" / "part.stl"
+    secret = box_stl(outside)
+    OUTSIDE[how](src, outside)
+    words, name = COMMANDS[command]
+    argv = [w.replace("{robot}", str(src / "m.urdf")) for w in words]
+    code, err = run(*argv, "-o", tmp_path / "out" / name)
+    assert ("outside the robot's folder" in err) or ("symbolic link" in err), err
+    if command == "render":
+        assert code == 2 and not (tmp_path / "out").exists()
+        return
+    assert code == 0, err
+    written = [p for p in (tmp_path / "out").rglob("*") if p.is_file()]
+    assert written and all(secret not in p.read_bytes() for p in written)
+    assert not (tmp_path / "out" / "meshes").exists()
+
+
+def test_a_mesh_over_the_size_limit_is_refused_before_it_is_read(tmp_path):
+    from xacrokit.shared.mesh_solids import MAX_MESH_BYTES
+
+    urdf = mesh_robot(tmp_path / "src")
+    (tmp_path / "src" / "meshes").mkdir()
+    with open(tmp_path / "src" / "meshes" / "part.stl", "wb") as handle:
+        handle.truncate(MAX_MESH_BYTES + 1)  # (sparse: no disk, and it is never read)
+    for command in ("import", "export"):
+        words, name = COMMANDS[command]
+        code, err = run(*[w.replace("{robot}", str(urdf)) for w in words], "-o", tmp_path / command / name)
+        assert "larger than 33,554,432 bytes; a part's mesh is expected below 32 MiB" in err, err
+        assert code == (2 if command == "import" else 0) and not (tmp_path / command / "meshes").exists()
+
+
+def test_a_copied_mesh_is_streamed_and_never_written_once_it_changed(tmp_path):
+    """export holds the robot's mesh as a file to stream, not its bytes; the copy equals the file; a file changed
+    between the read and the write is not copied (and the model that names it is not written)."""
+    from xacrokit.errors import XacrokitError
+    from xacrokit.export.mjcf import export_mjcf, write_export
+    from xacrokit.shared.input_files import CopiedFile
+
+    urdf = mesh_robot(tmp_path / "src", "meshes/part.obj")
+    import trimesh
+
+    (tmp_path / "src" / "meshes").mkdir()
+    trimesh.creation.box(extents=(0.1, 0.2, 0.3)).export(tmp_path / "src" / "meshes" / "part.obj")
+    source = (tmp_path / "src" / "meshes" / "part.obj").read_bytes()
+    model = export_mjcf(urdf)
+    assert [type(v) for v in model.meshes.values()] == [CopiedFile]
+    write_export(model, tmp_path / "out" / "m.xml")
+    assert (tmp_path / "out" / "meshes" / "part.obj").read_bytes() == source
+    changed = export_mjcf(urdf)
+    (tmp_path / "src" / "meshes" / "part.obj").write_bytes(source.replace(b"0.05", b"0.07"))
+    with pytest.raises(XacrokitError, match="changed after it was checked"):
+        write_export(changed, tmp_path / "again" / "m.xml")
+    assert not (tmp_path / "again" / "m.xml").exists()
+    assert not list((tmp_path / "again").rglob("*.obj"))

@@ -172,13 +172,13 @@ def test_a_mesh_that_encloses_no_solid_is_refused_where_it_is_named(tmp_path, ki
 
 def test_a_missing_or_clashing_relative_mesh_is_refused(tmp_path):
     box_stl(tmp_path, [0.1, 0.1, 0.1])
-    (tmp_path / "other").mkdir()
-    box_stl(tmp_path / "other", [0.2, 0.1, 0.1])
+    (tmp_path / "meshes").mkdir()
+    box_stl(tmp_path / "meshes", [0.2, 0.1, 0.1])
     spec = {
         "robot": "m",
         "links": {
             "a": {"shape": {"mesh": {"filename": "cad/part.stl"}}, "mass": 1.0},
-            "b": {"shape": {"mesh": {"filename": "other/cad/part.stl"}}, "mass": 1.0},
+            "b": {"shape": {"mesh": {"filename": "meshes/cad/part.stl"}}, "mass": 1.0},  # (both meshes/cad/part.stl)
             "c": {
                 "shape": {"box": {"size": [0.1, 0.1, 0.1]}},
                 "mass": 1.0,
@@ -194,8 +194,40 @@ def test_a_missing_or_clashing_relative_mesh_is_refused(tmp_path):
         build_robot(write(tmp_path, spec))
     said = {e.path: e.message for e in caught.value.errors}
     assert set(said) == {"$.links.b.shape.mesh.filename", "$.links.c.collision.shape.mesh.filename"}
-    assert "same file name" in said["$.links.b.shape.mesh.filename"]
+    assert "would both be copied to the package as meshes/cad/part.stl" in said["$.links.b.shape.mesh.filename"]
     assert "is not there" in said["$.links.c.collision.shape.mesh.filename"]
+
+
+def test_meshes_of_one_name_in_two_folders_keep_their_folders_in_the_package(tmp_path):
+    """airo's UR5e names visual/wrist3.obj and collision/wrist3.obj (issue 28): each lands in its own folder."""
+    (tmp_path / "visual").mkdir()
+    (tmp_path / "collision").mkdir()
+    visual = box_stl(tmp_path / "visual", [0.1, 0.1, 0.1], name="wrist3.obj")
+    collision = box_stl(tmp_path / "collision", [0.2, 0.1, 0.1], name="wrist3.obj")
+    spec = {
+        "robot": "m",
+        "links": {
+            "a": {
+                "shape": {"mesh": {"filename": f"visual/{visual}"}},
+                "mass": 1.0,
+                "inertia": {"ixx": 1e-3, "iyy": 1e-3, "izz": 1e-3},
+                "collision": {"shape": {"mesh": {"filename": f"collision/{collision}"}}},
+            }
+        },
+    }
+    out = tmp_path / "out"
+    result = gen_robot(write(tmp_path, spec), "-o", out)
+    assert result.returncode == 0, result.stderr
+    root = etree.parse(str(out / "urdf" / "m.urdf")).getroot()
+    named = {element.tag: element.find("geometry/mesh").get("filename") for element in root.iter("visual", "collision")}
+    assert named == {
+        "visual": "package://m_description/meshes/visual/cad/wrist3.obj",
+        "collision": "package://m_description/meshes/collision/cad/wrist3.obj",
+    }
+    for kind in ("visual", "collision"):
+        copied = (out / "meshes" / kind / "cad" / "wrist3.obj").read_bytes()
+        assert copied == (tmp_path / kind / "cad" / "wrist3.obj").read_bytes()
+    assert (out / "meshes" / "visual" / "cad" / "wrist3.obj").read_bytes() != copied
 
 
 def test_a_mesh_in_millimetres_is_a_warning_and_a_scale_fixes_it(tmp_path):
@@ -234,10 +266,10 @@ def test_a_relative_mesh_is_copied_into_the_package_and_checks_clean(tmp_path):
         out = tmp_path / f"out_{mode}"
         result = gen_robot(spec_path, "-o", out, "--macros", mode, *(["--via-xacro"] if mode == "copy" else []))
         assert result.returncode == 0 and "warning" not in result.stderr, result.stderr
-        assert (out / "meshes" / "motor.stl").read_bytes() == (spec_folder / filename).read_bytes()
+        assert (out / "meshes" / "cad" / "motor.stl").read_bytes() == (spec_folder / filename).read_bytes()
         root = etree.parse(str(out / "urdf" / "m.urdf")).getroot()
         (uri,) = {m.get("filename") for m in root.iter("mesh")}
-        assert uri == "package://m_description/meshes/motor.stl"
+        assert uri == "package://m_description/meshes/cad/motor.stl"  # (the spec's cad/ folder kept)
         check = gen_robot("check", "--strict", out / "urdf" / "m.urdf")
         assert check.returncode == 0, check.stdout
         before = snapshot(out)
@@ -273,10 +305,10 @@ def test_a_scene_carries_its_robots_meshes_in_its_own_package(tmp_path, mode):
     root = etree.parse(str(out / "urdf" / "yard.urdf")).getroot()
     uris = {m.get("filename") for m in root.iter("mesh")}
     prefix = "package://yard_description/robots/rover_description/meshes/"
-    assert uris == {prefix + "motor_bracket.stl", prefix + "xacrokit/tube_0.0015_0.003_0.056.obj"}
+    assert uris == {prefix + "cad/motor_bracket.stl", prefix + "xacrokit/tube_0.0015_0.003_0.056.obj"}
     for uri in uris:
         assert (out / uri.removeprefix("package://yard_description/")).is_file()
-    bracket = out / "robots" / "rover_description" / "meshes" / "motor_bracket.stl"
+    bracket = out / "robots" / "rover_description" / "meshes" / "cad" / "motor_bracket.stl"
     assert bracket.read_bytes() == (REPO / "examples" / "robots" / "cad" / "motor_bracket.stl").read_bytes()
     for checked in (out / "urdf" / "yard.urdf", scene):  # (the written package; the spec, its meshes staged)
         report = gen_robot("check", "--strict", checked)

@@ -14,7 +14,8 @@ from lxml import etree
 
 from browser import open_page, pinocchio_poses, requests_made
 from realworld import VERDICTS, RobotFile, corpus_or_skip
-from xacrokit.reader.robot_source import mesh_resolver, robot_text
+from xacrokit.reader.mesh_copies import mesh_reader
+from xacrokit.reader.robot_source import robot_text
 from xacrokit.view.page import page, robot_json
 
 FILES = yaml.safe_load(VERDICTS.read_text(encoding="utf-8"))["files"]
@@ -38,14 +39,14 @@ def test_every_real_robot_makes_a_page_missing_only_what_the_verdicts_say_is_mis
     said, empty = set(), set()
     for key, robot in robots().items():
         with robot_text(robot.path, {}, robot.packages) as (text, packages):
-            found = robot_json(text, mesh_resolver(robot.path.parent, packages))
+            found = robot_json(text, mesh_reader(robot.path, packages))
         root = etree.fromstring(text.encode("utf-8"))
         assert [link["name"] for link in found["links"]] == [link.get("name") for link in root.findall("link")], key
         assert len(found["joints"]) == len(root.findall("joint")), key
         meshes = len(root.findall("link/visual/geometry/mesh"))
         drawn = sum(1 for link in found["links"] for visual in link["visuals"] if visual["kind"] == "mesh")
         assert drawn + len(found["missing"]) == meshes, key
-        unread = [line for line in found["missing"] if "no triangles that trimesh can read" in line]
+        unread = [line for line in found["missing"] if "does not read as a DAE mesh with a triangle" in line]
         if unread:
             empty.add(key)
         missing = [line for line in found["missing"] if line not in unread]
