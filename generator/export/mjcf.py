@@ -39,13 +39,12 @@ from ..reader.mesh_copies import MeshRead
 from ..reader.robot_source import urdf_floats as _floats
 from ..reader.urdf_view import Joint, Link, Origin, UrdfView
 from ..shared.input_files import CopiedFile, copied_pieces
-from ..shared.units import INPUT_BOUNDS, bound_problem
+from ..shared.units import MAX_MOMENT, bound_problem
 from .mjcf_actuators import num
 from .mjcf_meshes import FlatMesh, Meshes
 
 MASSLESS = (1e-12, 1e-14)  # (kg, kg m^2): what a moving link without mass gets, MuJoCo needing more than 1e-15
 GRAVITY = 9.80665
-MAX_MOMENT = INPUT_BOUNDS["mass"] * INPUT_BOUNDS["length"] ** 2  # kg m^2: the largest mass at the largest distance
 
 
 @dataclass

@@ -305,6 +305,7 @@ def _example(kind: str) -> str:
 # that no inertia, torque or power computed from them overflows a double (a box of 1e200 m wrote inf into the URDF;
 # a payload of 1e308 kg gave inf - inf = NaN torques).
 INPUT_BOUNDS = {"mass": 1e6, "length": 1e4, "force": 1e9, "torque": 1e9}  # kg, m, N, N*m
+MAX_MOMENT = INPUT_BOUNDS["mass"] * INPUT_BOUNDS["length"] ** 2  # kg m^2: the largest mass at the largest distance
 _BOUND_UNITS = {"mass": "kg", "length": "m", "force": "N", "torque": "N*m"}
 
 

@@ -99,7 +99,7 @@ class SizeReport:
         peak = max(abs(static.torque), abs(moved.peak_torque) if moved else 0.0)
         rms = moved.rms_torque if moved else abs(static.torque)  # (held still: the static torque is its RMS)
         scale = drive.gear_ratio * drive.efficiency
-        reflected = drive.rotor_inertia * drive.gear_ratio**2
+        reflected = drive.rotor_inertia * drive.gear_ratio * drive.gear_ratio
         side: dict[str, Any] = {
             "gear_ratio": drive.gear_ratio,
             "efficiency": drive.efficiency,
@@ -138,6 +138,9 @@ class SizeReport:
                 ]
             side = self.drive_side(peak.joint)
             if side is not None:
+                motor = ("motor_peak_torque", "motor_rms_torque", "motor_peak_speed", "reflected_inertia")
+                if not all(math.isfinite(side[key]) for key in motor):
+                    found.append((peak.joint, "motor-side result not a finite number"))
                 checks += [
                     ("motor peak torque over the motor's peak torque", side["peak_torque_margin"]),
                     ("motor RMS torque over the motor's rated torque", side["rated_torque_margin"]),
@@ -146,6 +149,8 @@ class SizeReport:
             found += [(peak.joint, what) for what, margin in checks if margin is not None and not margin >= 1.0]
         if self.base is not None:
             for wheel, torque, speed in zip(self.base.wheels, self.base.torques, self.base.speeds, strict=True):
+                if not (math.isfinite(torque) and math.isfinite(speed)):
+                    found.append((wheel.joint, "wheel result not a finite number"))
                 for what, margin in (
                     ("wheel torque over the effort limit", self._ratio(wheel.effort, torque)),
                     ("wheel speed over the velocity limit", self._ratio(wheel.velocity, speed)),

@@ -16,7 +16,8 @@ import numpy as np
 from ..errors import SpecError, SpecErrors
 from ..load import PathKey, RawSpec, load_file
 from ..shared.package_data import schemas_dir
-from ..shared.units import Kind, UnitError, bound_problem, parse_quantity
+from ..shared.solid_inertia import tensor_problem
+from ..shared.units import MAX_MOMENT, Kind, UnitError, bound_problem, parse_quantity
 from ..shared.value_text import did_you_mean
 from ..validate.schema import SchemaValidator, inline_refs, schema_errors
 from .mobile import BaseMotion
@@ -83,6 +84,19 @@ class _Reader:
             self.errors.append(self.raw.error(path, beyond))
         return number
 
+    def tensor(self, inertia: tuple[float, ...], path: PathKey) -> None:
+        """A payload's tensor (ixx, ixy, ixz, iyy, iyz, izz): a rigid body's, within MAX_MOMENT."""
+        xx, xy, xz, yy, yz, zz = inertia
+        largest = max(map(abs, inertia))
+        if largest > MAX_MOMENT:
+            self.errors.append(
+                self.raw.error(path, f"{largest:g} kg*m^2 is beyond what xacrokit takes (at most {MAX_MOMENT:g})")
+            )
+            return
+        problem = tensor_problem(np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]))
+        if problem is not None:
+            self.errors.append(self.raw.error(path, f"{problem} (leave inertia out for a point mass)"))
+
 
 def read_sizing(path: str | os.PathLike[str]) -> Sizing:
     """The sizing file at ``path``. Raises SpecErrors (located) when it does not follow its schema or a value does
@@ -99,6 +113,8 @@ def read_sizing(path: str | os.PathLike[str]) -> Sizing:
         com = tuple(read.quantity(v, "length", (*where, "com", k)) for k, v in enumerate(item.get("com", [0, 0, 0])))
         tensor = item.get("inertia", {})
         inertia = tuple(float(tensor.get(k, 0.0)) for k in ("ixx", "ixy", "ixz", "iyy", "iyz", "izz"))
+        if tensor:
+            read.tensor(inertia, (*where, "inertia"))
         payloads.append(Payload(item["frame"], mass, (com[0], com[1], com[2]), inertia))  # type: ignore[arg-type]
     loads = []
     for index, item in enumerate(data.get("loads", [])):

@@ -238,6 +238,23 @@ def _moving(**motion):
         (_moving(step=1e-9), "$.motion.step", "leave it out"),
         (_moving(waypoints=[{"elbow_joint": k % 2 * 2.0} for k in range(300)]), "$.motion.waypoints", "299 segments"),
         (_moving(waypoints=[{"elbow_joint": 0} for _ in range(1001)]), "$.motion.waypoints", "2 to 1000 entries"),
+        # numbers that overflow or no body has (issue 28: exit 70 or NaN before)
+        (
+            {"payloads": [{"frame": "tool0", "mass": 1, "inertia": {"ixx": -1e308, "iyy": 1, "izz": 1}}]},
+            "$.payloads[0].inertia",
+            "beyond what xacrokit takes",
+        ),
+        (
+            {"payloads": [{"frame": "tool0", "mass": 1, "inertia": {"ixx": 1, "iyy": 1, "izz": 5}}]},
+            "$.payloads[0].inertia",
+            "triangle inequality",
+        ),
+        ({"drives": {"elbow_joint": {"gear_ratio": 1e300}}}, "$.drives.elbow_joint.gear_ratio", "100000"),
+        (
+            {"drives": {"elbow_joint": {"gear_ratio": 10, "efficiency": 1e-320}}},
+            "$.drives.elbow_joint.efficiency",
+            "0.01",
+        ),
     ],
 )
 def test_bad_sizing_files_are_located_errors(tmp_path, change, path, words):
@@ -310,6 +327,16 @@ def test_a_cycle_beyond_the_cap_is_never_sampled():
     with pytest.raises(ValueError, match="more than 200,000 samples"):
         trajectory(motion)
     assert len(trajectory(Motion(((0.0,), (1.0,)), (1.0,), (1.0,), dwell=10.0)).t) < MAX_SAMPLES
+
+
+def test_a_motor_side_result_that_is_not_a_number_fails(tmp_path):
+    """A gear ratio of 1e-320 (within the schema's > 0) asks an infinite motor torque: listed as failed, exit 1,
+    even though the drive gives no motor limit to compare it with."""
+    sizing = tmp_path / "tiny.yaml"
+    sizing.write_text(yaml.safe_dump({"drives": {"elbow_joint": {"gear_ratio": 1e-320}}, **_moving()}), "utf-8")
+    report = size(REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml", sizing=sizing)
+    assert ("elbow_joint", "motor-side result not a finite number") in report.failures
+    assert report.exit_code == 1 and "elbow_joint" in report.failed
 
 
 def test_an_unreachable_pose_is_a_located_error(tmp_path):
