@@ -304,8 +304,11 @@ def _plausibility(doc: Doc, view: Link, mass: float, trace: float) -> Iterator[F
             high[axis] = max(high[axis], centre[axis] + half[axis])
     if not collisions or not all(math.isfinite(v) for v in (*low, *high)):
         return
-    diagonal_sq = sum((high[axis] - low[axis]) ** 2 for axis in range(3))
+    spans = [high[axis] - low[axis] for axis in range(3)]
+    diagonal_sq = sum(span * span for span in spans)  # (not ** 2, which raises OverflowError on a float of 1e300)
     expected = mass * diagonal_sq / 6.0
+    if not math.isfinite(expected):
+        return
     if expected > 0 and not 1e-2 <= trace / expected <= 1e2:
         yield doc.finding(
             "I004",

@@ -43,6 +43,7 @@ from ..shared.units import MAX_MOMENT, bound_problem
 from .mjcf_actuators import num
 from .mjcf_meshes import FlatMesh, Meshes
 
+MJ_MINVAL = 1e-15  # MuJoCo's mjMINVAL: the least mass and moment a moving body may have
 MASSLESS = (1e-12, 1e-14)  # (kg, kg m^2): what a moving link without mass gets, MuJoCo needing more than 1e-15
 GRAVITY = 9.80665
 
@@ -209,9 +210,12 @@ def mjcf(
     Raises:
         XacrokitError: a URDF MuJoCo cannot take (not a tree, a mesh that cannot be found or read, bad numbers).
     """
-    from ..reader.urdf_view import read_view
+    from ..reader.urdf_view import length_problems, read_view
 
     view = read_view(text)
+    problems = length_problems(view)
+    if problems:
+        raise XacrokitError("MuJoCo cannot take the robot: " + "; ".join(problems))
     tree = _tree(view)
     free = base == "free" or (base == "auto" and tree.root != "world" and _has_wheel(tree.joints, tree.links))
     export = Export(xml="")
@@ -296,8 +300,9 @@ def _add_joint(body: Any, joint: Joint) -> bool:
         return False
     said = f"joint {name!r}"
     axis = np.array(_floats(joint.axis, 3, where=f"{said} axis")) if joint.axis is not None else np.array([1.0, 0, 0])
-    if not np.linalg.norm(axis) > 0:
+    if not np.abs(axis).max() > 0:
         raise XacrokitError(f"joint {name!r}: its axis is zero")
+    axis = axis / np.abs(axis).max()  # (first: the norm of an axis of 1e308 overflows)
     axis = axis / np.linalg.norm(axis)
     extra = {}
     for urdf_key, mjcf_key in (("damping", "damping"), ("friction", "frictionloss")):
@@ -341,7 +346,7 @@ def _inertial(body: Any, link: Link, moving: bool, massless: list[str], repairs:
     i = {k: _floats(tensor.get(k, "0"), 1, where=where)[0] if tensor is not None else 0.0 for k in keys}
     matrix = np.array([[i["ixx"], i["ixy"], i["ixz"]], [i["ixy"], i["iyy"], i["iyz"]], [i["ixz"], i["iyz"], i["izz"]]])
     _require_bounded(link.name, mass, matrix)
-    if not mass > 0 and moving:
+    if not mass > MJ_MINVAL and moving:  # (a mass of 1e-320 is none to MuJoCo either)
         massless.append(link.name)
         mass = MASSLESS[0]
         if not matrix.any():
@@ -437,7 +442,8 @@ def _geoms(body: Any, link: Link, colours: Mapping[str, str], mu: float | None, 
                 if material is not None:
                     rgba = material.rgba if material.rgba is not None else colours.get(material.name or "")
                 if rgba:
-                    geom.set("rgba", nums(_floats(rgba, 4, where=f"{said} colour")))
+                    colour = np.clip(_floats(rgba, 4, where=f"{said} colour"), 0.0, 1.0)  # (as renderers do)
+                    geom.set("rgba", nums(colour))
             elif mu is not None:
                 geom.set("friction", f"{num(mu)} 0.005 0.0001")
                 geom.set("priority", "1")  # (its friction, not the larger of the two, decides the contact)

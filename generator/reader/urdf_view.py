@@ -316,3 +316,50 @@ def numbers(text: str | None, default: list[float]) -> list[float]:
     except ValueError:
         return default
     return values if len(values) == len(default) else default
+
+
+SIZE_ATTRIBUTES = {
+    "box": ("size",),
+    "cylinder": ("radius", "length"),
+    "sphere": ("radius",),
+    "capsule": ("radius", "length"),
+}
+
+
+def length_problems(view: UrdfView) -> list[str]:
+    """The lengths a command that draws or exports the robot cannot take, one line each, named by element and
+    attribute: a primitive's size that is not a positive number within INPUT_BOUNDS' length (1e4 m), an origin's
+    or a joint's xyz beyond it (a size of 1e308 m overflows the meshes and axes drawn for it)."""
+    from ..shared.units import INPUT_BOUNDS
+
+    bound = INPUT_BOUNDS["length"]
+    problems: list[str] = []
+
+    def beyond(text: str | None, where: str, *, positive: bool = False) -> None:
+        try:
+            values = [float(v) for v in (text or "").split()]
+        except ValueError:
+            return  # (not numbers, or not finite: each reader says so in its own words)
+        if all(map(math.isfinite, values)) and any(abs(v) > bound or (positive and not v > 0) for v in values):
+            kind = "a positive number" if positive else "a number"
+            problems.append(f"{where} {text!r}: each must be {kind} of at most {bound:g} m")
+
+    for link in view.links:
+        for kind, holders in (("visual", link.visuals), ("collision", link.collisions)):
+            for index, geometry in enumerate(holders, 1):
+                where = f"link {link.name!r}, {kind} {index}:"
+                if geometry.origin is not None:
+                    beyond(geometry.origin.xyz, f"{where} <origin xyz>")
+                shape = geometry.shape
+                for attribute in SIZE_ATTRIBUTES.get(shape.kind if shape else "", ()):
+                    beyond(
+                        shape.get(attribute) if shape else None,
+                        f"{where} <{shape.kind if shape else ''} {attribute}>",
+                        positive=True,
+                    )
+        if link.inertial is not None and link.inertial.origin is not None:
+            beyond(link.inertial.origin.xyz, f"link {link.name!r}: <inertial><origin xyz>")
+    for joint in view.joints:
+        if joint.origin is not None:
+            beyond(joint.origin.xyz, f"joint {joint.name!r}: <origin xyz>")
+    return problems

@@ -58,6 +58,11 @@ def _placed_meshes(
         except (LookupError, ValueError) as exc:
             raise XacrokitError(f"mesh {fname!r}: {exc}") from None
 
+    from ..reader.urdf_view import length_problems, read_view
+
+    problems = length_problems(read_view(text))
+    if problems:
+        raise XacrokitError("cannot draw the robot: " + "; ".join(problems))
     for element in _mesh_names(text):  # (yourdfpy opens them itself: each checked first, as mesh_reader would)
         file = Path(resolve(element))
         if not file.is_file():
