@@ -87,3 +87,13 @@ def test_view_speed_script_runs():
     )
     assert result.returncode == 0, result.stderr
     assert "1000-link fleet page: open and draw" in result.stdout and "109-link robot: a joint move" in result.stdout
+
+
+def test_mesh_memory_script_runs():
+    """benchmarks/mesh_memory.py: import and export of a robot with 1 and with 3 meshes, peak memory (one run)."""
+    result = subprocess.run(
+        [sys.executable, str(REPO / "benchmarks" / "mesh_memory.py"), "3"], capture_output=True, text=True, timeout=600
+    )
+    assert result.returncode == 0, result.stderr
+    for command in ("import", "export"):
+        assert f"gen-robot {command}: peak" in result.stdout and "with 3 (12 MB of meshes): ratio" in result.stdout

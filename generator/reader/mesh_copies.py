@@ -20,6 +20,7 @@ and only if it is still the file that was read: a run holds one mesh in memory a
 from __future__ import annotations
 
 import errno
+import gc
 import hashlib
 import io
 import os
@@ -81,6 +82,7 @@ def read_mesh_below(root: Path, source: Path, *, where: str = "", process: bool 
     """
     said = where or str(source)
     pure = _inside(root, source, said)
+    _collect_read_meshes()
     try:
         data, identity = read_below(root, pure.as_posix(), MAX_MESH_BYTES)
     except Linked as exc:
@@ -96,9 +98,24 @@ def read_mesh_below(root: Path, source: Path, *, where: str = "", process: bool 
     except OSError as exc:
         raise MeshCopyRefused(f"{said}: cannot be read: {exc.strerror or exc}") from None
     suffix = pure.suffix.lower()
+    _unswept[0] += len(data)
     mesh = _require_mesh(data, suffix, said, process)
     copy = CopiedFile(root, pure.as_posix(), identity, len(data), hashlib.sha256(data).hexdigest())
     return MeshRead(mesh, copy, data[:84])
+
+
+SWEEP_BYTES = 2 * 1024 * 1024  # mesh bytes read between two collections of the meshes dropped since
+_unswept = [0]
+
+
+def _collect_read_meshes() -> None:
+    """Free the meshes read before and dropped since, once they add up to SWEEP_BYTES: trimesh's caches make
+    reference cycles, which only the cyclic collector frees, and it seldom runs for a few large arrays (16 meshes of
+    4 MB took 362 MB instead of 170 MB). Not on every mesh: a full collection per mesh made a page of TIAGo's 130
+    small meshes 1 s slower."""
+    if _unswept[0] >= SWEEP_BYTES:
+        gc.collect()
+        _unswept[0] = 0
 
 
 def _inside(root: Path, source: Path, said: str) -> PurePosixPath:
