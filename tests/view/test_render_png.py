@@ -60,3 +60,47 @@ def test_the_command_line_writes_the_png(tmp_path):
     result = gen_robot("render", UR5, "-o", out, "--joint", "elbow_joint=90 deg", "--size", "320x240")
     assert result.returncode == 0, result.stderr
     assert matplotlib.image.imread(out).shape == (240, 320, 4)
+
+
+@pytest.mark.parametrize("example", ["humanoid_upper_body", "rover"])
+def test_the_placements_are_trimeshs_composed_once(example):
+    """world_transforms (one walk down the scene graph) places every node where trimesh's own graph.get does (1e-12),
+    at a joint configuration that is not zero; it replaced graph.get, cubic in a chain's length (issue 28)."""
+    import yourdfpy
+
+    from xacrokit.reader.robot_source import robot_text
+    from xacrokit.view.picture import world_transforms
+
+    with robot_text(REPO / "examples" / "robots" / f"{example}.yaml") as (text, packages):
+        from xacrokit.shared.ros_packages import mesh_file
+
+        robot = yourdfpy.URDF.load(
+            io.StringIO(text),
+            filename_handler=lambda fname: str(mesh_file(fname, REPO, packages)),
+            build_scene_graph=True,
+        )
+        robot.update_cfg({name: 0.3 + 0.1 * k for k, name in enumerate(robot.actuated_joint_names)})
+    placed = world_transforms(robot.scene.graph)
+    nodes = [n for n in robot.scene.graph.nodes if n != robot.scene.graph.base_frame]
+    assert len(nodes) > 10
+    for node in nodes:
+        assert np.abs(placed[node] - robot.scene.graph.get(node)[0]).max() < 1e-12, node
+
+
+def test_a_chain_of_2000_links_draws():
+    """A 2,000-link chain took hours in trimesh's graph.get (a sweep of hostile inputs, issue 28)."""
+    links = "".join(
+        f'<link name="l{k}"><visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual></link>' for k in range(2000)
+    )
+    joints = "".join(
+        f'<joint name="j{k}" type="revolute"><parent link="l{k - 1}"/><child link="l{k}"/><origin xyz="0 0 0.1"/>'
+        '<axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+        for k in range(1, 2000)
+    )
+    import tempfile
+    from pathlib import Path
+
+    with tempfile.TemporaryDirectory() as folder:
+        urdf = Path(folder, "chain.urdf")
+        urdf.write_text(f'<robot name="c">{links}{joints}</robot>', encoding="utf-8")
+        assert np.std(pixels(render(urdf, size=(64, 48)))[..., :3]) > 0.01
