@@ -128,7 +128,35 @@ def _tree(view: UrdfView) -> _Tree:
             f"link 'world' hangs from joint {by_child['world'].name!r}: MuJoCo's world body is called world and is "
             "the root; rename the link"
         )
-    return _Tree(links, joints, children, roots[0])
+    tree = _Tree(links, joints, children, roots[0])
+    _require_depth(tree)
+    return tree
+
+
+MAX_DEPTH = 490  # links in a chain from the root: MuJoCo's XML reader (tinyxml2) takes 496 nested bodies
+
+
+def _require_depth(tree: _Tree) -> None:
+    """Refuse a tree MuJoCo's XML reader cannot take (deeper than MAX_DEPTH), or links a walk from the root never
+    reaches (they hang in a loop of joints)."""
+    depth, deepest, stack = {tree.root: 1}, 1, [tree.root]
+    while stack:
+        link = stack.pop()
+        for joint in tree.children.get(link, []):
+            child = joint.child or ""
+            if child not in depth:
+                depth[child] = depth[link] + 1
+                deepest = max(deepest, depth[child])
+                stack.append(child)
+    unreached = [name for name in tree.links if name not in depth]
+    if unreached:
+        said = ", ".join(map(repr, unreached[:5]))
+        raise XacrokitError(f"links {said} hang in a loop of joints, not from the root: MuJoCo needs a tree")
+    if deepest > MAX_DEPTH:
+        raise XacrokitError(
+            f"the robot's tree is {deepest} links deep: MuJoCo's XML reader (tinyxml2) refuses elements nested about "
+            f"500 deep, so the export takes at most {MAX_DEPTH} links from the root to a leaf"
+        )
 
 
 def _skeleton(name: str, floor: bool) -> tuple[Any, Any, Any]:

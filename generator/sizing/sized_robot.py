@@ -21,6 +21,7 @@ import numpy as np
 
 from ..errors import XacrokitError
 from ..reader.urdf_view import UrdfView, read_view
+from ..shared.joint_types import MOVING
 from ..shared.value_text import did_you_mean
 
 GRAVITY = 9.80665  # m/s^2, the standard acceleration of gravity (CGPM 1901), along -z of the root frame
@@ -100,6 +101,30 @@ def configurations(robot: SizingRobot, values: np.ndarray) -> np.ndarray:
     return result
 
 
+MAX_MOVING_CHAIN = 64  # moving joints from the root to a leaf that size searches (a real arm or leg has under 10)
+
+
+def moving_chain(view: UrdfView) -> int:
+    """The most moving joints (revolute, continuous, prismatic) on one path from a root link to a leaf; the joints
+    of a loop, which no path from a root reaches, are not counted."""
+    below: dict[str, list[tuple[str, bool]]] = {}
+    children = set()
+    for joint in view.joints:
+        if joint.parent is not None and joint.child is not None:
+            below.setdefault(joint.parent, []).append((joint.child, joint.type in MOVING))
+            children.add(joint.child)
+    stack = [(link.name, 0) for link in view.links if link.name not in children]
+    seen, longest = set(), 0
+    while stack:
+        link, count = stack.pop()
+        longest = max(longest, count)
+        for child, moving in below.get(link, []):
+            if child not in seen:
+                seen.add(child)
+                stack.append((child, count + moving))
+    return longest
+
+
 def load_robot(
     path: str | os.PathLike[str],
     mappings: Mapping[str, str] | None = None,
@@ -121,11 +146,18 @@ def load_robot(
     where = Path(path)
     with robot_text(where, mappings, package_paths, meshes=False) as (text, _):  # (pinocchio reads no mesh here)
         pass
+    view = read_view(text, str(where))
+    longest = moving_chain(view)
+    if longest > MAX_MOVING_CHAIN:  # (before pinocchio, which crashes on a chain of thousands)
+        raise XacrokitError(
+            f"{where}: a chain of {longest} moving joints; size searches each joint's worst pose over the joints "
+            f"below it, work that grows with the cube of a chain's length: at most {MAX_MOVING_CHAIN} in a chain "
+            "(which takes about 20 s)"
+        )
     try:
         model = pin.buildModelFromXML(text)
     except (RuntimeError, ValueError) as exc:
         raise XacrokitError(f"{where}: pinocchio cannot read the robot: {exc}") from None
-    view = read_view(text, str(where))
     model.gravity = pin.Motion(np.array([0.0, 0.0, -GRAVITY, 0.0, 0.0, 0.0]))  # (pinocchio's default: 9.81)
     joints = _moving_joints(model, view)
     massless = _massless_moving_links(model, view)

@@ -297,3 +297,39 @@ def test_a_link_named_world_below_the_root_is_refused(tmp_path):
     result = gen_robot("export", urdf, "--mjcf", "-o", tmp_path / "r.xml")
     assert result.returncode == 2 and "link 'world' hangs from joint 'j'" in result.stderr, result.stderr
     assert not (tmp_path / "r.xml").exists()
+
+
+def _chain(links: int) -> str:
+    parts = [
+        f'<link name="l{k}"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01"/></inertial>'
+        '<collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>'
+        for k in range(links)
+    ]
+    parts += [
+        f'<joint name="j{k}" type="revolute"><parent link="l{k - 1}"/><child link="l{k}"/><origin xyz="0 0 0.1"/>'
+        '<axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="10" velocity="1"/></joint>'
+        for k in range(1, links)
+    ]
+    return f'<robot name="c">{"".join(parts)}</robot>'
+
+
+def test_a_tree_deeper_than_mujocos_reader_takes_is_refused_and_the_deepest_it_takes_loads():
+    """MuJoCo's XML reader (tinyxml2) refuses elements nested about 500 deep: a chain of 20,000 links once ended in
+    exit 70 (RecursionError), one of 491 in a model MuJoCo refuses; 490 loads (issue 28)."""
+    from xacrokit.export.mjcf import MAX_DEPTH
+
+    model = mujoco.MjModel.from_xml_string(mjcf(_chain(MAX_DEPTH), str).xml)
+    assert model.nbody == MAX_DEPTH + 1
+    for links in (MAX_DEPTH + 1, 20_000):
+        with pytest.raises(XacrokitError, match=f"the robot's tree is {links} links deep"):
+            mjcf(_chain(links), str)
+
+
+def test_links_in_a_loop_off_the_root_are_refused_not_dropped():
+    urdf = (
+        '<robot name="r"><link name="base"/><link name="a"/><link name="b"/>'
+        '<joint name="ab" type="fixed"><parent link="a"/><child link="b"/></joint>'
+        '<joint name="ba" type="fixed"><parent link="b"/><child link="a"/></joint></robot>'
+    )
+    with pytest.raises(XacrokitError, match="links 'a', 'b' hang in a loop of joints"):
+        mjcf(urdf, str)

@@ -274,3 +274,31 @@ def test_a_result_that_is_not_a_number_fails_and_is_listed(arm_file, monkeypatch
     assert report.failed == ["shoulder"] and report.exit_code == 1
     assert ("shoulder", "static torque not a finite number") in report.failures
     assert "FAILED: shoulder" in sizing.format_text(report)
+
+
+def test_a_chain_longer_than_size_searches_is_refused_before_pinocchio_reads_it(tmp_path):
+    """A chain of 5,000 moving joints crashed pinocchio (signal 11), 100 took 62 s: size takes at most
+    MAX_MOVING_CHAIN in a chain and says so (issue 28); a tree of many short chains is not limited by it."""
+    from xacrokit.reader.urdf_view import read_view
+    from xacrokit.sizing.sized_robot import MAX_MOVING_CHAIN, moving_chain
+
+    def chain(links: int, *, branches: int = 1) -> str:
+        parts = ['<link name="root"><inertial><mass value="1"/><inertia ixx="1" iyy="1" izz="1"/></inertial></link>']
+        for b in range(branches):
+            for k in range(links):
+                parent = "root" if k == 0 else f"b{b}l{k - 1}"
+                parts.append(
+                    f'<link name="b{b}l{k}"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01"/>'
+                    f'</inertial></link><joint name="b{b}j{k}" type="revolute"><parent link="{parent}"/>'
+                    f'<child link="b{b}l{k}"/><origin xyz="0 0 0.1"/><axis xyz="0 1 0"/>'
+                    '<limit lower="-1" upper="1" effort="10" velocity="1"/></joint>'
+                )
+        return f'<robot name="c">{"".join(parts)}</robot>'
+
+    assert moving_chain(read_view(chain(7, branches=20))) == 7
+    long = tmp_path / "long.urdf"
+    long.write_text(chain(5000), encoding="utf-8")
+    assert moving_chain(read_view(long.read_text(encoding="utf-8"))) == 5000
+    result = gen_robot("size", long)
+    assert result.returncode == 2 and "Traceback" not in result.stderr
+    assert "a chain of 5000 moving joints" in result.stderr and f"at most {MAX_MOVING_CHAIN}" in result.stderr
