@@ -21,6 +21,9 @@ if TYPE_CHECKING:
     from ..reader.urdf_view import Joint
 
 
+DOT_SECONDS = 50  # the longest Graphviz may take to lay out an SVG (a chain of 20,000 links: about 100 s, then fails)
+
+
 def dot_string(text: object) -> str:
     """``text`` as a DOT quoted string: backslashes and quotes escaped, line breaks as DOT's \\n, other control
     characters as spaces."""
@@ -103,7 +106,15 @@ def svg(dot: str) -> bytes:
     program = shutil.which("dot")
     if program is None:
         raise XacrokitError("Graphviz's dot is not installed: write -o tree.dot instead, or install graphviz")
-    done = subprocess.run([program, "-Tsvg"], input=dot.encode("utf-8"), capture_output=True, timeout=120, check=False)
+    try:
+        done = subprocess.run(
+            [program, "-Tsvg"], input=dot.encode("utf-8"), capture_output=True, timeout=DOT_SECONDS, check=False
+        )
+    except subprocess.TimeoutExpired:
+        raise XacrokitError(
+            f"Graphviz's dot did not lay the tree out in {DOT_SECONDS} s (a chain of 5,000 links takes about 7 s): "
+            "write -o tree.dot instead and lay it out as you wish"
+        ) from None
     if done.returncode:
         raise XacrokitError(f"dot failed: {done.stderr.decode('utf-8', 'replace')[-500:]}")
     return done.stdout

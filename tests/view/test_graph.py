@@ -70,3 +70,22 @@ def test_bad_graph_output_and_input_are_errors(tmp_path):
     assert result.returncode == 2 and "FILE.dot" in result.stderr and not (tmp_path / "tree.png").exists()
     missing = gen_robot("graph", tmp_path / "nothing.urdf")
     assert missing.returncode == 2 and "Traceback" not in missing.stderr
+
+
+@pytest.mark.skipif(shutil.which("dot") is None, reason="Graphviz's dot is not installed")
+def test_a_layout_that_takes_too_long_is_stopped_and_said(monkeypatch):
+    """dot laying out 20,000 links ran 100 s (issue 28): it is stopped at DOT_SECONDS, an error and not exit 70."""
+    import xacrokit.view.tree_graph as tree_graph
+    from xacrokit.errors import XacrokitError
+
+    monkeypatch.setattr(tree_graph, "DOT_SECONDS", 1e-6)
+    dot = tree_dot(_rover_urdf())
+    with pytest.raises(XacrokitError, match="did not lay the tree out in 1e-06 s"):
+        tree_graph.svg(dot)
+
+
+def _rover_urdf() -> str:
+    from xacrokit.reader.robot_source import robot_text
+
+    with robot_text(REPO / "examples" / "robots" / "rover.yaml", meshes=False) as (text, _):
+        return text
