@@ -67,8 +67,8 @@ STAGED_PREFIX = "xacrokit-staged-"
 def is_staged(folder: Path) -> bool:
     """Whether ``folder`` is a package :func:`staged_packages` made (gone after its ``with`` block: a file of it to
     copy later must be read while it lasts)."""
-    parent = Path(os.path.abspath(folder)).parent
-    return parent.name.startswith(STAGED_PREFIX) and parent.parent == Path(tempfile.gettempdir()).resolve()
+    parent = Path(os.path.realpath(folder)).parent  # (both sides resolved: /tmp may be a link, as on macOS)
+    return parent.name.startswith(STAGED_PREFIX) and parent.parent == Path(os.path.realpath(tempfile.gettempdir()))
 
 
 def _umask() -> int:

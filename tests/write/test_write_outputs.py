@@ -132,3 +132,15 @@ def test_a_large_file_of_someone_elses_is_compared_without_reading_it_whole(tmp_
     with pytest.raises(OutputConflict):
         output_file(big, "page")
     assert big.stat().st_size == 64 * 2**20 + 1
+
+
+def test_a_staged_package_is_known_as_one_and_a_folder_of_yours_is_not(tmp_path):
+    """export reads a spec's staged meshes while they last (is_staged); anything else is streamed at write time."""
+    from xacrokit.write.atomic import is_staged, staged_packages
+
+    class Item:
+        path, content = "meshes/a.stl", b"solid"
+
+    with staged_packages({"p_description": [Item()]}) as staged:
+        assert is_staged(staged["p_description"])
+    assert not is_staged(tmp_path) and not is_staged(tmp_path / "xacrokit-staged-x" / "p")
