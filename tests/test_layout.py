@@ -69,7 +69,19 @@ STAGES_AT_THE_TOP = {
     "expansion",
     "pipeline",
 }
-FEATURES = {"reader", "check", "sizing", "view", "export", "importer", "scene", "cli", "testing", "shared"}
+FEATURES = {
+    "reader",
+    "check",
+    "sizing",
+    "kinematics",
+    "view",
+    "export",
+    "importer",
+    "scene",
+    "cli",
+    "testing",
+    "shared",
+}
 
 
 def test_the_top_level_is_the_pipeline_and_its_features():

@@ -421,7 +421,8 @@ def _add_tool_commands(commands: Any) -> None:
 
 SCHEMA_KINDS = ("robot", "scene", "check-report", "size-report", "sizing")
 COMMANDS = tuple(
-    "generate new check size report graph view render export import fleet schema expand macros materials".split()
+    "generate new check size report graph view render export import pose jacobian fleet schema expand macros "
+    "materials".split()
 )
 
 

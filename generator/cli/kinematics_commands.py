@@ -1,0 +1,200 @@
+"""The kinematics commands, ``gen-robot pose`` and ``gen-robot jacobian``: their options and what they print (shells
+over :mod:`xacrokit.kinematics`, imported when the command runs: the CLI starts without numpy)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Callable
+from typing import Any
+
+from .arguments import parse_mappings, parse_packages
+
+ROTATION_FORMS = ("rpy", "quat_xyzw", "quat_wxyz", "rotvec", "matrix")
+
+
+def add_kinematics_commands(commands: Any, add_xacro_options: Callable[[argparse.ArgumentParser], None]) -> None:
+    """Add ``pose`` and ``jacobian`` to the CLI's subcommands."""
+    pose = commands.add_parser(
+        "pose",
+        help="where a link or frame is in another at given joint values (forward kinematics, no ROS needed)",
+        description="Print the pose of FRAME in --in (default: the root link) with the joints at --at values "
+        "(0 where not given; a mimic joint follows its leader): xyz (m), rpy (rad, URDF's fixed-axis roll, pitch, "
+        "yaw), the quaternion (x, y, z, w) and the 4x4 matrix T_IN_FRAME. ROBOT is a spec, URDF or xacro document.",
+    )
+    _common(pose)
+    pose.add_argument("--rotation", choices=ROTATION_FORMS, default="rpy", help="the form --json's rotation takes")
+    pose.add_argument(
+        "--point",
+        metavar="X,Y,Z",
+        help="also a point given in FRAME's axes (m), expressed in --in: T_IN_FRAME p (an object a camera sees)",
+    )
+    add_xacro_options(pose)
+    pose.set_defaults(handler=_cmd_pose)
+    jac = commands.add_parser(
+        "jacobian",
+        help="the geometric Jacobian of a frame's origin (6 x n, linear rows first), and tau = J^T w for a wrench",
+        description="Print the 6 x n geometric Jacobian of FRAME's origin at --at values: rows vx, vy, vz (m/s) and "
+        "wx, wy, wz (rad/s) of FRAME relative to the root link, in --in's axes (default: the root link's), one "
+        "column per moving joint (a mimic joint's motion added to its leader's). --wrench also prints tau = J^T w, "
+        "w the wrench the tool exerts on the environment in --in's axes: the torque each motor adds to exert it.",
+    )
+    _common(jac)
+    jac.add_argument(
+        "--wrench",
+        metavar="FX,FY,FZ[,MX,MY,MZ]",
+        help="a force (N) and moment (N*m) the tool exerts on the environment, in --in's axes: prints tau = J^T w",
+    )
+    add_xacro_options(jac)
+    jac.set_defaults(handler=_cmd_jacobian)
+
+
+def _common(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("robot", help="a .urdf, .xacro or .yaml spec")
+    parser.add_argument("frame", help="the link or frame whose pose is asked (a spec's frames are links)")
+    parser.add_argument("--in", dest="in_frame", metavar="FRAME", help="the frame it is given in (default: the root)")
+    parser.add_argument(
+        "--at",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="a joint's value, e.g. joint_1=30deg or slider=0.1m (rad or m without a unit); repeatable",
+    )
+    parser.add_argument("--json", action="store_true", help="print JSON")
+
+
+def _values(args: argparse.Namespace) -> dict[str, str]:
+    from ..errors import XacrokitError
+
+    given = {}
+    for item in args.at:
+        name, sign, value = item.partition("=")
+        if not sign or not name.strip() or not value.strip():
+            raise XacrokitError(f"--at {item!r}: give NAME=VALUE, e.g. joint_1=30deg")
+        given[name.strip()] = value.strip()
+    return given
+
+
+def _cmd_pose(args: argparse.Namespace) -> int:
+    from ..kinematics import pose
+
+    found = pose(
+        args.robot,
+        args.frame,
+        in_frame=args.in_frame,
+        at=_values(args),
+        mappings=parse_mappings(args.mappings),
+        package_paths=parse_packages(args.package),
+    )
+    for warning in found.warnings:
+        sys.stderr.write(f"gen-robot: warning: {warning}\n")
+    described = pose_dict(found.matrix, args.rotation)
+    if args.point is not None:
+        described["point"] = _point(args.point, found.matrix)
+    if args.json:
+        sys.stdout.write(json.dumps({"frame": found.frame, "in": found.in_frame, **described}, indent=2) + "\n")
+        return 0
+    lines = [f"pose of {found.frame} in {found.in_frame}{_at(found.values)}:"]
+    lines.append("  xyz        " + _row(described["xyz"]) + "  m")
+    lines.append("  rpy        " + _row(described["rpy"]) + "  rad (URDF: R = Rz(y) Ry(p) Rx(r))")
+    lines.append("  quat_xyzw  " + _row(described["quat_xyzw"]))
+    lines += ["  matrix     " + _row(row) for row in described["matrix"][:1]]
+    lines += ["             " + _row(row) for row in described["matrix"][1:]]
+    if "point" in described:
+        lines.append(f"  point      {_row(described['point'])}  m in {found.in_frame} ({args.point} in {found.frame})")
+    sys.stdout.write("\n".join(lines) + "\n")
+    return 0
+
+
+def _cmd_jacobian(args: argparse.Namespace) -> int:
+    from ..errors import XacrokitError
+    from ..kinematics import jacobian, joint_torques
+
+    found = jacobian(
+        args.robot,
+        args.frame,
+        in_frame=args.in_frame,
+        at=_values(args),
+        mappings=parse_mappings(args.mappings),
+        package_paths=parse_packages(args.package),
+    )
+    for warning in found.pose.warnings:
+        sys.stderr.write(f"gen-robot: warning: {warning}\n")
+    torques = None
+    if args.wrench is not None:
+        try:
+            wrench = [float(v) for v in args.wrench.split(",")]
+        except ValueError:
+            wrench = []
+        if len(wrench) not in (3, 6) or not all(abs(v) < float("inf") for v in wrench):
+            raise XacrokitError(f"--wrench {args.wrench!r}: give FX,FY,FZ or FX,FY,FZ,MX,MY,MZ (N, N*m)")
+        torques = joint_torques(found, wrench)
+    rows = [[float(v) for v in row] for row in found.matrix]
+    if args.json:
+        out: dict[str, Any] = {"frame": found.pose.frame, "in": found.pose.in_frame, "joints": found.joints}
+        out["jacobian"] = rows
+        if torques is not None:
+            out["torques"] = dict(zip(found.joints, map(float, torques), strict=True))
+        sys.stdout.write(json.dumps(out, indent=2) + "\n")
+        return 0
+    width = max([len(n) for n in found.joints] + [12])
+    lines = [f"jacobian of {found.pose.frame}'s origin in {found.pose.in_frame}'s axes{_at(found.pose.values)}:"]
+    lines.append("  " + " " * 3 + " ".join(f"{n:>{width}}" for n in found.joints))
+    for label, row in zip(("vx", "vy", "vz", "wx", "wy", "wz"), rows, strict=True):
+        lines.append(f"  {label} " + " ".join(f"{v:>{width}.6g}" for v in row))
+    if torques is not None:
+        lines.append("tau = J^T w (N*m, N for a prismatic joint; the torque each motor adds to exert the wrench):")
+        lines += [f"  {name:<{width}} {float(t):.6g}" for name, t in zip(found.joints, torques, strict=True)]
+    sys.stdout.write("\n".join(lines) + "\n")
+    return 0
+
+
+def pose_dict(matrix: Any, rotation: str = "rpy") -> dict[str, Any]:
+    """A 4x4 pose as the commands print it: xyz, rpy (URDF), quat_xyzw (w >= 0), the matrix, and ``rotation`` in the
+    form named (rpy, quat_xyzw, quat_wxyz, rotvec, matrix: scipy's Rotation for the quaternion and rotation vector)."""
+    import numpy as np
+    import pinocchio as pin
+    from scipy.spatial.transform import Rotation
+
+    turn = np.asarray(matrix)[:3, :3]
+    quat = Rotation.from_matrix(turn).as_quat()
+    quat = -quat if quat[3] < 0 else quat
+    forms = {
+        "rpy": [float(v) for v in pin.rpy.matrixToRpy(turn)],
+        "quat_xyzw": [float(v) for v in quat],
+        "quat_wxyz": [float(quat[3]), *map(float, quat[:3])],
+        "rotvec": [float(v) for v in Rotation.from_matrix(turn).as_rotvec()],
+        "matrix": [[float(v) for v in row] for row in turn],
+    }
+    return {
+        "xyz": [float(v) for v in np.asarray(matrix)[:3, 3]],
+        "rpy": forms["rpy"],
+        "quat_xyzw": forms["quat_xyzw"],
+        "matrix": [[float(v) for v in row] for row in np.asarray(matrix)],
+        "rotation": {"form": rotation, "value": forms[rotation]},
+    }
+
+
+def _point(text: str, matrix: Any) -> list[float]:
+    """T p for a point ``X,Y,Z`` (m) given as text."""
+    import numpy as np
+
+    from ..errors import XacrokitError
+
+    try:
+        given = [float(v) for v in text.split(",")]
+    except ValueError:
+        given = []
+    if len(given) != 3 or not all(abs(v) < float("inf") for v in given):
+        raise XacrokitError(f"--point {text!r}: give X,Y,Z in metres")
+    return [float(v) for v in (np.asarray(matrix) @ np.array([*given, 1.0]))[:3]]
+
+
+def _at(values: dict[str, float]) -> str:
+    return " at " + ", ".join(f"{k} = {v:.6g}" for k, v in values.items()) if values else " at every joint 0"
+
+
+def _row(values: Any) -> str:
+    """Nine decimals, a value that rounds to zero printed as 0 (not -0.000000000); --json has every digit."""
+    return " ".join(f"{(float(v) if abs(float(v)) >= 5e-10 else 0.0):>13.9f}" for v in values)

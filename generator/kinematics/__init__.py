@@ -1,0 +1,117 @@
+"""Kinematics without ROS (``gen-robot pose`` and ``gen-robot jacobian``): where a frame is in another at given
+joint values, and the geometric Jacobian of its origin, with pinocchio on the robot the one reader reads.
+
+Conventions, stated once (docs/kinematics.md says them to users):
+
+* a pose of FRAME in IN is the transform T_IN_FRAME: a point p given in FRAME's axes is T p in IN's; ``xyz`` is
+  FRAME's origin in IN (m), ``rpy`` URDF's fixed-axis roll, pitch, yaw (R = Rz(y) Ry(p) Rx(r)), ``quat_xyzw`` the
+  same rotation as a unit quaternion, scalar last (w >= 0);
+* the Jacobian J (6 x n) maps the moving joints' speeds to the velocity of FRAME's origin relative to the root link:
+  linear (m/s) rows first, then angular (rad/s), both in IN's axes; one column per joint one sets (a mimic joint's
+  motion is added to its leader's column, times its multiplier), in the file's order;
+* ``tau = J^T w``, w the wrench (force N, moment N*m, in IN's axes, at FRAME's origin) the tool exerts on the
+  environment: tau is the torque each joint's motor must add to exert it (held still, gravity aside); the reaction
+  the environment applies is -w, which is what ``size --force`` takes.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from .kinematic_model import KinematicRobot, joint_values, load_kinematics
+
+
+@dataclass(frozen=True)
+class Pose:
+    """T_IN_FRAME (4x4) at the joint values asked, with the frames' names and what was said about the values."""
+
+    frame: str
+    in_frame: str
+    matrix: np.ndarray
+    values: dict[str, float]
+    warnings: list[str]
+
+
+@dataclass(frozen=True)
+class Jacobian:
+    """The 6 x n Jacobian of ``frame``'s origin in ``in_frame``'s axes, its columns' joints, and the pose it is at."""
+
+    pose: Pose
+    joints: list[str]
+    matrix: np.ndarray
+
+
+def _placed(robot: KinematicRobot, q: np.ndarray) -> None:
+    import pinocchio as pin
+
+    pin.framesForwardKinematics(robot.model, robot.data, q)
+
+
+def _pose(robot: KinematicRobot, frame: str, in_frame: str, values: dict[str, float], warnings: list[str]) -> Pose:
+    target, base = robot.frame_id(frame, "FRAME"), robot.frame_id(in_frame, "--in")
+    _placed(robot, robot.configuration(values))
+    matrix = robot.data.oMf[base].actInv(robot.data.oMf[target]).homogeneous
+    return Pose(frame, in_frame, np.array(matrix), values, warnings)
+
+
+def pose(
+    path: str | os.PathLike[str],
+    frame: str,
+    *,
+    in_frame: str | None = None,
+    at: Mapping[str, str] | None = None,
+    mappings: Mapping[str, str] | None = None,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
+) -> Pose:
+    """The pose of ``frame`` in ``in_frame`` (default: the root link) with the joints ``at`` (name -> value text with
+    an optional unit; 0 where not given).
+
+    Raises:
+        XacrokitError: unreadable input, an unknown frame or joint (with the closest names), a value that does not
+            parse.
+        SpecErrors: an invalid spec (located).
+    """
+    robot = load_kinematics(path, mappings, package_paths=package_paths)
+    values, warnings = joint_values(robot, at or {})
+    return _pose(robot, frame, in_frame or robot.root, values, warnings)
+
+
+def jacobian(
+    path: str | os.PathLike[str],
+    frame: str,
+    *,
+    in_frame: str | None = None,
+    at: Mapping[str, str] | None = None,
+    mappings: Mapping[str, str] | None = None,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
+) -> Jacobian:
+    """The geometric Jacobian of ``frame``'s origin (see the module's conventions) at the joints ``at``.
+
+    Raises:
+        as :func:`pose`.
+    """
+    import pinocchio as pin
+
+    robot = load_kinematics(path, mappings, package_paths=package_paths)
+    values, warnings = joint_values(robot, at or {})
+    placed = _pose(robot, frame, in_frame or robot.root, values, warnings)
+    q = robot.configuration(values)
+    target, base = robot.frame_id(frame, "FRAME"), robot.frame_id(placed.in_frame, "--in")
+    world = pin.computeFrameJacobian(robot.model, robot.data, q, target, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+    columns = {j.name: world[:, j.v_index].copy() for j in robot.joints}
+    for follower in robot.followers:
+        columns[follower.leader] = columns[follower.leader] + follower.multiplier * world[:, follower.joint.v_index]
+    turn = robot.data.oMf[base].rotation.T  # (world axes -> IN's axes)
+    matrix = np.array([np.concatenate([turn @ c[:3], turn @ c[3:]]) for c in columns.values()]).T
+    return Jacobian(placed, [j.name for j in robot.joints], matrix.reshape(6, len(robot.joints)))
+
+
+def joint_torques(jac: Jacobian, wrench: Sequence[float]) -> np.ndarray:
+    """tau = J^T w for a wrench (3 forces, or 3 forces and 3 moments) the tool exerts, in the Jacobian's axes."""
+    w = np.zeros(6)
+    w[: len(wrench)] = wrench
+    return np.asarray(jac.matrix.T @ w)
