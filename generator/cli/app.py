@@ -421,7 +421,7 @@ def _add_tool_commands(commands: Any) -> None:
 
 SCHEMA_KINDS = ("robot", "scene", "check-report", "size-report", "sizing")
 COMMANDS = tuple(
-    "generate new check size report graph view render export import pose jacobian fleet schema expand macros "
+    "generate new check size report graph view render export import pose jacobian ik fleet schema expand macros "
     "materials".split()
 )
 

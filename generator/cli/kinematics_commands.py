@@ -50,6 +50,74 @@ def add_kinematics_commands(commands: Any, add_xacro_options: Callable[[argparse
     jac.set_defaults(handler=_cmd_jacobian)
 
 
+def add_ik_command(commands: Any, add_xacro_options: Callable[[argparse.ArgumentParser], None]) -> None:
+    """Add ``ik`` to the CLI's subcommands."""
+    ik = commands.add_parser(
+        "ik",
+        help="inverse kinematics: joint values within the limits that put a frame at a pose (every branch: --all)",
+        description="Find joint values within the joints' limits that put FRAME at --to X,Y,Z[,R,P,Y] (m; rad, URDF's "
+        "roll, pitch, yaw; units allowed: 30deg, 100mm) in --in (default: the root link; a frame fixed to it), by "
+        "damped least squares from 16 starts (pinocchio). --all lists every distinct solution (the two elbow "
+        "branches of a two-link arm). Exit 0 with a solution, 1 when the target is out of reach (the closest reach "
+        "is said), 2 bad input.",
+    )
+    ik.add_argument("robot", help="a .urdf, .xacro or .yaml spec")
+    ik.add_argument("frame", help="the link or frame to place")
+    ik.add_argument("--to", required=True, metavar="X,Y,Z[,R,P,Y]", help="the target pose in --in")
+    ik.add_argument("--in", dest="in_frame", metavar="FRAME", help="the frame the target is given in (default: root)")
+    ik.add_argument("--position-only", action="store_true", help="reach the position, any orientation")
+    ik.add_argument("--all", dest="every", action="store_true", help="list every distinct solution found")
+    ik.add_argument("--json", action="store_true", help="print JSON")
+    add_xacro_options(ik)
+    ik.set_defaults(handler=_cmd_ik)
+
+
+def _target(text: str) -> list[float]:
+    from ..errors import XacrokitError
+    from ..shared.units import UnitError, parse_quantity
+
+    parts = [p.strip() for p in text.split(",")]
+    if len(parts) not in (3, 6):
+        raise XacrokitError(f"--to {text!r}: give X,Y,Z or X,Y,Z,R,P,Y (m, rad)")
+    try:
+        return [parse_quantity(p, "length" if k < 3 else "angle") for k, p in enumerate(parts)]
+    except UnitError as exc:
+        raise XacrokitError(f"--to {text!r}: {exc}") from None
+
+
+def _cmd_ik(args: argparse.Namespace) -> int:
+    from ..kinematics import inverse_kinematics
+
+    found = inverse_kinematics(
+        args.robot,
+        args.frame,
+        _target(args.to),
+        in_frame=args.in_frame,
+        position_only=args.position_only,
+        every=args.every,
+        mappings=parse_mappings(args.mappings),
+        package_paths=parse_packages(args.package),
+    )
+    if args.json:
+        out: dict[str, Any] = {"frame": found.frame, "in": found.in_frame}
+        out["solutions"] = [{"joints": values, "error": error} for values, error in found.solutions]
+        if found.closest is not None:
+            out["closest"] = {"joints": found.closest[0], "error": found.closest[1]}
+        sys.stdout.write(json.dumps(out, indent=2) + "\n")
+        return 0 if found.solutions else 1
+    if not found.solutions and found.closest is not None:
+        values, error = found.closest
+        sys.stdout.write(
+            f"out of reach: the closest {found.frame} comes is {error:.6g} away (m, or the pose error), at\n"
+        )
+        sys.stdout.write("".join(f"  {name} = {value:.9f}\n" for name, value in values.items()))
+        return 1
+    for index, (values, error) in enumerate(found.solutions, 1):
+        sys.stdout.write(f"solution {index} (error {error:.3g}):\n")
+        sys.stdout.write("".join(f"  {name} = {value:.9f}\n" for name, value in values.items()))
+    return 0
+
+
 def _common(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("robot", help="a .urdf, .xacro or .yaml spec")
     parser.add_argument("frame", help="the link or frame whose pose is asked (a spec's frames are links)")

@@ -1,5 +1,5 @@
 """The subcommands that live outside cli.py (each in its own module, its work imported when it runs): size and report,
-graph, view and render, export, import, pose and jacobian."""
+graph, view and render, export, import, pose, jacobian and ik."""
 
 from __future__ import annotations
 
@@ -9,16 +9,17 @@ from typing import Any
 
 from .export_command import add_export_command
 from .import_command import add_import_command
-from .kinematics_commands import add_kinematics_commands
+from .kinematics_commands import add_ik_command, add_kinematics_commands
 from .size_commands import add_report_command, add_size_command
 from .view_commands import add_view_commands
 
 
 def add_commands(commands: Any, add_xacro_options: Callable[[argparse.ArgumentParser], None]) -> None:
-    """Add size, report, graph, view, render, export, import, pose and jacobian to the CLI's subcommands."""
+    """Add size, report, graph, view, render, export, import, pose, jacobian and ik to the CLI's subcommands."""
     add_size_command(commands, add_xacro_options)
     add_report_command(commands)
     add_view_commands(commands, add_xacro_options)
     add_export_command(commands, add_xacro_options)
     add_import_command(commands, add_xacro_options)
     add_kinematics_commands(commands, add_xacro_options)
+    add_ik_command(commands, add_xacro_options)

@@ -1,5 +1,6 @@
-"""Kinematics without ROS (``gen-robot pose`` and ``gen-robot jacobian``): where a frame is in another at given
-joint values, and the geometric Jacobian of its origin, with pinocchio on the robot the one reader reads.
+"""Kinematics without ROS (``gen-robot pose``, ``jacobian`` and ``ik``): where a frame is in another at given joint
+values, the geometric Jacobian of its origin, and the joint values that put it at a pose, with pinocchio on the robot
+the one reader reads.
 
 Conventions, stated once (docs/kinematics.md says them to users):
 
@@ -22,7 +23,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import XacrokitError
+from .inverse import Chain, distinct, solve, starts
 from .kinematic_model import KinematicRobot, joint_values, load_kinematics
+
+REACHED = 1e-9  # m, or the pose error's norm: a solution farther from the target than this is not one
 
 
 @dataclass(frozen=True)
@@ -115,3 +120,76 @@ def joint_torques(jac: Jacobian, wrench: Sequence[float]) -> np.ndarray:
     w = np.zeros(6)
     w[: len(wrench)] = wrench
     return np.asarray(jac.matrix.T @ w)
+
+
+@dataclass(frozen=True)
+class Solutions:
+    """What ``ik`` found: the solutions (joint values by name, and the pose error left), best first; when there is
+    none, the closest reach instead."""
+
+    frame: str
+    in_frame: str
+    joints: list[str]
+    solutions: list[tuple[dict[str, float], float]]
+    closest: tuple[dict[str, float], float] | None
+
+
+def _chain(robot: KinematicRobot, frame: int) -> Chain:
+    columns = {j.name: [(j.v_index, 1.0)] for j in robot.joints}
+    for follower in robot.followers:
+        columns[follower.leader].append((follower.joint.v_index, follower.multiplier))
+    lower = np.array([j.limits[0] if j.limits else -np.pi for j in robot.joints])
+    upper = np.array([j.limits[1] if j.limits else np.pi for j in robot.joints])
+    names = [j.name for j in robot.joints]
+
+    def configuration(values: np.ndarray) -> np.ndarray:
+        return robot.configuration(dict(zip(names, map(float, values), strict=True)))
+
+    return Chain(robot.model, frame, list(columns.values()), lower, upper, configuration)
+
+
+def inverse_kinematics(
+    path: str | os.PathLike[str],
+    frame: str,
+    to: Sequence[float],
+    *,
+    in_frame: str | None = None,
+    position_only: bool = False,
+    every: bool = False,
+    mappings: Mapping[str, str] | None = None,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
+) -> Solutions:
+    """Joint values within the limits that put ``frame`` at ``to`` (x, y, z in m, then roll, pitch, yaw in rad,
+    URDF's convention; 3 numbers or ``position_only``: the position only) in ``in_frame`` (default: the root link;
+    it must not move with a joint). ``every``: every distinct solution of the STARTS starts, else the first found.
+
+    Raises:
+        XacrokitError: as :func:`pose`, or an ``in_frame`` that moves with a joint.
+    """
+    import pinocchio as pin
+
+    from ..shared.transforms import rpy_matrix
+
+    robot = load_kinematics(path, mappings, package_paths=package_paths)
+    target_id, base = robot.frame_id(frame, "FRAME"), robot.frame_id(in_frame or robot.root, "--in")
+    if robot.model.frames[base].parentJoint != 0:
+        moved_by = robot.model.names[robot.model.frames[base].parentJoint]
+        raise XacrokitError(f"--in {in_frame}: it moves with joint {moved_by!r}; give a frame fixed to the root")
+    position_only = position_only or len(to) == 3
+    _placed(robot, robot.configuration({}))
+    rotation = rpy_matrix(*to[3:6]) if not position_only else np.eye(3)
+    goal = robot.data.oMf[base] * pin.SE3(rotation, np.array(to[:3], dtype=float))
+    chain = _chain(robot, target_id)
+    found = []
+    for start in starts(chain, np.zeros(len(robot.joints))):
+        values, error = solve(chain, goal, position_only=position_only, start=start)
+        found.append((values, error))
+        if error <= REACHED and not every:
+            break
+    names = [j.name for j in robot.joints]
+    named = [(dict(zip(names, map(float, v), strict=True)), e) for v, e in found]
+    reached = [
+        (dict(zip(names, map(float, v), strict=True)), e) for v, e in distinct([f for f in found if f[1] <= REACHED])
+    ]
+    closest = None if reached else min(named, key=lambda item: item[1])
+    return Solutions(frame, in_frame or robot.root, names, reached, closest)

@@ -286,10 +286,6 @@ def waypoint_errors(robot: SizingRobot, waypoints: Sequence[Sequence[float]]) ->
     return problems
 
 
-IK_TOLERANCE = 1e-10  # m and rad: the pose error at which inverse kinematics stops
-IK_ITERATIONS = 500
-
-
 def reach(
     robot: SizingRobot,
     frame: str,
@@ -297,37 +293,18 @@ def reach(
     rpy: Sequence[float] | None,
     start: Sequence[float],
 ) -> tuple[list[float], float]:
-    """Joint values that put ``frame`` at the pose (``rpy`` None: the position only), by damped least squares on the
-    frame's Jacobian from ``start`` (pinocchio's closed-loop inverse kinematics, as its documentation writes it),
-    kept within the joints' ranges; and the pose error left (m, and rad for the orientation)."""
+    """Joint values that put ``frame`` at the pose (``rpy`` None: the position only), from ``start``, kept within the
+    joints' ranges (the solver of ``gen-robot ik``: :func:`xacrokit.kinematics.inverse.solve`); and the pose error
+    left (m, and rad for the orientation)."""
     import pinocchio as pin
 
+    from ..kinematics.inverse import Chain, solve
     from ..shared.transforms import rpy_matrix
 
-    model, data = robot.model, robot.model.createData()
-    frame_id = model.getFrameId(frame)
     target = pin.SE3(rpy_matrix(*rpy) if rpy is not None else np.eye(3), np.array(xyz, dtype=float))
-    columns = [j.v_index for j in robot.joints]
     lower = np.array([j.lower for j in robot.joints])
     upper = np.array([j.upper for j in robot.joints])
-    values = np.clip(np.array(start, dtype=float), lower, upper)
-    error = math.inf
-    for _ in range(IK_ITERATIONS):
-        q = robot.configuration(values)
-        pin.framesForwardKinematics(model, data, q)
-        current = data.oMf[frame_id]
-        if rpy is None:
-            residual = current.translation - target.translation
-            jacobian = pin.computeFrameJacobian(model, data, q, frame_id, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)[:3]
-        else:
-            residual = pin.log6(target.actInv(current)).vector
-            jacobian = pin.computeFrameJacobian(model, data, q, frame_id, pin.ReferenceFrame.LOCAL)
-            jacobian = pin.Jlog6(target.actInv(current)) @ jacobian
-        error = float(np.linalg.norm(residual))
-        if error < IK_TOLERANCE:
-            break
-        part = jacobian[:, columns]
-        damping = 1e-12 + 1e-3 * error  # (less damping as it closes in: quadratic convergence near the solution)
-        step = -part.T @ np.linalg.solve(part @ part.T + damping * np.eye(len(residual)), residual)
-        values = np.clip(values + step, lower, upper)
+    columns = [[(j.v_index, 1.0)] for j in robot.joints]
+    chain = Chain(robot.model, robot.model.getFrameId(frame), columns, lower, upper, robot.configuration)
+    values, error = solve(chain, target, position_only=rpy is None, start=start)
     return [float(v) for v in values], error

@@ -1,0 +1,92 @@
+"""Inverse kinematics (``gen-robot ik``, and the pose waypoints of ``gen-robot size``): joint values that put a frame at
+a pose, within the joints' limits, by damped least squares on the frame's Jacobian (pinocchio's closed-loop inverse
+kinematics, as its documentation writes it), from several starts (the two-link arm has two elbow branches).
+
+The search is deterministic: the first start is the one given (or every joint at 0, clipped into its limits), the
+others uniform in the limits (a continuous joint: one turn either way) from a fixed seed. A start converges when the
+pose error (m, and rad for the orientation, the norm of the log of the error's rotation) is below TOLERANCE.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+TOLERANCE = 1e-10  # m and rad: the pose error at which a start stops
+ITERATIONS = 500  # steps per start
+STARTS = 16  # starts of `gen-robot ik` (the first one given)
+LONGEST_STEP = 0.5  # rad or m: the most a joint moves in one step
+DISTINCT = 1e-3  # rad or m: two solutions closer than this in every joint are one
+
+
+@dataclass(frozen=True)
+class Chain:
+    """What the solver moves: the model and frame, and for each joint one sets the pinocchio velocity columns it
+    drives with their multipliers (a mimic joint's column joins its leader's), its limits, and how joint values make
+    pinocchio's q."""
+
+    model: object
+    frame: int
+    columns: list[list[tuple[int, float]]]
+    lower: np.ndarray
+    upper: np.ndarray
+    configuration: Callable[[np.ndarray], np.ndarray]
+
+
+def solve(
+    chain: Chain, target: object, *, position_only: bool, start: Sequence[float] | np.ndarray
+) -> tuple[np.ndarray, float]:
+    """Joint values from ``start`` that put the frame at ``target`` (a pinocchio SE3 in the root's frame; its rotation
+    ignored when ``position_only``), kept within the limits; and the pose error left."""
+    import pinocchio as pin
+
+    model: Any = chain.model
+    data = model.createData()
+    goal: Any = target
+    values = np.clip(np.array(start, dtype=float), chain.lower, chain.upper)
+    error = math.inf
+    for _ in range(ITERATIONS):
+        q = chain.configuration(values)
+        pin.framesForwardKinematics(model, data, q)
+        current = data.oMf[chain.frame]
+        if position_only:
+            residual = current.translation - goal.translation
+            full = pin.computeFrameJacobian(model, data, q, chain.frame, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)[:3]
+        else:
+            residual = pin.log6(goal.actInv(current)).vector
+            full = pin.computeFrameJacobian(model, data, q, chain.frame, pin.ReferenceFrame.LOCAL)
+            full = pin.Jlog6(goal.actInv(current)) @ full
+        error = float(np.linalg.norm(residual))
+        if error < TOLERANCE:
+            break
+        part = np.array([sum(m * full[:, v] for v, m in drives) for drives in chain.columns]).T
+        damping = 1e-12 + 1e-3 * error  # (less damping as it closes in: quadratic convergence near the solution)
+        step = -part.T @ np.linalg.solve(part @ part.T + damping * np.eye(len(residual)), residual)
+        largest = float(np.abs(step).max(initial=0.0))
+        if largest > LONGEST_STEP:  # (near a singularity, out of reach: a step that would leap across the range)
+            step *= LONGEST_STEP / largest
+        values = np.clip(values + step, chain.lower, chain.upper)
+    return values, error
+
+
+def starts(chain: Chain, first: Sequence[float] | np.ndarray, count: int = STARTS, seed: int = 0) -> list[np.ndarray]:
+    """``first``, then ``count - 1`` starts spread over the limits' box: a scrambled Sobol sequence (scipy; a fixed
+    seed, so the same search every run), which fills the box's corners evenly where uniform draws leave some empty
+    (16 uniform starts once missed one of the two-link arm's elbow branches)."""
+    from scipy.stats import qmc
+
+    spread = qmc.Sobol(d=len(chain.lower), scramble=True, seed=seed).random(count)[1:]
+    return [np.array(first, dtype=float)] + [chain.lower + u * (chain.upper - chain.lower) for u in spread]
+
+
+def distinct(found: list[tuple[np.ndarray, float]]) -> list[tuple[np.ndarray, float]]:
+    """The solutions that differ from every one before them by more than DISTINCT in some joint."""
+    kept: list[tuple[np.ndarray, float]] = []
+    for values, error in found:
+        if all(np.abs(values - other).max() > DISTINCT for other, _ in kept):
+            kept.append((values, error))
+    return kept
