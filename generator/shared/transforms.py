@@ -41,18 +41,28 @@ def rotation_rpy(
     quaternion: tuple[float, float, float, float] | None = None,
     axis: tuple[float, float, float] | None = None,
     angle: float = 0.0,
+    rotvec: tuple[float, ...] | None = None,
+    matrix: np.ndarray | None = None,
+    euler: tuple[str, tuple[float, float, float]] | None = None,
 ) -> tuple[float, float, float]:
-    """URDF's roll, pitch, yaw of a rotation given as a unit quaternion (x, y, z, w: ROS's order) or as a unit axis and
-    an angle (right-handed), with pinocchio's conversions (Eigen's quaternion and angle-axis; ``matrixToRpy`` gives
-    pitch in [-pi/2, pi/2], as URDF reads it)."""
+    """URDF's roll, pitch, yaw of a rotation given as a unit quaternion (x, y, z, w: ROS's order), a unit axis and an
+    angle (right-handed), a rotation vector (axis x angle), a rotation matrix, or Euler angles (sequence, angles:
+    scipy's names, upper case intrinsic); with pinocchio's conversions (Eigen's quaternion and angle-axis;
+    ``matrixToRpy`` gives pitch in [-pi/2, pi/2], as URDF reads it) and scipy's for Euler angles."""
     import pinocchio  # (loaded only for an origin given this way: it takes a quarter of a second)
 
     if quaternion is not None:
         matrix = pinocchio.Quaternion(np.array(quaternion, dtype=float)).toRotationMatrix()
     elif axis is not None:
         matrix = pinocchio.AngleAxis(angle, np.array(axis, dtype=float)).matrix()
-    else:
-        raise ValueError("a quaternion, or an axis and an angle")
+    elif rotvec is not None:
+        matrix = pinocchio.exp3(np.array(rotvec, dtype=float))
+    elif euler is not None:
+        from scipy.spatial.transform import Rotation
+
+        matrix = Rotation.from_euler(euler[0], euler[1]).as_matrix()
+    elif matrix is None:
+        raise ValueError("a quaternion, an axis and an angle, a rotation vector, a matrix or Euler angles")
     roll, pitch, yaw = (float(v) + 0.0 for v in pinocchio.rpy.matrixToRpy(matrix))
     return (roll, pitch, yaw)
 

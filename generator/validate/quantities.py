@@ -5,6 +5,7 @@ beyond 10 m (millimetres written without ``mm``) noted."""
 from __future__ import annotations
 
 import math
+import re
 from typing import Any
 
 from ..errors import SpecError
@@ -20,7 +21,9 @@ from .physics import AXIS_LENGTHS, implausible
 # range (multi-turn joints exist; a range beyond two turns written in radians is rarer than degrees left unmarked).
 _TURNS: dict[str | int, int] = {"lower": 2, "upper": 2, "soft_lower_limit": 2, "soft_upper_limit": 2}
 
-ORIENTATIONS = ("rpy", "quat", "axis_angle")  # the ways an origin may give its orientation (one at a time)
+# the ways an origin may give its orientation (one at a time; docs/spec.md's table has one rotation in each)
+ORIENTATIONS = ("rpy", "quat", "quat_wxyz", "rotvec", "axis_angle", "matrix", "euler")
+ORTHONORMAL = 1e-6  # how far a rotation matrix's R^T R may be from the identity (a calibration's 7 digits pass)
 QUATERNION_LENGTHS = (1e-6, 1e6)  # a quaternion's length that can be normalised without losing its direction
 
 # A plain-number length beyond this is most likely millimetres: no link, offset or DH length of a robot is 10 m (a
@@ -133,27 +136,69 @@ class Quantities:
             )
         elif given == ["quat"]:
             self._quaternion(origin["quat"], (*path, key))
+        elif given == ["quat_wxyz"]:
+            w, x, y, z = origin["quat_wxyz"]
+            self._quaternion([x, y, z, w], (*path, key), field="quat_wxyz", written=origin["quat_wxyz"])
         elif given == ["axis_angle"]:
             self._axis_angle(origin["axis_angle"], (*path, key))
+        elif given == ["rotvec"]:
+            self._set_rpy((*path, key), rotation_rpy(rotvec=tuple(origin["rotvec"])))
+        elif given == ["matrix"]:
+            self._matrix(origin["matrix"], (*path, key))
+        elif given == ["euler"]:
+            self._euler(origin["euler"], (*path, key))
 
-    def _quaternion(self, quat: list[float], path: PathKey) -> None:
+    def _matrix(self, rows: list[list[float]], path: PathKey) -> None:
+        """``matrix:`` (3 rows) to rpy, when it is a rotation: R^T R = I to ORTHONORMAL and det R = +1."""
+        import numpy as np  # (only for an origin given this way)
+
+        matrix = np.array(rows, dtype=float)
+        off = float(np.abs(matrix.T @ matrix - np.eye(3)).max())
+        if not off <= ORTHONORMAL or not np.linalg.det(matrix) > 0:
+            problem = f"R^T R is {off:.3g} from the identity" if not off <= ORTHONORMAL else "its determinant is -1"
+            self.errors.append(
+                self.raw.error(
+                    (*path, "matrix"),
+                    f"not a rotation matrix: {problem} (a rotation's rows are orthonormal to {ORTHONORMAL:g}, its "
+                    "determinant +1; a mirror is no rotation)",
+                )
+            )
+            return
+        self._set_rpy(path, rotation_rpy(matrix=matrix))
+
+    def _euler(self, given: dict[str, Any], path: PathKey) -> None:
+        """``euler: {sequence, angles}`` (scipy's names: upper case intrinsic, lower case extrinsic) to rpy."""
+        if not re.fullmatch(r"[XYZ]{3}|[xyz]{3}", given["sequence"]):
+            return  # (the schema says what a sequence is; the passes after it still run)
+        for index in range(3):
+            self.convert(given["angles"], index, (*path, "euler", "angles"), "angle")
+        angles = self._changes.get((*path, "euler", "angles"), {})
+        values = [angles.get(k, given["angles"][k]) for k in range(3)]
+        if all(isinstance(v, float) for v in values):
+            self._set_rpy(path, rotation_rpy(euler=(given["sequence"], (values[0], values[1], values[2]))))
+
+    def _quaternion(
+        self, quat: list[float], path: PathKey, *, field: str = "quat", written: list[float] | None = None
+    ) -> None:
         """``quat: [x, y, z, w]`` (ROS's order) to the rpy URDF writes; one not of unit length is normalised, with a
         warning beyond 1e-6 (a quaternion rounded to a few digits is 1e-4 off: quiet), a zero one refused."""
         norm = math.sqrt(math.fsum(v * v for v in quat))
         if not QUATERNION_LENGTHS[0] <= norm <= QUATERNION_LENGTHS[1]:
             self.errors.append(
                 self.raw.error(
-                    (*path, "quat"),
-                    f"quat {quat} has length {norm:.3g}: a rotation's quaternion [x, y, z, w] has length 1 (the "
-                    "identity is [0, 0, 0, 1])",
+                    (*path, field),
+                    f"{field} {written or quat} has length {norm:.3g}: a rotation's quaternion has length 1 (the "
+                    f"identity is {'[0, 0, 0, 1]' if field == 'quat' else '[1, 0, 0, 0]'})",
                 )
             )
             return
         if abs(norm - 1.0) > 1e-6:
             self.warnings.append(
                 self.raw.error(
-                    (*path, "quat"),
-                    f"quat {quat} has length {norm:.9g}, not 1; normalised (ROS's order is [x, y, z, w]: is w last?)",
+                    (*path, field),
+                    f"{field} {written or quat} has length {norm:.9g}, not 1; normalised ("
+                    + ("ROS's order is [x, y, z, w]: is w last?" if field == "quat" else "[w, x, y, z]: is w first?")
+                    + ")",
                 )
             )
         self._set_rpy(path, rotation_rpy(quaternion=(quat[0] / norm, quat[1] / norm, quat[2] / norm, quat[3] / norm)))

@@ -146,6 +146,11 @@ def _not_a_mapping(path: PathKey, error: jsonschema.ValidationError) -> str:
     """A scalar or a list where a mapping belongs: in a spec, nearly always a line indented too little."""
     fields = ", ".join(f"{k}:" for k in list(error.schema.get("properties", {}))[:4])
     got = f"{error.instance!r}" if not isinstance(error.instance, list) else "a list"
+    if path and path[-1] == "axis_angle" and isinstance(error.instance, list):
+        return (
+            "axis_angle is a mapping, {axis: [x, y, z], angle: A}; three numbers, the axis times the angle in "
+            "radians, are a rotation vector: write rotvec: [rx, ry, rz]"
+        )
     if len(path) == 2 and path[0] in _COLLECTIONS:
         kind = _COLLECTIONS[str(path[0])]
         return (

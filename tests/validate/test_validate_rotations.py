@@ -119,7 +119,9 @@ def test_a_quaternion_not_of_unit_length_is_normalised_with_a_warning(tmp_path):
 
 def test_the_docs_example_generates_what_it_says(tmp_path):
     docs = (REPO / "docs" / "spec.md").read_text(encoding="utf-8")
-    (block,) = [b for b in re.findall(r"```yaml\n(.*?)\n```", docs, flags=re.S) if "quat:" in b]
+    (block,) = [
+        b for b in re.findall(r"```yaml\n(.*?)\n```", docs, flags=re.S) if "camera_joint:" in b and "quat:" in b
+    ]
     links = """robot: rot
 links:
   base_link: {shape: {box: {size: [0.2, 0.2, 0.1]}}, mass: 2.0}
@@ -150,3 +152,69 @@ instances:
     urdf = (tmp_path / "pkg" / "urdf" / "cell.urdf").read_text(encoding="utf-8")
     assert '<origin xyz="0.0 0.0 0.0" rpy="0.0 0.0 1.5707963267948968"/>' in urdf  # (pinocchio's last bit)
     assert '<origin xyz="1.0 0.0 0.0" rpy="0.0 0.0 3.141592653589793"/>' in urdf
+
+
+# every other form of one rotation (issue 29, item 4), against scipy's Rotation
+rotations = st.lists(st.floats(-1, 1, allow_nan=False), min_size=4, max_size=4).filter(
+    lambda q: math.sqrt(sum(v * v for v in q)) > 1e-2
+)
+
+
+@settings(max_examples=40, deadline=None)
+@given(quat=rotations, sequence=st.sampled_from(["XYZ", "ZYX", "ZXZ", "xyz", "zyx", "zyz", "YXY"]))
+def test_every_rotation_form_gives_the_rotation_scipy_gives(tmp_path_factory, quat, sequence):
+    rotation = Rotation.from_quat(quat)
+    expected = rotation.as_matrix()
+    x, y, z, w = rotation.as_quat()
+    forms = {
+        "quat_wxyz": [float(w), float(x), float(y), float(z)],
+        "rotvec": [float(v) for v in rotation.as_rotvec()],
+        "matrix": [[float(v) for v in row] for row in expected],
+        "euler": {"sequence": sequence, "angles": [float(v) for v in rotation.as_euler(sequence)]},
+    }
+    folder = tmp_path_factory.mktemp("forms")
+    for name, value in forms.items():
+        rpy = camera_rpy(folder, {name: value})
+        assert np.allclose(rpy_matrix(*rpy), expected, rtol=0, atol=1e-12), name
+
+
+def test_the_lectures_r_xyz_is_not_urdfs_rpy(tmp_path):
+    """The tf lecture's R_XYZ = Rx Ry Rz (intrinsic XYZ) at (0.1, 0.2, 0.3) rad and URDF's rpy (extrinsic xyz,
+    Rz Ry Rx) at the same numbers are 0.0695 rad apart; euler: {sequence: XYZ} writes the first, in degrees too."""
+    lecture = camera_rpy(tmp_path, {"euler": {"sequence": "XYZ", "angles": ["0.1 rad", 0.2, 0.3]}})
+    rx, ry, rz = (Rotation.from_euler(a, v).as_matrix() for a, v in (("x", 0.1), ("y", 0.2), ("z", 0.3)))
+    assert np.allclose(rpy_matrix(*lecture), rx @ ry @ rz, rtol=0, atol=1e-15)
+    apart = Rotation.from_matrix(rpy_matrix(*lecture).T @ rpy_matrix(0.1, 0.2, 0.3)).magnitude()
+    assert round(apart, 4) == 0.0695
+    degrees = camera_rpy(tmp_path, {"euler": {"sequence": "xyz", "angles": ["30 deg", 0, 0]}})
+    assert np.allclose(degrees, (math.pi / 6, 0, 0), rtol=0, atol=1e-15)
+    assert camera_rpy(tmp_path, {"rotvec": [0, 0, 0]}) == (0.0, 0.0, 0.0)
+
+
+@pytest.mark.parametrize(
+    ("origin", "where", "said"),
+    [
+        ({"matrix": [[1, 0, 0], [0, 1, 0], [0, 0, -1]]}, "origin.matrix", "its determinant is -1"),
+        ({"matrix": [[1, 0.01, 0], [0, 1, 0], [0, 0, 1]]}, "origin.matrix", "R^T R is 0.01 from the identity"),
+        ({"quat_wxyz": [0, 0, 0, 0]}, "origin.quat_wxyz", "quat_wxyz [0, 0, 0, 0] has length 0"),
+        ({"rotvec": [0, 0, 1], "matrix": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}, "origin.matrix", "not both"),
+        ({"axis_angle": [0, 0, 1.5708]}, "origin.axis_angle", "write rotvec: [rx, ry, rz]"),
+        ({"euler": {"sequence": "XyZ", "angles": [0, 0, 0]}}, "origin.euler.sequence", ""),
+    ],
+)
+def test_a_form_that_is_no_rotation_is_refused_where_it_stands(tmp_path, origin, where, said):
+    with pytest.raises(SpecErrors) as caught:
+        camera_rpy(tmp_path, origin)
+    (error,) = caught.value.errors
+    assert error.path == f"$.joints.camera_joint.{where}" and said in error.message, error
+
+
+def test_the_table_of_forms_in_docs_spec_writes_one_rotation(tmp_path):
+    """docs/spec.md writes rpy [0.1, 0.2, 0.3] in every form (to 7 digits): each line, as an origin, gives it."""
+    page = (REPO / "docs" / "spec.md").read_text(encoding="utf-8")
+    block = re.search(r"One rotation written each way.*?```yaml\n(.*?)```", page, flags=re.S).group(1)
+    forms = yaml.safe_load(block)
+    assert list(forms) == ["rpy", "quat", "quat_wxyz", "rotvec", "axis_angle", "matrix", "euler"]
+    for name, value in forms.items():
+        rpy = camera_rpy(tmp_path, {name: value})
+        assert np.allclose(rpy_matrix(*rpy), rpy_matrix(0.1, 0.2, 0.3), rtol=0, atol=2e-7), name
