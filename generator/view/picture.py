@@ -60,7 +60,13 @@ def _placed_meshes(
 
     from ..reader.urdf_view import length_problems, read_view
 
-    problems = length_problems(read_view(text))
+    view = read_view(text)
+    if len(view.links) > MAX_LINKS:
+        raise XacrokitError(
+            f"the robot has {len(view.links):,} links; render draws at most {MAX_LINKS:,} (yourdfpy's scene takes "
+            "time that grows with the square of the links: 24 s for 5,000): gen-robot view draws any number"
+        )
+    problems = length_problems(view)
     if problems:
         raise XacrokitError("cannot draw the robot: " + "; ".join(problems))
     for element in _mesh_names(text):  # (yourdfpy opens them itself: each checked first, as mesh_reader would)
@@ -93,6 +99,9 @@ def _placed_meshes(
     if not found:
         raise XacrokitError("the robot has no visual geometry to draw")
     return found
+
+
+MAX_LINKS = 5000  # links render draws (yourdfpy builds its scene in time that grows with their square)
 
 
 def world_transforms(graph: Any) -> dict[str, np.ndarray]:

@@ -104,3 +104,19 @@ def test_a_chain_of_2000_links_draws():
         urdf = Path(folder, "chain.urdf")
         urdf.write_text(f'<robot name="c">{links}{joints}</robot>', encoding="utf-8")
         assert np.std(pixels(render(urdf, size=(64, 48)))[..., :3]) > 0.01
+
+
+def test_a_robot_of_more_links_than_render_draws_is_refused_with_the_bound(tmp_path, monkeypatch):
+    """yourdfpy builds its scene in time that grows with the square of the links (a 20,000-link chain ran past 120 s,
+    issue 28): render draws at most MAX_LINKS and says so (the bound lowered here to keep the test small)."""
+    import xacrokit.view.picture as picture
+
+    monkeypatch.setattr(picture, "MAX_LINKS", 3)
+    urdf = tmp_path / "four.urdf"
+    links = "".join(f'<link name="l{k}"/>' for k in range(4))
+    joints = "".join(
+        f'<joint name="j{k}" type="fixed"><parent link="l{k - 1}"/><child link="l{k}"/></joint>' for k in range(1, 4)
+    )
+    urdf.write_text(f'<robot name="c">{links}{joints}</robot>', encoding="utf-8")
+    with pytest.raises(XacrokitError, match="the robot has 4 links; render draws at most 3"):
+        render(urdf, size=(64, 48))
