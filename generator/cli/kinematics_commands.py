@@ -74,15 +74,19 @@ def add_ik_command(commands: Any, add_xacro_options: Callable[[argparse.Argument
 
 def _target(text: str) -> list[float]:
     from ..errors import XacrokitError
-    from ..shared.units import UnitError, parse_quantity
+    from ..shared.units import UnitError, bound_problem, parse_quantity
 
     parts = [p.strip() for p in text.split(",")]
     if len(parts) not in (3, 6):
         raise XacrokitError(f"--to {text!r}: give X,Y,Z or X,Y,Z,R,P,Y (m, rad)")
     try:
-        return [parse_quantity(p, "length" if k < 3 else "angle") for k, p in enumerate(parts)]
+        values = [parse_quantity(p, "length" if k < 3 else "angle") for k, p in enumerate(parts)]
     except UnitError as exc:
         raise XacrokitError(f"--to {text!r}: {exc}") from None
+    beyond = next((b for b in (bound_problem("length", v) for v in values[:3]) if b is not None), None)
+    if beyond is not None:
+        raise XacrokitError(f"--to {text!r}: {beyond}")
+    return values
 
 
 def _cmd_ik(args: argparse.Namespace) -> int:

@@ -46,16 +46,23 @@ class Meshes:
         self.names: dict[tuple[str, str], str] = {}
         self.files: dict[str, str] = {}  # the file read -> its file name in meshes/
         self.found: dict[str, str] = {}  # the URI as written -> the file read
+        self.refused: dict[str, XacrokitError] = {}  # the URI as written -> why it is not read (said once per use)
 
     def name(self, filename: str, scale: str | None) -> str:
         from lxml import etree
 
+        if filename in self.refused:  # (a mesh named by many visuals is read, and refused, once)
+            raise self.refused[filename]
         path = self.found.get(filename)
         if path is None:
-            read = self.read(filename)
-            path = str(read.copy.root / read.copy.relative)
-            if path not in self.files:
-                self.files[path] = self._copy(read, filename)  # (raises FlatMesh again on the next visit)
+            try:
+                read = self.read(filename)
+                path = str(read.copy.root / read.copy.relative)
+                if path not in self.files:
+                    self.files[path] = self._copy(read, filename)
+            except XacrokitError as exc:
+                self.refused[filename] = exc
+                raise
             self.found[filename] = path
         key = (path, " ".join(scale.split()) if scale else "1 1 1")
         if key in self.names:

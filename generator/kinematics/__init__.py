@@ -107,6 +107,7 @@ def jacobian(
     q = robot.configuration(values)
     target, base = robot.frame_id(frame, "FRAME"), robot.frame_id(placed.in_frame, "--in")
     world = pin.computeFrameJacobian(robot.model, robot.data, q, target, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+    world = np.asarray(world).reshape(6, robot.model.nv)  # (pinocchio gives a 1-DOF robot's as a vector)
     columns = {j.name: world[:, j.v_index].copy() for j in robot.joints}
     for follower in robot.followers:
         columns[follower.leader] = columns[follower.leader] + follower.multiplier * world[:, follower.joint.v_index]
@@ -124,8 +125,8 @@ def joint_torques(jac: Jacobian, wrench: Sequence[float]) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Solutions:
-    """What ``ik`` found: the solutions (joint values by name, and the pose error left), best first; when there is
-    none, the closest reach instead."""
+    """What ``ik`` found: the solutions (joint values by name, and the pose error left), in the order of the starts
+    that found them; when there is none, the closest reach instead."""
 
     frame: str
     in_frame: str
@@ -145,7 +146,7 @@ def _chain(robot: KinematicRobot, frame: int) -> Chain:
     def configuration(values: np.ndarray) -> np.ndarray:
         return robot.configuration(dict(zip(names, map(float, values), strict=True)))
 
-    return Chain(robot.model, frame, list(columns.values()), lower, upper, configuration)
+    return Chain(robot.model, frame, list(columns.values()), lower, upper, configuration, robot.data)
 
 
 def inverse_kinematics(
@@ -175,6 +176,8 @@ def inverse_kinematics(
     if robot.model.frames[base].parentJoint != 0:
         moved_by = robot.model.names[robot.model.frames[base].parentJoint]
         raise XacrokitError(f"--in {in_frame}: it moves with joint {moved_by!r}; give a frame fixed to the root")
+    if not robot.joints:
+        raise XacrokitError(f"{path}: the robot has no revolute, continuous or prismatic joint to move")
     position_only = position_only or len(to) == 3
     _placed(robot, robot.configuration({}))
     rotation = rpy_matrix(*to[3:6]) if not position_only else np.eye(3)

@@ -35,6 +35,7 @@ class Chain:
     lower: np.ndarray
     upper: np.ndarray
     configuration: Callable[[np.ndarray], np.ndarray]
+    data: Any = None  # (pinocchio Data to reuse across starts; a new one when None)
 
 
 def solve(
@@ -45,7 +46,7 @@ def solve(
     import pinocchio as pin
 
     model: Any = chain.model
-    data = model.createData()
+    data = chain.data if chain.data is not None else model.createData()
     goal: Any = target
     values = np.clip(np.array(start, dtype=float), chain.lower, chain.upper)
     error = math.inf
@@ -55,13 +56,14 @@ def solve(
         current = data.oMf[chain.frame]
         if position_only:
             residual = current.translation - goal.translation
-            full = pin.computeFrameJacobian(model, data, q, chain.frame, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)[:3]
+            full = pin.computeFrameJacobian(model, data, q, chain.frame, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+            full = np.asarray(full).reshape(6, model.nv)[:3]  # (a 1-DOF robot's comes as a vector)
         else:
             residual = pin.log6(goal.actInv(current)).vector
             full = pin.computeFrameJacobian(model, data, q, chain.frame, pin.ReferenceFrame.LOCAL)
-            full = pin.Jlog6(goal.actInv(current)) @ full
+            full = pin.Jlog6(goal.actInv(current)) @ np.asarray(full).reshape(6, model.nv)
         error = float(np.linalg.norm(residual))
-        if error < TOLERANCE:
+        if error < TOLERANCE or not math.isfinite(error):
             break
         part = np.array([sum(m * full[:, v] for v, m in drives) for drives in chain.columns]).T
         damping = 1e-12 + 1e-3 * error  # (less damping as it closes in: quadratic convergence near the solution)

@@ -24,6 +24,7 @@ from ..shared.units import UnitError, parse_quantity
 from ..shared.value_text import did_you_mean
 
 MAX_DEPTH = 1000  # links from the root to a leaf: pinocchio's URDF reader crashes on chains of thousands
+MAX_DOF = 150  # degrees of freedom (TIAGo dual, the largest real robot of the corpus: about 100)
 
 
 @dataclass(frozen=True)
@@ -117,6 +118,11 @@ def load_kinematics(
         model = pin.buildModelFromXML(text)
     except (RuntimeError, ValueError) as exc:
         raise XacrokitError(f"{where}: pinocchio cannot read the robot: {exc}") from None
+    if model.nv > MAX_DOF:  # (before createData: its memory grows with the cube of a chain's degrees of freedom)
+        raise XacrokitError(
+            f"{where}: {model.nv} degrees of freedom; the kinematics commands take at most {MAX_DOF} (pinocchio's "
+            "data for a chain of 200 takes 0.6 GB, of 300 1.8 GB)"
+        )
     moving, followers = _joints(model, view)
     frames = [link.name for link in view.links] + [j.name for j in view.joints if j.name]
     robot = KinematicRobot(view.name or where.stem, root, model, moving, followers, list(dict.fromkeys(frames)))
@@ -146,8 +152,30 @@ def _root_and_depth(view: UrdfView) -> tuple[str, int]:
     return roots[0], deepest
 
 
+def _leader(view: UrdfView, name: str) -> tuple[str, float, float] | None:
+    """The settable joint a mimic joint ``name`` follows, through any chain of mimics, with the multiplier and offset
+    that give its value from that joint's; None when ``name`` is no mimic of a moving joint (it is set itself).
+
+    Raises:
+        XacrokitError: mimic joints that follow each other in a loop.
+    """
+    declared = {j.name: j for j in view.joints}
+    multiplier, offset, seen, current = 1.0, 0.0, [name], name
+    while True:
+        mimic = declared[current].mimic
+        if mimic is None or mimic.joint not in declared or declared[mimic.joint].type not in MOVING:
+            return None if current == name else (current, multiplier, offset)
+        factor = number(mimic.multiplier, 1.0)
+        multiplier, offset = multiplier * factor, multiplier * number(mimic.offset, 0.0) + offset
+        current = mimic.joint or ""
+        if current in seen:
+            raise XacrokitError(f"mimic joints {' -> '.join(seen + [current])} follow each other in a loop")
+        seen.append(current)
+
+
 def _joints(model: Any, view: UrdfView) -> tuple[list[KinematicJoint], list[Follower]]:
-    """The moving joints one sets, and the mimic joints (whose leader is a moving joint) that follow them."""
+    """The moving joints one sets, and the mimic joints (whose leader, through any chain of mimics, is a moving
+    joint) that follow them."""
     declared = {j.name: j for j in view.joints}
     moving, followers = [], []
     for index in range(1, model.njoints):
@@ -159,9 +187,9 @@ def _joints(model: Any, view: UrdfView) -> tuple[list[KinematicJoint], list[Foll
         if joint.type != "continuous" and joint.limit is not None:
             limits = (number(joint.limit.get("lower"), 0.0), number(joint.limit.get("upper"), 0.0))
         made = KinematicJoint(name, joint.type or "", int(model.idx_qs[index]), int(model.idx_vs[index]), limits)
-        mimic = joint.mimic
-        if mimic is not None and mimic.joint in declared and declared[mimic.joint].type in MOVING:
-            followers.append(Follower(made, mimic.joint, number(mimic.multiplier, 1.0), number(mimic.offset, 0.0)))
+        leader = _leader(view, name)
+        if leader is not None:
+            followers.append(Follower(made, *leader))
         else:
             moving.append(made)
     order = {j.name: k for k, j in enumerate(view.joints)}  # (the file's order, not pinocchio's depth-first one)

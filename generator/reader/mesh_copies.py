@@ -13,8 +13,10 @@ A robot folder is someone else's, and a copy carries its files on: a ``meshes/pa
   it is read);
 * and it must read, with trimesh, as a mesh of the kind its suffix says, with at least one triangle.
 
-What is copied is streamed from the file when the output is written (:class:`~xacrokit.shared.input_files.CopiedFile`),
-and only if it is still the file that was read: a run holds one mesh in memory at a time, whatever the robot's count.
+What is copied as it is is streamed from the file when the output is written
+(:class:`~xacrokit.shared.input_files.CopiedFile`), and only if it is still the file that was read: a run reads one
+mesh at a time, whatever the robot's count. (The OBJ an export converts a mesh to is held until it is written; a
+spec's staged meshes are read into memory while the staging lasts.)
 """
 
 from __future__ import annotations

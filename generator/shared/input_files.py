@@ -155,4 +155,7 @@ def copied_pieces(copied: CopiedFile) -> Iterator[bytes]:
     with open_below(copied.root, copied.relative) as (handle, status):
         if (status.st_dev, status.st_ino) != copied.identity or status.st_size != copied.size:
             raise InputError(errno.ESTALE, "it changed after it was checked; run again")
-        yield from iter(lambda: handle.read(PIECE), b"")
+        left = copied.size + 1  # (a file that grows while it is copied: at most one byte past the size checked)
+        while left > 0 and (piece := handle.read(min(PIECE, left))):
+            left -= len(piece)
+            yield piece

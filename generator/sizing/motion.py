@@ -154,9 +154,9 @@ def sample_count(motion: Motion, durations: Sequence[float]) -> float:
     ratios = [motion.dwell / motion.step, *(d / motion.step for d in durations if d > 0)]
     if not all(math.isfinite(r) for r in ratios):
         return math.inf
-    held = max(math.ceil(ratios[0]), 1) if motion.dwell > 0 else 0
-    moving = sum(max(math.ceil(r), 2) for r in ratios[1:])
-    return float(1 + held * len(motion.waypoints) + moving)
+    held = max(float(math.ceil(ratios[0])), 1.0) if motion.dwell > 0 else 0.0
+    moving = sum(max(float(math.ceil(r)), 2.0) for r in ratios[1:])  # (floats: a sum past 1e308 is inf, not an error)
+    return 1.0 + held * len(motion.waypoints) + moving
 
 
 def trajectory(motion: Motion) -> Trajectory:

@@ -23,6 +23,7 @@ _TURNS: dict[str | int, int] = {"lower": 2, "upper": 2, "soft_lower_limit": 2, "
 
 # the ways an origin may give its orientation (one at a time; docs/spec.md's table has one rotation in each)
 ORIENTATIONS = ("rpy", "quat", "quat_wxyz", "rotvec", "axis_angle", "matrix", "euler")
+ROTVEC_TURNS = 1000  # the most turns a rotation vector's angle may make (more: its digits no longer say the turn)
 ORTHONORMAL = 1e-6  # how far a rotation matrix's R^T R may be from the identity (a calibration's 7 digits pass)
 QUATERNION_LENGTHS = (1e-6, 1e6)  # a quaternion's length that can be normalised without losing its direction
 
@@ -142,11 +143,26 @@ class Quantities:
         elif given == ["axis_angle"]:
             self._axis_angle(origin["axis_angle"], (*path, key))
         elif given == ["rotvec"]:
-            self._set_rpy((*path, key), rotation_rpy(rotvec=tuple(origin["rotvec"])))
+            self._rotvec(origin["rotvec"], (*path, key))
         elif given == ["matrix"]:
             self._matrix(origin["matrix"], (*path, key))
         elif given == ["euler"]:
             self._euler(origin["euler"], (*path, key))
+
+    def _rotvec(self, rotvec: list[float], path: PathKey) -> None:
+        """``rotvec: [rx, ry, rz]`` (axis x angle, rad) to rpy; an angle beyond ROTVEC_TURNS turns is refused (1e300
+        rad has no digits left for the turn it makes)."""
+        angle = math.sqrt(math.fsum(v * v for v in rotvec))
+        if not angle <= ROTVEC_TURNS * math.tau:
+            self.errors.append(
+                self.raw.error(
+                    (*path, "rotvec"),
+                    f"rotvec {rotvec}: an angle of {angle:.3g} rad is {angle / math.tau:.3g} turns; a rotation vector "
+                    f"is the axis times an angle in radians, of at most {ROTVEC_TURNS} turns",
+                )
+            )
+            return
+        self._set_rpy(path, rotation_rpy(rotvec=tuple(rotvec)))
 
     def _matrix(self, rows: list[list[float]], path: PathKey) -> None:
         """``matrix:`` (3 rows) to rpy, when it is a rotation: R^T R = I to ORTHONORMAL and det R = +1."""
@@ -168,8 +184,18 @@ class Quantities:
 
     def _euler(self, given: dict[str, Any], path: PathKey) -> None:
         """``euler: {sequence, angles}`` (scipy's names: upper case intrinsic, lower case extrinsic) to rpy."""
-        if not re.fullmatch(r"[XYZ]{3}|[xyz]{3}", given["sequence"]):
+        sequence = given["sequence"]
+        if not re.fullmatch(r"[XYZ]{3}|[xyz]{3}", sequence):
             return  # (the schema says what a sequence is; the passes after it still run)
+        if sequence[0] == sequence[1] or sequence[1] == sequence[2]:
+            self.errors.append(
+                self.raw.error(
+                    (*path, "euler", "sequence"),
+                    f"{sequence!r}: two turns in a row about one axis are one turn; consecutive axes must differ "
+                    "(XYZ, ZYX, ZXZ ...)",
+                )
+            )
+            return
         for index in range(3):
             self.convert(given["angles"], index, (*path, "euler", "angles"), "angle")
         angles = self._changes.get((*path, "euler", "angles"), {})

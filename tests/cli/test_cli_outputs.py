@@ -312,3 +312,23 @@ def test_a_copied_mesh_is_streamed_and_never_written_once_it_changed(tmp_path):
         write_export(changed, tmp_path / "again" / "m.xml")
     assert not (tmp_path / "again" / "m.xml").exists()
     assert not list((tmp_path / "again").rglob("*.obj"))
+
+
+def test_a_mesh_that_grows_after_its_check_is_not_copied_past_its_size(tmp_path):
+    """A file appended to between the read and the streamed copy: at most one byte past the size checked is read, and
+    the copy is refused (a review found the copy would run to the end of a growing file)."""
+    from xacrokit.errors import XacrokitError
+    from xacrokit.export.mjcf import export_mjcf, write_export
+
+    urdf = mesh_robot(tmp_path / "src", "meshes/part.obj")
+    import trimesh
+
+    (tmp_path / "src" / "meshes").mkdir()
+    part = tmp_path / "src" / "meshes" / "part.obj"
+    trimesh.creation.box(extents=(0.1, 0.2, 0.3)).export(part)
+    model = export_mjcf(urdf)
+    with open(part, "ab") as handle:
+        handle.write(b"# more" * 100_000)
+    with pytest.raises(XacrokitError, match="changed after it was checked"):
+        write_export(model, tmp_path / "out" / "m.xml")
+    assert not (tmp_path / "out" / "m.xml").exists() and not list((tmp_path / "out").rglob("*.obj"))

@@ -109,3 +109,77 @@ def test_rpy_matrix_is_urdfs():  # (the target's orientation is read as URDF's r
     ry = np.array([[math.cos(p), 0, math.sin(p)], [0, 1, 0], [-math.sin(p), 0, math.cos(p)]])
     rx = np.array([[1, 0, 0], [0, math.cos(r), -math.sin(r)], [0, math.sin(r), math.cos(r)]])
     assert np.abs(rpy_matrix(r, p, y) - rz @ ry @ rx).max() < 1e-15
+
+
+def _write(tmp_path, name, body):
+    path = tmp_path / name
+    path.write_text(f'<robot name="r">{body}</robot>', encoding="utf-8")
+    return path
+
+
+REVOLUTE = '<axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/>'
+
+
+def test_a_robot_of_one_joint_has_a_jacobian_and_inverse_kinematics(tmp_path):
+    """pinocchio gives a 1-DOF robot's Jacobian as a vector (once an IndexError, exit 70: a review found it)."""
+    from xacrokit.kinematics import jacobian
+
+    one = _write(
+        tmp_path,
+        "one.urdf",
+        '<link name="base"/><link name="arm"/><link name="tip"/>'
+        f'<joint name="j" type="revolute"><parent link="base"/><child link="arm"/>{REVOLUTE}</joint>'
+        '<joint name="t" type="fixed"><parent link="arm"/><child link="tip"/><origin xyz="0.5 0 0"/></joint>',
+    )
+    jac = jacobian(one, "tip", at={"j": "90deg"})
+    assert np.abs(jac.matrix[:, 0] - [-0.5, 0, 0, 0, 0, 1]).max() < 1e-12
+    (solution, error), *_ = inverse_kinematics(one, "tip", [0, 0.5, 0]).solutions
+    assert abs(solution["j"] - math.pi / 2) < 1e-9 and error < 1e-9
+
+
+def test_a_chain_of_mimics_follows_the_joint_at_its_end_and_a_loop_is_refused(tmp_path):
+    """j3 follows j2, which follows j1: j3 = 2 j2 + 0.1 = 2 (3 j1) + 0.1. A loop of mimics is an error, not exit 70."""
+    from xacrokit.errors import XacrokitError
+    from xacrokit.kinematics import jacobian
+
+    def chain(mimic_of_j1: str) -> str:
+        return (
+            '<link name="a"/><link name="b"/><link name="c"/><link name="d"/>'
+            f'<joint name="j1" type="revolute"><parent link="a"/><child link="b"/>{REVOLUTE}{mimic_of_j1}</joint>'
+            f'<joint name="j2" type="revolute"><parent link="b"/><child link="c"/><origin xyz="1 0 0"/>{REVOLUTE}'
+            '<mimic joint="j1" multiplier="3"/></joint>'
+            f'<joint name="j3" type="revolute"><parent link="c"/><child link="d"/><origin xyz="1 0 0"/>{REVOLUTE}'
+            '<mimic joint="j2" multiplier="2" offset="0.1"/></joint>'
+        )
+
+    urdf = _write(tmp_path, "chain.urdf", chain(""))
+    found = pose(urdf, "d", at={"j1": "0.1"}).matrix
+    assert abs(math.atan2(found[1, 0], found[0, 0]) - (0.1 + 0.3 + 0.7)) < 1e-12
+    assert jacobian(urdf, "d", at={"j1": "0.1"}).joints == ["j1"]
+    loop = _write(tmp_path, "loop.urdf", chain('<mimic joint="j3"/>'))
+    with pytest.raises(XacrokitError, match="follow each other in a loop"):
+        pose(loop, "d")
+
+
+def test_what_the_kinematics_commands_cannot_take_is_said(tmp_path):
+    """More degrees of freedom than MAX_DOF (pinocchio's data grows with their cube: 1.8 GB at 300), a robot with
+    nothing to move, a target beyond 1e4 m: exit 2 with the reason."""
+    links = "".join(f'<link name="l{k}"/>' for k in range(160))
+    joints = "".join(
+        f'<joint name="j{k}" type="revolute"><parent link="l{k - 1}"/><child link="l{k}"/>{REVOLUTE}</joint>'
+        for k in range(1, 160)
+    )
+    many = _write(tmp_path, "many.urdf", links + joints)
+    result = gen_robot("pose", many, "l159")
+    assert (
+        result.returncode == 2 and "159 degrees of freedom; the kinematics commands take at most 150" in result.stderr
+    )
+    still = _write(
+        tmp_path,
+        "still.urdf",
+        '<link name="a"/><link name="b"/><joint name="f" type="fixed"><parent link="a"/><child link="b"/></joint>',
+    )
+    result = gen_robot("ik", still, "b", "--to", "0,0,0")
+    assert result.returncode == 2 and "no revolute, continuous or prismatic joint to move" in result.stderr
+    far = gen_robot("ik", PLANAR, "tool_link", "--to", "1e300,0,0")
+    assert far.returncode == 2 and "beyond what xacrokit takes" in far.stderr

@@ -236,6 +236,13 @@ def _moving(**motion):
         (_moving(velocity=1e-320), "$.motion.velocity", "than a number can hold"),
         (_moving(acceleration="1e-300"), "$.motion.acceleration", "acceleration limit of 1e-300"),
         (_moving(step=1e-9), "$.motion.step", "leave it out"),
+        (  # (two segments of about 1.2e308 samples each: an int sum past the largest float, once an OverflowError)
+            _moving(
+                step=1.9634954084936204e-308, waypoints=[{"elbow_joint": 0}, {"elbow_joint": 1}, {"elbow_joint": 0}]
+            ),
+            "$.motion.step",
+            "leave it out (1 ms)",
+        ),
         (_moving(waypoints=[{"elbow_joint": k % 2 * 2.0} for k in range(300)]), "$.motion.waypoints", "299 segments"),
         (_moving(waypoints=[{"elbow_joint": 0} for _ in range(1001)]), "$.motion.waypoints", "2 to 1000 entries"),
         # numbers that overflow or no body has (issue 28: exit 70 or NaN before)
