@@ -148,19 +148,39 @@ def _values(args: argparse.Namespace) -> dict[str, str]:
     return given
 
 
+def _asked(args: argparse.Namespace) -> dict[str, Any]:
+    """What pose and jacobian are asked besides the robot and frame: --in, --at, name:=value and --package."""
+    return {
+        "in_frame": args.in_frame,
+        "at": _values(args),
+        "mappings": parse_mappings(args.mappings),
+        "package_paths": parse_packages(args.package),
+    }
+
+
+def _warn(warnings: list[str]) -> None:
+    for warning in warnings:
+        sys.stderr.write(f"gen-robot: warning: {warning}\n")
+
+
+def _numbers(text: str, counts: tuple[int, ...], said: str) -> list[float]:
+    """Comma-separated finite numbers, as many as one of ``counts``; XacrokitError ``said`` otherwise."""
+    from ..errors import XacrokitError
+
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        values = []
+    if len(values) not in counts or not all(abs(v) < float("inf") for v in values):
+        raise XacrokitError(said)
+    return values
+
+
 def _cmd_pose(args: argparse.Namespace) -> int:
     from ..kinematics import pose
 
-    found = pose(
-        args.robot,
-        args.frame,
-        in_frame=args.in_frame,
-        at=_values(args),
-        mappings=parse_mappings(args.mappings),
-        package_paths=parse_packages(args.package),
-    )
-    for warning in found.warnings:
-        sys.stderr.write(f"gen-robot: warning: {warning}\n")
+    found = pose(args.robot, args.frame, **_asked(args))
+    _warn(found.warnings)
     described = pose_dict(found.matrix, args.rotation)
     if args.point is not None:
         described["point"] = _point(args.point, found.matrix)
@@ -180,28 +200,14 @@ def _cmd_pose(args: argparse.Namespace) -> int:
 
 
 def _cmd_jacobian(args: argparse.Namespace) -> int:
-    from ..errors import XacrokitError
     from ..kinematics import jacobian, joint_torques
 
-    found = jacobian(
-        args.robot,
-        args.frame,
-        in_frame=args.in_frame,
-        at=_values(args),
-        mappings=parse_mappings(args.mappings),
-        package_paths=parse_packages(args.package),
-    )
-    for warning in found.pose.warnings:
-        sys.stderr.write(f"gen-robot: warning: {warning}\n")
+    found = jacobian(args.robot, args.frame, **_asked(args))
+    _warn(found.pose.warnings)
     torques = None
     if args.wrench is not None:
-        try:
-            wrench = [float(v) for v in args.wrench.split(",")]
-        except ValueError:
-            wrench = []
-        if len(wrench) not in (3, 6) or not all(abs(v) < float("inf") for v in wrench):
-            raise XacrokitError(f"--wrench {args.wrench!r}: give FX,FY,FZ or FX,FY,FZ,MX,MY,MZ (N, N*m)")
-        torques = joint_torques(found, wrench)
+        said = f"--wrench {args.wrench!r}: give FX,FY,FZ or FX,FY,FZ,MX,MY,MZ (N, N*m)"
+        torques = joint_torques(found, _numbers(args.wrench, (3, 6), said))
     rows = [[float(v) for v in row] for row in found.matrix]
     if args.json:
         out: dict[str, Any] = {"frame": found.pose.frame, "in": found.pose.in_frame, "joints": found.joints}
@@ -252,14 +258,7 @@ def _point(text: str, matrix: Any) -> list[float]:
     """T p for a point ``X,Y,Z`` (m) given as text."""
     import numpy as np
 
-    from ..errors import XacrokitError
-
-    try:
-        given = [float(v) for v in text.split(",")]
-    except ValueError:
-        given = []
-    if len(given) != 3 or not all(abs(v) < float("inf") for v in given):
-        raise XacrokitError(f"--point {text!r}: give X,Y,Z in metres")
+    given = _numbers(text, (3,), f"--point {text!r}: give X,Y,Z in metres")
     return [float(v) for v in (np.asarray(matrix) @ np.array([*given, 1.0]))[:3]]
 
 

@@ -39,6 +39,7 @@ from ..reader.mesh_copies import MeshRead
 from ..reader.robot_source import urdf_floats as _floats
 from ..reader.urdf_view import Joint, Link, Origin, UrdfView
 from ..shared.input_files import CopiedFile, copied_pieces
+from ..shared.kinematic_tree import Tree
 from ..shared.units import MAX_MOMENT, bound_problem
 from .mjcf_actuators import num
 from .mjcf_meshes import FlatMesh, Meshes
@@ -139,15 +140,11 @@ MAX_DEPTH = 490  # links in a chain from the root: MuJoCo's XML reader (tinyxml2
 def _require_depth(tree: _Tree) -> None:
     """Refuse a tree MuJoCo's XML reader cannot take (deeper than MAX_DEPTH), or links a walk from the root never
     reaches (they hang in a loop of joints)."""
-    depth, deepest, stack = {tree.root: 1}, 1, [tree.root]
-    while stack:
-        link = stack.pop()
-        for joint in tree.children.get(link, []):
-            child = joint.child or ""
-            if child not in depth:
-                depth[child] = depth[link] + 1
-                deepest = max(deepest, depth[child])
-                stack.append(child)
+    walk: Tree[Joint] = Tree()
+    for joint in tree.joints:
+        walk.add(joint.parent or "", joint.child or "", joint)
+    depth = walk.depths([tree.root])
+    deepest = 1 + max(depth.values())
     unreached = [name for name in tree.links if name not in depth]
     if unreached:
         said = ", ".join(map(repr, unreached[:5]))

@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import XacrokitError
-from ..reader.urdf_view import UrdfView, number, read_view
+from ..reader.urdf_view import UrdfView, joint_tree, number, read_view
 from ..shared.joint_types import MOVING
 from ..shared.units import UnitError, parse_quantity
 from ..shared.value_text import did_you_mean
@@ -132,24 +132,11 @@ def load_kinematics(
 
 def _root_and_depth(view: UrdfView) -> tuple[str, int]:
     """The root link (the first link no joint has as child) and the most links on a path from it to a leaf."""
-    below: dict[str, list[str]] = {}
-    children = set()
-    for joint in view.joints:
-        if joint.parent is not None and joint.child is not None:
-            below.setdefault(joint.parent, []).append(joint.child)
-            children.add(joint.child)
-    roots = [link.name for link in view.links if link.name not in children]
+    tree = joint_tree(view)
+    roots = [link.name for link in view.links if link.name not in tree.parent_of]
     if not roots:
         raise XacrokitError("every link is the child of a joint: the joints make a loop, not a tree")
-    stack, seen, deepest = [(roots[0], 1)], {roots[0]}, 1
-    while stack:
-        link, depth = stack.pop()
-        deepest = max(deepest, depth)
-        for child in below.get(link, []):
-            if child not in seen:
-                seen.add(child)
-                stack.append((child, depth + 1))
-    return roots[0], deepest
+    return roots[0], 1 + max(tree.depths([roots[0]]).values())
 
 
 def _leader(view: UrdfView, name: str) -> tuple[str, float, float] | None:

@@ -20,6 +20,7 @@ from typing import Any
 
 from lxml import etree
 
+from ..shared.kinematic_tree import Tree
 from ..shared.xml_parse import read_urdf_root
 
 Attributes = Mapping[str, str]
@@ -363,3 +364,13 @@ def length_problems(view: UrdfView) -> list[str]:
         if joint.origin is not None:
             beyond(joint.origin.xyz, f"joint {joint.name!r}: <origin xyz>")
     return problems
+
+
+def joint_tree(view: UrdfView) -> Tree[Joint]:
+    """The view's joints that name a parent and a child as a :class:`~xacrokit.shared.kinematic_tree.Tree` (the
+    first parent of a link wins), keyed by the joint."""
+    tree: Tree[Joint] = Tree()
+    for joint in view.joints:
+        if joint.parent is not None and joint.child is not None:
+            tree.add(joint.parent, joint.child, joint)
+    return tree

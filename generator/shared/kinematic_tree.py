@@ -3,7 +3,7 @@ which links are roots, which a walk from the roots never reaches (they sit in a 
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from typing import Generic, TypeVar
 
 Key = TypeVar("Key")  # what an edge is known by: a spec path, a joint name
@@ -38,6 +38,19 @@ class Tree(Generic[Key]):
                 seen.add(current)
                 stack += self.children.get(current, [])
         return seen
+
+    def depths(self, starts: Iterable[str], weight: Callable[[Key], int] = lambda key: 1) -> dict[str, int]:
+        """Every link at or below ``starts``, with the summed ``weight`` of the edges down to it from its start (0 at
+        a start; each edge 1 by default: the links above it). One walk, each link once: a loop is not followed."""
+        found = dict.fromkeys(starts, 0)
+        stack = list(found)
+        while stack:
+            current = stack.pop()
+            for child in self.children.get(current, []):
+                if child not in found:
+                    found[child] = found[current] + weight(self.parent_of[child][1])
+                    stack.append(child)
+        return found
 
     def path_up(self, start: str, target: str) -> list[str]:
         """Links from ``start`` up through its ancestors to ``target`` (both included), or [] when target is not

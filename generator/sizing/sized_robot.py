@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import XacrokitError
-from ..reader.urdf_view import UrdfView, read_view
+from ..reader.urdf_view import UrdfView, joint_tree, read_view
 from ..shared.joint_types import MOVING
 from ..shared.value_text import did_you_mean
 
@@ -107,22 +107,9 @@ MAX_MOVING_CHAIN = 64  # moving joints from the root to a leaf that size searche
 def moving_chain(view: UrdfView) -> int:
     """The most moving joints (revolute, continuous, prismatic) on one path from a root link to a leaf; the joints
     of a loop, which no path from a root reaches, are not counted."""
-    below: dict[str, list[tuple[str, bool]]] = {}
-    children = set()
-    for joint in view.joints:
-        if joint.parent is not None and joint.child is not None:
-            below.setdefault(joint.parent, []).append((joint.child, joint.type in MOVING))
-            children.add(joint.child)
-    stack = [(link.name, 0) for link in view.links if link.name not in children]
-    seen, longest = set(), 0
-    while stack:
-        link, count = stack.pop()
-        longest = max(longest, count)
-        for child, moving in below.get(link, []):
-            if child not in seen:
-                seen.add(child)
-                stack.append((child, count + moving))
-    return longest
+    tree = joint_tree(view)
+    reached = tree.depths(tree.roots(link.name for link in view.links), lambda joint: joint.type in MOVING)
+    return max(reached.values(), default=0)
 
 
 def load_robot(
