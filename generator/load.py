@@ -46,6 +46,8 @@ class RawSpec:
     file: str
     data: Any
     text: str | None = field(default=None, repr=False, compare=False)
+    # where what a spec's `mirror` made was copied from (a copy's path -> its source's): a copy is located at its source
+    aliases: dict[PathKey, PathKey] = field(default_factory=dict, repr=False, compare=False)
 
     @cached_property
     def _position_tables(self) -> tuple[dict[PathKey, tuple[int, int]], dict[PathKey, tuple[int, int]]]:
@@ -68,13 +70,23 @@ class RawSpec:
     def locate(self, path: PathKey, *, key: bool = False) -> tuple[int | None, int | None]:
         """Position of ``path`` (its key when ``key``), or of the nearest enclosing value that has one."""
         table = self.key_positions if key else self.positions
-        probe = tuple(path)
+        probe = self.source(path)
         while probe:
             if probe in table:
                 return table[probe]
             probe = probe[:-1]
             table = self.positions
         return self.positions.get((), (None, None))
+
+    def source(self, path: PathKey) -> PathKey:
+        """``path``, or where it was copied from when a `mirror` made it (a copy of a copy: back to the spec's own)."""
+        path = tuple(path)
+        for _ in range(len(self.aliases)):
+            made = next((n for n in (3, 2) if path[:n] in self.aliases), None)
+            if made is None:
+                break
+            path = self.aliases[path[:made]] + path[made:]
+        return path
 
     def error(self, path: PathKey, message: str, *, key: bool = False) -> SpecError:
         line, column = self.locate(path, key=key)

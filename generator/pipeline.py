@@ -17,12 +17,12 @@ from .emit import emit_scene_urdf, emit_urdf
 from .errors import SpecError, XacrokitError
 from .expansion.expression_guard import trusting
 from .expansion.xacro_expand import expand_file
-from .load import RawSpec, load_file
+from .load import load_file
 from .model import Robot, Scene, attach_joint_name
 from .render import MacroMode, RenderedFile, render_package, render_scene
 from .resolve import resolve
 from .scene import build_scene, is_scene
-from .validate import validate
+from .validate import Spec, validate
 from .write.atomic import staged_packages, write_text_atomic
 from .write.package_writer import FileAction, write
 
@@ -118,24 +118,25 @@ def spec_urdf(spec_path: str | Path) -> SpecURDF:
     spec = validate(raw)
     robot = resolve(spec)
     urdf = expand_package(robot, render_package(robot, spec_name=path.name)).text
-    return SpecURDF(urdf, robot, _spec_lines(raw, robot), spec.warnings)
+    return SpecURDF(urdf, robot, _spec_lines(spec, robot), spec.warnings)
 
 
-def _spec_lines(raw: RawSpec, robot: Robot) -> dict[tuple[str, str], int]:
+def _spec_lines(spec: Spec, robot: Robot) -> dict[tuple[str, str], int]:
     """Where each link and joint of ``robot`` is written in its spec: a named entry's key, an arm's generated base
-    and tool at the arm, a DH row's link and joint at the row."""
+    and tool at the arm, a DH row's link and joint at the row, a mirror's copy at what it was copied from."""
     lines: dict[tuple[str, str], int] = {}
+    raw, data = spec.raw, spec.data
 
     def at(path: tuple[str | int, ...]) -> int:
         # a mapping entry by its key's line; a list item (a DH row) by its own, not by its list's
         return raw.locate(path, key=isinstance(path[-1], str))[0] or 0
 
-    for name in raw.data.get("links", {}):
+    for name in data.get("links", {}):
         lines[("link", name)] = at(("links", name))
-    for name in raw.data.get("joints", {}):
+    for name in data.get("joints", {}):
         lines[("joint", name)] = at(("joints", name))
     for section in ("wheels", "frames"):
-        for name, item in raw.data.get(section, {}).items():
+        for name, item in data.get(section, {}).items():
             joint = item.get("joint", attach_joint_name(name)) if isinstance(item, dict) else attach_joint_name(name)
             lines[("link", name)] = lines[("joint", joint)] = at((section, name))
     for arm in robot.arms:
@@ -200,7 +201,7 @@ def generate(
     via_xacro = via_xacro or extended or bool(robot.extension)  # (an extension is xacro: only xacro expands it)
     progress("expanding with xacro" if via_xacro else "emitting the URDF")
     files.append(expand_package(robot, files) if via_xacro else emitted_urdf(robot.name, emit_urdf(robot)))
-    said = spec.warnings + _check_warnings(files[-1].text, Path(spec_path), raw, robot)
+    said = spec.warnings + _check_warnings(files[-1].text, Path(spec_path), spec, robot)
     warnings = tuple(sorted(said, key=lambda w: (w.line or 0, w.column or 0)))
     root, actions = _write(files, output, robot.package, force=force, dry_run=dry_run, progress=progress)
     return GenerateResult(model=robot, output=root, actions=actions, files=tuple(files), warnings=warnings)
@@ -235,7 +236,7 @@ def _with_extensions(files: list[RenderedFile], root: Path) -> bool:
 EXTENSION_LIMIT = 4 * 1024 * 1024  # bytes of a package's extension file read back
 
 
-def _check_warnings(urdf: str, spec_path: Path, raw: RawSpec, robot: Robot) -> tuple[SpecError, ...]:
+def _check_warnings(urdf: str, spec_path: Path, spec: Spec, robot: Robot) -> tuple[SpecError, ...]:
     """What ``gen-robot check --strict SPEC`` would fail on in the URDF (its warnings, and the errors a valid spec
     can still give, such as a mesh file that is not there), as warnings at the spec's lines."""
     from .check.document_rules import generated_urdf_findings
@@ -243,7 +244,7 @@ def _check_warnings(urdf: str, spec_path: Path, raw: RawSpec, robot: Robot) -> t
 
     said = []
     with staged_packages(robot.carried_files) as staged:  # (its meshes, where the package will carry them)
-        found = generated_urdf_findings(urdf, spec_path, _spec_lines(raw, robot), staged or None)
+        found = generated_urdf_findings(urdf, spec_path, _spec_lines(spec, robot), staged or None)
     for finding in found:
         if finding.severity == "info":
             continue

@@ -121,6 +121,34 @@ def _physical_tensor(draw) -> dict[str, float]:
     return {"ixx": a * 0.01, "iyy": b * 0.01, "izz": c * 0.01}
 
 
+@st.composite
+def _turned_tensor(draw) -> dict[str, Any]:
+    """A physical tensor R D R^T (D a physical diagonal, R from rpy angles) with its products, maybe in a turned and
+    shifted frame (``origin``)."""
+    principal = draw(_physical_tensor())
+    roll, pitch, yaw = (draw(st.floats(-math.pi, math.pi)) for _ in range(3))
+    cr, sr, cp, sp, cy, sy = (
+        math.cos(roll),
+        math.sin(roll),
+        math.cos(pitch),
+        math.sin(pitch),
+        math.cos(yaw),
+        math.sin(yaw),
+    )
+    turn = [  # Rz(yaw) Ry(pitch) Rx(roll)
+        [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+        [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+        [-sp, cp * sr, cp * cr],
+    ]
+    moments = (principal["ixx"], principal["iyy"], principal["izz"])
+    element = [[sum(turn[i][k] * moments[k] * turn[j][k] for k in range(3)) for j in range(3)] for i in range(3)]
+    tensor: dict[str, Any] = {"ixx": element[0][0], "iyy": element[1][1], "izz": element[2][2]}
+    tensor.update(ixy=element[0][1], ixz=element[0][2], iyz=element[1][2])
+    if draw(st.booleans()):
+        tensor["origin"] = draw(_origin())
+    return tensor
+
+
 # densities as a spec may give them: kg/m^3, a string with a unit, or a material of the table
 _density = st.one_of(
     st.floats(100.0, 20_000.0),
@@ -333,6 +361,40 @@ def _frames(draw: Any, links: list[str]) -> dict[str, Any]:
             frame["joint"] = f"mount_{k}"
         frames[f"frame_{k}"] = frame
     return frames
+
+
+@st.composite
+def mirrored_specs(draw, max_links: int = 4) -> dict[str, Any]:
+    """A random valid spec with a ``mirror`` entry: a pelvis, a torso fixed on it somewhere, and a limb of 1 to
+    ``max_links`` links named ``left_...`` (any shapes, origins in every form, revolute, continuous, prismatic and
+    fixed joints with any axes, maybe a branch, a frame and a mimic joint) hung from the torso and mirrored to
+    ``right_...`` through a random plane."""
+    spec: dict[str, Any] = {"robot": "mirrored", "links": {"pelvis": {}, "torso": draw(_link([]))}}
+    spec["joints"] = {"torso_joint": {"type": "fixed", "parent": "pelvis", "child": "torso", "origin": draw(_origin())}}
+    above = ["torso"]
+    for index in range(draw(st.integers(1, max_links))):
+        name, parent = f"left_link_{index}", draw(st.sampled_from(above))
+        spec["links"][name] = draw(_link([]))
+        joint = draw(_joint(parent, name).filter(lambda j: j["type"] not in ("floating", "planar")))
+        spec["joints"][f"left_joint_{index}"] = joint
+        above = above[1:] + [name] if index == 0 else above + [name]  # (the limb starts at the torso, then branches)
+    for joint in spec["joints"].values():  # a moved link has a mass (and, without a shape, an inertia)
+        child = spec["links"][joint["child"]]
+        if joint["type"] != "fixed" and not {"mass", "density", "parts"} & set(child):
+            child.update(mass=draw(_mass), inertia=draw(_physical_tensor()))
+        if "inertia" in child:  # (a tensor with products, in a frame of its own: the mirror turns both)
+            child["inertia"] = draw(_turned_tensor())
+        elif "shape" in child and draw(st.booleans()):
+            child["com"] = draw(_origin())
+    moving = [n for n, j in spec["joints"].items() if j["type"] in MOVING]
+    if len(moving) >= 2 and spec["joints"][moving[-1]]["type"] == spec["joints"][moving[0]]["type"]:
+        spec["joints"][moving[-1]]["mimic"] = {"joint": moving[0], "multiplier": draw(st.floats(-2, 2)), "offset": 0.1}
+    if draw(st.booleans()):
+        frame = {"parent": draw(st.sampled_from(above)), "origin": draw(_origin())}
+        spec["frames"] = {"left_frame": frame | {"shape": draw(_shape("box")), "mass": draw(_mass)}}
+    plane = draw(st.sampled_from(["xz", "yz", "xy"]))
+    spec["mirror"] = [{"joint": "left_joint_0", "rename": ["left_", "right_"], "plane": plane}]
+    return spec
 
 
 @st.composite
@@ -569,6 +631,7 @@ __all__ = [
     "inject_urdf_fault",
     "invalid_specs",
     "make_hostile_path",
+    "mirrored_specs",
     "spec_text",
     "valid_specs",
 ]

@@ -13,6 +13,7 @@ still have the spec's positions beside them; resolve takes SI floats and never s
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -23,6 +24,7 @@ from ..shared.gc_pause import collector_paused
 from ..shared.sim_sensors import PRESETS, preset_body, resolve_sensor, sensor_problems
 from .bodies import Body, bodies, parts
 from .extension import extension_body
+from .mirror import copies_said, mirrored
 from .names import (
     duplicate_errors,
     edges,
@@ -145,6 +147,9 @@ def validate(raw: RawSpec) -> Spec:
     parsed = all(isinstance(e, Implausible) for e in unit_errors)  # (a limit of 0 is a number the checks compare)
     notes = quantities.warnings
     del quantities  # (its table of changes is garbage now: not kept through the checks below)
+    data, aliases, mirror_errors = mirrored(raw, data, parsed=parsed)
+    if aliases:  # (every later problem of a copy is located at what it was copied from)
+        raw = dataclasses.replace(raw, aliases=aliases)
     bodied: dict[PathKey, dict[str | int, Any]] = {
         ("frames", n): preset_body(f) for n, f in data.get("frames", {}).items() if preset_body(f)
     }
@@ -163,17 +168,19 @@ def validate(raw: RawSpec) -> Spec:
         every = list(bodies(data))
         items = every + list(parts(data))
     extension, extension_errors = extension_body(raw, data)
-    errors += unit_errors + mesh_files_errors(raw, data) + solid_errors + density_errors + extension_errors
+    errors += (
+        unit_errors + mirror_errors + mesh_files_errors(raw, data) + solid_errors + density_errors + extension_errors
+    )
     errors += semantic_errors(raw, data, every, physics=parsed)
     lenient = data.get("strict") is False
     doubts: list[SpecError] = [e for e in errors if lenient and isinstance(e, Implausible)]
     errors = [e for e in errors if not (lenient and isinstance(e, Implausible))]
     if errors:
-        raise SpecErrors(_unique(errors))
+        raise SpecErrors(_unique(list(copies_said(errors, aliases))))
     dense = list(density_warnings(raw, items, solids))
     # a shape whose mass gives an impossible density says so once, at its mass, not also at each long size
     said = tuple(w.path.removesuffix(".mass") + ".shape." for w in dense)
     warnings = [n for n in notes if not n.path.startswith(said)] + dense + density_notes + solid_notes
     warnings += _unique(doubts)  # (strict: false: the values no real body has, written as given)
-    ordered = tuple(sorted(warnings, key=lambda w: (w.line or 0, w.column or 0)))
+    ordered = tuple(sorted(copies_said(warnings, aliases), key=lambda w: (w.line or 0, w.column or 0)))
     return Spec(raw=raw, data=data, warnings=ordered, extension=extension)
