@@ -19,6 +19,7 @@ from ..shared.package_data import schemas_dir
 from ..shared.solid_inertia import tensor_problem
 from ..shared.units import MAX_MOMENT, Kind, UnitError, bound_problem, parse_quantity
 from ..shared.value_text import did_you_mean
+from ..validate.quantities import ORIENTATIONS, Quantities
 from ..validate.schema import SchemaValidator, inline_refs, schema_errors
 from .mobile import BaseMotion
 from .motion import (
@@ -264,7 +265,13 @@ def _reached(
         )
         return start
     xyz = [read.quantity(v, "length", (*where, "xyz", k)) for k, v in enumerate(pose["xyz"])]
-    rpy = [read.quantity(v, "angle", (*where, "rpy", k)) for k, v in enumerate(pose["rpy"])] if "rpy" in pose else None
+    turned = Quantities(raw)  # (the orientation in any form a robot spec's origin takes, to rpy, as validate does)
+    turned.origin({"pose": {k: v for k, v in pose.items() if k != "xyz"}}, "pose", where[:-1])
+    read.errors += turned.errors
+    converted = turned.data
+    for key in where:
+        converted = converted[key]
+    rpy = converted.get("rpy") if any(form in pose for form in ORIENTATIONS) else None
     if read.errors:
         return start
     values, error = reach(robot, pose["frame"], xyz, rpy, start)

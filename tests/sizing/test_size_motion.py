@@ -354,3 +354,54 @@ def test_an_unreachable_pose_is_a_located_error(tmp_path):
         size(REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml", sizing=sizing)
     (error,) = caught.value.errors
     assert error.path == "$.motion.waypoints[1].pose" and "cannot put 'tool0' there" in error.message
+
+
+def test_a_pose_waypoint_takes_every_rotation_form(tmp_path):
+    """The same goal orientation given as rpy, rotvec, quat_wxyz, matrix and intrinsic euler (scipy writes each from
+    one rotation): the same motion, to 1e-9 in every joint's peak and RMS torque; a matrix that is no rotation is a
+    located error."""
+    from scipy.spatial.transform import Rotation
+
+    turn = Rotation.from_euler("xyz", [2.8, 0.3, -1.2])  # (a pose the UR5's tool reaches from its first waypoint)
+    forms = {
+        "rpy": {"rpy": turn.as_euler("xyz").tolist()},
+        "rotvec": {"rotvec": turn.as_rotvec().tolist()},
+        "quat_wxyz": {"quat_wxyz": turn.as_quat(scalar_first=True).tolist()},
+        "matrix": {"matrix": turn.as_matrix().tolist()},
+        "euler": {"euler": {"sequence": "ZYX", "angles": turn.as_euler("ZYX").tolist()}},
+    }
+    results = {}
+    for name, rotation in forms.items():
+        pose = {"frame": "tool0", "xyz": [0.4, 0.2, 0.3], **rotation}
+        motion = {"acceleration": 2.0, "waypoints": [{"elbow_joint": 1.0, "shoulder_lift_joint": -1.0}, {"pose": pose}]}
+        sizing = tmp_path / f"{name}.yaml"
+        sizing.write_text(yaml.safe_dump({"motion": motion}), encoding="utf-8")
+        report = size(REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml", sizing=sizing)
+        results[name] = np.array([[m.peak_torque, m.rms_torque] for m in report.motions])
+    assert np.abs(results["rpy"]).max() > 1.0  # (a real motion)
+    for name, found in results.items():
+        assert np.abs(found - results["rpy"]).max() < 1e-9, name
+    pose = {"frame": "tool0", "xyz": [0.4, 0.2, 0.3], "matrix": [[1, 0, 0], [0, 1, 0], [0, 0, -1]]}
+    motion = {"acceleration": 2.0, "waypoints": [{"elbow_joint": 1.0}, {"pose": pose}]}
+    sizing = tmp_path / "mirror.yaml"
+    sizing.write_text(yaml.safe_dump({"motion": motion}), encoding="utf-8")
+    with pytest.raises(SpecErrors) as caught:
+        size(REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml", sizing=sizing)
+    (error,) = caught.value.errors
+    assert error.path == "$.motion.waypoints[1].pose.matrix" and "determinant is -1" in error.message
+    assert error.line is not None
+
+
+def test_the_sizing_schema_takes_the_rotation_forms_of_a_robot_origin():
+    """sizing.schema.json's waypoint pose copies the rotation forms of robot.schema.json's origin (the two files are
+    read by editors on their own): kept equal here."""
+    from xacrokit.validate.quantities import ORIENTATIONS
+    from xacrokit.validate.schema import inline_refs
+
+    robot = json.loads((REPO / "schemas" / "robot.schema.json").read_text(encoding="utf-8"))
+    origin = inline_refs({"$defs": robot["$defs"], "origin": {"$ref": "#/$defs/origin"}})["origin"]["properties"]
+    sizing = json.loads((REPO / "schemas" / "sizing.schema.json").read_text(encoding="utf-8"))
+    waypoint = sizing["properties"]["motion"]["properties"]["waypoints"]["items"]
+    pose = waypoint["properties"]["pose"]["properties"]
+    assert set(ORIENTATIONS) <= set(pose)
+    assert all(pose[form] == origin[form] for form in ORIENTATIONS if form != "rpy")
