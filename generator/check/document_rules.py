@@ -9,6 +9,7 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from .findings import Finding
+from .inertia_geometry import mesh_reach
 from .inertia_rules import inertia_rules
 from .joint_rules import joint_rules
 from .number_rules import geometry_rules, number_rules
@@ -45,7 +46,7 @@ def other_rules(
     findings += geometry_rules(doc)
     findings += name_rules(doc)
     findings += joint_rules(doc)
-    findings += inertia_rules(doc)
+    findings += inertia_rules(doc, mesh_reach(base_dir / Path(doc.file or "robot.urdf").name, packages))
     findings += reference_rules(doc, packages, base_dir)
     findings += sensor_rules(doc)
     if prefix is not None:

@@ -13,6 +13,7 @@ from ..reader.urdf_view import Link, Shape
 from ..shared.joint_types import MOVING
 from ..shared.solid_inertia import TOLERANCE, describe_problem, format_moments, moments_problem, principal_moments
 from .findings import Finding, rule_table
+from .inertia_geometry import MeshReach, geometry_finding, link_reach
 from .urdf_document import Doc, number_of, triple_of
 
 RULES = rule_table(
@@ -132,6 +133,7 @@ class _Context:
     bodies: _Bodies
     moved_bodies: set[str]
     said_base: set[str] = field(default_factory=set)
+    meshes: MeshReach | None = None  # (I008: a mesh's convex hull and solid; None: meshes are not read)
 
 
 def _context(doc: Doc) -> _Context:
@@ -152,8 +154,11 @@ def _context(doc: Doc) -> _Context:
     return _Context(moved, entries, moments_of, masses, bodies, {bodies.body(n) for n in moved})
 
 
-def inertia_rules(doc: Doc) -> Iterator[Finding]:
+def inertia_rules(doc: Doc, meshes: MeshReach | None = None) -> Iterator[Finding]:
+    """I001-I008 for every link; ``meshes`` reads a mesh's hull for I008 (without it, links drawn by meshes are not
+    judged by I008)."""
     context = _context(doc)
+    context.meshes = meshes
     for link, entry, moments in zip(doc.view.links, context.entries, context.moments, strict=True):
         yield from _link_inertia(doc, context, link, entry, moments)
 
@@ -205,6 +210,10 @@ def _link_inertia(doc: Doc, context: _Context, view: Link, entry: Any, moments: 
     if mass and mass >= SIGNIFICANT * context.bodies.mass.get(body, 0.0):
         yield from _placeholder(doc, link, name, entry)
         yield from _plausibility(doc, view, mass, sum(moments))
+        reach = link_reach(view, context.meshes)
+        found = geometry_finding(doc, view, mass, entry, reach) if reach is not None else None
+        if found is not None:
+            yield found
 
 
 def _massless(doc: Doc, context: _Context, view: Link, body: str) -> Iterator[Finding]:

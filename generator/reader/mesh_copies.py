@@ -190,10 +190,13 @@ def _holds(folder: str, path: str) -> bool:
     return os.path.commonpath([folder, path]) == folder
 
 
-def mesh_reader(urdf: Path, packages: Mapping[str, str | os.PathLike[str]]) -> Callable[[str], MeshRead]:
+def mesh_reader(
+    urdf: Path, packages: Mapping[str, str | os.PathLike[str]], *, process: bool = True
+) -> Callable[[str], MeshRead]:
     """A reader of the meshes the robot at ``urdf`` names (by the URI as written): each found as
     :func:`~xacrokit.shared.ros_packages.mesh_file` finds it and read by :func:`read_mesh_below` below its
-    :func:`mesh_root`. The reader raises XacrokitError naming the mesh: not there, its package not known, or refused."""
+    :func:`mesh_root` (``process``: as there). The reader raises XacrokitError naming the mesh: not there, its package
+    not known, or refused."""
     from ..shared.ros_packages import mesh_file
 
     def read(filename: str) -> MeshRead:
@@ -203,6 +206,6 @@ def mesh_reader(urdf: Path, packages: Mapping[str, str | os.PathLike[str]]) -> C
             raise XacrokitError(f"mesh {filename!r}: {exc}") from None
         if not path.is_file() and not path.is_symlink():
             raise XacrokitError(f"mesh {filename!r} is not there ({path})")
-        return read_mesh_below(root, path, where=f"mesh {filename!r}")
+        return read_mesh_below(root, path, where=f"mesh {filename!r}", process=process)
 
     return read

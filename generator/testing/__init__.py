@@ -550,8 +550,9 @@ URDF_FAULTS: dict[str, str] = {
     "missing_gazebo_reference": "R001",
 }
 
+# (a box of 2 m: the tensor below, 1 kg with moments of about 1 kg*m^2, is one a body of that size can have: I008)
 _FAULT_LINK = (
-    '<link name="fault_link"><visual><geometry><box size="0.1 0.1 0.1"/></geometry></visual>'
+    '<link name="fault_link"><visual><geometry><box size="2 2 2"/></geometry></visual>'
     '<inertial><mass value="{mass}"/><inertia ixx="{ixx}" ixy="{ixy}" ixz="0" iyy="1.0" iyz="0" izz="{izz}"/>'
     "</inertial></link>"
 )

@@ -25,6 +25,7 @@ MOVED_MASSLESS = """<robot name="r">
 
 
 BODY = (
-    '<inertial><mass value="1"/><inertia ixx="0.011" iyy="0.012" izz="0.013" ixy="0" ixz="0" iyz="0"/></inertial>'
+    '<inertial><mass value="1"/><inertia ixx="0.0108333" iyy="0.0083333" izz="0.0041667" ixy="0" ixz="0" iyz="0"/>'
+    "</inertial>"
     '<visual><geometry><box size="0.1 0.2 0.3"/></geometry></visual>'
 )

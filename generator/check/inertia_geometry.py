@@ -1,0 +1,293 @@
+"""I008: is a link's inertia possible for its own geometry?
+
+A body whose mass m lies within the link's geometry (every visual and collision shape, where it sits) obeys two
+bounds for every direction n through its centre of mass c, with the maxima over the geometry's points x:
+
+- its moment about the axis along n is at most m * max |(x - c) x n|^2 (all the mass at the farthest points from the
+  axis);
+- its second moment along n, sum(m ((x - c).n)^2) = trace(I)/2 - n.I.n, is at most m * max ((x - c).n)^2 (all the
+  mass at the farthest points along n): a thin plate's moments must add up as a plate's do (ixx + iyy - izz =
+  2 sum(m z^2) for a plate in xy), so a flat box cannot have three equal moments.
+
+Both are exact for any mass distribution; they are asked along the tensor's principal axes, the link's axes and the
+principal axes of the uniform solid filling the geometry. A tensor beyond either by more than TOLERANCE needs mass
+outside everything the link draws: a units or copy mistake, a placeholder, or the inertia of another part. The finding
+names what a uniform solid of the stated mass filling the link's collision geometry (else its visual) would have.
+
+Points of the geometry: a box's corners, a cylinder's two rims (RIM points each), a sphere's surface (SPHERE points),
+a mesh's convex hull (its vertices, after its scale). A link whose mesh cannot be read is not judged. No lower bound is
+applied: a body whose mass sits near its centre (a motor in a light housing) has moments far below the uniform solid's,
+and a point mass none at all.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..reader.urdf_view import Geometry, Link, Shape
+from ..shared.transforms import rpy_matrix
+from .findings import Finding, rule_table
+from .urdf_document import Doc, number_of, triple_of
+
+RULES = rule_table(
+    {
+        "I008": (
+            "inertia-fits-geometry",
+            "warning",
+            "the inertia is one a body of its mass within the link's own geometry (visuals and collisions, meshes by "
+            "their convex hull) can have: no moment beyond all the mass at the geometry's farthest points from the "
+            "axis, no spread along an axis beyond the geometry's reach (1.5 times, for sampled rims and rounding); the "
+            "message gives a uniform solid's values",
+        ),
+    }
+)
+
+TOLERANCE = 1.5  # a bound exceeded by more than this factor is a finding (the bounds are exact; see the docs)
+RIM = 128  # points on each rim of a cylinder: the farthest point is missed by at most 1 - cos(pi / RIM) = 0.03%
+SPHERE = 512  # points on a sphere (Fibonacci lattice): its reach is missed by about 1%
+MARKER = 0.005  # m: geometry no larger than this is a marker, not the body's shape (as I004)
+
+
+@dataclass(frozen=True)
+class Solid:
+    """A uniform solid: its volume (m^3), centre and tensor per unit mass (m^2) in the geometry's frame, and what it
+    is called in a message (a box, a cylinder, ...)."""
+
+    volume: float
+    center: np.ndarray
+    unit_tensor: np.ndarray
+    kind: str
+
+
+@dataclass(frozen=True)
+class Reach:
+    """A link's geometry: its points (N x 3, link frame), and how to make the uniform solid filling its collision
+    geometry (else its visual): each piece's solid (made only when a finding names it) and placement."""
+
+    points: np.ndarray
+    pieces: tuple[tuple[Callable[[], Solid | None], np.ndarray, np.ndarray], ...]
+
+    def solid(self) -> Solid | None:
+        """The uniform solid (None when a piece has no volume to fill)."""
+        return _filling([(make(), turn, shift) for make, turn, shift in self.pieces])
+
+
+# a mesh's reach: its convex hull's vertices (mesh frame, scaled) and how to make the solid it encloses
+MeshReach = Callable[[str, tuple[float, float, float]], tuple[np.ndarray, Callable[[], Solid | None]] | None]
+
+
+def _placed(geometry: Geometry) -> tuple[np.ndarray, np.ndarray]:
+    origin = geometry.origin
+    turn = rpy_matrix(*triple_of(origin.rpy)) if origin is not None else np.eye(3)
+    return turn, np.array(triple_of(origin.xyz) if origin is not None else (0.0, 0.0, 0.0))
+
+
+def _primitive(shape: Shape) -> tuple[np.ndarray, Callable[[], Solid | None]] | None:
+    """A box's, cylinder's or sphere's points and solid in its own frame (None: not one, or its sizes do not read)."""
+    found = _primitive_solid(shape)
+    if found is None:
+        return None
+    points, solid = found
+    return points, lambda: solid
+
+
+def _primitive_solid(shape: Shape) -> tuple[np.ndarray, Solid] | None:
+    if shape.kind == "box":
+        x, y, z = triple_of(shape.get("size"))
+        corners = np.array([[a * x, b * y, c * z] for a in (-0.5, 0.5) for b in (-0.5, 0.5) for c in (-0.5, 0.5)])
+        tensor = np.diag([y * y + z * z, x * x + z * z, x * x + y * y]) / 12.0
+        return corners, Solid(x * y * z, np.zeros(3), tensor, "box")
+    if shape.kind == "cylinder":
+        r, length = number_of(shape.attributes, "radius", math.nan), number_of(shape.attributes, "length", math.nan)
+        assert r is not None and length is not None  # (a default is given)
+        turn = np.linspace(0.0, 2.0 * math.pi, RIM, endpoint=False)
+        rim = np.stack([r * np.cos(turn), r * np.sin(turn), np.zeros(RIM)], axis=1)
+        points = np.concatenate([rim + [0.0, 0.0, -length / 2], rim + [0.0, 0.0, length / 2]])
+        side = (3 * r * r + length * length) / 12.0
+        return points, Solid(math.pi * r * r * length, np.zeros(3), np.diag([side, side, r * r / 2]), "cylinder")
+    if shape.kind == "sphere":
+        r = number_of(shape.attributes, "radius", math.nan)
+        assert r is not None
+        index = np.arange(SPHERE) + 0.5
+        polar, around = np.arccos(1.0 - 2.0 * index / SPHERE), math.pi * (1.0 + math.sqrt(5.0)) * index
+        points = r * np.stack([np.cos(around) * np.sin(polar), np.sin(around) * np.sin(polar), np.cos(polar)], 1)
+        return points, Solid(4.0 / 3.0 * math.pi * r**3, np.zeros(3), np.eye(3) * 0.4 * r * r, "sphere")
+    return None
+
+
+def link_reach(link: Link, meshes: MeshReach | None) -> Reach | None:
+    """The link's geometry as :class:`Reach`, None when it has none, a shape does not read, or a mesh cannot be read."""
+    every = [g for g in (*link.visuals, *link.collisions) if g.shape is not None]
+    if not every:
+        return None
+    points, pieces = [], []
+    filling = {id(g) for g in (link.collisions or link.visuals)}
+    for geometry in every:
+        assert geometry.shape is not None
+        found = _primitive(geometry.shape)
+        if found is None and geometry.shape.kind == "mesh" and meshes is not None:
+            found = meshes(geometry.shape.get("filename") or "", triple_of(geometry.shape.get("scale"), "1 1 1"))
+        if found is None or not np.isfinite(found[0]).all():
+            return None
+        turn, shift = _placed(geometry)
+        points.append(found[0] @ turn.T + shift)
+        if id(geometry) in filling:
+            pieces.append((found[1], turn, shift))
+    return Reach(np.concatenate(points), tuple(pieces))
+
+
+def _filling(solids: Sequence[tuple[Solid | None, np.ndarray, np.ndarray]]) -> Solid | None:
+    """The solids of a link's collision geometry (else visual) as one uniform solid in the link frame (overlaps
+    counted twice: a message's approximation), None when one of them has no volume."""
+    if not solids or any(s is None or not s.volume > 0 for s, _, _ in solids):
+        return None
+    volume = math.fsum(s.volume for s, _, _ in solids if s is not None)
+    centre = sum((s.volume * (turn @ s.center + shift) for s, turn, shift in solids if s is not None), np.zeros(3))
+    centre = centre / volume
+    tensor = np.zeros((3, 3))
+    for solid, turn, shift in solids:
+        assert solid is not None
+        offset = turn @ solid.center + shift - centre
+        moved = offset @ offset * np.eye(3) - np.outer(offset, offset)
+        tensor += solid.volume / volume * (turn @ solid.unit_tensor @ turn.T + moved)
+    kind = solids[0][0].kind if len(solids) == 1 and solids[0][0] is not None else "solid"
+    return Solid(volume, centre, tensor, kind)
+
+
+def geometry_finding(doc: Doc, link: Link, mass: float, entries: Sequence[float], reach: Reach) -> Finding | None:
+    """I008 for a link of ``mass`` (kg) whose tensor entries (ixx, ixy, ixz, iyy, iyz, izz) are a rigid body's."""
+    ixx, ixy, ixz, iyy, iyz, izz = entries
+    origin = link.inertial.origin if link.inertial is not None else None
+    turn = rpy_matrix(*triple_of(origin.rpy)) if origin is not None else np.eye(3)
+    centre = np.array(triple_of(origin.xyz) if origin is not None else (0.0, 0.0, 0.0))
+    tensor = turn @ np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]]) @ turn.T  # (in the link frame)
+    with np.errstate(all="ignore"):  # (a size of 1e308 overflows: such a link is not judged, U002 says why)
+        spans = reach.points.max(axis=0) - reach.points.min(axis=0)
+        offsets = reach.points - centre
+        spread = np.cov(reach.points.T) if len(reach.points) > 1 else np.eye(3)  # (the geometry's own axes)
+        usable = all(np.isfinite(a).all() for a in (tensor, offsets, spread, spans, mass * offsets * offsets))
+        if not usable or max(spans) <= MARKER:
+            return None
+        directions = [*np.linalg.eigh(tensor)[1].T, *np.eye(3), *np.linalg.eigh(spread)[1].T]
+        worst = max((_excess(tensor, mass, offsets, n) for n in directions), key=lambda e: e[0])
+    if worst[0] <= TOLERANCE:
+        return None
+    return doc.finding("I008", "link", link.name, worst[1] + _solid_note(reach.solid(), mass, turn), link.element)
+
+
+def _excess(tensor: np.ndarray, mass: float, offsets: np.ndarray, n: np.ndarray) -> tuple[float, str]:
+    """How far the tensor passes the larger of the two bounds along ``n`` (a ratio), and the message saying it."""
+    along = offsets @ n
+    moment = float(n @ tensor @ n)
+    spread = float(np.trace(tensor) / 2.0 - moment)
+    most_moment = mass * float(((offsets * offsets).sum(axis=1) - along * along).max())
+    most_spread = mass * float((along * along).max())
+    axis = _axis_name(n)
+    ratio_moment = moment / most_moment if most_moment > 0 else math.inf
+    ratio_spread = spread / most_spread if most_spread > 0 else math.inf
+    if ratio_moment >= ratio_spread:
+        return ratio_moment, (
+            f"its moment about {axis} through the centre of mass, {moment:.3g} kg*m^2, is {ratio_moment:.3g} times "
+            f"the most {mass:.4g} kg within the link's geometry can have ({most_moment:.3g}: all of it at the "
+            "points farthest from that axis); the tensor belongs to a larger or heavier body"
+        )
+    reach = math.sqrt(most_spread / mass)
+    return ratio_spread, (
+        f"its moments spread the mass {math.sqrt(max(spread, 0.0) / mass):.3g} m (rms) along {axis} from the centre "
+        f"of mass, but the link's geometry reaches at most {reach:.3g} m that way (the two moments across that axis "
+        f"minus the one about it are 2 sum(m d^2), d along it: {2 * spread:.3g} kg*m^2 here, at most "
+        f"{2 * most_spread:.3g})"
+    )
+
+
+def _axis_name(n: np.ndarray) -> str:
+    for index, name in enumerate("xyz"):
+        if abs(abs(float(n[index])) - 1.0) < 1e-9:
+            return f"the link's {name} axis"
+    return f"the axis ({n[0]:.3g}, {n[1]:.3g}, {n[2]:.3g})"
+
+
+def _solid_note(solid: Solid | None, mass: float, turn: np.ndarray) -> str:
+    """'; a uniform box of 0.5 kg filling its collision geometry has ixx, iyy, izz = ...' in the inertial frame."""
+    if solid is None:
+        return ""
+    tensor = mass * turn.T @ solid.unit_tensor @ turn
+    values = ", ".join(f"{v:.3g}" for v in np.diag(tensor))
+    products = np.abs(tensor - np.diag(np.diag(tensor))).max()
+    more = f" (and products up to {products:.3g})" if products > 1e-3 * np.abs(tensor).max() else ""
+    said = f"a uniform {solid.kind} of {mass:.4g} kg filling its collision geometry"
+    return f"; {said} has ixx, iyy, izz = {values}{more} kg*m^2"
+
+
+def mesh_reach(urdf: Path, packages: Mapping[str, str | os.PathLike[str]] | None) -> MeshReach:
+    """A reader of a robot's meshes for :func:`link_reach`: each mesh's convex hull (its vertices) and the uniform
+    solid it encloses (closed and consistently wound: its own; else its hull's, made when a finding names it), read
+    as every mesh of a robot is read (:func:`~xacrokit.reader.mesh_copies.mesh_reader`: inside its package or the
+    robot's folder, at most 32 MiB, never through a link). None for a mesh that cannot be read: the link is not
+    judged. A mesh file read once is not read again while it is unchanged (its path, size and time: many robots of one
+    package share their meshes)."""
+    from ..errors import XacrokitError
+    from ..reader.mesh_copies import mesh_reader, mesh_root
+    from ..shared.ros_packages import mesh_file
+
+    read = mesh_reader(urdf, packages or {}, process=False)
+
+    def reach(filename: str, scale: tuple[float, float, float]) -> tuple[np.ndarray, Callable[[], Solid | None]] | None:
+        try:
+            path = mesh_file(filename, urdf.parent, packages or {})
+            status = path.stat()
+            key = (str(mesh_root(urdf, filename, packages or {})), str(path), status.st_size, status.st_mtime_ns)
+        except (OSError, LookupError, ValueError):
+            return None
+        if key not in _HULLS:
+            try:
+                _HULLS[key] = _hull(read(filename).mesh)
+            except XacrokitError:
+                _HULLS[key] = None
+            while len(_HULLS) > HULLS_KEPT:
+                del _HULLS[next(iter(_HULLS))]
+        corners = _HULLS[key]
+        if corners is None:
+            return None
+        return corners * np.asarray(scale, dtype=float), lambda: _enclosed(read(filename).mesh, scale)
+
+    return reach
+
+
+HULLS_KEPT = 4096  # meshes whose hulls are kept (a few hundred vertices each; the corpus' iCub models share theirs)
+_HULLS: dict[tuple[str, str, int, int], np.ndarray | None] = {}
+
+
+def _hull(mesh: Any) -> np.ndarray | None:
+    """The vertices of the convex hull of ``mesh`` (qhull; a scale maps them to the scaled mesh's hull's), None when
+    it is flat or degenerate (no volume: no judgement)."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    vertices = np.asarray(mesh.vertices, dtype=float)
+    try:
+        return vertices[ConvexHull(vertices).vertices]
+    except (QhullError, ValueError):
+        return None
+
+
+def _enclosed(mesh: Any, scale: tuple[float, float, float]) -> Solid | None:
+    """The uniform solid a mesh encloses (closed and consistently wound: its own, else its convex hull's)."""
+    body = mesh
+    body.vertices = body.vertices * np.asarray(scale, dtype=float)
+    if float(np.prod(scale)) < 0:
+        body.invert()
+    body.merge_vertices()
+    if not (body.is_watertight and body.is_winding_consistent and body.volume > 0):
+        body = body.convex_hull
+    if not body.volume > 0:
+        return None
+    body.density = 1.0
+    unit = np.asarray(body.moment_inertia, dtype=float) / body.volume
+    return Solid(float(body.volume), np.asarray(body.center_mass, dtype=float), unit, "solid")
