@@ -13,6 +13,7 @@ from ..reader.urdf_view import Link, Shape
 from ..shared.joint_types import MOVING
 from ..shared.solid_inertia import TOLERANCE, describe_problem, format_moments, moments_problem, principal_moments
 from .findings import Finding, rule_table
+from .inertia_copies import copied_inertias
 from .inertia_geometry import MeshReach, geometry_finding, link_reach
 from .urdf_document import Doc, number_of, triple_of
 
@@ -134,6 +135,7 @@ class _Context:
     moved_bodies: set[str]
     said_base: set[str] = field(default_factory=set)
     meshes: MeshReach | None = None  # (I008: a mesh's convex hull and solid; None: meshes are not read)
+    significant: set[str] = field(default_factory=set)  # (links judged on their own: I009 compares them)
 
 
 def _context(doc: Doc) -> _Context:
@@ -155,12 +157,13 @@ def _context(doc: Doc) -> _Context:
 
 
 def inertia_rules(doc: Doc, meshes: MeshReach | None = None) -> Iterator[Finding]:
-    """I001-I008 for every link; ``meshes`` reads a mesh's hull for I008 (without it, links drawn by meshes are not
-    judged by I008)."""
+    """I001-I009 for every link; ``meshes`` reads a mesh's hull for I008 and I009 (without it, links drawn by meshes
+    are not judged by them)."""
     context = _context(doc)
     context.meshes = meshes
     for link, entry, moments in zip(doc.view.links, context.entries, context.moments, strict=True):
         yield from _link_inertia(doc, context, link, entry, moments)
+    yield from copied_inertias(doc, meshes, context.significant)
 
 
 def _link_inertia(doc: Doc, context: _Context, view: Link, entry: Any, moments: Any) -> Iterator[Finding]:
@@ -208,6 +211,7 @@ def _link_inertia(doc: Doc, context: _Context, view: Link, entry: Any, moments: 
     # a link of a tenth of its body's mass or less (an IMU frame on a trunk) changes the body's dynamics by little:
     # a placeholder or an odd size there is no mistake worth a warning
     if mass and mass >= SIGNIFICANT * context.bodies.mass.get(body, 0.0):
+        context.significant.add(name)
         yield from _placeholder(doc, link, name, entry)
         yield from _plausibility(doc, view, mass, sum(moments))
         reach = link_reach(view, context.meshes)

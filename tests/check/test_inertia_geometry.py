@@ -139,3 +139,28 @@ def test_a_mesh_is_judged_by_its_convex_hull(tmp_path):
 )
 def test_planted_placeholders_and_copies_are_caught(tmp_path, geometry, mass, tensor, why):
     assert len(_i008(tmp_path, _urdf(geometry, mass, tensor))) == 1, why
+
+
+def _two_parts(tmp_path, left: str, right: str, tensor=(0.00125, 0.00125, 0.0005), mass=1.0) -> list[str]:
+    entries = 'ixx="{!r}" ixy="0" ixz="0" iyy="{!r}" iyz="0" izz="{!r}"'.format(*tensor)
+    links = "".join(
+        f'<link name="{name}"><visual><geometry>{geometry}</geometry></visual><inertial><mass value="{mass!r}"/>'
+        f"<inertia {entries}/></inertial></link>"
+        f'<joint name="{name}_joint" type="revolute"><parent link="base_link"/><child link="{name}"/>'
+        '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/><dynamics damping="0.1"/></joint>'
+        for name, geometry in (("left", left), ("right", right))
+    )
+    path = tmp_path / "two.urdf"
+    path.write_text(f'<?xml version="1.0"?><robot name="r"><link name="base_link"/>{links}</robot>', encoding="utf-8")
+    return [f"{f.rule} {f.element}" for f in check(path, consumers=[]).findings if f.rule == "I009"]
+
+
+def test_a_copied_inertial_is_named_and_mirrored_parts_share_theirs(tmp_path):
+    """I009: a left and a right part of one size (a mirrored mesh, a turned box) rightly share their inertial; the same
+    inertial on a part twice the size is a copy, named on the second link."""
+    (tmp_path / "bracket.stl").write_bytes(BRACKET.read_bytes())
+    mesh, mirrored = (f'<mesh filename="bracket.stl" scale="{s} 0.001 0.001"/>' for s in ("0.001", "-0.001"))
+    assert _two_parts(tmp_path, mesh, mirrored) == []
+    assert _two_parts(tmp_path, '<box size="0.1 0.1 0.03"/>', '<box size="0.03 0.1 0.1"/>') == []
+    assert _two_parts(tmp_path, '<box size="0.1 0.1 0.03"/>', '<box size="0.2 0.2 0.06"/>') == ["I009 right"]
+    assert _two_parts(tmp_path, '<cylinder radius="0.05" length="0.1"/>', '<sphere radius="0.2"/>') == ["I009 right"]
