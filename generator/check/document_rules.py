@@ -8,8 +8,9 @@ import os
 from collections.abc import Mapping
 from pathlib import Path
 
+from .collision_rules import collision_rules
 from .findings import Finding
-from .inertia_geometry import mesh_reach
+from .inertia_geometry import RobotMeshes
 from .inertia_rules import inertia_rules
 from .joint_rules import joint_rules
 from .number_rules import geometry_rules, number_rules
@@ -46,7 +47,9 @@ def other_rules(
     findings += geometry_rules(doc)
     findings += name_rules(doc)
     findings += joint_rules(doc)
-    findings += inertia_rules(doc, mesh_reach(base_dir / Path(doc.file or "robot.urdf").name, packages))
+    meshes = RobotMeshes(base_dir / Path(doc.file or "robot.urdf").name, packages)  # (read once for these rules)
+    findings += inertia_rules(doc, meshes)
+    findings += collision_rules(doc, meshes)
     findings += reference_rules(doc, packages, base_dir)
     findings += sensor_rules(doc)
     if prefix is not None:

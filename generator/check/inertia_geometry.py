@@ -226,43 +226,57 @@ def _solid_note(solid: Solid | None, mass: float, turn: np.ndarray) -> str:
     return f"; {said} has ixx, iyy, izz = {values}{more} kg*m^2"
 
 
-def mesh_reach(urdf: Path, packages: Mapping[str, str | os.PathLike[str]] | None) -> MeshReach:
-    """A reader of a robot's meshes for :func:`link_reach`: each mesh's convex hull (its vertices) and the uniform
-    solid it encloses (closed and consistently wound: its own; else its hull's, made when a finding names it), read
-    as every mesh of a robot is read (:func:`~xacrokit.reader.mesh_copies.mesh_reader`: inside its package or the
-    robot's folder, at most 32 MiB, never through a link). None for a mesh that cannot be read: the link is not
-    judged. A mesh file read once is not read again while it is unchanged (its path, size and time: many robots of one
-    package share their meshes)."""
-    from ..errors import XacrokitError
-    from ..reader.mesh_copies import mesh_reader, mesh_root
-    from ..shared.ros_packages import mesh_file
+class RobotMeshes:
+    """A robot's meshes as the geometry rules read them: each mesh's convex hull (its vertices) for
+    :func:`link_reach` (calling it), its triangle count (:meth:`triangles`), and the uniform solid it encloses (closed
+    and consistently wound: its own; else its hull's, made only when a finding names it). Read as every mesh of a
+    robot is read (:func:`~xacrokit.reader.mesh_copies.mesh_reader`: inside its package or the robot's folder, at most
+    32 MiB, never through a link); a mesh that cannot be read gives None (its link is not judged). A file read once is
+    not read again while unchanged (its path, size and time: the robots of one package share their meshes)."""
 
-    read = mesh_reader(urdf, packages or {}, process=False)
+    def __init__(self, urdf: Path, packages: Mapping[str, str | os.PathLike[str]] | None) -> None:
+        from ..reader.mesh_copies import mesh_reader
 
-    def reach(filename: str, scale: tuple[float, float, float]) -> tuple[np.ndarray, Callable[[], Solid | None]] | None:
+        self.urdf, self.packages = urdf, packages or {}
+        self.read = mesh_reader(urdf, self.packages, process=False)
+
+    def __call__(
+        self, filename: str, scale: tuple[float, float, float]
+    ) -> tuple[np.ndarray, Callable[[], Solid | None]] | None:
+        facts = self._facts(filename)
+        if facts is None or facts[0] is None:
+            return None
+        return facts[0] * np.asarray(scale, dtype=float), lambda: _enclosed(self.read(filename).mesh, scale)
+
+    def triangles(self, filename: str) -> int | None:
+        """How many triangles the mesh has (None: it cannot be read)."""
+        facts = self._facts(filename)
+        return None if facts is None else facts[1]
+
+    def _facts(self, filename: str) -> tuple[np.ndarray | None, int] | None:
+        from ..errors import XacrokitError
+        from ..reader.mesh_copies import mesh_root
+        from ..shared.ros_packages import mesh_file
+
         try:
-            path = mesh_file(filename, urdf.parent, packages or {})
+            path = mesh_file(filename, self.urdf.parent, self.packages)
             status = path.stat()
-            key = (str(mesh_root(urdf, filename, packages or {})), str(path), status.st_size, status.st_mtime_ns)
+            key = (str(mesh_root(self.urdf, filename, self.packages)), str(path), status.st_size, status.st_mtime_ns)
         except (OSError, LookupError, ValueError):
             return None
-        if key not in _HULLS:
+        if key not in _MESHES:
             try:
-                _HULLS[key] = _hull(read(filename).mesh)
+                mesh = self.read(filename).mesh
+                _MESHES[key] = (_hull(mesh), len(mesh.faces))
             except XacrokitError:
-                _HULLS[key] = None
-            while len(_HULLS) > HULLS_KEPT:
-                del _HULLS[next(iter(_HULLS))]
-        corners = _HULLS[key]
-        if corners is None:
-            return None
-        return corners * np.asarray(scale, dtype=float), lambda: _enclosed(read(filename).mesh, scale)
-
-    return reach
+                _MESHES[key] = None
+            while len(_MESHES) > MESHES_KEPT:
+                del _MESHES[next(iter(_MESHES))]
+        return _MESHES[key]
 
 
-HULLS_KEPT = 4096  # meshes whose hulls are kept (a few hundred vertices each; the corpus' iCub models share theirs)
-_HULLS: dict[tuple[str, str, int, int], np.ndarray | None] = {}
+MESHES_KEPT = 4096  # meshes whose hulls are kept (a few hundred vertices each; the corpus' iCub models share theirs)
+_MESHES: dict[tuple[str, str, int, int], tuple[np.ndarray | None, int] | None] = {}
 
 
 def _hull(mesh: Any) -> np.ndarray | None:

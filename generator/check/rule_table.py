@@ -3,7 +3,7 @@ module holds its own rows beside its code: adding a rule to a family touches tha
 
 from __future__ import annotations
 
-from . import consumers, inertia_copies, inertia_geometry
+from . import collision_rules, consumers, inertia_copies, inertia_geometry
 from . import inertia_rules as inertia
 from . import joint_rules as joints
 from . import number_rules as numbers
@@ -23,6 +23,7 @@ RULES: dict[str, Row] = {
     **inertia.RULES,  # I001-I007
     **inertia_geometry.RULES,  # I008
     **inertia_copies.RULES,  # I009
+    **collision_rules.RULES,  # G005
     **references.RULES,  # R001-R003, P001
     **sensors.RULES,  # G002-G004
     **spec.RULES,  # K001, V001, V002

@@ -53,6 +53,34 @@ def joint(name: str, parent: str, child: str, kind: str = "revolute", extra: str
 
 
 B, S = BASE_LINK, SHOULDER
+def link_a(ixx: str, izz: str) -> str:
+    """The arm as the linkage lecture's Link A, with the given moments (ixx = iyy)."""
+    return f"""  <link name="arm">
+    <visual><geometry><box size="0.5 0.5 0.1"/></geometry></visual>
+    <collision><geometry><box size="0.5 0.5 0.1"/></geometry></collision>
+    <inertial><mass value="0.5"/><inertia ixx="{ixx}" ixy="0" ixz="0" iyy="{ixx}" iyz="0" izz="{izz}"/></inertial>
+  </link>"""
+
+
+def twin(size: str) -> str:
+    """The arm as a box of ``size`` carrying base_link's inertial (1 kg, the 0.2 x 0.2 x 0.1 box's tensor)."""
+    inertial = BASE_LINK.splitlines()[3].strip()
+    return f"""  <link name="arm">
+    <visual><geometry><box size="{size}"/></geometry></visual>
+    <collision><geometry><box size="{size}"/></geometry></collision>
+    {inertial}
+  </link>"""
+
+
+def ball(collision: str) -> str:
+    """The arm as a ball of 0.05 m drawn by ball_detailed.stl (1,280 triangles), colliding with ``collision``."""
+    return f"""  <link name="arm">
+    <visual><geometry><mesh filename="meshes/ball_detailed.stl"/></geometry></visual>
+    <collision><geometry><mesh filename="{collision}"/></geometry></collision>
+    <inertial><mass value="0.5"/><inertia ixx="0.0005" ixy="0" ixz="0" iyy="0.0005" iyz="0" izz="0.0005"/></inertial>
+  </link>"""
+
+
 CASES = {
     "U001": ('<robot name="x"><link name="a"></robot>\n', base()),
     "U003": (  # a prefix used without its declaration (Drake's exporters write drake: elements)
@@ -189,6 +217,18 @@ CASES = {
             }
         ),
     ),
+    "I008": (  # the linkage lecture's Link A: a 0.5 x 0.5 x 0.1 m box of 0.5 kg written with 0.005 * identity
+        base(**{ARM: link_a("0.005", "0.005")}),
+        base(**{ARM: link_a("0.010833333333333334", "0.020833333333333332")}),  # (the box's own tensor)
+    ),
+    "I009": (  # base_link's inertial copied onto an arm three times its size; on a twin of its size, rightly
+        base(**{ARM: twin("0.6 0.6 0.3")}),
+        base(**{ARM: twin("0.2 0.2 0.1")}),
+    ),
+    "G005": (  # the arm collides with its 1,280-triangle visual mesh; with an 80-triangle one, fine
+        base(**{ARM: ball("meshes/ball_detailed.stl")}),
+        base(**{ARM: ball("meshes/ball_coarse.stl")}),
+    ),
     "R001": (
         base(**{"</robot>": '<gazebo reference="nowhere"><mu1>1</mu1></gazebo>\n</robot>'}),
         base(**{"</robot>": '<gazebo reference="arm"><mu1>1</mu1></gazebo>\n</robot>'}),
@@ -236,4 +276,8 @@ if __name__ == "__main__":
         (HERE / f"{rule}_fail.urdf").write_text(failing, encoding="utf-8")
         (HERE / f"{rule}_pass.urdf").write_text(passing, encoding="utf-8")
     (HERE / "meshes" / "cube.stl").write_text(CUBE_STL, encoding="utf-8")
+    import trimesh  # (icospheres of 0.05 m: 1,280 triangles, a visual's detail; 80, a collision mesh's)
+
+    for name, divisions in (("ball_detailed", 3), ("ball_coarse", 1)):
+        trimesh.creation.icosphere(subdivisions=divisions, radius=0.05).export(HERE / "meshes" / f"{name}.stl")
     print(f"wrote {2 * len(CASES)} files")
