@@ -53,6 +53,8 @@ def joint(name: str, parent: str, child: str, kind: str = "revolute", extra: str
 
 
 B, S = BASE_LINK, SHOULDER
+
+
 def link_a(ixx: str, izz: str) -> str:
     """The arm as the linkage lecture's Link A, with the given moments (ixx = iyy)."""
     return f"""  <link name="arm">
