@@ -1,13 +1,19 @@
-"""Collision geometry as simulators use it: G005, a link colliding with its full-detail visual mesh itself."""
+"""Collision geometry as simulators use it: G005, a link colliding with its full-detail visual mesh itself; G006,
+a link that touches the ground without friction of its own."""
 
 from __future__ import annotations
 
+import math
+import re
 from collections.abc import Iterator
 
-from ..reader.urdf_view import Geometry
+import numpy as np
+
+from ..reader.urdf_view import Geometry, Joint, joint_tree
+from ..shared.transforms import rpy_matrix
 from .findings import Finding, rule_table
-from .inertia_geometry import RobotMeshes
-from .urdf_document import Doc
+from .inertia_geometry import RobotMeshes, shape_in_link
+from .urdf_document import Doc, triple_of
 
 RULES = rule_table(
     {
@@ -16,6 +22,13 @@ RULES = rule_table(
             "warning",
             "no link collides with its visual mesh itself (the same file and scale) when that mesh has more than "
             "1,000 triangles: physics engines test contacts on every triangle of a collision mesh; said once per file",
+        ),
+        "G006": (
+            "ground-friction",
+            "warning",
+            "a robot on wheels or feet (not fixed to a world link) gives friction (mu1, mu2) in a <gazebo reference> "
+            "block to each link that touches the ground in its default pose; a note when the file has no <gazebo> "
+            "at all (it is not written for Gazebo)",
         ),
     }
 )
@@ -63,3 +76,73 @@ def _file(geometry: Geometry) -> tuple[str, str]:
 
 def _mesh(geometry: Geometry) -> bool:
     return geometry.shape is not None and geometry.shape.kind == "mesh"
+
+
+# G006: what touches the ground. A link named like a foot or a wheel (or the child of a continuous joint) that a joint
+# moves, among the lowest, makes the robot one that stands on its wheels or feet; then every lowest link (a fixed
+# caster too) touches the ground, and Gazebo needs its friction.
+GROUND_NAMES = re.compile(r"foot|feet|sole|toe|wheel|caster|paw|track", re.IGNORECASE)
+CONTACT = 0.01  # m: a link whose collision reaches this close to the lowest point touches the ground too
+
+
+def ground_rules(doc: Doc, meshes: RobotMeshes) -> Iterator[Finding]:
+    """G006 on each link that touches the ground in the default pose of a robot on wheels or feet (its root is not a
+    ``world`` link) and has no mu1, mu2 or mu in a ``<gazebo reference>`` block; a note when the file has no
+    ``<gazebo>`` at all (it is not written for Gazebo)."""
+    tree = joint_tree(doc.view)
+    roots = tree.roots(doc.link_names)
+    if len(roots) != 1 or roots[0].lower() == "world":
+        return
+    poses = tree.down(roots, np.eye(4), lambda above, joint: above @ _joint_origin(joint))
+    moved = tree.down(roots, False, lambda above, joint: above or joint.type != "fixed")
+    lows = _lowest_points(doc, meshes, poses)
+    if not lows:
+        return
+    ground = min(lows.values())
+    touching = [name for name, z in lows.items() if z <= ground + CONTACT]
+    wheels = {joint.child for joint in doc.view.joints if joint.type == "continuous"}
+    if not any(moved[name] and (name in wheels or GROUND_NAMES.search(name)) for name in touching):
+        return  # (an arm on its base, a body lying on its side: not a robot on wheels or feet)
+    # friction given to any link of a rigid body counts for all of it: Gazebo lumps links joined by fixed joints,
+    # and keeps the lumped link's <gazebo> surface (ANYmal's friction is on its FOOT, its sphere on the ADAPTER)
+    body = tree.down(roots, roots[0], lambda above, joint: above if joint.type == "fixed" else joint.child or "")
+    given = {b.reference for b in doc.view.gazebo if any(e.tag in ("mu1", "mu2", "mu") for e in b.element.iter())}
+    gripping = {body[name] for name in given if name in body}
+    for name in touching:
+        link = doc.view.link(name)
+        if body.get(name) in gripping or link is None:
+            continue
+        yield doc.finding(
+            "G006",
+            "link",
+            name,
+            f"it touches the ground in the default pose (its collision reaches z = {lows[name]:.3g} m in "
+            f"{roots[0]}'s frame, the robot's lowest) but no <gazebo reference={name!r}> gives it friction, so "
+            "Gazebo takes SDF's default mu = mu2 = 1 (rubber on concrete; a caster or a skid needs far less): give "
+            "<mu1> and <mu2> (a spec: gazebo: links: NAME: {mu1, mu2}; its wheels have theirs)",
+            link.element,
+            None if doc.view.gazebo else "info",
+        )
+
+
+def _joint_origin(joint: Joint) -> np.ndarray:
+    origin = joint.origin
+    matrix = np.eye(4)
+    if origin is not None:
+        matrix[:3, :3] = rpy_matrix(*triple_of(origin.rpy))
+        matrix[:3, 3] = triple_of(origin.xyz)
+    return matrix
+
+
+def _lowest_points(doc: Doc, meshes: RobotMeshes, poses: dict[str, np.ndarray]) -> dict[str, float]:
+    """Each posed link's lowest collision point (z in the root's frame), for links whose collisions all read."""
+    lows = {}
+    for link in doc.view.links:
+        placed = [shape_in_link(g, meshes) for g in link.collisions]
+        if link.name not in poses or not placed or any(p is None for p in placed):
+            continue
+        pose = poses[link.name]
+        z = min(float((p[0] @ pose[:3, :3].T + pose[:3, 3])[:, 2].min()) for p in placed if p is not None)
+        if math.isfinite(z):
+            lows[link.name] = z
+    return lows

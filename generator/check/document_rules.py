@@ -8,7 +8,7 @@ import os
 from collections.abc import Mapping
 from pathlib import Path
 
-from .collision_rules import collision_rules
+from .collision_rules import collision_rules, ground_rules
 from .findings import Finding
 from .inertia_geometry import RobotMeshes
 from .inertia_rules import inertia_rules
@@ -50,6 +50,7 @@ def other_rules(
     meshes = RobotMeshes(base_dir / Path(doc.file or "robot.urdf").name, packages)  # (read once for these rules)
     findings += inertia_rules(doc, meshes)
     findings += collision_rules(doc, meshes)
+    findings += ground_rules(doc, meshes)
     findings += reference_rules(doc, packages, base_dir)
     findings += sensor_rules(doc)
     if prefix is not None:

@@ -125,22 +125,28 @@ def _primitive_solid(shape: Shape) -> tuple[np.ndarray, Solid] | None:
 def link_reach(link: Link, meshes: MeshReach | None) -> Reach | None:
     """The link's geometry as :class:`Reach`, None when it has none, a shape does not read, or a mesh cannot be read."""
     every = [g for g in (*link.visuals, *link.collisions) if g.shape is not None]
-    if not every:
+    placed = [shape_in_link(g, meshes) for g in every]
+    if not every or any(p is None for p in placed):
         return None
-    points, pieces = [], []
     filling = {id(g) for g in (link.collisions or link.visuals)}
-    for geometry in every:
-        assert geometry.shape is not None
-        found = _primitive(geometry.shape)
-        if found is None and geometry.shape.kind == "mesh" and meshes is not None:
-            found = meshes(geometry.shape.get("filename") or "", triple_of(geometry.shape.get("scale"), "1 1 1"))
-        if found is None or not np.isfinite(found[0]).all():
-            return None
-        turn, shift = _placed(geometry)
-        points.append(found[0] @ turn.T + shift)
-        if id(geometry) in filling:
-            pieces.append((found[1], turn, shift))
-    return Reach(np.concatenate(points), tuple(pieces))
+    pieces = tuple(p[1:] for g, p in zip(every, placed, strict=True) if p is not None and id(g) in filling)
+    return Reach(np.concatenate([p[0] for p in placed if p is not None]), pieces)
+
+
+def shape_in_link(
+    geometry: Geometry, meshes: MeshReach | None
+) -> tuple[np.ndarray, Callable[[], Solid | None], np.ndarray, np.ndarray] | None:
+    """A visual's or collision's points in the link frame, how to make its solid, and its placement (turn, shift);
+    None when it has no shape, its sizes do not read, or its mesh cannot be read."""
+    if geometry.shape is None:
+        return None
+    found = _primitive(geometry.shape)
+    if found is None and geometry.shape.kind == "mesh" and meshes is not None:
+        found = meshes(geometry.shape.get("filename") or "", triple_of(geometry.shape.get("scale"), "1 1 1"))
+    if found is None or not np.isfinite(found[0]).all():
+        return None
+    turn, shift = _placed(geometry)
+    return found[0] @ turn.T + shift, found[1], turn, shift
 
 
 def _filling(solids: Sequence[tuple[Solid | None, np.ndarray, np.ndarray]]) -> Solid | None:

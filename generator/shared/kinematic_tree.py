@@ -7,6 +7,7 @@ from collections.abc import Callable, Iterable, Mapping
 from typing import Generic, TypeVar
 
 Key = TypeVar("Key")  # what an edge is known by: a spec path, a joint name
+Value = TypeVar("Value")  # what a walk carries down the tree (a depth, a transform)
 
 
 class Tree(Generic[Key]):
@@ -39,18 +40,24 @@ class Tree(Generic[Key]):
                 stack += self.children.get(current, [])
         return seen
 
-    def depths(self, starts: Iterable[str], weight: Callable[[Key], int] = lambda key: 1) -> dict[str, int]:
-        """Every link at or below ``starts``, with the summed ``weight`` of the edges down to it from its start (0 at
-        a start; each edge 1 by default: the links above it). One walk, each link once: a loop is not followed."""
-        found = dict.fromkeys(starts, 0)
+    def down(self, starts: Iterable[str], first: Value, step: Callable[[Value, Key], Value]) -> dict[str, Value]:
+        """Every link at or below ``starts`` with a value carried down the edges: ``first`` at a start, then
+        ``step(parent's value, edge)`` (summed weights, composed transforms). One walk, each link once: a loop is not
+        followed."""
+        found = dict.fromkeys(starts, first)
         stack = list(found)
         while stack:
             current = stack.pop()
             for child in self.children.get(current, []):
                 if child not in found:
-                    found[child] = found[current] + weight(self.parent_of[child][1])
+                    found[child] = step(found[current], self.parent_of[child][1])
                     stack.append(child)
         return found
+
+    def depths(self, starts: Iterable[str], weight: Callable[[Key], int] = lambda key: 1) -> dict[str, int]:
+        """Every link at or below ``starts``, with the summed ``weight`` of the edges down to it from its start (0 at
+        a start; each edge 1 by default: the links above it)."""
+        return self.down(starts, 0, lambda depth, key: depth + weight(key))
 
     def path_up(self, start: str, target: str) -> list[str]:
         """Links from ``start`` up through its ancestors to ``target`` (both included), or [] when target is not

@@ -55,6 +55,20 @@ def joint(name: str, parent: str, child: str, kind: str = "revolute", extra: str
 B, S = BASE_LINK, SHOULDER
 
 
+WHEEL = """  <link name="wheel">
+    <visual><origin rpy="1.5707963267948966 0 0"/><geometry><cylinder radius="0.05" length="0.02"/></geometry></visual>
+    <collision><origin rpy="1.5707963267948966 0 0"/><geometry><cylinder radius="0.05" length="0.02"/></geometry></collision>
+    <inertial><origin rpy="1.5707963267948966 0 0"/><mass value="0.2"/><inertia ixx="0.00013166666666666665" ixy="0" ixz="0" iyy="0.00013166666666666665" iyz="0" izz="0.00025"/></inertial>
+  </link>
+  <joint name="wheel_joint" type="continuous">
+    <parent link="base_link"/><child link="wheel"/>
+    <origin xyz="0 0 -0.05"/><axis xyz="0 1 0"/>
+    <limit effort="1" velocity="10"/>
+    <dynamics damping="0.01" friction="0"/>
+  </joint>
+"""
+
+
 def link_a(ixx: str, izz: str) -> str:
     """The arm as the linkage lecture's Link A, with the given moments (ixx = iyy)."""
     return f"""  <link name="arm">
@@ -230,6 +244,12 @@ CASES = {
     "G005": (  # the arm collides with its 1,280-triangle visual mesh; with an 80-triangle one, fine
         base(**{ARM: ball("meshes/ball_detailed.stl")}),
         base(**{ARM: ball("meshes/ball_coarse.stl")}),
+    ),
+    "G006": (  # a wheel that touches the ground, in a file with a <gazebo> block, without friction; then with it
+        base(
+            **{"</robot>": WHEEL + '<gazebo reference="base_link"><material>Gazebo/Grey</material></gazebo>\n</robot>'}
+        ),
+        base(**{"</robot>": WHEEL + '<gazebo reference="wheel"><mu1>1.0</mu1><mu2>1.0</mu2></gazebo>\n</robot>'}),
     ),
     "R001": (
         base(**{"</robot>": '<gazebo reference="nowhere"><mu1>1</mu1></gazebo>\n</robot>'}),
