@@ -91,7 +91,7 @@ def ground_rules(doc: Doc, meshes: RobotMeshes) -> Iterator[Finding]:
     ``<gazebo>`` at all (it is not written for Gazebo)."""
     tree = joint_tree(doc.view)
     roots = tree.roots(doc.link_names)
-    if len(roots) != 1 or roots[0].lower() == "world":
+    if len(roots) != 1 or doc.fixed_to_world:
         return
     poses = tree.down(roots, np.eye(4), lambda above, joint: above @ _joint_origin(joint))
     moved = tree.down(roots, False, lambda above, joint: above or joint.type != "fixed")

@@ -56,7 +56,8 @@ RULES = rule_table(
             "base-mass",
             "warning",
             "the robot's base body (the root link and the links fixed to it) has a mass when it has geometry (a fixed "
-            "base needs none; a mobile one in a simulator does)",
+            "base needs none; a mobile one in a simulator does); not asked of a robot fixed to a geometry-less `world` "
+            "root",
         ),
     }
 )
@@ -236,6 +237,8 @@ def _massless(doc: Doc, context: _Context, view: Link, body: str) -> Iterator[Fi
         )
         return
     has_geometry = bool(view.visuals or view.collisions)
+    if doc.fixed_to_world:  # (its base is fixed: the file says so, and a fixed base needs no mass)
+        return
     if has_geometry and body not in context.moved_bodies and body not in context.said_base:
         context.said_base.add(body)
         yield doc.finding(

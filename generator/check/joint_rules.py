@@ -62,8 +62,8 @@ RULES = rule_table(
         "J013": (
             "limit-range",
             "warning",
-            "a revolute or prismatic joint's lower and upper limits differ (equal ones leave it no motion: a fixed "
-            "joint says so)",
+            "a revolute or prismatic joint's lower and upper limits differ (equal ones leave it no motion: real limits, "
+            "a continuous joint or a fixed one says what is meant; CAD exporters write 0 and 0 when they know none)",
         ),
     }
 )
@@ -131,7 +131,12 @@ def _range(found: _At, kind: str, limit: Attributes | None) -> Iterator[Finding]
     elif not lower <= upper:
         yield found("J002", f"limit lower ({lower}) is greater than upper ({upper}); swap them")
     elif lower == upper:
-        yield found("J013", f"limit lower and upper are both {lower}: the joint cannot move; make it a fixed joint")
+        yield found(
+            "J013",
+            f"limit lower and upper are both {lower}: the joint cannot move; give it its real limits (a CAD exporter "
+            "writes 0 and 0 when it knows none), make it continuous if it turns without end, or fixed if it never "
+            "moves",
+        )
 
 
 def _rates(found: _At, kind: str, limit: Attributes | None) -> Iterator[Finding]:

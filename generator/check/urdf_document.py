@@ -63,6 +63,15 @@ class Doc:
         self.link_names = {link.name for link in self.view.links}
         self.joint_by_name = {joint.name: joint.element for joint in self.view.joints}
 
+    @property
+    def fixed_to_world(self) -> bool:
+        """Whether the robot is fixed to the world: its one root link is named ``world`` (any case) and has no
+        geometry (the convention of fixed-base descriptions: a KUKA's ``world`` -> ``base_link``). Its base then needs
+        no mass (I007) and nothing of it rolls or walks (G006)."""
+        children = {joint.child for joint in self.view.joints}
+        roots = [link for link in self.view.links if link.name not in children]
+        return len(roots) == 1 and roots[0].name.lower() == "world" and not (roots[0].visuals or roots[0].collisions)
+
     def finding(
         self,
         rule: str,

@@ -128,6 +128,7 @@ joints:
         "2 sum(m d^2), d along it: 0.01 kg*m^2 here, at most 0.00125); a uniform box of 1 kg filling its collision "
         "geometry has ixx, iyy, izz = 0.00771, 0.00771, 0.000417 kg*m^2",
         f"gen-robot: warning: {spec}:6: J013 limit-range (warning of gen-robot check): joint 'shoulder': limit lower "
-        "and upper are both 0.0: the joint cannot move; make it a fixed joint",
+        "and upper are both 0.0: the joint cannot move; give it its real limits (a CAD exporter writes 0 and 0 when "
+        "it knows none), make it continuous if it turns without end, or fixed if it never moves",
     ]
     assert gen_robot("check", spec, "--consumers", "none", "--strict").returncode == 1  # (what was said)

@@ -59,3 +59,17 @@ def test_a_file_without_gazebo_blocks_gets_a_note(tmp_path):
     fixed = '<link name="world"/><joint name="fix" type="fixed"><parent link="world"/><child link="base_link"/></joint>'
     world = text.replace('<link name="base_link">', fixed + '\n  <link name="base_link">')
     assert _findings(tmp_path, world, "G006") == []  # (fixed to the world: nothing rolls)
+
+
+def test_a_base_fixed_to_a_world_root_needs_no_mass_and_equal_limits_say_the_ways_out(tmp_path):
+    """I007 (issue 30, item 6): a KUKA-style file fixes base_link to a geometry-less world root: its massless base is
+    a fixed base, no warning; the same base as the root is warned. J013 names real limits, continuous and fixed."""
+    text = (CORPUS / "I007_fail.urdf").read_text(encoding="utf-8")
+    assert _findings(tmp_path, text, "I007") == [("base_link", "warning")]
+    fixed = '<link name="world"/><joint name="world_joint" type="fixed"><parent link="world"/><child link="base_link"/>'
+    kuka = text.replace('<link name="base_link">', fixed + '</joint>\n  <link name="base_link">')
+    assert _findings(tmp_path, kuka, "I007") == []
+    path = tmp_path / "robot.urdf"
+    path.write_text((CORPUS / "J013_fail.urdf").read_text(encoding="utf-8"), encoding="utf-8")
+    (finding,) = [f for f in check(path, consumers=[]).findings if f.rule == "J013"]
+    assert all(words in finding.message for words in ("real limits", "continuous", "fixed if it never moves"))
