@@ -22,6 +22,7 @@ from ..write.atomic import staged_packages
 from .consumers import chosen, consumer_findings, start_verdicts
 from .document_rules import first_rules, other_rules
 from .findings import CheckReport, Finding
+from .inertia_geometry import preload_mesh_readers
 from .urdf_document import Doc, parse_robot
 
 if TYPE_CHECKING:
@@ -106,6 +107,8 @@ def _judge(
     # the consumers run while our other rules do (each in its own process): check takes about as long as the slowest
     if names and not structural:
         say(f"running {', '.join(names)} (and our other rules meanwhile)")
+    if names and not structural:
+        preload_mesh_readers(doc)  # (before the consumers fork: they inherit it, and yourdfpy needs it too)
     pending = start_verdicts(names, text, structural=structural, package_paths=packages, base_dir=path.parent)
     findings += other_rules(doc, packages, path.parent, prefix)
     if robot is not None and not structural and robot.arms:

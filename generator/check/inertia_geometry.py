@@ -9,19 +9,22 @@ bounds for every direction n through its centre of mass c, with the maxima over 
   mass at the farthest points along n): a thin plate's moments must add up as a plate's do (ixx + iyy - izz =
   2 sum(m z^2) for a plate in xy), so a flat box cannot have three equal moments.
 
-Both are exact for any mass distribution; they are asked along the tensor's principal axes, the link's axes and the
-principal axes of the uniform solid filling the geometry. A tensor beyond either by more than TOLERANCE needs mass
-outside everything the link draws: a units or copy mistake, a placeholder, or the inertia of another part. The finding
-names what a uniform solid of the stated mass filling the link's collision geometry (else its visual) would have.
+Both are exact for any mass distribution; they are asked along the tensor's principal axes, the link's axes, each
+shape's own axes and the principal axes of the geometry's points. A tensor beyond either by more than TOLERANCE needs
+mass outside everything the link draws: a units or copy mistake, a placeholder, or the inertia of another part. The
+finding names what a uniform solid of the stated mass filling the link's collision geometry (else its visual) would
+have.
 
 Points of the geometry: a box's corners, a cylinder's two rims (RIM points each), a sphere's surface (SPHERE points),
-a mesh's convex hull (its vertices, after its scale). A link whose mesh cannot be read is not judged. No lower bound is
+a mesh's vertices (after its scale; the maxima over them are those over
+its convex hull). A link whose mesh cannot be read is not judged. No lower bound is
 applied: a body whose mass sits near its centre (a motor in a light housing) has moments far below the uniform solid's,
 and a point mass none at all.
 """
 
 from __future__ import annotations
 
+import io
 import math
 import os
 from collections.abc import Callable, Mapping, Sequence
@@ -73,13 +76,14 @@ class Reach:
 
     points: np.ndarray
     pieces: tuple[tuple[Callable[[], Solid | None], np.ndarray, np.ndarray], ...]
+    axes: np.ndarray  # (each shape's own axes in the link frame, 3 rows a shape: a turned box's face normals)
 
     def solid(self) -> Solid | None:
         """The uniform solid (None when a piece has no volume to fill)."""
         return _filling([(make(), turn, shift) for make, turn, shift in self.pieces])
 
 
-# a mesh's reach: its convex hull's vertices (mesh frame, scaled) and how to make the solid it encloses
+# a mesh's reach: its vertices (mesh frame, scaled) and how to make the solid it encloses
 MeshReach = Callable[[str, tuple[float, float, float]], tuple[np.ndarray, Callable[[], Solid | None]] | None]
 
 
@@ -130,7 +134,8 @@ def link_reach(link: Link, meshes: MeshReach | None) -> Reach | None:
         return None
     filling = {id(g) for g in (link.collisions or link.visuals)}
     pieces = tuple(p[1:] for g, p in zip(every, placed, strict=True) if p is not None and id(g) in filling)
-    return Reach(np.concatenate([p[0] for p in placed if p is not None]), pieces)
+    axes = np.concatenate([p[2].T for p in placed if p is not None])
+    return Reach(np.concatenate([p[0] for p in placed if p is not None]), pieces, axes)
 
 
 def shape_in_link(
@@ -181,20 +186,30 @@ def geometry_finding(doc: Doc, link: Link, mass: float, entries: Sequence[float]
         usable = all(np.isfinite(a).all() for a in (tensor, offsets, spread, spans, mass * offsets * offsets))
         if not usable or max(spans) <= MARKER:
             return None
-        directions = [*np.linalg.eigh(tensor)[1].T, *np.eye(3), *np.linalg.eigh(spread)[1].T]
-        worst = max((_excess(tensor, mass, offsets, n) for n in directions), key=lambda e: e[0])
+        # the tensor's principal axes, the link's, the shapes' own and the points' principal axes (a mesh's part)
+        directions = np.array([*np.linalg.eigh(tensor)[1].T, *np.eye(3), *reach.axes, *np.linalg.eigh(spread)[1].T])
+        along = np.square(offsets @ directions.T)  # (points x directions, in one product)
+        farthest = (np.square(offsets).sum(axis=1)[:, None] - along).max(axis=0)  # (from each axis)
+        worst = max(
+            (
+                _excess(tensor, mass, n, mass * float(f), mass * float(a))
+                for n, f, a in zip(directions, farthest, along.max(axis=0), strict=True)
+            ),
+            key=lambda e: e[0],
+        )
     if worst[0] <= TOLERANCE:
         return None
     return doc.finding("I008", "link", link.name, worst[1] + _solid_note(reach.solid(), mass, turn), link.element)
 
 
-def _excess(tensor: np.ndarray, mass: float, offsets: np.ndarray, n: np.ndarray) -> tuple[float, str]:
-    """How far the tensor passes the larger of the two bounds along ``n`` (a ratio), and the message saying it."""
-    along = offsets @ n
+def _excess(
+    tensor: np.ndarray, mass: float, n: np.ndarray, most_moment: float, most_spread: float
+) -> tuple[float, str]:
+    """How far the tensor passes the larger of the two bounds along ``n`` (a ratio), and the message saying it:
+    ``most_moment`` and ``most_spread`` are the bounds (kg*m^2) of the moment about the axis along ``n`` and of the
+    spread along it."""
     moment = float(n @ tensor @ n)
     spread = float(np.trace(tensor) / 2.0 - moment)
-    most_moment = mass * float(((offsets * offsets).sum(axis=1) - along * along).max())
-    most_spread = mass * float((along * along).max())
     axis = _axis_name(n)
     ratio_moment = moment / most_moment if most_moment > 0 else math.inf
     ratio_spread = spread / most_spread if most_spread > 0 else math.inf
@@ -233,33 +248,38 @@ def _solid_note(solid: Solid | None, mass: float, turn: np.ndarray) -> str:
 
 
 class RobotMeshes:
-    """A robot's meshes as the geometry rules read them: each mesh's convex hull (its vertices) for
-    :func:`link_reach` (calling it), its triangle count (:meth:`triangles`), and the uniform solid it encloses (closed
-    and consistently wound: its own; else its hull's, made only when a finding names it). Read as every mesh of a
-    robot is read (:func:`~xacrokit.reader.mesh_copies.mesh_reader`: inside its package or the robot's folder, at most
-    32 MiB, never through a link); a mesh that cannot be read gives None (its link is not judged). A file read once is
-    not read again while unchanged (its path, size and time: the robots of one package share their meshes)."""
+    """A robot's meshes as the geometry rules read them: each mesh's vertices for :func:`link_reach` (calling it), its
+    triangle count (:meth:`triangles`), and the uniform solid it encloses (closed and consistently wound: its own;
+    else its convex hull's, made with trimesh only when a finding names it). Read as every mesh of a robot is read
+    (:func:`~xacrokit.reader.mesh_copies.mesh_reader`: inside its package or the robot's folder, at most 32 MiB,
+    never through a link), an STL with numpy-stl (trimesh takes five times as long to start), other kinds with
+    trimesh; a mesh that cannot be read gives None (its link is not judged). A file read once is not read again while
+    unchanged (its path, size and time: the robots of one package share their meshes), up to KEPT_BYTES of vertices.
+
+    The maxima the bounds take over a mesh's points are those over its convex hull, so every vertex is used as it is
+    (a hull would save memory, not time: qhull took longer than the reading)."""
 
     def __init__(self, urdf: Path, packages: Mapping[str, str | os.PathLike[str]] | None) -> None:
         from ..reader.mesh_copies import mesh_reader
 
         self.urdf, self.packages = urdf, packages or {}
-        self.read = mesh_reader(urdf, self.packages, process=False)
+        self.read = mesh_reader(urdf, self.packages, parse=_mesh_points)
+        self.read_solid = mesh_reader(urdf, self.packages, process=False)
 
     def __call__(
         self, filename: str, scale: tuple[float, float, float]
     ) -> tuple[np.ndarray, Callable[[], Solid | None]] | None:
         facts = self._facts(filename)
-        if facts is None or facts[0] is None:
+        if facts is None:
             return None
-        return facts[0] * np.asarray(scale, dtype=float), lambda: _enclosed(self.read(filename).mesh, scale)
+        return facts[0] * np.asarray(scale, dtype=float), lambda: _enclosed(self.read_solid(filename).mesh, scale)
 
     def triangles(self, filename: str) -> int | None:
         """How many triangles the mesh has (None: it cannot be read)."""
         facts = self._facts(filename)
         return None if facts is None else facts[1]
 
-    def _facts(self, filename: str) -> tuple[np.ndarray | None, int] | None:
+    def _facts(self, filename: str) -> tuple[np.ndarray, int] | None:
         from ..errors import XacrokitError
         from ..reader.mesh_copies import mesh_root
         from ..shared.ros_packages import mesh_file
@@ -272,29 +292,51 @@ class RobotMeshes:
             return None
         if key not in _MESHES:
             try:
-                mesh = self.read(filename).mesh
-                _MESHES[key] = (_hull(mesh), len(mesh.faces))
+                _MESHES[key] = self.read(filename).mesh
             except XacrokitError:
                 _MESHES[key] = None
-            while len(_MESHES) > MESHES_KEPT:
+            while sum(m[0].nbytes for m in _MESHES.values() if m is not None) > KEPT_BYTES and len(_MESHES) > 1:
                 del _MESHES[next(iter(_MESHES))]
         return _MESHES[key]
 
 
-MESHES_KEPT = 4096  # meshes whose hulls are kept (a few hundred vertices each; the corpus' iCub models share theirs)
-_MESHES: dict[tuple[str, str, int, int], tuple[np.ndarray | None, int] | None] = {}
+def preload_mesh_readers(doc: Doc) -> None:
+    """Import trimesh now when the robot has meshes other than STL (which numpy-stl reads): a check forks its Python
+    consumers next, and yourdfpy's loads trimesh too, so the import (0.7 s) is paid once, before the fork, instead of
+    once in our rules and once in the child."""
+    names = (
+        g.shape.get("filename") or ""
+        for link in doc.view.links
+        for g in (*link.visuals, *link.collisions)
+        if g.shape is not None and g.shape.kind == "mesh"
+    )
+    if any(not name.lower().endswith(".stl") for name in names):
+        import trimesh  # noqa: F401
 
 
-def _hull(mesh: Any) -> np.ndarray | None:
-    """The vertices of the convex hull of ``mesh`` (qhull; a scale maps them to the scaled mesh's hull's), None when
-    it is flat or degenerate (no volume: no judgement)."""
-    from scipy.spatial import ConvexHull, QhullError
+KEPT_BYTES = 128 * 1024 * 1024  # vertices kept read across robots (float32: 10 million vertices)
+_MESHES: dict[tuple[str, str, int, int], tuple[np.ndarray, int] | None] = {}
 
-    vertices = np.asarray(mesh.vertices, dtype=float)
+
+def _mesh_points(data: bytes, suffix: str, said: str) -> tuple[np.ndarray, int]:
+    """A mesh file's vertices (float32, N x 3) and triangle count: an STL's with numpy-stl, another kind's with
+    trimesh. Raises MeshCopyRefused when it holds no triangle."""
+    from ..reader.mesh_copies import MeshCopyRefused, require_mesh
+
+    if suffix != ".stl":
+        mesh = require_mesh(data, suffix, said, process=False)
+        return np.asarray(mesh.vertices, dtype=np.float32), len(mesh.faces)
+    from stl import mesh as stl_mesh
+
     try:
-        return vertices[ConvexHull(vertices).vertices]
-    except (QhullError, ValueError):
-        return None
+        vectors = stl_mesh.Mesh.from_file(said, fh=io.BytesIO(data), calculate_normals=False).vectors
+    except Exception:  # noqa: BLE001  (numpy-stl raises what its reader meets: every one means "not an STL")
+        vectors = np.zeros((0, 3, 3), dtype=np.float32)
+    if not len(vectors):
+        raise MeshCopyRefused(
+            f"{said}: it does not read as an STL mesh with a triangle; a file read as a mesh must be one"
+        )
+    return np.asarray(vectors, dtype=np.float32).reshape(-1, 3), len(vectors)  # (np.unique's sort: slower than all)
 
 
 def _enclosed(mesh: Any, scale: tuple[float, float, float]) -> Solid | None:

@@ -62,8 +62,9 @@ RULES = rule_table(
         "J013": (
             "limit-range",
             "warning",
-            "a revolute or prismatic joint's lower and upper limits differ (equal ones leave it no motion: real limits, "
-            "a continuous joint or a fixed one says what is meant; CAD exporters write 0 and 0 when they know none)",
+            "a revolute or prismatic joint's lower and upper limits differ (equal ones leave it no motion: real "
+            "limits, a continuous joint or a fixed one says what is meant; CAD exporters write 0 and 0 when they "
+            "know none)",
         ),
     }
 )

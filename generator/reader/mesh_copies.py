@@ -69,7 +69,12 @@ def mesh_to_copy(root: Path, source: Path, *, where: str = "") -> CopiedFile:
     return read_mesh_below(root, source, where=where, process=False).copy
 
 
-def read_mesh_below(root: Path, source: Path, *, where: str = "", process: bool = True) -> MeshRead:
+MeshParser = Callable[[bytes, str, str], Any]  # (the file's bytes, its suffix, how messages name it) -> the mesh
+
+
+def read_mesh_below(
+    root: Path, source: Path, *, where: str = "", process: bool = True, parse: MeshParser | None = None
+) -> MeshRead:
     """``source``, a mesh file inside the robot's folder ``root``, read once and safely.
 
     Args:
@@ -77,6 +82,8 @@ def read_mesh_below(root: Path, source: Path, *, where: str = "", process: bool 
         source: the mesh file (absolute, or relative to the working folder), not resolved.
         where: how the messages name the mesh (``robot.urdf:12: mesh 'meshes/part.stl'``).
         process: trimesh's ``process`` (merge duplicate vertices), for the reader that draws or converts it.
+        parse: reads the bytes instead of trimesh (``gen-robot check`` reads STL with numpy-stl, which starts in a
+            fifth of trimesh's time); it raises MeshCopyRefused for a file that is no mesh with a triangle.
 
     Raises:
         MeshCopyRefused: it is reached through a symbolic link, lies outside ``root``, is not a plain file of at most
@@ -101,7 +108,7 @@ def read_mesh_below(root: Path, source: Path, *, where: str = "", process: bool 
         raise MeshCopyRefused(f"{said}: cannot be read: {exc.strerror or exc}") from None
     suffix = pure.suffix.lower()
     _unswept[0] += len(data)
-    mesh = _require_mesh(data, suffix, said, process)
+    mesh = parse(data, suffix, said) if parse is not None else require_mesh(data, suffix, said, process)
     copy = CopiedFile(root, pure.as_posix(), identity, len(data), hashlib.sha256(data).hexdigest())
     return MeshRead(mesh, copy, data[:84])
 
@@ -147,8 +154,9 @@ def require_mesh_file(root: Path, source: Path, *, where: str = "") -> None:
         raise MeshCopyRefused(f"{said}: cannot be read: {exc.strerror or exc}") from None
 
 
-def _require_mesh(data: bytes, suffix: str, said: str, process: bool) -> Any:
-    """The mesh trimesh reads from ``data`` as the kind ``suffix`` says; refused when it reads none with a triangle."""
+def require_mesh(data: bytes, suffix: str, said: str, process: bool) -> Any:
+    """The mesh trimesh reads from ``data`` as the kind ``suffix`` says; refused (MeshCopyRefused) when it reads none
+    with a triangle."""
     import trimesh
 
     try:
@@ -191,12 +199,16 @@ def _holds(folder: str, path: str) -> bool:
 
 
 def mesh_reader(
-    urdf: Path, packages: Mapping[str, str | os.PathLike[str]], *, process: bool = True
+    urdf: Path,
+    packages: Mapping[str, str | os.PathLike[str]],
+    *,
+    process: bool = True,
+    parse: MeshParser | None = None,
 ) -> Callable[[str], MeshRead]:
     """A reader of the meshes the robot at ``urdf`` names (by the URI as written): each found as
     :func:`~xacrokit.shared.ros_packages.mesh_file` finds it and read by :func:`read_mesh_below` below its
-    :func:`mesh_root` (``process``: as there). The reader raises XacrokitError naming the mesh: not there, its package
-    not known, or refused."""
+    :func:`mesh_root` (``process``, ``parse``: as there). The reader raises XacrokitError naming the mesh: not there,
+    its package not known, or refused."""
     from ..shared.ros_packages import mesh_file
 
     def read(filename: str) -> MeshRead:
@@ -206,6 +218,6 @@ def mesh_reader(
             raise XacrokitError(f"mesh {filename!r}: {exc}") from None
         if not path.is_file() and not path.is_symlink():
             raise XacrokitError(f"mesh {filename!r} is not there ({path})")
-        return read_mesh_below(root, path, where=f"mesh {filename!r}", process=process)
+        return read_mesh_below(root, path, where=f"mesh {filename!r}", process=process, parse=parse)
 
     return read
