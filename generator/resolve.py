@@ -50,7 +50,7 @@ from .model import (
     attach_joint_name,
 )
 from .shared.gc_pause import collector_paused
-from .shared.mesh_solids import MESH_FOLDER, is_relative, package_mesh_path, tube_obj
+from .shared.mesh_solids import MESH_FOLDER, is_relative, mesh_hull, mesh_path, package_mesh_path, tube_obj
 from .shared.sim_sensors import resolve_sensor
 from .shared.solid_inertia import (
     box_moments,
@@ -87,6 +87,7 @@ class _Package:
 
     def __init__(self, robot: str, spec_file: str) -> None:
         self.name = f"{robot}_description"
+        self.spec_file = spec_file
         self.spec_folder = Path(spec_file).parent
         self.files: dict[str, bytes | str] = {}
 
@@ -167,6 +168,8 @@ def _link(name: str, data: dict[str, Any], package: _Package) -> Link:
         collisions = [Collision(shape=body, origin=at) for body, at in drawn]
     elif collision_spec == "none":
         collisions = []
+    elif collision_spec == "hull":  # (validate saw the shape is a mesh whose hull has a volume)
+        collisions = [Collision(shape=_hull_of(data["shape"]["mesh"], package), origin=where)]
     else:  # (one shape, or a list of them)
         listed = collision_spec if isinstance(collision_spec, list) else [collision_spec]
         collisions = [Collision(shape=b, origin=at) for one in listed for b, at in _placed(one, package)]
@@ -178,6 +181,13 @@ def _link(name: str, data: dict[str, Any], package: _Package) -> Link:
     if inertial is None and "mass" in data and "shape" in data:
         inertial = shape_inertia(data["shape"], float(data["mass"]), frame)
     return Link(name=name, visuals=tuple(visuals), collisions=tuple(collisions), inertial=inertial)
+
+
+def _hull_of(mesh: dict[str, Any], package: _Package) -> Mesh:
+    """A mesh's convex hull, made into the package (``collision: hull``), at the mesh's scale."""
+    path, data = mesh_hull(mesh_path(mesh["filename"], package.spec_file))
+    package.files[path] = data
+    return Mesh(filename=f"package://{package.name}/{path}", scale=_vec3(mesh.get("scale"), (1.0, 1.0, 1.0)))
 
 
 def _placed(geometry: dict[str, Any], package: _Package) -> list[tuple[Shape, Origin]]:

@@ -62,8 +62,8 @@ def collision_rules(doc: Doc, meshes: RobotMeshes) -> Iterator[Finding]:
         "link",
         first.name,
         f"{what}; physics engines test contacts on every triangle of a collision mesh (slow, and jittery where a "
-        "detailed surface meets the ground): give a primitive, a convex hull or a decimated mesh (a few hundred "
-        "triangles)",
+        "detailed surface meets the ground): give a primitive, a convex hull (a spec: collision: hull) or a decimated "
+        "mesh (a few hundred triangles)",
         first.element,
     )
 

@@ -12,6 +12,7 @@ import functools
 import os
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
+from typing import Any
 
 import numpy as np
 
@@ -130,6 +131,40 @@ def _solid(path: str, size: int, mtime: int, scale: tuple[float, float, float]) 
         unit_inertia=tuple((float(r[0]) + 0.0, float(r[1]) + 0.0, float(r[2]) + 0.0) for r in inertia),
         extents=(extents[0], extents[1], extents[2]),
     )
+
+
+def mesh_hull(path: Path) -> tuple[str, bytes]:
+    """The convex hull of the mesh at ``path`` as a binary STL (its own units: a link's ``scale`` applies to it as
+    to the mesh) and the file name a package keeps it under, made from its content (meshes alike share a hull).
+
+    Raises:
+        MeshError: the file cannot be read as a mesh, or its hull has no volume (a flat part).
+    """
+    try:
+        stat = path.stat()
+    except OSError as exc:
+        raise MeshError(f"cannot read {path}: {exc.strerror}") from None
+    return _hull(str(path.resolve()), stat.st_size, stat.st_mtime_ns)
+
+
+@functools.lru_cache(maxsize=64)
+def _hull(path: str, size: int, mtime: int) -> tuple[str, bytes]:
+    """(size and mtime: a file changed on disk is read again)"""
+    import hashlib
+
+    import trimesh
+
+    if size > MAX_MESH_BYTES:
+        raise MeshError(f"{path} is {size / 2**20:.0f} MiB; a part's mesh is expected below {MAX_MESH_BYTES >> 20} MiB")
+    try:
+        mesh: Any = trimesh.load(path, force="mesh")
+        hull = mesh.convex_hull
+    except Exception as exc:  # noqa: BLE001  (trimesh and qhull raise what they meet: every one means "no hull")
+        raise MeshError(f"cannot make the convex hull of {Path(path).name} ({type(exc).__name__}: {exc})") from None
+    if not hull.volume > 0:
+        raise MeshError(f"{Path(path).name} is flat: its convex hull has no volume to collide with")
+    data = bytes(hull.export(file_type="stl"))
+    return f"{MESH_FOLDER}/xacrokit/hull_{hashlib.sha256(data).hexdigest()[:16]}.stl", data
 
 
 TUBE_SIDES = 64  # a tube's mesh: its circles as 64-gons (the radius' error at mid-side: 1 - cos(pi/64) = 0.12%)

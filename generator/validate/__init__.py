@@ -46,7 +46,14 @@ from .schema import (
     schema_errors,
     structure_intact,
 )
-from .solids import body_solids, density_warnings, masses_from_density, mesh_files_errors, mesh_inertias
+from .solids import (
+    body_solids,
+    density_warnings,
+    hull_errors,
+    masses_from_density,
+    mesh_files_errors,
+    mesh_inertias,
+)
 
 __all__ = [
     "Quantities",
@@ -169,7 +176,13 @@ def validate(raw: RawSpec) -> Spec:
         items = every + list(parts(data))
     extension, extension_errors = extension_body(raw, data)
     errors += (
-        unit_errors + mirror_errors + mesh_files_errors(raw, data) + solid_errors + density_errors + extension_errors
+        unit_errors
+        + mirror_errors
+        + mesh_files_errors(raw, data)
+        + hull_errors(raw, data)
+        + solid_errors
+        + density_errors
+        + extension_errors
     )
     errors += semantic_errors(raw, data, every, physics=parsed)
     lenient = data.get("strict") is False

@@ -28,6 +28,7 @@ from ..shared.mesh_solids import (
     MeshError,
     MeshSolid,
     is_relative,
+    mesh_hull,
     mesh_path,
     mesh_solid,
     package_mesh_path,
@@ -149,6 +150,30 @@ def mesh_files_errors(raw: RawSpec, data: dict[str, Any]) -> list[SpecError]:
                     f"{filename!r} and {first} would both be copied to the package as {target}; rename or move one",
                 )
             )
+    return errors
+
+
+def hull_errors(raw: RawSpec, data: dict[str, Any]) -> list[SpecError]:
+    """``collision: hull`` on a link whose shape is not a mesh, or whose mesh gives no hull with a volume."""
+    errors = []
+    for name, link in data.get("links", {}).items():
+        if link.get("collision") != "hull":
+            continue
+        shape = link.get("shape") or {}
+        if "mesh" not in shape:
+            what = next(iter(shape), "no shape")
+            errors.append(
+                raw.error(
+                    ("links", name, "collision"),
+                    f"collision: hull makes the convex hull of the link's mesh, and its shape is {what}: a box, "
+                    "cylinder, sphere, capsule or tube collides as itself (collision: same)",
+                )
+            )
+            continue
+        try:
+            mesh_hull(mesh_path(shape["mesh"]["filename"], raw.file))
+        except MeshError as exc:
+            errors.append(raw.error(("links", name, "shape", "mesh", "filename"), f"collision: hull: {exc}"))
     return errors
 
 
