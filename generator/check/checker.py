@@ -107,7 +107,6 @@ def _judge(
     # the consumers run while our other rules do (each in its own process): check takes about as long as the slowest
     if names and not structural:
         say(f"running {', '.join(names)} (and our other rules meanwhile)")
-    if names and not structural:
         preload_mesh_readers(doc)  # (before the consumers fork: they inherit it, and yourdfpy needs it too)
     pending = start_verdicts(names, text, structural=structural, package_paths=packages, base_dir=path.parent)
     findings += other_rules(doc, packages, path.parent, prefix)

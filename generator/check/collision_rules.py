@@ -10,7 +10,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from ..reader.urdf_view import Geometry, Joint, joint_tree
-from ..shared.transforms import rpy_matrix
+from ..shared.transforms import rpy_matrix, transform
 from .findings import Finding, rule_table
 from .inertia_geometry import RobotMeshes, shape_in_link
 from .urdf_document import Doc, triple_of
@@ -68,10 +68,10 @@ def collision_rules(doc: Doc, meshes: RobotMeshes) -> Iterator[Finding]:
     )
 
 
-def _file(geometry: Geometry) -> tuple[str, str]:
-    """A mesh geometry's file and scale as written (an absent scale is 1 1 1)."""
+def _file(geometry: Geometry) -> tuple[str, tuple[float, float, float]]:
+    """A mesh geometry's file and scale (an absent scale is 1 1 1, as "1.0 1.0 1.0" is)."""
     assert geometry.shape is not None
-    return geometry.shape.get("filename") or "", " ".join((geometry.shape.get("scale") or "1 1 1").split())
+    return geometry.shape.get("filename") or "", triple_of(geometry.shape.get("scale"), "1 1 1")
 
 
 def _mesh(geometry: Geometry) -> bool:
@@ -86,9 +86,9 @@ CONTACT = 0.01  # m: a link whose collision reaches this close to the lowest poi
 
 
 def ground_rules(doc: Doc, meshes: RobotMeshes) -> Iterator[Finding]:
-    """G006 on each link that touches the ground in the default pose of a robot on wheels or feet (its root is not a
-    ``world`` link) and has no mu1, mu2 or mu in a ``<gazebo reference>`` block; a note when the file has no
-    ``<gazebo>`` at all (it is not written for Gazebo)."""
+    """G006 on each link that touches the ground in the default pose of a robot on wheels or feet (not fixed to a
+    ``world`` root: :attr:`Doc.fixed_to_world`) and has no mu1, mu2 or mu (SDF's own) in a ``<gazebo reference>``
+    block of its rigid body; a note when the file has no ``<gazebo>`` at all (it is not written for Gazebo)."""
     tree = joint_tree(doc.view)
     roots = tree.roots(doc.link_names)
     if len(roots) != 1 or doc.fixed_to_world:
@@ -127,11 +127,9 @@ def ground_rules(doc: Doc, meshes: RobotMeshes) -> Iterator[Finding]:
 
 def _joint_origin(joint: Joint) -> np.ndarray:
     origin = joint.origin
-    matrix = np.eye(4)
-    if origin is not None:
-        matrix[:3, :3] = rpy_matrix(*triple_of(origin.rpy))
-        matrix[:3, 3] = triple_of(origin.xyz)
-    return matrix
+    if origin is None:
+        return np.eye(4)
+    return transform(rpy_matrix(*triple_of(origin.rpy)), triple_of(origin.xyz))
 
 
 def _lowest_points(doc: Doc, meshes: RobotMeshes, poses: dict[str, np.ndarray]) -> dict[str, float]:

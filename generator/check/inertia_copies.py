@@ -11,14 +11,15 @@ which turning or mirroring a part does not change; sizes more than SIZES apart a
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 
 import numpy as np
 
 from ..reader.urdf_view import Link
+from ..shared.solid_inertia import is_placeholder
 from .findings import Finding, rule_table
 from .inertia_geometry import MeshReach, link_reach
-from .urdf_document import Doc, number_of
+from .urdf_document import Doc
 
 RULES = rule_table(
     {
@@ -32,25 +33,6 @@ RULES = rule_table(
 )
 
 SIZES = 1.25  # two geometries whose sizes differ by more than this factor are different parts
-_ENTRIES = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
-_PLACEHOLDERS = (1.0, 0.1, 0.01, 1e-3, 1e-4, 1e-5, 1e-6)  # (as I005's)
-
-
-def _inertial_key(link: Link) -> tuple[float, ...] | None:
-    """(mass, ixx, ixy, ixz, iyy, iyz, izz) when the link has a mass and a tensor that is neither zero nor a round
-    placeholder, else None."""
-    inertial = link.inertial
-    if inertial is None or inertial.inertia is None or inertial.mass is None:
-        return None
-    mass = number_of({"value": inertial.mass}, "value", math.nan)
-    entries = tuple(number_of(inertial.inertia, key, 0.0) or 0.0 for key in _ENTRIES)
-    values = (mass or math.nan, *entries)
-    if not all(math.isfinite(v) for v in values) or not values[0] > 0 or not any(entries):
-        return None
-    ixx, ixy, ixz, iyy, iyz, izz = entries
-    if ixy == ixz == iyz == 0 and ixx == iyy == izz and ixx in _PLACEHOLDERS:
-        return None
-    return values
 
 
 def _size(link: Link, meshes: MeshReach | None) -> float | None:
@@ -63,15 +45,17 @@ def _size(link: Link, meshes: MeshReach | None) -> float | None:
     return size if math.isfinite(size) and size > 0 else None
 
 
-def copied_inertias(doc: Doc, meshes: MeshReach | None, significant: set[str]) -> Iterator[Finding]:
+def copied_inertias(
+    doc: Doc, meshes: MeshReach | None, significant: Mapping[str, tuple[float, tuple[float, ...]]]
+) -> Iterator[Finding]:
     """I009 on each link whose inertial equals an earlier link's of a different size (named in the message), among
-    the ``significant`` links (a tenth of their rigid body's mass or more, as I004 and I005: a 0.1 g dummy inertial
-    on a sensor frame is nobody's copy worth a warning)."""
+    the ``significant`` links (name -> mass and tensor entries: a tenth of their rigid body's mass or more, as I004
+    and I005 judge; a 0.1 g dummy inertial on a sensor frame is nobody's copy worth a warning)."""
     groups: dict[tuple[float, ...], list[Link]] = {}
     for link in doc.view.links:
-        key = _inertial_key(link) if link.name in significant else None
-        if key is not None:
-            groups.setdefault(key, []).append(link)
+        mass, entries = significant.get(link.name, (0.0, ()))
+        if any(entries) and not is_placeholder(*entries):
+            groups.setdefault((mass, *entries), []).append(link)
     for key, links in groups.items():
         if len(links) < 2:
             continue

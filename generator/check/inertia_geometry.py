@@ -27,7 +27,7 @@ from __future__ import annotations
 import io
 import math
 import os
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -35,6 +35,7 @@ from typing import Any
 import numpy as np
 
 from ..reader.urdf_view import Geometry, Link, Shape
+from ..shared.solid_inertia import box_moments, combine, cylinder_moments, sphere_moment, tensor
 from ..shared.transforms import rpy_matrix
 from .findings import Finding, rule_table
 from .urdf_document import Doc, number_of, triple_of
@@ -55,7 +56,9 @@ RULES = rule_table(
 TOLERANCE = 1.5  # a bound exceeded by more than this factor is a finding (the bounds are exact; see the docs)
 RIM = 128  # points on each rim of a cylinder: the farthest point is missed by at most 1 - cos(pi / RIM) = 0.03%
 SPHERE = 512  # points on a sphere (Fibonacci lattice): its reach is missed by about 1%
-MARKER = 0.005  # m: geometry no larger than this is a marker, not the body's shape (as I004)
+MARKER = 0.005  # m: geometry no larger than this is a marker, not the body's shape (I004 too)
+MAX_TURNS = 32  # distinct shape turns whose axes are asked (beyond, the tensor's, link's and points' axes remain)
+DIRECTIONS_AT_ONCE = 8  # directions taken in one product with the points (bounds its memory)
 
 
 @dataclass(frozen=True)
@@ -76,10 +79,11 @@ class Reach:
 
     points: np.ndarray
     pieces: tuple[tuple[Callable[[], Solid | None], np.ndarray, np.ndarray], ...]
-    axes: np.ndarray  # (each shape's own axes in the link frame, 3 rows a shape: a turned box's face normals)
+    axes: np.ndarray  # (the shapes' own axes in the link frame, each once: a turned box's face normals)
+    filled: str = "collision"  # (which geometry the solid fills: collision, else visual)
 
     def solid(self) -> Solid | None:
-        """The uniform solid (None when a piece has no volume to fill)."""
+        """The uniform solid (None when a piece has no volume to fill, or its mesh no longer reads)."""
         return _filling([(make(), turn, shift) for make, turn, shift in self.pieces])
 
 
@@ -106,23 +110,22 @@ def _primitive_solid(shape: Shape) -> tuple[np.ndarray, Solid] | None:
     if shape.kind == "box":
         x, y, z = triple_of(shape.get("size"))
         corners = np.array([[a * x, b * y, c * z] for a in (-0.5, 0.5) for b in (-0.5, 0.5) for c in (-0.5, 0.5)])
-        tensor = np.diag([y * y + z * z, x * x + z * z, x * x + y * y]) / 12.0
-        return corners, Solid(x * y * z, np.zeros(3), tensor, "box")
+        return corners, Solid(x * y * z, np.zeros(3), np.diag(box_moments(1.0, x, y, z)), "box")
     if shape.kind == "cylinder":
         r, length = number_of(shape.attributes, "radius", math.nan), number_of(shape.attributes, "length", math.nan)
         assert r is not None and length is not None  # (a default is given)
         turn = np.linspace(0.0, 2.0 * math.pi, RIM, endpoint=False)
         rim = np.stack([r * np.cos(turn), r * np.sin(turn), np.zeros(RIM)], axis=1)
         points = np.concatenate([rim + [0.0, 0.0, -length / 2], rim + [0.0, 0.0, length / 2]])
-        side = (3 * r * r + length * length) / 12.0
-        return points, Solid(math.pi * r * r * length, np.zeros(3), np.diag([side, side, r * r / 2]), "cylinder")
+        about, across = cylinder_moments(1.0, r, length)
+        return points, Solid(math.pi * r * r * length, np.zeros(3), np.diag([across, across, about]), "cylinder")
     if shape.kind == "sphere":
         r = number_of(shape.attributes, "radius", math.nan)
         assert r is not None
         index = np.arange(SPHERE) + 0.5
         polar, around = np.arccos(1.0 - 2.0 * index / SPHERE), math.pi * (1.0 + math.sqrt(5.0)) * index
         points = r * np.stack([np.cos(around) * np.sin(polar), np.sin(around) * np.sin(polar), np.cos(polar)], 1)
-        return points, Solid(4.0 / 3.0 * math.pi * r**3, np.zeros(3), np.eye(3) * 0.4 * r * r, "sphere")
+        return points, Solid(4.0 / 3.0 * math.pi * r**3, np.zeros(3), np.eye(3) * sphere_moment(1.0, r), "sphere")
     return None
 
 
@@ -134,8 +137,11 @@ def link_reach(link: Link, meshes: MeshReach | None) -> Reach | None:
         return None
     filling = {id(g) for g in (link.collisions or link.visuals)}
     pieces = tuple(p[1:] for g, p in zip(every, placed, strict=True) if p is not None and id(g) in filling)
-    axes = np.concatenate([p[2].T for p in placed if p is not None])
-    return Reach(np.concatenate([p[0] for p in placed if p is not None]), pieces, axes)
+    # each distinct turn's axes once (a CAD link of 300 parts placed unturned adds three directions, not 900)
+    turns = {np.round(p[2], 9).tobytes(): p[2] for p in placed if p is not None}
+    axes = np.concatenate([turn.T for turn in list(turns.values())[:MAX_TURNS]])
+    points = np.concatenate([p[0] for p in placed if p is not None])
+    return Reach(points, pieces, axes, "collision" if link.collisions else "visual")
 
 
 def shape_in_link(
@@ -155,64 +161,78 @@ def shape_in_link(
 
 
 def _filling(solids: Sequence[tuple[Solid | None, np.ndarray, np.ndarray]]) -> Solid | None:
-    """The solids of a link's collision geometry (else visual) as one uniform solid in the link frame (overlaps
-    counted twice: a message's approximation), None when one of them has no volume."""
+    """The solids of a link's collision geometry (else visual) as one uniform solid in the link frame, each weighing
+    its volume (overlaps counted twice: a message's approximation), None when one of them has no volume."""
     if not solids or any(s is None or not s.volume > 0 for s, _, _ in solids):
         return None
-    volume = math.fsum(s.volume for s, _, _ in solids if s is not None)
-    centre = sum((s.volume * (turn @ s.center + shift) for s, turn, shift in solids if s is not None), np.zeros(3))
-    centre = centre / volume
-    tensor = np.zeros((3, 3))
-    for solid, turn, shift in solids:
-        assert solid is not None
-        offset = turn @ solid.center + shift - centre
-        moved = offset @ offset * np.eye(3) - np.outer(offset, offset)
-        tensor += solid.volume / volume * (turn @ solid.unit_tensor @ turn.T + moved)
+    pieces = [(s.volume, turn @ s.center + shift, turn, s.volume * s.unit_tensor) for s, turn, shift in solids if s]
+    volume, centre, tensor = combine(pieces)
     kind = solids[0][0].kind if len(solids) == 1 and solids[0][0] is not None else "solid"
-    return Solid(volume, centre, tensor, kind)
+    return Solid(volume, centre, tensor / volume, kind)
 
 
 def geometry_finding(doc: Doc, link: Link, mass: float, entries: Sequence[float], reach: Reach) -> Finding | None:
     """I008 for a link of ``mass`` (kg) whose tensor entries (ixx, ixy, ixz, iyy, iyz, izz) are a rigid body's."""
-    ixx, ixy, ixz, iyy, iyz, izz = entries
     origin = link.inertial.origin if link.inertial is not None else None
     turn = rpy_matrix(*triple_of(origin.rpy)) if origin is not None else np.eye(3)
     centre = np.array(triple_of(origin.xyz) if origin is not None else (0.0, 0.0, 0.0))
-    tensor = turn @ np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]]) @ turn.T  # (in the link frame)
+    stated = turn @ tensor(*entries) @ turn.T  # (in the link frame)
     with np.errstate(all="ignore"):  # (a size of 1e308 overflows: such a link is not judged, U002 says why)
         spans = reach.points.max(axis=0) - reach.points.min(axis=0)
         offsets = reach.points - centre
         spread = np.cov(reach.points.T) if len(reach.points) > 1 else np.eye(3)  # (the geometry's own axes)
-        usable = all(np.isfinite(a).all() for a in (tensor, offsets, spread, spans, mass * offsets * offsets))
+        usable = all(np.isfinite(a).all() for a in (stated, offsets, spread, spans, mass * offsets * offsets))
         if not usable or max(spans) <= MARKER:
             return None
         # the tensor's principal axes, the link's, the shapes' own and the points' principal axes (a mesh's part)
-        directions = np.array([*np.linalg.eigh(tensor)[1].T, *np.eye(3), *reach.axes, *np.linalg.eigh(spread)[1].T])
-        along = np.square(offsets @ directions.T)  # (points x directions, in one product)
-        farthest = (np.square(offsets).sum(axis=1)[:, None] - along).max(axis=0)  # (from each axis)
+        directions = np.array([*np.linalg.eigh(stated)[1].T, *np.eye(3), *reach.axes, *np.linalg.eigh(spread)[1].T])
+        squared = np.square(offsets).sum(axis=1)
         worst = max(
             (
-                _excess(tensor, mass, n, mass * float(f), mass * float(a))
-                for n, f, a in zip(directions, farthest, along.max(axis=0), strict=True)
+                _excess(stated, mass, n, mass * most_moment, mass * most_spread)
+                for start in range(0, len(directions), DIRECTIONS_AT_ONCE)  # (memory: points x a few directions)
+                for n, most_moment, most_spread in _bounds(
+                    offsets, squared, directions[start : start + DIRECTIONS_AT_ONCE]
+                )
             ),
             key=lambda e: e[0],
         )
     if worst[0] <= TOLERANCE:
         return None
-    return doc.finding("I008", "link", link.name, worst[1] + _solid_note(reach.solid(), mass, turn), link.element)
+    note = _solid_note(reach.solid(), mass, turn, reach.filled)
+    return doc.finding("I008", "link", link.name, worst[1] + note, link.element)
+
+
+def _bounds(
+    offsets: np.ndarray, squared: np.ndarray, directions: np.ndarray
+) -> Iterator[tuple[np.ndarray, float, float]]:
+    """For each direction n: n, the largest squared distance of the points from the axis along n, and the largest
+    squared reach along n (m^2; times the mass they bound the moment and the spread)."""
+    along = np.square(offsets @ directions.T)
+    farthest = (squared[:, None] - along).max(axis=0)
+    for n, most_moment, most_spread in zip(directions, farthest, along.max(axis=0), strict=True):
+        yield n, float(most_moment), float(most_spread)
+
+
+def _ratio(value: float, most: float, scale: float) -> float:
+    """How many times ``value`` is its bound ``most``: 0 for a value of nothing (to rounding of ``scale``), however
+    small the bound (a flat plate's spread across itself, a rod's moment about itself)."""
+    if value <= 1e-9 * scale:
+        return 0.0
+    return value / most if most > 0 else math.inf
 
 
 def _excess(
-    tensor: np.ndarray, mass: float, n: np.ndarray, most_moment: float, most_spread: float
+    stated: np.ndarray, mass: float, n: np.ndarray, most_moment: float, most_spread: float
 ) -> tuple[float, str]:
     """How far the tensor passes the larger of the two bounds along ``n`` (a ratio), and the message saying it:
     ``most_moment`` and ``most_spread`` are the bounds (kg*m^2) of the moment about the axis along ``n`` and of the
     spread along it."""
-    moment = float(n @ tensor @ n)
-    spread = float(np.trace(tensor) / 2.0 - moment)
+    moment = float(n @ stated @ n)
+    trace = float(np.trace(stated))
+    spread = trace / 2.0 - moment
     axis = _axis_name(n)
-    ratio_moment = moment / most_moment if most_moment > 0 else math.inf
-    ratio_spread = spread / most_spread if most_spread > 0 else math.inf
+    ratio_moment, ratio_spread = _ratio(moment, most_moment, trace), _ratio(spread, most_spread, trace)
     if ratio_moment >= ratio_spread:
         return ratio_moment, (
             f"its moment about {axis} through the centre of mass, {moment:.3g} kg*m^2, is {ratio_moment:.3g} times "
@@ -235,7 +255,7 @@ def _axis_name(n: np.ndarray) -> str:
     return f"the axis ({n[0]:.3g}, {n[1]:.3g}, {n[2]:.3g})"
 
 
-def _solid_note(solid: Solid | None, mass: float, turn: np.ndarray) -> str:
+def _solid_note(solid: Solid | None, mass: float, turn: np.ndarray, filled: str) -> str:
     """'; a uniform box of 0.5 kg filling its collision geometry has ixx, iyy, izz = ...' in the inertial frame."""
     if solid is None:
         return ""
@@ -243,7 +263,7 @@ def _solid_note(solid: Solid | None, mass: float, turn: np.ndarray) -> str:
     values = ", ".join(f"{v:.3g}" for v in np.diag(tensor))
     products = np.abs(tensor - np.diag(np.diag(tensor))).max()
     more = f" (and products up to {products:.3g})" if products > 1e-3 * np.abs(tensor).max() else ""
-    said = f"a uniform {solid.kind} of {mass:.4g} kg filling its collision geometry"
+    said = f"a uniform {solid.kind} of {mass:.4g} kg filling its {filled} geometry"
     return f"; {said} has ixx, iyy, izz = {values}{more} kg*m^2"
 
 
@@ -272,7 +292,16 @@ class RobotMeshes:
         facts = self._facts(filename)
         if facts is None:
             return None
-        return facts[0] * np.asarray(scale, dtype=float), lambda: _enclosed(self.read_solid(filename).mesh, scale)
+        return facts[0] * np.asarray(scale, dtype=float), lambda: self._solid(filename, scale)
+
+    def _solid(self, filename: str, scale: tuple[float, float, float]) -> Solid | None:
+        """The solid for a finding's message (None when trimesh cannot read the file numpy-stl read, or make it)."""
+        from ..errors import XacrokitError
+
+        try:
+            return _enclosed(self.read_solid(filename).mesh, scale)
+        except XacrokitError:
+            return None
 
     def triangles(self, filename: str) -> int | None:
         """How many triangles the mesh has (None: it cannot be read)."""
@@ -340,14 +369,18 @@ def _mesh_points(data: bytes, suffix: str, said: str) -> tuple[np.ndarray, int]:
 
 
 def _enclosed(mesh: Any, scale: tuple[float, float, float]) -> Solid | None:
-    """The uniform solid a mesh encloses (closed and consistently wound: its own, else its convex hull's)."""
+    """The uniform solid a mesh encloses (closed and consistently wound: its own, else its convex hull's; None when
+    it has no volume, or qhull refuses its points)."""
     body = mesh
     body.vertices = body.vertices * np.asarray(scale, dtype=float)
     if float(np.prod(scale)) < 0:
         body.invert()
     body.merge_vertices()
-    if not (body.is_watertight and body.is_winding_consistent and body.volume > 0):
-        body = body.convex_hull
+    try:
+        if not (body.is_watertight and body.is_winding_consistent and body.volume > 0):
+            body = body.convex_hull
+    except Exception:  # noqa: BLE001  (qhull refuses a flat or degenerate set: no solid to name)
+        return None
     if not body.volume > 0:
         return None
     body.density = 1.0

@@ -11,10 +11,17 @@ from typing import Any
 
 from ..reader.urdf_view import Link, Shape
 from ..shared.joint_types import MOVING
-from ..shared.solid_inertia import TOLERANCE, describe_problem, format_moments, moments_problem, principal_moments
+from ..shared.solid_inertia import (
+    TOLERANCE,
+    describe_problem,
+    format_moments,
+    is_placeholder,
+    moments_problem,
+    principal_moments,
+)
 from .findings import Finding, rule_table
 from .inertia_copies import copied_inertias
-from .inertia_geometry import MeshReach, geometry_finding, link_reach
+from .inertia_geometry import MARKER, MeshReach, geometry_finding, link_reach
 from .urdf_document import Doc, number_of, triple_of
 
 RULES = rule_table(
@@ -63,7 +70,6 @@ RULES = rule_table(
 )
 
 _INERTIA = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
-_PLACEHOLDERS = (1.0, 0.1, 0.01, 1e-3, 1e-4, 1e-5, 1e-6)
 
 
 def _geometry_extent(shape: Shape | None) -> tuple[float, float, float] | None:
@@ -82,7 +88,6 @@ def _geometry_extent(shape: Shape | None) -> tuple[float, float, float] | None:
     return None
 
 
-MARKER = 0.005  # m: a collision geometry no larger is a marker, not the body's shape (I004)
 SIGNIFICANT = 0.1  # of its rigid body's mass: a link below it is judged with its body, not on its own (I004, I005)
 ZERO_MOMENT = 1e-12  # kg*m^2: below it every principal moment is zero (a 1 g, 1 mm part has about 1e-10)
 
@@ -136,7 +141,8 @@ class _Context:
     moved_bodies: set[str]
     said_base: set[str] = field(default_factory=set)
     meshes: MeshReach | None = None  # (I008: a mesh's convex hull and solid; None: meshes are not read)
-    significant: set[str] = field(default_factory=set)  # (links judged on their own: I009 compares them)
+    # (links judged on their own, with their mass and tensor entries: I009 compares them)
+    significant: dict[str, tuple[float, tuple[float, ...]]] = field(default_factory=dict)
 
 
 def _context(doc: Doc) -> _Context:
@@ -168,7 +174,7 @@ def inertia_rules(doc: Doc, meshes: MeshReach | None = None) -> Iterator[Finding
 
 
 def _link_inertia(doc: Doc, context: _Context, view: Link, entry: Any, moments: Any) -> Iterator[Finding]:
-    """One link's I001-I007, in the order a reader fixes them: the mass, then the tensor, then its size."""
+    """One link's I001-I008, in the order a reader fixes them: the mass, then the tensor, then its size."""
     name, link = view.name, view.element
     body, mass = context.bodies.body(name), context.masses[name]
     inertial = view.inertial
@@ -212,7 +218,7 @@ def _link_inertia(doc: Doc, context: _Context, view: Link, entry: Any, moments: 
     # a link of a tenth of its body's mass or less (an IMU frame on a trunk) changes the body's dynamics by little:
     # a placeholder or an odd size there is no mistake worth a warning
     if mass and mass >= SIGNIFICANT * context.bodies.mass.get(body, 0.0):
-        context.significant.add(name)
+        context.significant[name] = (mass, tuple(entry))
         yield from _placeholder(doc, link, name, entry)
         yield from _plausibility(doc, view, mass, sum(moments))
         reach = link_reach(view, context.meshes)
@@ -253,8 +259,8 @@ def _massless(doc: Doc, context: _Context, view: Link, body: str) -> Iterator[Fi
 
 def _placeholder(doc: Doc, link: Any, name: str, entry: tuple[float, ...]) -> Iterator[Finding]:
     """I005: a round multiple of the identity, the placeholder tensor."""
-    ixx, ixy, ixz, iyy, iyz, izz = entry
-    if ixy == ixz == iyz == 0 and ixx == iyy == izz and ixx in _PLACEHOLDERS:
+    ixx = entry[0]
+    if is_placeholder(*entry):
         yield doc.finding(
             "I005",
             "link",

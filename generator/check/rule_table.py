@@ -23,7 +23,7 @@ RULES: dict[str, Row] = {
     **inertia.RULES,  # I001-I007
     **inertia_geometry.RULES,  # I008
     **inertia_copies.RULES,  # I009
-    **collision_rules.RULES,  # G005
+    **collision_rules.RULES,  # G005, G006
     **references.RULES,  # R001-R003, P001
     **sensors.RULES,  # G002-G004
     **spec.RULES,  # K001, V001, V002

@@ -3,12 +3,13 @@ and findings placed at the line they are about."""
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Mapping
 
 from lxml import etree
 
-from ..reader.urdf_view import view_of
+from ..reader.urdf_view import joint_tree, view_of
 from ..shared.xml_parse import parse_urdf
 from .findings import Finding, Severity, rule_table, severity
 
@@ -63,14 +64,14 @@ class Doc:
         self.link_names = {link.name for link in self.view.links}
         self.joint_by_name = {joint.name: joint.element for joint in self.view.joints}
 
-    @property
+    @functools.cached_property
     def fixed_to_world(self) -> bool:
         """Whether the robot is fixed to the world: its one root link is named ``world`` (any case) and has no
         geometry (the convention of fixed-base descriptions: a KUKA's ``world`` -> ``base_link``). Its base then needs
         no mass (I007) and nothing of it rolls or walks (G006)."""
-        children = {joint.child for joint in self.view.joints}
-        roots = [link for link in self.view.links if link.name not in children]
-        return len(roots) == 1 and roots[0].name.lower() == "world" and not (roots[0].visuals or roots[0].collisions)
+        roots = joint_tree(self.view).roots(self.link_names)
+        root = self.view.link(roots[0]) if len(roots) == 1 else None
+        return root is not None and root.name.lower() == "world" and not (root.visuals or root.collisions)
 
     def finding(
         self,

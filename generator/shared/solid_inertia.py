@@ -91,6 +91,14 @@ def combine(parts: Sequence[tuple[float, np.ndarray, np.ndarray, np.ndarray]]) -
     return total, center, (result + result.T) / 2.0
 
 
+PLACEHOLDERS = (1.0, 0.1, 0.01, 1e-3, 1e-4, 1e-5, 1e-6)  # kg*m^2: the round k of a k * identity placeholder tensor
+
+
+def is_placeholder(ixx: float, ixy: float, ixz: float, iyy: float, iyz: float, izz: float) -> bool:
+    """Whether six tensor entries are a round multiple of the identity (check's I005; I009 leaves them to it)."""
+    return ixy == ixz == iyz == 0 and ixx == iyy == izz and ixx in PLACEHOLDERS
+
+
 def tensor(ixx: float, ixy: float, ixz: float, iyy: float, iyz: float, izz: float) -> np.ndarray:
     """The symmetric 3x3 matrix of six inertia entries."""
     return np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]], dtype=float)

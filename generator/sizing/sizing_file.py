@@ -268,6 +268,16 @@ def _reached(
     turned = Quantities(raw)  # (the orientation in any form a robot spec's origin takes, to rpy, as validate does)
     turned.origin({"pose": {k: v for k, v in pose.items() if k != "xyz"}}, "pose", where[:-1])
     read.errors += turned.errors
+    for note in turned.warnings:  # (a sizing file has no warnings: a quaternion that is not of unit length is refused)
+        read.errors.append(
+            SpecError(
+                note.message.replace("; normalised", "; give it of length 1"),
+                file=note.file,
+                path=note.path,
+                line=note.line,
+                column=note.column,
+            )
+        )
     converted = turned.data
     for key in where:
         converted = converted[key]

@@ -24,6 +24,7 @@ from typing import Any
 from hypothesis import strategies as st
 
 from ..model import AXIAL, JOINT_TYPES, LIMITED, MOVING
+from ..shared.transforms import rpy_matrix
 
 SHAPES = ("box", "cylinder", "sphere", "capsule", "tube", "mesh", "parts", "none")
 SOLIDS = ("box", "cylinder", "sphere", "capsule", "tube")  # the shapes whose inertia has a closed form
@@ -126,20 +127,7 @@ def _turned_tensor(draw) -> dict[str, Any]:
     """A physical tensor R D R^T (D a physical diagonal, R from rpy angles) with its products, maybe in a turned and
     shifted frame (``origin``)."""
     principal = draw(_physical_tensor())
-    roll, pitch, yaw = (draw(st.floats(-math.pi, math.pi)) for _ in range(3))
-    cr, sr, cp, sp, cy, sy = (
-        math.cos(roll),
-        math.sin(roll),
-        math.cos(pitch),
-        math.sin(pitch),
-        math.cos(yaw),
-        math.sin(yaw),
-    )
-    turn = [  # Rz(yaw) Ry(pitch) Rx(roll)
-        [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-        [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-        [-sp, cp * sr, cp * cr],
-    ]
+    turn = rpy_matrix(*(draw(st.floats(-math.pi, math.pi)) for _ in range(3))).tolist()
     moments = (principal["ixx"], principal["iyy"], principal["izz"])
     element = [[sum(turn[i][k] * moments[k] * turn[j][k] for k in range(3)) for j in range(3)] for i in range(3)]
     tensor: dict[str, Any] = {"ixx": element[0][0], "iyy": element[1][1], "izz": element[2][2]}

@@ -17,7 +17,7 @@ reflects it through a plane through the origin of J's parent link. S, the reflec
   [pi - max, pi - min] for yz (a full turn is kept as it is), elevations negated for xy.
 
 So pose(mirror(L)) = S pose(L) S in J's parent frame for every link L of the subtree and any joint values set equally
-on each joint and its copy (tests/validate/test_mirror.py checks it with pinocchio on random limbs).
+on each joint and its copy (tests/validate/test_mirror.py checks it with yourdfpy on random limbs).
 
 It runs after the units pass (the numbers are SI) and before every other check, which see the copies as if the spec
 had written them; a copy's problems are located at what it was copied from (:class:`~xacrokit.load.RawSpec` aliases).
@@ -33,6 +33,7 @@ from typing import Any
 
 from ..errors import SpecError
 from ..load import PathKey, RawSpec, json_path
+from ..shared.kinematic_tree import Tree
 from ..shared.sim_sensors import FULL_TURN, resolve_sensor
 from ..shared.value_text import did_you_mean
 from .bodies import bodies
@@ -135,25 +136,24 @@ class Subtree:
 def subtree(data: Mapping[str, Any], joint: str) -> Subtree | None:
     """What hangs below ``joint`` (None when it loops back to its own parent: the tree check says so)."""
     joints, frames = data.get("joints", {}), data.get("frames", {})
-    below: dict[str, list[tuple[str, str]]] = {}
+    tree: Tree[tuple[str, str]] = Tree()
     for name, item in joints.items():
-        below.setdefault(item["parent"], []).append(("joint", name))
+        tree.add(item["parent"], item["child"], ("joint", name))
     for name, item in frames.items():
-        below.setdefault(item["parent"], []).append(("frame", name))
-    found, seen = Subtree(), {joints[joint]["parent"]}
-    queue = [("joint", joint)]
-    while queue:
-        kind, name = queue.pop(0)
-        body = joints[name]["child"] if kind == "joint" else name
-        if body in seen:
-            return None
-        seen.add(body)
+        tree.add(item["parent"], name, ("frame", name))
+    top = joints[joint]["child"]
+    if tree.parent_of.get(top, (None, ("joint", joint)))[1] != ("joint", joint):
+        return None  # (its child has another parent first: the tree check says so)
+    edges = tree.down([top], ("joint", joint), lambda _, edge: edge)  # (each body below, by the edge that hangs it)
+    if joints[joint]["parent"] in edges:
+        return None
+    found = Subtree()
+    for body, (kind, name) in edges.items():
         if kind == "joint":
             found.joints.append(name)
             found.links += [body] if body in data.get("links", {}) else []
         else:
             found.frames.append(name)
-        queue += below.get(body, [])
     return found
 
 
@@ -311,7 +311,15 @@ class _Entry:
                         + (" (give the sensor a `topic`)" if kind == "sensor topic" else ""),
                     )
                 )
-            elif not re.fullmatch(patterns[kind], new):
+            elif len(new) > patterns[kind][1]:
+                self.problems.append(
+                    (
+                        where,
+                        f"the mirror of {kind} {name!r} would be named with {len(new):,} characters, beyond the "
+                        f"{patterns[kind][1]} a name may have",
+                    )
+                )
+            elif not re.fullmatch(patterns[kind][0], new):
                 self.problems.append((where, f"the mirror of {kind} {name!r} would be named {new!r}, not a valid name"))
             elif kind != "sensor topic" and new in taken:
                 self.problems.append(
@@ -319,18 +327,19 @@ class _Entry:
                 )
 
 
-def _patterns() -> dict[str, str]:
-    """The schema's name patterns, by the kind of name a copy carries."""
+def _patterns() -> dict[str, tuple[str, int]]:
+    """The schema's name patterns and longest lengths, by the kind of name a copy carries."""
     definitions = robot_schema()["$defs"]
-    urdf, identifier = definitions["urdf_name"]["pattern"], definitions["identifier"]["pattern"]
-    topic = definitions["sensor"]["properties"]["topic"]["pattern"]
+    urdf = (definitions["urdf_name"]["pattern"], definitions["urdf_name"]["maxLength"])
+    identifier = (definitions["identifier"]["pattern"], definitions["identifier"]["maxLength"])
+    topic_schema = definitions["sensor"]["properties"]["topic"]
     return {
         "link": urdf,
         "joint": urdf,
         "frame": identifier,
         "frame joint": identifier,
         "optical frame": urdf,
-        "sensor topic": topic,
+        "sensor topic": (topic_schema["pattern"], topic_schema["maxLength"]),
     }
 
 
@@ -343,11 +352,14 @@ def mirrored(
     ``parsed``: every quantity read (else a lidar's rays are not turned: their values may still be text)."""
     aliases: dict[PathKey, PathKey] = {}
     errors: list[SpecError] = []
+    unmade: set[str] = set()  # (the names entries that failed would have made)
     for index, given in enumerate(data.get("mirror", ())):
         entry = _Entry(data, given, ("mirror", index), parsed=parsed)
         made = entry.copy()
-        if not (errors and entry.missing):  # (a joint an earlier entry that failed would have made: said there)
+        if not (entry.missing and entry.joint in unmade):  # (its joint is an earlier failed copy's: said there)
             errors += [raw.error(path, message) for path, message in entry.problems]
+        if entry.problems:
+            unmade.update(new for _, _, new in entry.names)
         if made is not None and len(aliases) + len(made.aliases) > MAX_COPIES:
             message = (
                 f"the mirrors up to this one would make {len(aliases) + len(made.aliases):,} links, joints, frames and "
@@ -366,16 +378,9 @@ def copies_said(errors: list[SpecError], aliases: Mapping[PathKey, PathKey]) -> 
     """``errors`` without a copy's error at the position of one its source has (said once, at the source); a copy's
     other errors name what it was copied from."""
     made = {json_path(path): json_path(source) for path, source in aliases.items()}
-
-    def source(error: SpecError) -> str | None:
-        for path, origin in made.items():
-            if error.path == path or error.path.startswith((path + ".", path + "[")):
-                return origin
-        return None
-
-    plain = {(e.line, e.column) for e in errors if source(e) is None}
-    for error in errors:
-        origin = source(error)
+    origins = [_made_from(error.path, made) for error in errors]
+    plain = {(e.line, e.column) for e, origin in zip(errors, origins, strict=True) if origin is None}
+    for error, origin in zip(errors, origins, strict=True):
         if origin is None:
             yield error
         elif (error.line, error.column) not in plain:
@@ -383,3 +388,12 @@ def copies_said(errors: list[SpecError], aliases: Mapping[PathKey, PathKey]) -> 
             yield type(error)(
                 error.message + note, file=error.file, path=error.path, line=error.line, column=error.column
             )
+
+
+def _made_from(path: str, made: Mapping[str, str]) -> str | None:
+    """The source of the copy ``path`` (a JSON path) lies in, or None: each of its prefixes that ends a key looked up
+    once (linear in the path, whatever the number of copies)."""
+    for end in [i for i, c in enumerate(path) if c in ".["] + [len(path)]:
+        if path[:end] in made:
+            return made[path[:end]]
+    return None

@@ -170,8 +170,11 @@ def hull_errors(raw: RawSpec, data: dict[str, Any]) -> list[SpecError]:
                 )
             )
             continue
+        filename = shape["mesh"]["filename"]
+        if is_relative(filename) and not (Path(raw.file).parent / filename).is_file():
+            continue  # (mesh_files_errors says the file is not there)
         try:
-            mesh_hull(mesh_path(shape["mesh"]["filename"], raw.file))
+            mesh_hull(mesh_path(filename, raw.file))
         except MeshError as exc:
             errors.append(raw.error(("links", name, "shape", "mesh", "filename"), f"collision: hull: {exc}"))
     return errors

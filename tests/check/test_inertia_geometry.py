@@ -164,3 +164,16 @@ def test_a_copied_inertial_is_named_and_mirrored_parts_share_theirs(tmp_path):
     assert _two_parts(tmp_path, '<box size="0.1 0.1 0.03"/>', '<box size="0.03 0.1 0.1"/>') == []
     assert _two_parts(tmp_path, '<box size="0.1 0.1 0.03"/>', '<box size="0.2 0.2 0.06"/>') == ["I009 right"]
     assert _two_parts(tmp_path, '<cylinder radius="0.05" length="0.1"/>', '<sphere radius="0.2"/>') == ["I009 right"]
+
+
+def test_a_flat_plates_own_tensor_passes_and_many_shapes_are_judged_in_bounded_memory(tmp_path):
+    """A plate of no thickness (box 1 x 1 x 0) with a plate's tensor: its spread across itself is 0 and so is its
+    bound, which is no excess. A link of 400 spheres (200,000 points) is judged as one of a few."""
+    plate = np.diag([1 / 12, 1 / 12, 1 / 6])
+    assert _i008(tmp_path, _urdf('<box size="1 1 0"/>', 1.0, plate)) == []
+    spheres = "".join(
+        f'<visual><origin xyz="{0.01 * k!r} 0 0"/><geometry><sphere radius="0.05"/></geometry></visual>'
+        for k in range(400)
+    )
+    text = _urdf('<sphere radius="0.05"/>', 1.0, np.eye(3) * 1e-3).replace("<visual>", spheres + "<visual>", 1)
+    assert _i008(tmp_path, text) == []  # (a row of spheres 4 m long: 1e-3 fits)

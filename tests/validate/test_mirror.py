@@ -286,7 +286,10 @@ def test_a_mirror_that_cannot_copy_says_why_at_its_entry(change, path, words, tm
     assert found, raised.value
     entries = [n for n, line in enumerate(text.splitlines(), 1) if line.startswith("  - {joint:")]
     assert found[0].line == entries[int(path[len("$.mirror[")])]  # (at its entry's line)
-    assert not [e for e in raised.value.errors if e.path.startswith("$.mirror[2]")]  # (said at the first entry only)
+    # a later entry's joint that a failed entry would have made is not said again; when the failed entry made no names
+    # (its joint unknown) or others (rename [lf_, 3]), the later entry's missing joint is said: it may be a typo
+    later = [e for e in raised.value.errors if e.path.startswith("$.mirror[2]")]
+    assert bool(later) == ("no joint" in words or "3hip" in words), later
 
 
 def test_a_problem_of_the_source_is_said_once_and_a_copy_is_located_at_its_source(tmp_path):
@@ -400,4 +403,14 @@ def test_any_mirror_of_any_spec_gives_a_robot_or_located_errors(data):
         assert all(error.line is not None for error in raised.errors), raised
         return
     robot = _robot(urdf)
-    assert len(robot.link_map) > len(spec["links"])  # (the copy is there)
+    copy = entry["joint"].replace(*entry["rename"])
+    assert copy != entry["joint"] and copy in robot.joint_map  # (the copy of the mirrored joint is there)
+
+
+def test_a_copys_name_may_not_outgrow_a_name(tmp_path):
+    """Renaming a to 200 characters in every name (and again in a later entry's copy) would make names longer than
+    any name may be: refused at the entry, before the copy is made."""
+    text = QUADRUPED.split("mirror:")[0] + "mirror:\n  - {joint: lf_hip_joint, rename: [f, " + "f" * 150 + "]}\n"
+    with pytest.raises(SpecErrors) as raised:
+        _quadruped(tmp_path, text)
+    assert any("characters, beyond the 200 a name may have" in e.message for e in raised.value.errors)
