@@ -71,8 +71,9 @@ def _link_errors(raw: RawSpec, link: dict[str, Any], path: PathKey) -> Iterator[
         )
     computed = isinstance(link.get("inertia"), dict) and link["inertia"].get("kind") == "mesh"
     if "mass" in link:
-        yield from _mass_error(raw, link["mass"], (*path, "mass"), link=True)
-        if "inertia" not in link and not link.get("shape"):
+        said = list(_mass_error(raw, link["mass"], (*path, "mass"), link=True))
+        yield from said
+        if not said and "inertia" not in link and not link.get("shape"):  # (a mass of 0 is said once, above)
             yield raw.error(
                 (*path, "mass"),
                 "link has a mass but no shape, so its inertia cannot be computed; give inertia: {ixx, iyy, izz, ...}",
@@ -263,5 +264,8 @@ def _mass_error(raw: RawSpec, mass: float, path: PathKey, *, link: bool = False)
     """``link``: a link's own mass, whose 0 strict: false keeps (a part's, a wheel's, a row's or a frame's stays an
     error: a composite of parts that weigh nothing has no centre of mass)."""
     if not (isinstance(mass, float) and mass > 0 and math.isfinite(mass)):
-        error = raw.error(path, f"mass must be > 0 kg, got {mass!r}")
-        yield implausible(error) if mass == 0 and link else error
+        if mass == 0 and link:  # (one message for it, whatever else the link gives: its shape, its inertia)
+            message = "mass is 0 kg: leave `mass` out for a link that weighs nothing (a frame), else give its mass (> 0)"
+            yield implausible(raw.error(path, message))
+            return
+        yield raw.error(path, f"mass must be > 0 kg, got {mass!r}")

@@ -80,3 +80,31 @@ def test_a_mesh_file_name_an_xml_file_cannot_hold_is_refused(character):
     (error,) = errors_of(data)
     assert error.path == "$.links.base_link.collision.shape.mesh.filename"
     assert f"U+{ord(character):04X}, a character an XML file (a URDF) cannot hold" in error.message
+
+
+def test_a_mass_of_zero_is_said_once_with_what_to_do(tmp_path):
+    """Issue 31: `mass: 0` used to get "has a mass but no shape" and "mass must be > 0" at once, which contradict;
+    now one message, the same with a shape or without."""
+    from xacrokit.errors import SpecErrors
+    from xacrokit.load import load_text
+    from xacrokit.validate import validate
+
+    text = """robot: m
+links:
+  base: {}
+  arm: {shape: {box: {size: [0.1, 0.1, 0.3]}}, mass: 0}
+  tip: {mass: 0}
+joints:
+  j: {type: revolute, parent: base, child: arm, axis: [0, 0, 1], limit: {lower: -1, upper: 1, effort: 1, velocity: 1}}
+  k: {type: fixed, parent: arm, child: tip}
+"""
+    with pytest.raises(SpecErrors) as raised:
+        validate(load_text(text, "m.yaml"))
+    said = [(e.path, e.message) for e in raised.value.errors]
+    assert said == [
+        (
+            f"$.links.{name}.mass",
+            "mass is 0 kg: leave `mass` out for a link that weighs nothing (a frame), else give its mass (> 0)",
+        )
+        for name in ("arm", "tip")
+    ]
