@@ -22,7 +22,8 @@ def add_size_command(commands: Any, add_xacro_options: Callable[[argparse.Argume
         description="Size PATH (a URDF, xacro document or spec) with pinocchio: for every moving joint, the largest "
         "torque its motor must produce to hold the robot still anywhere in the joints' ranges (a search; the pose "
         "is shown), with payloads on named frames and forces the environment applies at named frames; margins "
-        "against the URDF's effort limits. Gravity is 9.80665 m/s^2 along -z of the root link. Exit code 0 when "
+        "against the URDF's effort limits. Gravity is 9.80665 m/s^2 along -z of the root link unless --gravity or the "
+        "sizing file's gravity says otherwise. Exit code 0 when "
         "every margin holds, 1 when a joint needs more than its effort limit, 2 bad input.",
     )
     sz.add_argument("path", help="a .urdf, .xacro or .yaml spec")
@@ -46,6 +47,12 @@ def add_size_command(commands: Any, add_xacro_options: Callable[[argparse.Argume
         metavar="FILE",
         help="a sizing file (YAML, schemas/sizing.schema.json): payloads, loads, a motion through waypoints, drives",
     )
+    sz.add_argument(
+        "--gravity",
+        metavar="G",
+        help="gravity along -z of the root link, m/s^2 or with a unit ('9.81', '9.81 m/s2'); default the sizing "
+        "file's gravity, else standard gravity 9.80665",
+    )
     sz.add_argument("--json", action="store_true", help="print the report as JSON (schemas/size-report.schema.json)")
     sz.add_argument(
         "--report", metavar="DIR", help="also write DIR/size_report.md with PNG plots of the motion and the drives"
@@ -56,10 +63,11 @@ def add_size_command(commands: Any, add_xacro_options: Callable[[argparse.Argume
 
 
 def _cmd_size(args: argparse.Namespace) -> int:
-    from ..sizing import format_text, parse_load, parse_payload, size  # (numpy, pinocchio: for this command only)
+    from ..sizing import format_text, parse_gravity, parse_load, parse_payload, size  # (numpy, pinocchio: here only)
 
     payloads = [parse_payload(text) for text in args.payload]
     loads = [parse_load(text) for text in args.force]
+    gravity = parse_gravity(args.gravity) if args.gravity is not None else None
     report = size(
         args.path,
         parse_mappings(args.mappings),
@@ -67,6 +75,7 @@ def _cmd_size(args: argparse.Namespace) -> int:
         loads=loads,
         sizing=args.sizing,
         package_paths=parse_packages(args.package),
+        gravity=gravity,
     )
     if args.report:
         from ..sizing.report_document import write_report

@@ -23,7 +23,18 @@ from decimal import MAX_EMAX, MIN_EMIN, Context, Decimal
 from fractions import Fraction
 from typing import Literal
 
-Kind = Literal["length", "angle", "mass", "number", "angular_velocity", "linear_velocity", "torque", "force", "density"]
+Kind = Literal[
+    "length",
+    "angle",
+    "mass",
+    "number",
+    "angular_velocity",
+    "linear_velocity",
+    "torque",
+    "force",
+    "density",
+    "acceleration",
+]
 Value = Fraction | float  # exact while no pi is involved
 
 # A decimal literal as specs (JSON, YAML 1.2) and URDF files write one: sign, digits, point, exponent.
@@ -62,6 +73,7 @@ UNITS: dict[str, dict[str, Value]] = {
     },
     "force": {"N": Fraction(1), "kN": Fraction(1000), "kgf": Fraction("9.80665")},
     "density": {"kg/m3": Fraction(1), "g/cm3": Fraction(1000), "g/cc": Fraction(1000), "kg/L": Fraction(1000)},
+    "acceleration": {"m/s2": Fraction(1), "m/s/s": Fraction(1)},  # (a sizing file's gravity)
 }
 _EXACT_EXPONENT = 400  # beyond 1e±400 a number is no double anyway: read it as a float (inf or 0), not as a huge int
 

@@ -20,7 +20,7 @@ from .mobile import base_of
 from .motion import inverse_dynamics, joint_motions, trajectory
 from .size_results import SizeReport, format_text
 from .sized_robot import GRAVITY, Load, Payload, add_loads, load_robot
-from .sizing_file import Drive, Sizing, motion_of, name_errors, read_sizing
+from .sizing_file import Drive, Sizing, gravity_problem, motion_of, name_errors, read_sizing
 from .static import StaticPeak, static_peaks
 
 __all__ = [
@@ -31,6 +31,7 @@ __all__ = [
     "SizeReport",
     "StaticPeak",
     "format_text",
+    "parse_gravity",
     "parse_load",
     "parse_payload",
     "size",
@@ -45,17 +46,21 @@ def size(
     loads: Sequence[Load] = (),
     sizing: str | os.PathLike[str] | None = None,
     package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
+    gravity: float | None = None,
 ) -> SizeReport:
     """Size the joints of a URDF, xacro document or spec: the worst static torque of each over the joints' ranges,
     with the payloads and loads given (and those of the ``sizing`` file); with the sizing file's motion, the torques,
-    speeds and power along it; with its drives, the motor side.
+    speeds and power along it; with its drives, the motor side. ``gravity`` (m/s^2) overrides the sizing file's
+    ``gravity``; both unset, standard gravity (9.80665).
 
     Raises:
         XacrokitError: unreadable input, an unknown frame, or a robot with nothing to size.
         SpecErrors: an invalid spec or sizing file (located).
     """
     asked = read_sizing(sizing) if sizing is not None else Sizing()
-    robot = load_robot(path, mappings, package_paths=package_paths)
+    # (gravity: the argument, else the sizing file's, else standard gravity)
+    pulled = gravity if gravity is not None else asked.gravity if asked.gravity is not None else GRAVITY
+    robot = load_robot(path, mappings, package_paths=package_paths, gravity=pulled)
     problems = name_errors(asked, robot)
     if problems:
         raise SpecErrors(problems)
@@ -92,6 +97,18 @@ def parse_payload(text: str) -> Payload:
     if beyond is not None:
         raise XacrokitError(f"--payload {text!r}: {beyond}")
     return Payload(frame=frame, mass=mass)
+
+
+def parse_gravity(text: str) -> float:
+    """``--gravity``: m/s^2 as a number or with a unit ('9.81', '9.81 m/s2'), from 0 to MOST_GRAVITY."""
+    try:
+        gravity = parse_quantity(text, "acceleration")
+    except UnitError as exc:
+        raise XacrokitError(f"--gravity {text!r}: {exc}") from None
+    problem = gravity_problem(gravity)
+    if problem is not None:
+        raise XacrokitError(f"--gravity {text!r}: {problem}")
+    return gravity
 
 
 def parse_load(text: str) -> Load:

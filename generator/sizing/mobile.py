@@ -102,9 +102,9 @@ def whole_mass(text: str, extra: float) -> float:
     return float(pin.computeTotalMass(pin.buildModelFromXML(text, pin.JointModelFreeFlyer()))) + extra
 
 
-def size_base(drive: BaseMotion, wheels: Sequence[Wheel], mass: float) -> BaseSizing:
-    """The closed form of the module's notes."""
-    force = mass * drive.acceleration + mass * GRAVITY * (
+def size_base(drive: BaseMotion, wheels: Sequence[Wheel], mass: float, gravity: float = GRAVITY) -> BaseSizing:
+    """The closed form of the module's notes (``gravity`` in m/s^2)."""
+    force = mass * drive.acceleration + mass * gravity * (
         math.sin(drive.slope) + drive.rolling_resistance * math.cos(drive.slope)
     )
     share = force / len(wheels)
@@ -114,7 +114,7 @@ def size_base(drive: BaseMotion, wheels: Sequence[Wheel], mass: float) -> BaseSi
     return BaseSizing(mass, force, tuple(wheels), torques, speeds, powers)
 
 
-def dynamics_force(text: str, drive: BaseMotion, extra: float) -> float:
+def dynamics_force(text: str, drive: BaseMotion, extra: float, gravity: float = GRAVITY) -> float:
     """The check beside the closed form: the force along the slope that pinocchio's inverse dynamics needs on a
     free-flyer root to accelerate the whole robot (joints still, ``extra`` kg of payload on the root) at ``a`` up
     the slope, gravity turned by it: m a + m g sin(theta) when the closed form is right (rolling resistance is not a
@@ -125,7 +125,7 @@ def dynamics_force(text: str, drive: BaseMotion, extra: float) -> float:
     if extra:
         model.appendBodyToJoint(1, pin.Inertia(extra, np.zeros(3), np.zeros((3, 3))), pin.SE3.Identity())
     model.gravity = pin.Motion(
-        np.array([-GRAVITY * math.sin(drive.slope), 0.0, -GRAVITY * math.cos(drive.slope), 0.0, 0.0, 0.0])
+        np.array([-gravity * math.sin(drive.slope), 0.0, -gravity * math.cos(drive.slope), 0.0, 0.0, 0.0])
     )
     acceleration = np.zeros(model.nv)
     acceleration[0] = drive.acceleration
@@ -138,5 +138,5 @@ def base_of(robot: SizingRobot, drive: BaseMotion, payload_mass: float) -> BaseS
     wheels = find_wheels(robot, robot.text, drive.wheels)
     if not wheels:
         return "no wheels found (continuous joints whose child link is drawn as a cylinder); name them in mobile.wheels"
-    sized = size_base(drive, wheels, whole_mass(robot.text, payload_mass))
-    return dataclasses.replace(sized, dynamics_force=dynamics_force(robot.text, drive, payload_mass))
+    sized = size_base(drive, wheels, whole_mass(robot.text, payload_mass), robot.gravity)
+    return dataclasses.replace(sized, dynamics_force=dynamics_force(robot.text, drive, payload_mass, robot.gravity))

@@ -54,6 +54,7 @@ class SizeReport:
     base_motion: BaseMotion | None = None
     samples: tuple[Trajectory, np.ndarray] | None = field(default=None, compare=False)  # (for the plots)
     safety_factor: float = 1.0  # every need is multiplied by it before its margin is taken
+    gravity: float = GRAVITY  # m/s^2 along -z of the root frame, as the analysis took it
 
     @staticmethod
     def of(
@@ -76,6 +77,7 @@ class SizeReport:
             massless=tuple(robot.massless),
             motions=None if motions is None else tuple(motions),
             drives=dict(drives or {}),
+            gravity=robot.gravity,
         )
 
     def _ratio(self, limit: float | None, needed: float) -> float | None:
@@ -173,7 +175,7 @@ class SizeReport:
             "$schema": SCHEMA_ID,
             "path": self.path,
             "robot": self.robot,
-            "gravity": GRAVITY,
+            "gravity": self.gravity,
             "safety_factor": self.safety_factor,
             "convention": "torque the joint's motor must produce: tau = M(q) qddot + C(q, qdot) qdot + g(q) "
             "- J(q)^T w, w the force and moment the environment applies at a load's frame origin, world axes",
@@ -200,7 +202,7 @@ class SizeReport:
             "mass": base.mass,
             "traction_force": base.force,
             "dynamics_check": {
-                "closed_form": base.mass * (asked.acceleration + GRAVITY * math.sin(asked.slope)),
+                "closed_form": base.mass * (asked.acceleration + self.gravity * math.sin(asked.slope)),
                 "inverse_dynamics": base.dynamics_force,
             },
             "power": base.power,
@@ -256,7 +258,9 @@ class SizeReport:
 
 def format_text(report: SizeReport) -> str:
     """The terminal tables: the static worst case per joint; the motion and the drives when given."""
-    lines = [f"{report.path}: robot {report.robot!r}, static worst case over the joints' ranges (g = {GRAVITY} m/s^2)"]
+    lines = [
+        f"{report.path}: robot {report.robot!r}, static worst case over the joints' ranges (g = {report.gravity} m/s^2)"
+    ]
     for held in report.payloads:
         lines.append(f"  payload {held.mass:g} kg on {held.frame} (centre of mass {_vec(held.com)} m in it)")
     for w in report.loads:
@@ -321,7 +325,7 @@ def _base_lines(report: SizeReport) -> list[str]:
             f"{math.degrees(asked.slope):.3g} deg, C_rr {asked.rolling_resistance:g}: traction {base.force:.4g} N, "
             f"power {base.power:.4g} W"
         )
-        closed = base.mass * (asked.acceleration + GRAVITY * math.sin(asked.slope))
+        closed = base.mass * (asked.acceleration + report.gravity * math.sin(asked.slope))
         lines.append(
             f"  check: m a + m g sin(theta) = {closed:.6g} N closed form, {base.dynamics_force:.6g} N by pinocchio's "
             "inverse dynamics of the whole robot"

@@ -72,6 +72,7 @@ class SizingRobot:
     loads: list[tuple[int, Any]] = field(default_factory=list)  # (frame id, pinocchio.Force in world axes)
     data: Any = None  # pinocchio.Data of the model with its payloads (load_robot makes it)
     text: str = ""  # the URDF it was read from
+    gravity: float = GRAVITY  # m/s^2, along -z of the root frame (the model's own: load_robot sets both)
 
     def configuration(self, values: Sequence[float] | np.ndarray) -> np.ndarray:
         """pinocchio's q with the moving joints at ``values`` (continuous joints as cos, sin) and others neutral."""
@@ -119,8 +120,10 @@ def load_robot(
     package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
     payloads: Sequence[Payload] = (),
     loads: Sequence[Load] = (),
+    gravity: float = GRAVITY,
 ) -> SizingRobot:
-    """Read a URDF, xacro document or spec into the model ``size`` analyses.
+    """Read a URDF, xacro document or spec into the model ``size`` analyses (``gravity``: m/s^2 along -z of the root
+    frame, standard gravity unless told).
 
     Raises:
         XacrokitError: the input cannot be read, names a frame the robot lacks, or nothing that moves has a mass.
@@ -145,10 +148,12 @@ def load_robot(
         model = pin.buildModelFromXML(text)
     except (RuntimeError, ValueError) as exc:
         raise XacrokitError(f"{where}: pinocchio cannot read the robot: {exc}") from None
-    model.gravity = pin.Motion(np.array([0.0, 0.0, -GRAVITY, 0.0, 0.0, 0.0]))  # (pinocchio's default: 9.81)
+    model.gravity = pin.Motion(np.array([0.0, 0.0, -gravity, 0.0, 0.0, 0.0]))  # (pinocchio's default: 9.81)
     joints = _moving_joints(model, view)
     massless = _massless_moving_links(model, view)
-    robot = SizingRobot(name=view.name or where.stem, model=model, joints=joints, massless=massless, text=text)
+    robot = SizingRobot(
+        name=view.name or where.stem, model=model, joints=joints, massless=massless, text=text, gravity=gravity
+    )
     add_loads(robot, payloads, loads)
     if not joints:
         raise XacrokitError(f"{where}: the robot has no revolute, continuous or prismatic joint to size")

@@ -59,6 +59,7 @@ class Sizing:
     raw: RawSpec | None = None
     mobile: BaseMotion | None = None
     safety_factor: float = 1.0
+    gravity: float | None = None  # m/s^2 (None: not given, standard gravity)
 
 
 @cache
@@ -144,10 +145,29 @@ def read_sizing(path: str | os.PathLike[str]) -> Sizing:
             rolling_resistance=float(item.get("rolling_resistance", 0.0)),
             wheels=tuple(item.get("wheels", ())),
         )
+    gravity = None
+    if "gravity" in data:
+        gravity = read.quantity(data["gravity"], "acceleration", ("gravity",))
+        problem = gravity_problem(gravity)
+        if problem is not None:
+            read.errors.append(raw.error(("gravity",), problem))
     if read.errors:
         raise SpecErrors(read.errors)
     factor = float(data.get("safety_factor", 1.0))
-    return Sizing(tuple(payloads), tuple(loads), data.get("motion"), drives, raw, mobile, factor)
+    return Sizing(tuple(payloads), tuple(loads), data.get("motion"), drives, raw, mobile, factor, gravity)
+
+
+MOST_GRAVITY = 1000.0  # m/s^2: a hundred times Earth's, beyond any planet's surface (Jupiter's: 24.8)
+
+
+def gravity_problem(gravity: float) -> str | None:
+    """Why a gravity (m/s^2) is refused, or None: it must be at least 0 (0: weightless) and at most MOST_GRAVITY."""
+    if math.isnan(gravity) or 0.0 <= gravity <= MOST_GRAVITY:
+        return None  # (NaN: its parse error is said)
+    return (
+        f"gravity must be from 0 to {MOST_GRAVITY:g} m/s^2 (Earth's standard 9.80665, the course's 9.81), "
+        f"got {gravity:g}"
+    )
 
 
 def _optional(read: _Reader, item: dict[str, Any], key: str, kind: Kind, where: PathKey) -> float | None:

@@ -265,7 +265,9 @@ def _mass_error(raw: RawSpec, mass: float, path: PathKey, *, link: bool = False)
     error: a composite of parts that weigh nothing has no centre of mass)."""
     if not (isinstance(mass, float) and mass > 0 and math.isfinite(mass)):
         if mass == 0 and link:  # (one message for it, whatever else the link gives: its shape, its inertia)
-            message = "mass is 0 kg: leave `mass` out for a link that weighs nothing (a frame), else give its mass (> 0)"
+            message = (
+                "mass is 0 kg: leave `mass` out for a link that weighs nothing (a frame), else give its mass (> 0)"
+            )
             yield implausible(raw.error(path, message))
             return
         yield raw.error(path, f"mass must be > 0 kg, got {mass!r}")

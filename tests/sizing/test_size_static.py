@@ -16,7 +16,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from conftest import REPO, gen_robot
-from xacrokit.errors import XacrokitError
+from xacrokit.errors import SpecErrors, XacrokitError
 from xacrokit.sizing import GRAVITY, Load, Payload, parse_load, parse_payload, size
 from xacrokit.sizing.sized_robot import load_robot
 from xacrokit.sizing.static import torques
@@ -302,3 +302,27 @@ def test_a_chain_longer_than_size_searches_is_refused_before_pinocchio_reads_it(
     result = gen_robot("size", long)
     assert result.returncode == 2 and "Traceback" not in result.stderr
     assert "a chain of 5000 moving joints" in result.stderr and f"at most {MAX_MOVING_CHAIN}" in result.stderr
+
+
+def test_gravity_is_the_sizing_files_or_the_command_lines(arm_file, tmp_path):
+    """Issue 31: `gravity:` in a sizing file and `--gravity` (which overrides it): the stretched-out arm's peaks are the
+    closed form at that gravity (m g r, here at the course's 9.81 and the Moon's 1.62), the header and the JSON say it,
+    and a gravity outside 0 to 1000 m/s^2 is a located error."""
+    path = arm_file()
+    sizing = tmp_path / "g.yaml"
+    sizing.write_text("gravity: 9.81 m/s2\n", encoding="utf-8")
+    stretched = -closed_form(0.0, 0.0, 3.0)[0] / GRAVITY  # (m r of the shoulder's load: the torque per m/s^2)
+    for report, g in (
+        (size(path, payloads=[Payload("tool", 3.0)], sizing=sizing), 9.81),
+        (size(path, payloads=[Payload("tool", 3.0)], sizing=sizing, gravity=1.62), 1.62),
+        (size(path, payloads=[Payload("tool", 3.0)]), GRAVITY),
+    ):
+        assert abs(report.peaks[0].torque) == pytest.approx(stretched * g, rel=1e-9)
+        assert report.to_dict()["gravity"] == g
+    shown = gen_robot("size", path, "--payload", "3 kg@tool", "--sizing", sizing, "--gravity", "1.62")
+    assert shown.returncode == 0 and shown.stdout.splitlines()[0].endswith("(g = 1.62 m/s^2)")
+    sizing.write_text("gravity: -9.81\n", encoding="utf-8")
+    with pytest.raises(SpecErrors) as raised:
+        size(path, sizing=sizing)
+    (error,) = raised.value.errors
+    assert error.path == "$.gravity" and error.line == 1 and "from 0 to 1000 m/s^2" in error.message
