@@ -34,6 +34,7 @@ Kind = Literal[
     "force",
     "density",
     "acceleration",
+    "time",
 ]
 Value = Fraction | float  # exact while no pi is involved
 
@@ -74,6 +75,7 @@ UNITS: dict[str, dict[str, Value]] = {
     "force": {"N": Fraction(1), "kN": Fraction(1000), "kgf": Fraction("9.80665")},
     "density": {"kg/m3": Fraction(1), "g/cm3": Fraction(1000), "g/cc": Fraction(1000), "kg/L": Fraction(1000)},
     "acceleration": {"m/s2": Fraction(1), "m/s/s": Fraction(1)},  # (a sizing file's gravity)
+    "time": {"s": Fraction(1), "ms": Fraction(1, 1000), "min": Fraction(60)},  # (a motion's duration)
 }
 _EXACT_EXPONENT = 400  # beyond 1e±400 a number is no double anyway: read it as a float (inf or 0), not as a huge int
 

@@ -17,8 +17,8 @@ from collections.abc import Mapping, Sequence
 from ..errors import SpecErrors, XacrokitError
 from ..shared.units import UnitError, bound_problem, parse_quantity
 from .mobile import base_of
-from .motion import inverse_dynamics, joint_motions, trajectory
-from .size_results import SizeReport, format_text
+from .motion import inverse_dynamics, joint_motions, planned_durations, trajectory
+from .size_results import MotionTiming, SizeReport, format_text
 from .sized_robot import GRAVITY, Load, Payload, add_loads, load_robot
 from .sizing_file import Drive, Sizing, gravity_problem, motion_of, name_errors, read_sizing
 from .static import StaticPeak, static_peaks
@@ -67,11 +67,12 @@ def size(
     payloads, loads = (*payloads, *asked.payloads), (*loads, *asked.loads)
     add_loads(robot, payloads, loads)
     motion = motion_of(asked, robot)
-    moved, samples = None, None
+    moved, samples, timing = None, None, None
     if motion is not None:
         path_samples = trajectory(motion)
         torque = inverse_dynamics(robot, path_samples)
         moved, samples = joint_motions(robot, path_samples, torque), (path_samples, torque)
+        timing = MotionTiming(tuple(planned_durations(motion)), motion.dwell, float(path_samples.t[-1]))
     base = None
     if asked.mobile is not None and asked.raw is not None:
         found = base_of(robot, asked.mobile, math.fsum(p.mass for p in payloads))
@@ -80,7 +81,7 @@ def size(
         base = found
     report = SizeReport.of(str(path), robot, static_peaks(robot), payloads, loads, moved, asked.drives)
     return dataclasses.replace(
-        report, base=base, base_motion=asked.mobile, samples=samples, safety_factor=asked.safety_factor
+        report, base=base, base_motion=asked.mobile, samples=samples, safety_factor=asked.safety_factor, timing=timing
     )
 
 

@@ -40,6 +40,7 @@ class Motion:
     scaling: str = "quintic"
     dwell: float = 0.0
     step: float = DEFAULT_STEP
+    durations: tuple[float | None, ...] = ()  # s, per segment: the duration asked (None, or none given: the shortest)
 
 
 @dataclass(frozen=True)
@@ -159,12 +160,31 @@ def sample_count(motion: Motion, durations: Sequence[float]) -> float:
     return 1.0 + held * len(motion.waypoints) + moving
 
 
-def trajectory(motion: Motion) -> Trajectory:
-    """The sampled cycle: each segment at its shortest duration, a dwell at every waypoint (the first included).
-    Raises ValueError for a cycle of more than MAX_SAMPLES samples (:func:`sample_count`; the sizing file's reader
-    refuses those first, located)."""
+def planned_durations(motion: Motion) -> list[float]:
+    """Each segment's duration (s): the one asked (the sizing file's reader checked it is not below the shortest),
+    else the shortest the joints' limits allow."""
     points = [np.array(w, dtype=float) for w in motion.waypoints]
-    durations = [segment_duration(motion, end - start) for start, end in zip(points, points[1:], strict=False)]
+    asked = list(motion.durations) + [None] * (len(points) - 1 - len(motion.durations))
+    return [
+        given if given is not None else segment_duration(motion, end - start)
+        for start, end, given in zip(points, points[1:], asked, strict=False)
+    ]
+
+
+def stretched_speed(acceleration: float, duration: float) -> float:
+    """The cruise speed (per unit path) of a trapezoid of unit length that lasts ``duration`` at ``acceleration``:
+    the smaller root of v^2 - a T v + a = 0 (T = 1/v + v/a); a triangle when a T^2 = 4."""
+    root = max(acceleration * acceleration * duration * duration - 4.0 * acceleration, 0.0)
+    return (acceleration * duration - math.sqrt(root)) / 2.0
+
+
+def trajectory(motion: Motion) -> Trajectory:
+    """The sampled cycle: each segment at its planned duration (:func:`planned_durations`: the one asked, else the
+    shortest), every joint arriving together, a dwell at every waypoint (the first included). Raises ValueError for a
+    cycle of more than MAX_SAMPLES samples (:func:`sample_count`; the sizing file's reader refuses those first,
+    located)."""
+    points = [np.array(w, dtype=float) for w in motion.waypoints]
+    durations = planned_durations(motion)
     if not sample_count(motion, durations) <= MAX_SAMPLES:
         raise ValueError(f"the cycle needs more than {MAX_SAMPLES:,} samples")
     times: list[np.ndarray] = []
@@ -192,13 +212,17 @@ def trajectory(motion: Motion) -> Trajectory:
     hold(points[0], motion.dwell)
     for start, end, duration in zip(points, points[1:], durations, strict=False):
         delta = end - start
-        if duration > 0:
+        if duration > 0 and not (np.abs(delta) > 0).any():  # (a segment asked to last, that does not move: a hold)
+            hold(end, duration)
+        elif duration > 0:
             count = max(int(math.ceil(duration / motion.step)), 2)
             local = np.linspace(0.0, duration, count + 1)[1:]
             if motion.scaling == "quintic":
                 s, ds, dds = _quintic(duration, local)
             else:
                 speed, acceleration, _, _ = _path_limits(motion, delta)
+                if duration > segment_duration(motion, delta):  # (stretched: the limit's acceleration, a lower speed)
+                    speed = stretched_speed(acceleration, duration)
                 _, s, ds, dds = _trapezoid(speed, acceleration, local)
             times.append(clock + local)
             positions.append(start + s[:, None] * delta)

@@ -37,6 +37,15 @@ def ratio(limit: float | None, needed: float) -> float | None:
 
 
 @dataclass(frozen=True)
+class MotionTiming:
+    """How long the motion's segments last (s, in order), the dwell held at each waypoint (s) and the whole cycle."""
+
+    segments: tuple[float, ...]
+    dwell: float
+    cycle: float
+
+
+@dataclass(frozen=True)
 class SizeReport:
     """The analysis of one robot: its static peaks, its motion (if any), its drives, and their inputs."""
 
@@ -55,6 +64,7 @@ class SizeReport:
     samples: tuple[Trajectory, np.ndarray] | None = field(default=None, compare=False)  # (for the plots)
     safety_factor: float = 1.0  # every need is multiplied by it before its margin is taken
     gravity: float = GRAVITY  # m/s^2 along -z of the root frame, as the analysis took it
+    timing: MotionTiming | None = None  # (with a motion)
 
     @staticmethod
     def of(
@@ -189,7 +199,13 @@ class SizeReport:
             "failed": self.failed,
             "failures": [{"joint": joint, "what": what} for joint, what in self.failures],
             **({"mobile": self._base()} if self.base is not None and self.base_motion is not None else {}),
+            **({"motion_timing": self._timing()} if self.timing is not None else {}),
         }
+
+    def _timing(self) -> dict[str, Any]:
+        timing = self.timing
+        assert timing is not None  # (to_dict asks only then)
+        return {"segments": list(timing.segments), "dwell": timing.dwell, "cycle": timing.cycle}
 
     def _base(self) -> dict[str, Any]:
         base, asked = self.base, self.base_motion
@@ -292,7 +308,17 @@ def _motion_lines(report: SizeReport) -> list[str]:
     """The motion's table and the drives' motor side, when the report has them."""
     lines: list[str] = []
     if report.motions is not None:
-        lines.append("  along the motion:")
+        timing = report.timing
+        said = (
+            ""
+            if timing is None
+            else (
+                f" segments of {', '.join(f'{d:.4g}' for d in timing.segments)} s"
+                + (f", {timing.dwell:g} s held at each waypoint" if timing.dwell else "")
+                + f"; the cycle takes {timing.cycle:.4g} s"
+            )
+        )
+        lines.append(f"  along the motion:{said}")
         lines.append(
             f"  {'joint':<24} {'peak torque':>12} {'RMS torque':>11} {'peak speed':>11} {'peak accel':>11} "
             f"{'peak power':>11} {'regen':>9} {'energy':>9}"

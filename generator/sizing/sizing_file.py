@@ -4,6 +4,7 @@ located (file:line:col) and reported at once. Names of frames and joints are che
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import os
@@ -27,6 +28,7 @@ from .motion import (
     MAX_SAMPLES,
     Motion,
     SegmentTiming,
+    planned_durations,
     reach,
     sample_count,
     segment_timing,
@@ -185,11 +187,22 @@ def motion_of(sizing: Sizing, robot: SizingRobot) -> Motion | None:
     names = [j.name for j in robot.joints]
     current = [0.0] * len(names)
     waypoints = []
+    every = (
+        read.quantity(data["duration"], "time", ("motion", "duration"), positive=True) if "duration" in data else None
+    )
+    asked: list[float | None] = []  # (per segment: the one arriving at each waypoint after the first)
     for index, point in enumerate(data["waypoints"]):
         if "pose" in point:
             current = _reached(read, robot, point["pose"], ("motion", "waypoints", index, "pose"), current)
+        if index:
+            where_time: PathKey = ("motion", "waypoints", index, "duration")
+            own = read.quantity(point["duration"], "time", where_time, positive=True) if "duration" in point else None
+            asked.append(own if own is not None else every)
+        elif "duration" in point:
+            message = "the first waypoint is where the cycle starts: no segment arrives at it to last (give duration "
+            read.errors.append(raw.error(("motion", "waypoints", 0, "duration"), message + "on a later waypoint)"))
         for name, value in point.items():
-            if name == "pose":
+            if name in ("pose", "duration"):
                 continue
             where: PathKey = ("motion", "waypoints", index, name)
             if name not in names:
@@ -211,11 +224,34 @@ def motion_of(sizing: Sizing, robot: SizingRobot) -> Motion | None:
         scaling=data.get("scaling", "quintic"),
         dwell=float(data.get("dwell", 0.0)),
         step=float(data.get("step", DEFAULT_STEP)),
+        durations=tuple(asked),
     )
+    too_short = _duration_errors(raw, motion, robot, data)
+    if too_short:
+        raise SpecErrors(too_short)
     too_long = _sampling_error(raw, motion, robot, data)
     if too_long is not None:
         raise SpecErrors([too_long])
     return motion
+
+
+def _duration_errors(raw: RawSpec, motion: Motion, robot: SizingRobot, data: dict[str, Any]) -> list[SpecError]:
+    """A segment asked to last less than its joints' limits allow, at the duration that asks it, with the shortest."""
+    errors = []
+    points = [np.array(w, dtype=float) for w in motion.waypoints]
+    for index, (start, end, asked) in enumerate(zip(points, points[1:], motion.durations, strict=False), 1):
+        timing = segment_timing(motion, end - start)
+        if asked is None or asked >= timing.duration * (1.0 - 1e-12):
+            continue
+        own = "duration" in data["waypoints"][index]
+        where: PathKey = ("motion", "waypoints", index, "duration") if own else ("motion", "duration")
+        message = (
+            f"the segment to waypoint {index} cannot last {asked:g} s: the shortest the joints' limits allow is "
+            f"{timing.duration:.6g} s, set by {robot.joints[timing.joint].name}'s {timing.limit} limit; give at least "
+            "that, or raise the limit"
+        )
+        errors.append(raw.error(where, message))
+    return errors
 
 
 def _sampling_error(raw: RawSpec, motion: Motion, robot: SizingRobot, data: dict[str, Any]) -> SpecError | None:
@@ -223,6 +259,8 @@ def _sampling_error(raw: RawSpec, motion: Motion, robot: SizingRobot, data: dict
     within the cap."""
     points = [np.array(w, dtype=float) for w in motion.waypoints]
     timings = [segment_timing(motion, end - start) for start, end in zip(points, points[1:], strict=False)]
+    planned = planned_durations(motion)  # (the asked ones: never shorter than the timings)
+    timings = [dataclasses.replace(t, duration=d) for t, d in zip(timings, planned, strict=True)]
     needed = sample_count(motion, [t.duration for t in timings])
     if needed <= MAX_SAMPLES:
         return None
@@ -252,6 +290,11 @@ def _why_long(
     if not timing.duration >= moving / 2:
         why = f"its {len(timings)} segments take {moving:.4g} s together"
         return ("motion", "waypoints"), f"{why}; split the cycle or give a coarser step"
+    asked = (list(motion.durations) + [None] * len(timings))[longest]
+    if asked is not None:  # (the segment lasts what the file asks)
+        own = "duration" in data["waypoints"][longest + 1]
+        where_asked: PathKey = ("motion", "waypoints", longest + 1, "duration") if own else ("motion", "duration")
+        return where_asked, f"waypoint {longest} to {longest + 1} is asked to last {asked:g} s (seconds for ms?)"
     joint = robot.joints[timing.joint]
     given = data.get(timing.limit)
     where: PathKey = ("motion",)  # (the URDF's velocity limit: the file has no field for it)

@@ -18,7 +18,7 @@ from test_size_static import GRAVITY, L1, L2, M1, M2, planar_arm
 
 from conftest import REPO, gen_robot
 from xacrokit.errors import SpecErrors
-from xacrokit.sizing import Payload, size
+from xacrokit.sizing import Payload, format_text, size
 from xacrokit.sizing.motion import Motion, Trajectory, inverse_dynamics, trajectory
 from xacrokit.sizing.sized_robot import load_robot
 
@@ -416,3 +416,51 @@ def test_the_sizing_schema_takes_the_rotation_forms_of_a_robot_origin():
 
     forms = [form for form in ORIENTATIONS if form != "rpy"]  # (rpy was the pose's own before: its own words)
     assert all(rules(pose[form]) == rules(origin[form]) and pose[form]["description"] for form in forms)
+
+
+def _planar_motion(tmp_path, motion):
+    sizing = tmp_path / "motion.yaml"
+    sizing.write_text(yaml.safe_dump({"motion": motion}), encoding="utf-8")
+    return size(REPO / "examples" / "robots" / "planar_2dof.yaml", sizing=sizing)
+
+
+def test_a_motion_lasts_the_duration_asked(tmp_path):
+    """Issue 31: the lecture's 'from (0, 0) to (1.5, 1.5) rad in 3 s with a quintic profile': peak speed 15/8 * 1.5 / 3
+    and peak acceleration 10/sqrt(3) * 1.5 / 9 (the quintic's closed form), the cycle 3 s in the JSON and the table;
+    a trapezoid stretched to 3 s keeps the acceleration limit and cruises at the smaller root of v^2 - aTv + a."""
+    quintic = {"duration": "3 s", "velocity": 10, "acceleration": 100}
+    quintic["waypoints"] = [{"joint_1": 0, "joint_2": 0}, {"joint_1": 1.5, "joint_2": 1.5}]
+    report = _planar_motion(tmp_path, quintic)
+    for moved in report.motions:
+        assert moved.peak_speed == pytest.approx(15 / 8 * 1.5 / 3, rel=1e-6)
+        assert moved.peak_acceleration == pytest.approx(10 / math.sqrt(3) * 1.5 / 9, rel=1e-4)  # (sampled at 1 ms)
+    assert report.to_dict()["motion_timing"] == {"segments": [3.0], "dwell": 0.0, "cycle": 3.0}
+    assert "segments of 3 s; the cycle takes 3 s" in format_text(report)
+    trapezoid = {"scaling": "trapezoid", "velocity": 10, "acceleration": 2, "dwell": 0.5, "duration": 3}
+    trapezoid["waypoints"] = [{"joint_1": 0}, {"joint_1": 1, "duration": "4000 ms"}, {"joint_1": 0}]  # (4 s wins)
+    report = _planar_motion(tmp_path, trapezoid)
+    cruise = {t: (2 * t - math.sqrt(4 * t * t - 8)) / 2 for t in (3, 4)}  # (the shortest, a triangle, is 1.41 s)
+    assert report.motions[0].peak_speed == pytest.approx(max(cruise.values()), rel=1e-9)
+    assert report.motions[0].peak_acceleration == pytest.approx(2.0, rel=1e-9)
+    assert report.to_dict()["motion_timing"] == {"segments": [4.0, 3.0], "dwell": 0.5, "cycle": 8.5}
+
+
+@pytest.mark.parametrize(
+    ("motion", "path", "words"),
+    [
+        ({"duration": 0.1, "velocity": 10, "acceleration": 100}, "$.motion.duration", "shortest the joints' limits"),
+        (
+            {"velocity": 10, "acceleration": 100, "waypoints": [{"joint_1": 0, "duration": 2}, {"joint_1": 1.5}]},
+            "$.motion.waypoints[0].duration",
+            "the first waypoint is where the cycle starts",
+        ),
+        ({"duration": "1e9 s", "velocity": 10, "acceleration": 100}, "$.motion.duration", "is asked to last 1e+09 s"),
+    ],
+)
+def test_a_duration_that_cannot_be_is_a_located_error(tmp_path, motion, path, words):
+    motion.setdefault("waypoints", [{"joint_1": 0, "joint_2": 0}, {"joint_1": 1.5, "joint_2": 1.5}])
+    with pytest.raises(SpecErrors) as caught:
+        _planar_motion(tmp_path, motion)
+    assert any(e.path == path and words in e.message and e.line is not None for e in caught.value.errors), [
+        str(e) for e in caught.value.errors
+    ]
