@@ -281,14 +281,17 @@ def format_text(report: SizeReport) -> str:
         lines.append(f"  payload {held.mass:g} kg on {held.frame} (centre of mass {_vec(held.com)} m in it)")
     for w in report.loads:
         lines.append(f"  load on {w.frame}: force {_vec(w.force)} N, moment {_vec(w.moment)} N*m (world axes)")
-    lines.append(f"  {'joint':<24} {'peak torque':>12} {'of it loads':>12} {'effort limit':>13} {'margin':>8}  pose")
+    lines.append(
+        f"  {'joint':<24} {'peak torque':>12} {'of it loads':>12} {'effort limit':>13} {'margin':>8}  pose (of the "
+        "joints that change that torque)"
+    )
     for p in report.peaks:
         effort, margin = report.efforts.get(p.joint), report.margin(p)
         flag = "" if margin is None or margin >= 1.0 else "  FAIL"
-        pose = ", ".join(f"{k}={v:.3f}" for k, v in p.pose.items())
+        pose = ", ".join(f"{k}={p.pose[k]:.3f}" for k in p.moving_it)  # (the JSON has every joint's value)
         lines.append(
             f"  {p.joint:<24} {p.torque:>12.4g} {p.load_torque:>12.4g} "
-            f"{_num(effort):>13} {_num(margin, '.3g'):>8}{flag}  {pose}"
+            f"{_num(effort):>13} {_num(margin, '.3g'):>8}{flag}  {pose}".rstrip()
         )
     lines += _motion_lines(report)
     lines += _base_lines(report)

@@ -38,6 +38,8 @@ class StaticPeak:
     pose: dict[str, float]
     gravity_torque: float
     load_torque: float
+    # the joints whose value changes this torque (the others may be anything): what the table shows of the pose
+    moving_it: tuple[str, ...] = ()
 
 
 def torques(robot: SizingRobot, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -115,16 +117,35 @@ def static_peaks(robot: SizingRobot, *, seed: int = 0) -> list[StaticPeak]:
         scale = max(float(np.abs(table).max()), 1e-300)
         if abs(gravity[index] + loads[index]) <= ZERO * scale:  # (a joint gravity never loads: rounding, not torque)
             gravity[index] = loads[index] = 0.0
+        torque = float(gravity[index] + loads[index])
         peaks.append(
             StaticPeak(
                 joint=joint.name,
-                torque=float(gravity[index] + loads[index]),
+                torque=torque,
                 pose={j.name: float(v) for j, v in zip(joints, pose, strict=True)},
                 gravity_torque=float(gravity[index]),
                 load_torque=float(loads[index]),
+                moving_it=_moving_it(robot, pose, index, (lower, upper), ZERO * scale) if torque else (),
             )
         )
     return peaks
+
+
+def _moving_it(
+    robot: SizingRobot, pose: np.ndarray, index: int, ranges: tuple[np.ndarray, np.ndarray], tolerance: float
+) -> tuple[str, ...]:
+    """The joints whose value changes joint ``index``'s torque from ``pose``: each tried at the ends and the middle
+    of its range, the others held (a shoulder pan about the vertical changes no gravity torque: it is left out)."""
+    here = float(np.add(*torques(robot, pose))[index])
+    found = []
+    for k, joint in enumerate(robot.joints):
+        for value in (ranges[0][k], ranges[1][k], (ranges[0][k] + ranges[1][k]) / 2):
+            moved = pose.copy()
+            moved[k] = value
+            if abs(float(np.add(*torques(robot, moved))[index]) - here) > tolerance:
+                found.append(joint.name)
+                break
+    return tuple(found)
 
 
 def _landmarks(lower: np.ndarray, upper: np.ndarray) -> list[np.ndarray]:

@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 
 from conftest import REPO, gen_robot
 from xacrokit.errors import SpecErrors, XacrokitError
-from xacrokit.sizing import GRAVITY, Load, Payload, parse_load, parse_payload, size
+from xacrokit.sizing import GRAVITY, Load, Payload, format_text, parse_load, parse_payload, size
 from xacrokit.sizing.sized_robot import load_robot
 from xacrokit.sizing.static import torques
 
@@ -326,3 +326,20 @@ def test_gravity_is_the_sizing_files_or_the_command_lines(arm_file, tmp_path):
         size(path, sizing=sizing)
     (error,) = raised.value.errors
     assert error.path == "$.gravity" and error.line == 1 and "from 0 to 1000 m/s^2" in error.message
+
+
+def test_the_pose_column_names_the_joints_that_change_the_torque(arm_file):
+    """Issue 31: the UR5's shoulder pan turns about the vertical and changes no gravity torque, nor does wrist 3's
+    roll about its own axis: they are left out of every row's pose; a joint with no torque shows none. The JSON
+    keeps every joint's value."""
+    report = size(REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml", payloads=[Payload("tool0", 5.0)])
+    rows = {line.split()[0]: line for line in format_text(report).splitlines()[3:9]}
+    for peak in report.peaks:
+        assert len(peak.pose) == 6 and report.to_dict()["joints"][0]["static"]["pose"]
+        if peak.torque == 0:
+            assert peak.moving_it == () and rows[peak.joint].endswith("-")
+            continue
+        assert "shoulder_pan_joint" not in peak.moving_it and "wrist_3_joint" not in peak.moving_it
+        assert {"shoulder_lift_joint", peak.joint} <= set(peak.moving_it)
+        shown = rows[peak.joint].split("  ")[-1]
+        assert shown == ", ".join(f"{name}={peak.pose[name]:.3f}" for name in peak.moving_it)
