@@ -19,7 +19,7 @@ from ..shared.units import UnitError, bound_problem, parse_quantity
 from .mobile import base_of
 from .motion import inverse_dynamics, joint_motions, planned_durations, trajectory
 from .size_results import MotionTiming, SizeReport, format_text
-from .sized_robot import GRAVITY, Load, Payload, add_loads, load_robot
+from .sized_robot import GRAVITY, Load, Payload, add_loads, load_robot, require_load
 from .sizing_file import Drive, Sizing, gravity_problem, motion_of, name_errors, read_sizing
 from .static import StaticPeak, static_peaks
 
@@ -66,6 +66,7 @@ def size(
         raise SpecErrors(problems)
     payloads, loads = (*payloads, *asked.payloads), (*loads, *asked.loads)
     add_loads(robot, payloads, loads)
+    require_load(robot, str(path))
     motion = motion_of(asked, robot)
     moved, samples, timing = None, None, None
     if motion is not None:

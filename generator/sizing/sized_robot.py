@@ -72,6 +72,7 @@ class SizingRobot:
     loads: list[tuple[int, Any]] = field(default_factory=list)  # (frame id, pinocchio.Force in world axes)
     data: Any = None  # pinocchio.Data of the model with its payloads (load_robot makes it)
     text: str = ""  # the URDF it was read from
+    moved_links: list[str] = field(default_factory=list)  # the child links of its moving joints, in the URDF's order
     gravity: float = GRAVITY  # m/s^2, along -z of the root frame (the model's own: load_robot sets both)
 
     def configuration(self, values: Sequence[float] | np.ndarray) -> np.ndarray:
@@ -157,12 +158,22 @@ def load_robot(
     add_loads(robot, payloads, loads)
     if not joints:
         raise XacrokitError(f"{where}: the robot has no revolute, continuous or prismatic joint to size")
-    if all(model.inertias[j].mass == 0.0 for j in range(1, model.njoints)):
-        raise XacrokitError(
-            f"{where}: no moving link has a mass, so every torque would be 0; give <inertial> to the links "
-            f"{', '.join(_moved_links(model, view)[:10])} ..."
-        )
+    robot.moved_links = [j.child for j in view.joints if j.type in MOVING and j.child is not None]
     return robot
+
+
+def require_load(robot: SizingRobot, where: str) -> None:
+    """Refuse a robot whose torques would all be 0: no moving link has a mass, and no payload or force loads it (a
+    massless arm with a payload is the lecture's model of tau = J^T F, and is sized)."""
+    model = robot.model
+    if robot.loads or any(model.inertias[j].mass > 0.0 for j in range(1, model.njoints)):
+        return
+    named = ", ".join(robot.moved_links[:10]) + (" ..." if len(robot.moved_links) > 10 else "")
+    raise XacrokitError(
+        f"{where}: no link a joint moves has a mass and nothing loads the robot, so every torque would be 0: give "
+        f"those links a mass ({named}: `mass:` in a spec, <inertial> in a URDF), or size it with a payload "
+        "(--payload, payloads:) or a force (--force, loads:)"
+    )
 
 
 def add_loads(robot: SizingRobot, payloads: Sequence[Payload] = (), loads: Sequence[Load] = ()) -> None:

@@ -343,3 +343,31 @@ def test_the_pose_column_names_the_joints_that_change_the_torque(arm_file):
         assert {"shoulder_lift_joint", peak.joint} <= set(peak.moving_it)
         shown = rows[peak.joint].split("  ")[-1]
         assert shown == ", ".join(f"{name}={peak.pose[name]:.3f}" for name in peak.moving_it)
+
+
+MASSLESS = """<?xml version="1.0"?>
+<robot name="lecture"><link name="base"/><link name="link_1"/><link name="link_2"/><link name="tool_link"/>
+  <joint name="joint_1" type="revolute"><parent link="base"/><child link="link_1"/><axis xyz="0 1 0"/>
+    <limit lower="-3.14" upper="3.14" effort="100" velocity="1"/></joint>
+  <joint name="joint_2" type="revolute"><parent link="link_1"/><child link="link_2"/><origin xyz="0.6 0 0"/>
+    <axis xyz="0 1 0"/><limit lower="-3.14" upper="3.14" effort="100" velocity="1"/></joint>
+  <joint name="tool" type="fixed"><parent link="link_2"/><child link="tool_link"/><origin xyz="0.4 0 0"/></joint>
+</robot>
+"""
+
+
+def test_a_massless_arm_is_sized_with_its_payload_or_force(tmp_path):
+    """Issue 31: the lecture's tau = J^T F model (links without mass, 0.6 m and 0.4 m): a 2 kg payload at the tool
+    gives m g (L1 + L2) and m g L2 stretched out; a downward force alike; with neither, an error in the spec's words
+    naming only the links a joint moves (not the tool frame)."""
+    path = tmp_path / "lecture.urdf"
+    path.write_text(MASSLESS, encoding="utf-8")
+    shoulder, elbow = size(path, payloads=[Payload("tool_link", 2.0)]).peaks
+    assert abs(shoulder.torque) == pytest.approx(2.0 * GRAVITY * 1.0, rel=1e-9)
+    assert abs(elbow.torque) == pytest.approx(2.0 * GRAVITY * 0.4, rel=1e-9)
+    pressed = size(path, loads=[Load("tool_link", (0.0, 0.0, -50.0))]).peaks
+    assert [abs(p.torque) for p in pressed] == pytest.approx([50.0 * 1.0, 50.0 * 0.4], rel=1e-9)
+    with pytest.raises(XacrokitError) as raised:
+        size(path)
+    message = str(raised.value)
+    assert "give those links a mass (link_1, link_2: `mass:` in a spec" in message and "tool_link" not in message
