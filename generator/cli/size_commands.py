@@ -53,6 +53,11 @@ def add_size_command(commands: Any, add_xacro_options: Callable[[argparse.Argume
         help="gravity along -z of the root link, m/s^2 or with a unit ('9.81', '9.81 m/s2'); default the sizing "
         "file's gravity, else standard gravity 9.80665",
     )
+    sz.add_argument(
+        "--no-joint-friction",
+        action="store_true",
+        help="leave the joints' <dynamics> damping and friction out of the motion's torques (counted by default)",
+    )
     sz.add_argument("--json", action="store_true", help="print the report as JSON (schemas/size-report.schema.json)")
     sz.add_argument(
         "--report", metavar="DIR", help="also write DIR/size_report.md with PNG plots of the motion and the drives"
@@ -76,6 +81,7 @@ def _cmd_size(args: argparse.Namespace) -> int:
         sizing=args.sizing,
         package_paths=parse_packages(args.package),
         gravity=gravity,
+        joint_friction=not args.no_joint_friction,
     )
     if args.report:
         from ..sizing.report_document import write_report

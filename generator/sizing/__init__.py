@@ -47,11 +47,13 @@ def size(
     sizing: str | os.PathLike[str] | None = None,
     package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
     gravity: float | None = None,
+    joint_friction: bool = True,
 ) -> SizeReport:
     """Size the joints of a URDF, xacro document or spec: the worst static torque of each over the joints' ranges,
     with the payloads and loads given (and those of the ``sizing`` file); with the sizing file's motion, the torques,
     speeds and power along it; with its drives, the motor side. ``gravity`` (m/s^2) overrides the sizing file's
-    ``gravity``; both unset, standard gravity (9.80665).
+    ``gravity``; both unset, standard gravity (9.80665). ``joint_friction``: the motion's torques include the joints'
+    <dynamics> damping and Coulomb friction (d qdot + f sign(qdot); the static case has qdot = 0).
 
     Raises:
         XacrokitError: unreadable input, an unknown frame, or a robot with nothing to size.
@@ -61,6 +63,7 @@ def size(
     # (gravity: the argument, else the sizing file's, else standard gravity)
     pulled = gravity if gravity is not None else asked.gravity if asked.gravity is not None else GRAVITY
     robot = load_robot(path, mappings, package_paths=package_paths, gravity=pulled)
+    robot.joint_friction = joint_friction
     problems = name_errors(asked, robot)
     if problems:
         raise SpecErrors(problems)

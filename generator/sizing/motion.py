@@ -240,7 +240,9 @@ def trajectory(motion: Motion) -> Trajectory:
 
 def inverse_dynamics(robot: SizingRobot, path: Trajectory) -> np.ndarray:
     """The moving joints' torques at every sample: rnea(q, v, a) with the loads as external forces (each load's
-    force and moment moved to its frame's parent joint), one row per sample."""
+    force and moment moved to its frame's parent joint), one row per sample; with ``robot.joint_friction``, plus each
+    joint's viscous damping and Coulomb friction as the URDF's <dynamics> gives them (pinocchio reads them):
+    d qdot + f sign(qdot), what the motor must also overcome."""
     import pinocchio as pin
 
     model, data = robot.model, robot.data
@@ -262,6 +264,8 @@ def inverse_dynamics(robot: SizingRobot, path: Trajectory) -> np.ndarray:
             result[k] = pin.rnea(model, data, qs[k], vs[k], accelerations[k], fext)[rows]
         else:
             result[k] = pin.rnea(model, data, qs[k], vs[k], accelerations[k])[rows]
+    if robot.joint_friction:
+        result += np.asarray(model.damping)[rows] * path.v + np.asarray(model.friction)[rows] * np.sign(path.v)
     return result
 
 

@@ -46,7 +46,9 @@ def markdown(report: SizeReport, pictures: dict[str, str]) -> str:
         f"# Sizing report: {markdown_text(report.robot)}",
         "",
         f"Input `{markdown_text(report.path)}`. Torques are what the motors produce (N·m; N for prismatic joints); "
-        f"gravity {report.gravity:g} m/s² along −z; margin = limit / need (below 1 fails).",
+        f"gravity {report.gravity:g} m/s² along −z; the motion's torques "
+        + ("include" if report.joint_friction else "leave out")
+        + " the joints' damping and friction; margin = limit / need (below 1 fails).",
         "",
     ]
     for held in report.payloads:

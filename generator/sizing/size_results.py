@@ -65,6 +65,7 @@ class SizeReport:
     safety_factor: float = 1.0  # every need is multiplied by it before its margin is taken
     gravity: float = GRAVITY  # m/s^2 along -z of the root frame, as the analysis took it
     timing: MotionTiming | None = None  # (with a motion)
+    joint_friction: bool = True  # the motion's torques include the joints' damping and friction
 
     @staticmethod
     def of(
@@ -88,6 +89,7 @@ class SizeReport:
             motions=None if motions is None else tuple(motions),
             drives=dict(drives or {}),
             gravity=robot.gravity,
+            joint_friction=robot.joint_friction,
         )
 
     def _ratio(self, limit: float | None, needed: float) -> float | None:
@@ -186,6 +188,7 @@ class SizeReport:
             "path": self.path,
             "robot": self.robot,
             "gravity": self.gravity,
+            "joint_friction": self.joint_friction,
             "safety_factor": self.safety_factor,
             "convention": "torque the joint's motor must produce: tau = M(q) qddot + C(q, qdot) qdot + g(q) "
             "- J(q)^T w, w the force and moment the environment applies at a load's frame origin, world axes",
@@ -322,6 +325,11 @@ def _motion_lines(report: SizeReport) -> list[str]:
             )
         )
         lines.append(f"  along the motion:{said}")
+        lines.append(
+            "  (the joints' damping and friction included: tau += d qdot + f sign(qdot))"
+            if report.joint_friction
+            else "  (the joints' damping and friction left out)"
+        )
         lines.append(
             f"  {'joint':<24} {'peak torque':>12} {'RMS torque':>11} {'peak speed':>11} {'peak accel':>11} "
             f"{'peak power':>11} {'regen':>9} {'energy':>9}"

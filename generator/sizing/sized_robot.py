@@ -73,6 +73,7 @@ class SizingRobot:
     data: Any = None  # pinocchio.Data of the model with its payloads (load_robot makes it)
     text: str = ""  # the URDF it was read from
     moved_links: list[str] = field(default_factory=list)  # the child links of its moving joints, in the URDF's order
+    joint_friction: bool = True  # the motion's torques include the joints' <dynamics> damping and friction
     gravity: float = GRAVITY  # m/s^2, along -z of the root frame (the model's own: load_robot sets both)
 
     def configuration(self, values: Sequence[float] | np.ndarray) -> np.ndarray:

@@ -464,3 +464,23 @@ def test_a_duration_that_cannot_be_is_a_located_error(tmp_path, motion, path, wo
     assert any(e.path == path and words in e.message and e.line is not None for e in caught.value.errors), [
         str(e) for e in caught.value.errors
     ]
+
+
+def test_joint_damping_and_friction_count_in_the_motion_unless_left_out(tmp_path):
+    """Issue 31: the URDF's <dynamics damping friction> add d qdot + f sign(qdot) to every sample's torque (the course's
+    arm states damping); --no-joint-friction leaves them out, and the report says which."""
+    spec = (REPO / "examples" / "robots" / "two_dof_arm.yaml").read_text(encoding="utf-8")
+    assert "damping: 0.1" in spec  # (the example's shoulder; its elbow has 0.05)
+    arm = tmp_path / "arm.yaml"
+    arm.write_text(spec.replace("friction: 0.0", "friction: 0.3", 1), encoding="utf-8")
+    sizing = tmp_path / "motion.yaml"
+    waypoints = [{"shoulder_joint": 0, "elbow_joint": 0}, {"shoulder_joint": 1, "elbow_joint": 1}]
+    motion = {"acceleration": 2.0, "velocity": 1.0, "waypoints": waypoints}
+    sizing.write_text(yaml.safe_dump({"motion": motion}), encoding="utf-8")
+    counted, left_out = size(arm, sizing=sizing), size(arm, sizing=sizing, joint_friction=False)
+    (path, torque), (_, bare) = counted.samples, left_out.samples
+    damping, friction = np.array([0.1, 0.05]), np.array([0.3, 0.0])
+    assert np.abs(torque - bare - (damping * path.v + friction * np.sign(path.v))).max() < 1e-12
+    assert np.abs(path.v).max() > 0.5  # (it moves: the terms are not zero)
+    assert counted.to_dict()["joint_friction"] is True and left_out.to_dict()["joint_friction"] is False
+    assert "damping and friction included" in format_text(counted) and "left out" in format_text(left_out)
