@@ -10,7 +10,8 @@
 explicit tensors), every joint type, DH arms in both conventions with revolute/prismatic/continuous/fixed rows,
 wheels, fixed frames, materials, unit strings (``"150 mm"``, ``"90 deg"``), ros2_control and Gazebo settings, and mesh
 filenames holding ``${`` / ``$(`` that must come out verbatim. ``invalid_specs()`` draws ``(spec, fault)``: a valid
-spec with exactly one fault of the kind named by ``fault``.
+spec with exactly one fault of the kind named by ``fault``. ``mirrored_specs()`` draws a spec whose ``left_`` limb is
+mirrored to ``right_`` through a random plane (tests/validate/test_mirror.py checks every copy is the mirror image).
 
 Requires hypothesis (``pip install '.[test]'`` in a clone of xacrokit).
 """
