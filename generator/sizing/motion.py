@@ -323,10 +323,13 @@ def reach(
 ) -> tuple[list[float], float]:
     """Joint values that put ``frame`` at the pose (``rpy`` None: the position only), from ``start``, kept within the
     joints' ranges (the solver of ``gen-robot ik``: :func:`xacrokit.kinematics.inverse.solve`); and the pose error
-    left (m, and rad for the orientation)."""
+    left (m, and rad for the orientation). When the solver stops short from ``start`` (a joint limit between it and
+    the pose), it tries the starts ``gen-robot ik`` spreads over the ranges and keeps, of those that reach the pose,
+    the one nearest ``start``."""
     import pinocchio as pin
 
-    from ..kinematics.inverse import Chain, solve
+    from ..kinematics import REACHED
+    from ..kinematics.inverse import Chain, solve, starts
     from ..shared.transforms import rpy_matrix
 
     target = pin.SE3(rpy_matrix(*rpy) if rpy is not None else np.eye(3), np.array(xyz, dtype=float))
@@ -335,4 +338,11 @@ def reach(
     columns = [[(j.v_index, 1.0)] for j in robot.joints]
     chain = Chain(robot.model, robot.model.getFrameId(frame), columns, lower, upper, robot.configuration)
     values, error = solve(chain, target, position_only=rpy is None, start=start)
+    if error > REACHED:
+        tried = [solve(chain, target, position_only=rpy is None, start=s) for s in starts(chain, start)[1:]]
+        reached = [(v, e) for v, e in tried if e <= REACHED]
+        if reached:
+            values, error = min(reached, key=lambda found: float(np.abs(found[0] - np.asarray(start)).sum()))
+        else:
+            values, error = min([(values, error), *tried], key=lambda found: found[1])
     return [float(v) for v in values], error
