@@ -10,9 +10,9 @@ from collections.abc import Iterator
 import numpy as np
 
 from ..reader.urdf_view import Geometry, Joint, joint_tree
-from ..shared.transforms import rpy_matrix, transform
+from ..shared.transforms import transform
 from .findings import Finding, rule_table
-from .inertia_geometry import RobotMeshes, shape_in_link
+from .inertia_geometry import RobotMeshes, placement, shape_in_link
 from .urdf_document import Doc, triple_of
 
 RULES = rule_table(
@@ -126,10 +126,8 @@ def ground_rules(doc: Doc, meshes: RobotMeshes) -> Iterator[Finding]:
 
 
 def _joint_origin(joint: Joint) -> np.ndarray:
-    origin = joint.origin
-    if origin is None:
-        return np.eye(4)
-    return transform(rpy_matrix(*triple_of(origin.rpy)), triple_of(origin.xyz))
+    turn, shift = placement(joint.origin)
+    return transform(turn, shift.tolist())
 
 
 def _lowest_points(doc: Doc, meshes: RobotMeshes, poses: dict[str, np.ndarray]) -> dict[str, float]:

@@ -34,7 +34,7 @@ from typing import Any
 
 import numpy as np
 
-from ..reader.urdf_view import Geometry, Link, Shape
+from ..reader.urdf_view import Geometry, Link, Origin, Shape
 from ..shared.solid_inertia import box_moments, combine, cylinder_moments, sphere_moment, tensor
 from ..shared.transforms import rpy_matrix
 from .findings import Finding, rule_table
@@ -91,10 +91,12 @@ class Reach:
 MeshReach = Callable[[str, tuple[float, float, float]], tuple[np.ndarray, Callable[[], Solid | None]] | None]
 
 
-def _placed(geometry: Geometry) -> tuple[np.ndarray, np.ndarray]:
-    origin = geometry.origin
-    turn = rpy_matrix(*triple_of(origin.rpy)) if origin is not None else np.eye(3)
-    return turn, np.array(triple_of(origin.xyz) if origin is not None else (0.0, 0.0, 0.0))
+def placement(origin: Origin | None) -> tuple[np.ndarray, np.ndarray]:
+    """An ``<origin>`` of the view as its rotation and translation (the identity without one): where a visual, a
+    collision, an inertial or a joint's child sits in its link (the geometry rules' one reading of it)."""
+    if origin is None:
+        return np.eye(3), np.zeros(3)
+    return rpy_matrix(*triple_of(origin.rpy)), np.array(triple_of(origin.xyz))
 
 
 def _primitive(shape: Shape) -> tuple[np.ndarray, Callable[[], Solid | None]] | None:
@@ -156,7 +158,7 @@ def shape_in_link(
         found = meshes(geometry.shape.get("filename") or "", triple_of(geometry.shape.get("scale"), "1 1 1"))
     if found is None or not np.isfinite(found[0]).all():
         return None
-    turn, shift = _placed(geometry)
+    turn, shift = placement(geometry.origin)
     return found[0] @ turn.T + shift, found[1], turn, shift
 
 
@@ -173,9 +175,7 @@ def _filling(solids: Sequence[tuple[Solid | None, np.ndarray, np.ndarray]]) -> S
 
 def geometry_finding(doc: Doc, link: Link, mass: float, entries: Sequence[float], reach: Reach) -> Finding | None:
     """I008 for a link of ``mass`` (kg) whose tensor entries (ixx, ixy, ixz, iyy, iyz, izz) are a rigid body's."""
-    origin = link.inertial.origin if link.inertial is not None else None
-    turn = rpy_matrix(*triple_of(origin.rpy)) if origin is not None else np.eye(3)
-    centre = np.array(triple_of(origin.xyz) if origin is not None else (0.0, 0.0, 0.0))
+    turn, centre = placement(link.inertial.origin if link.inertial is not None else None)
     stated = turn @ tensor(*entries) @ turn.T  # (in the link frame)
     with np.errstate(all="ignore"):  # (a size of 1e308 overflows: such a link is not judged, U002 says why)
         spans = reach.points.max(axis=0) - reach.points.min(axis=0)
