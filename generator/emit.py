@@ -33,6 +33,7 @@ from .model import (
 )
 from .shared.gc_pause import collector_paused
 from .shared.sim_sensors import sensor_element, topic_namespace
+from .shared.transforms import screw_pose
 from .shared.value_text import material_name, num, vec
 from .shared.xml_parse import parse_xml
 
@@ -144,30 +145,9 @@ def joint_element(prefix: str, joint: Joint) -> etree._Element:
 def screw_origin(
     a: float, alpha: float, x: float, y: float, z: float, roll: float, pitch: float, yaw: float
 ) -> tuple[str, str]:
-    """(xyz, rpy) of Tx(a) Rx(alpha) T(x y z, roll pitch yaw), as its twin _xacrokit_origin_after_x_screw
-    (macros/_inc/frames.xacro) computes them: same operations, same order."""
-    ca, sa = math.cos(alpha), math.sin(alpha)
-    cr, sr, cp, sp, cy, sy = (
-        math.cos(roll),
-        math.sin(roll),
-        math.cos(pitch),
-        math.sin(pitch),
-        math.cos(yaw),
-        math.sin(yaw),
-    )
-    b00, b01, b02 = cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr
-    b10, b11, b12 = sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr
-    b20, b21, b22 = -sp, cp * sr, cp * cr
-    r00, r01, r02 = b00, b01, b02
-    r10, r11, r12 = ca * b10 - sa * b20, ca * b11 - sa * b21, ca * b12 - sa * b22
-    r20 = sa * b10 + ca * b20
-    out_yaw = math.atan2(r10, r00)
-    out_pitch = math.atan2(-r20, math.hypot(r00, r10))
-    out_roll = math.atan2(
-        math.sin(out_yaw) * r02 - math.cos(out_yaw) * r12, math.cos(out_yaw) * r11 - math.sin(out_yaw) * r01
-    )
-    xyz = f"{a + x + 0.0} {ca * y - sa * z + 0.0} {sa * y + ca * z + 0.0}"  # (+ 0.0: no -0.0, as the macro)
-    return xyz, f"{out_roll + 0.0} {out_pitch + 0.0} {out_yaw + 0.0}"
+    """(xyz, rpy) text of :func:`screw_pose`, as its twin _xacrokit_origin_after_x_screw writes it."""
+    xyz, rpy = screw_pose(a, alpha, x, y, z, roll, pitch, yaw)
+    return " ".join(map(repr, xyz)), " ".join(map(repr, rpy))
 
 
 def _dh_body(robot: Robot, link: etree._Element, row: DHRow) -> None:
@@ -184,7 +164,7 @@ def _dh_body(robot: Robot, link: etree._Element, row: DHRow) -> None:
         if tag == "visual" and row.material:
             _sub(part, "material", name=material_name(robot, row.material))
     i = body.inertia
-    turned = vec(i.origin.rpy) if isinstance(body.shape, Cylinder) else "0 0 0"
+    turned = vec(i.origin.rpy) if isinstance(body.shape, Cylinder) or i.kind == "explicit" else "0 0 0"
     _inertial(link, i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz, i.mass, vec(i.origin.xyz), turned)
 
 

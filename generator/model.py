@@ -207,6 +207,7 @@ class DHRow:
     mass: float | None = None
     radius: float = DEFAULT_ROW_RADIUS
     material: str | None = None
+    inertia: Inertia | None = None  # (the row's own tensor, its origin in DH frame i; the body carries it moved)
     body: DHBody | None = None  # (resolve's, from the mass, radius and the next row: None without a mass)
 
 

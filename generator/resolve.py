@@ -62,7 +62,7 @@ from .shared.solid_inertia import (
     tube_moments,
     wheel_moments,
 )
-from .shared.transforms import dh_body_end, dh_body_pose, rpy_matrix
+from .shared.transforms import dh_body_end, dh_body_pose, rpy_matrix, screw_pose
 from .validate import Spec
 
 DEFAULT_INTERFACES = Interfaces(command=("position",), state=("position", "velocity"))
@@ -326,6 +326,7 @@ def _arm(name: str, data: dict[str, Any]) -> Arm:
                 mass=_optional_float(row.get("mass")),
                 radius=float(row.get("radius", DEFAULT_ROW_RADIUS)),
                 material=row.get("material"),
+                inertia=_explicit_inertia(row, Origin()),
             )
         )
     tool = data.get("tool", {})
@@ -350,7 +351,12 @@ def _with_bodies(rows: list[DHRow], convention: str) -> tuple[DHRow, ...]:
         end = dh_body_end(
             convention, row.a, row.alpha, (following.a, following.alpha, following.d) if following else None
         )
-        bodied.append(dataclasses.replace(row, body=dh_body(row, end)) if row.mass is not None else row)
+        body = dh_body(row, end) if row.mass is not None else None
+        if body is not None and row.inertia is not None:  # (the table's own tensor, given in DH frame i)
+            screw = (row.a, row.alpha) if convention == "standard" else (0.0, 0.0)
+            xyz, rpy = screw_pose(*screw, *row.inertia.origin.xyz, *row.inertia.origin.rpy)
+            body = dataclasses.replace(body, inertia=dataclasses.replace(row.inertia, origin=Origin(xyz, rpy)))
+        bodied.append(dataclasses.replace(row, body=body))
     return tuple(bodied)
 
 

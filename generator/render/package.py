@@ -104,6 +104,12 @@ def dh_table_yaml(robot: Robot, arm_index: int) -> str:
             entry.update(mass=row.mass, radius=row.radius)
             if row.material:
                 entry["material"] = material_name(robot, row.material)
+        if row.inertia is not None:  # (the tensor as the table gives it: origin in DH frame i, rpy)
+            i = row.inertia
+            entry["inertia"] = {
+                **{"ixx": i.ixx, "ixy": i.ixy, "ixz": i.ixz, "iyy": i.iyy, "iyz": i.iyz, "izz": i.izz},
+                "origin": {"xyz": list(i.origin.xyz), "rpy": list(i.origin.rpy)},
+            }
         rows.append(entry)
     header = (
         f"# DH table of arm '{arm.name}' ({arm.convention} convention), SI units: m and rad.\n"

@@ -36,6 +36,37 @@ def dh_body_pose(
     return xyz, rpy, length
 
 
+def screw_pose(
+    a: float, alpha: float, x: float, y: float, z: float, roll: float, pitch: float, yaw: float
+) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+    """(xyz, rpy) of Tx(a) Rx(alpha) T(x y z, roll pitch yaw): a pose given in DH frame i, written in the link frame
+    of a standard-DH row (DH frame i is the link frame moved by Tx(a) Rx(alpha)). Its twin
+    _xacrokit_origin_after_x_screw (macros/_inc/frames.xacro) computes the same: same operations, same order, each
+    number + 0.0 (no -0.0)."""
+    ca, sa = math.cos(alpha), math.sin(alpha)
+    cr, sr, cp, sp, cy, sy = (
+        math.cos(roll),
+        math.sin(roll),
+        math.cos(pitch),
+        math.sin(pitch),
+        math.cos(yaw),
+        math.sin(yaw),
+    )
+    b00, b01, b02 = cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr
+    b10, b11, b12 = sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr
+    b20, b21, b22 = -sp, cp * sr, cp * cr
+    r00, r01, r02 = b00, b01, b02
+    r10, r11, r12 = ca * b10 - sa * b20, ca * b11 - sa * b21, ca * b12 - sa * b22
+    r20 = sa * b10 + ca * b20
+    out_yaw = math.atan2(r10, r00)
+    out_pitch = math.atan2(-r20, math.hypot(r00, r10))
+    out_roll = math.atan2(
+        math.sin(out_yaw) * r02 - math.cos(out_yaw) * r12, math.cos(out_yaw) * r11 - math.sin(out_yaw) * r01
+    )
+    xyz = (a + x + 0.0, ca * y - sa * z + 0.0, sa * y + ca * z + 0.0)
+    return xyz, (out_roll + 0.0, out_pitch + 0.0, out_yaw + 0.0)
+
+
 def rotation_rpy(
     *,
     quaternion: tuple[float, float, float, float] | None = None,

@@ -34,6 +34,7 @@ Kind = Literal[
     "force",
     "density",
     "acceleration",
+    "angular_acceleration",
     "time",
 ]
 Value = Fraction | float  # exact while no pi is involved
@@ -74,7 +75,13 @@ UNITS: dict[str, dict[str, Value]] = {
     },
     "force": {"N": Fraction(1), "kN": Fraction(1000), "kgf": Fraction("9.80665")},
     "density": {"kg/m3": Fraction(1), "g/cm3": Fraction(1000), "g/cc": Fraction(1000), "kg/L": Fraction(1000)},
-    "acceleration": {"m/s2": Fraction(1), "m/s/s": Fraction(1)},  # (a sizing file's gravity)
+    "acceleration": {"m/s2": Fraction(1), "m/s/s": Fraction(1)},  # (a sizing file's gravity, a prismatic joint's)
+    "angular_acceleration": {  # (a sizing file's acceleration limit of a revolute joint)
+        "rad/s2": Fraction(1),
+        "rad/s/s": Fraction(1),
+        "deg/s2": math.pi / 180.0,
+        "deg/s/s": math.pi / 180.0,
+    },
     "time": {"s": Fraction(1), "ms": Fraction(1, 1000), "min": Fraction(60)},  # (a motion's duration)
 }
 _EXACT_EXPONENT = 400  # beyond 1e±400 a number is no double anyway: read it as a float (inf or 0), not as a huge int
@@ -311,6 +318,9 @@ def _example(kind: str) -> str:
         "torque": "15 kgf*cm",
         "force": "200 N",
         "density": "2.7 g/cm3",
+        "acceleration": "9.81 m/s2",
+        "angular_acceleration": "180 deg/s2",
+        "time": "500 ms",
     }[kind]
 
 

@@ -292,7 +292,7 @@ def joint_motions(robot: SizingRobot, path: Trajectory, torque: np.ndarray) -> l
                 rms_torque=float(math.sqrt(squared / duration)) if duration > 0 else float(abs(torque[0, index])),
                 peak_speed=float(np.abs(path.v[:, index]).max()),
                 peak_acceleration=float(np.abs(path.a[:, index]).max()),
-                peak_power=float(max(power[:, index].max(), 0.0)),
+                peak_power=float(max(power[:, index].max(), 0.0)) + 0.0,  # (max(-0.0, 0.0) is -0.0)
                 peak_regenerative_power=float(max(-power[:, index].min(), 0.0)) + 0.0,
                 energy=float(np.trapezoid(power[:, index], path.t)),
                 motoring_energy=float(np.trapezoid(np.maximum(power[:, index], 0.0), path.t)),

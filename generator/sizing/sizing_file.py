@@ -364,6 +364,7 @@ def _per_joint(read: _Reader, given: Any, robot: SizingRobot, what: str, where: 
     raw = read.raw
     values = []
     names = [j.name for j in robot.joints]
+    said = len(read.errors)
     if isinstance(given, dict):
         for name in given:
             if name not in names:
@@ -372,19 +373,21 @@ def _per_joint(read: _Reader, given: Any, robot: SizingRobot, what: str, where: 
                 )
     for joint in robot.joints:
         value = given.get(joint.name) if isinstance(given, dict) else given
-        kind: Kind = "linear_velocity" if joint.kind == "prismatic" else "angular_velocity"
+        if what == "velocity":
+            kind: Kind = "linear_velocity" if joint.kind == "prismatic" else "angular_velocity"
+        else:
+            kind = "acceleration" if joint.kind == "prismatic" else "angular_acceleration"
         if value is None and what == "velocity" and joint.velocity is not None:
             values.append(joint.velocity)
         elif value is None:
             source = " and the URDF gives no velocity limit" if what == "velocity" else ""
             read.errors.append(raw.error(where[:-1], f"joint {joint.name!r} needs a {what} limit{source}", key=True))
             values.append(math.nan)
-        elif what == "velocity":
-            path = (*where, joint.name) if isinstance(given, dict) else where
-            values.append(read.quantity(value, kind, path, positive=True))
         else:
             path = (*where, joint.name) if isinstance(given, dict) else where
-            values.append(read.quantity(value, "number", path, positive=True))
+            values.append(read.quantity(value, kind, path, positive=True))
+    # one value for all joints is read once per joint: its problem is said once
+    read.errors[said:] = list({str(e): e for e in read.errors[said:]}.values())
     return values
 
 

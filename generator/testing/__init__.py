@@ -254,6 +254,8 @@ def _arm(draw, prefix: str, parent: str, materials: list[str]) -> dict[str, Any]
             row["mass"] = draw(_mass)
             if materials and draw(st.booleans()):
                 row["material"] = draw(st.sampled_from(materials))
+            if draw(st.booleans()):  # (a published tensor, placed in DH frame i)
+                row["inertia"] = {"origin": draw(_origin()), **draw(_turned_tensor())}
         rows.append(row)
     arm: dict[str, Any] = {
         "parent": parent,

@@ -126,6 +126,12 @@ def _row_errors(raw: RawSpec, row: dict[str, Any], path: PathKey) -> Iterator[Sp
         )
     if "radius" in row and not row["radius"] > 0:
         yield raw.error((*path, "radius"), f"radius must be > 0 m, got {row['radius']!r}")
+    if "inertia" in row:
+        if "mass" not in row:
+            yield raw.error(
+                (*path, "inertia"), "inertia needs the row's mass (kg): a published tensor comes with its mass"
+            )
+        yield from _inertia_errors(raw, row["inertia"], (*path, "inertia"))
 
 
 def _frame_errors(raw: RawSpec, frame: dict[str, Any], path: PathKey) -> Iterator[SpecError]:

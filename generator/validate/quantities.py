@@ -344,6 +344,8 @@ class Quantities:
             for key, quantity in _ROW:
                 self.convert(item, key, path, quantity)
             self.limits(item, path, item.get("type", "revolute"))
+            if isinstance(item.get("inertia"), dict):
+                self.origin(item["inertia"], "origin", (*path, "inertia"))
             return
         self.origin(item, "origin", path)
         if kind == "wheel":

@@ -34,7 +34,7 @@ def test_bin_sorting_cell_prefixes_every_name_and_mounts_as_specified(cell):
     mimic = root.find("joint[@name='left_gripper_right_finger_joint']/mimic")
     assert mimic.get("joint") == "left_gripper_left_finger_joint"  # the mimic reference is prefixed too
     control = {c.get("name"): [j.get("name") for j in c.findall("joint")] for c in root.findall("ros2_control")}
-    assert control["left_ur5"][0] == "left_shoulder_pan_joint"
+    assert control["left_ur10e"][0] == "left_shoulder_pan_joint"
     assert control["left_gripper_parallel_gripper"] == ["left_gripper_left_finger_joint"]
 
 

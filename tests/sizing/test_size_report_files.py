@@ -70,7 +70,7 @@ def test_the_docs_picture_is_the_ur5_examples_report(tmp_path):
 
 def test_every_sizing_example_runs_the_command_its_header_gives():
     examples = sorted((REPO / "examples" / "sizing").glob("*.yaml"))
-    assert len(examples) == 3
+    assert len(examples) >= 5  # (none moved away)
     for example in examples:
         (line,) = [t for t in example.read_text(encoding="utf-8").splitlines() if "#   gen-robot size " in t]
         words = line.split("#   gen-robot ", 1)[1].split()[:4]  # size ROBOT --sizing FILE (not --report)

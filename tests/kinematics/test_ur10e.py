@@ -1,0 +1,181 @@
+"""The UR10e example (issue 31) against Universal Robots' published numbers, each an independent oracle:
+
+- its forward kinematics equals the product of UR's standard DH table (UR's "DH parameters for calculations of
+  kinematics and dynamics" article, UR10e rows) to 1e-9 m, tool0 in base, at random joint values;
+- every named frame sits where UR's own ROS 2 description puts it: the chain of Universal_Robots_ROS2_Description
+  2.4.5 (urdf/ur_macro.xacro's fixed joints, config/ur10e/default_kinematics.yaml's joint origins), rebuilt here
+  from those numbers, read by yourdfpy from our URDF;
+- each link's mass, centre of mass and tensor equal UR's config/ur10e/physical_parameters.yaml (which states them in
+  UR's link frames), and the limits its joint_limits.yaml.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+
+import numpy as np
+import pytest
+import yourdfpy
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from conftest import REPO
+from xacrokit.kinematics import pose
+from xacrokit.reader.robot_source import robot_text
+
+UR10E = REPO / "examples" / "robots" / "ur10e.yaml"
+JOINTS = ["shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint", "wrist_1_joint", "wrist_2_joint", "wrist_3_joint"]
+
+# UR's DH article, UR10e: a, d (m), alpha (rad)
+A = [0.0, -0.6127, -0.57155, 0.0, 0.0, 0.0]
+D = [0.1807, 0.0, 0.0, 0.17415, 0.11985, 0.11655]
+ALPHA = [math.pi / 2, 0.0, 0.0, math.pi / 2, -math.pi / 2, 0.0]
+
+# UR's config/ur10e/default_kinematics.yaml: joint origins (x, y, z, roll, pitch, yaw), parent link -> link
+KINEMATICS = {
+    "shoulder_link": (0, 0, 0.1807, 0, 0, 0),
+    "upper_arm_link": (0, 0, 0, 1.570796327, 0, 0),
+    "forearm_link": (-0.6127, 0, 0, 0, 0, 0),
+    "wrist_1_link": (-0.57155, 0, 0.17415, 0, 0, 0),
+    "wrist_2_link": (0, -0.11985, -2.458164590756244e-11, 1.570796327, 0, 0),
+    "wrist_3_link": (0, 0.11655, -2.390480459346185e-11, 1.570796326589793, 3.141592653589793, 3.141592653589793),
+}
+# ur_macro.xacro's fixed joints: child -> (parent, rpy)
+FIXED = {
+    "base_link_inertia": ("base_link", (0, 0, math.pi)),
+    "base": ("base_link", (0, 0, math.pi)),
+    "flange": ("wrist_3_link", (0, -math.pi / 2, -math.pi / 2)),
+    "tool0": ("flange", (math.pi / 2, 0, math.pi / 2)),
+    "ft_frame": ("wrist_3_link", (math.pi, 0, 0)),
+}
+# physical_parameters.yaml: mass, cog (in UR's link frame), rotation (roll of the tensor's frame), tensor
+PHYSICAL = {
+    "shoulder_link": (
+        7.369,
+        (0.021, -0.027, 0.0),
+        math.pi / 2,
+        (0.03408, 0.00002, -0.00425, 0.03529, 0.00008, 0.02156),
+    ),
+    "upper_arm_link": (13.051, (-0.2327, 0.0, 0.158), 0.0, (0.02814, 0.00005, -0.01561, 0.77068, 0.00002, 0.76943)),
+    "forearm_link": (3.989, (-0.33155, 0.0, 0.068), 0.0, (0.01014, 0.00008, 0.00916, 0.30928, 0.0, 0.30646)),
+    "wrist_1_link": (2.1, (0.0, -0.018, 0.007), math.pi / 2, (0.00296, -0.00001, 0.0, 0.00222, -0.00024, 0.00258)),
+    "wrist_2_link": (1.98, (0.0, 0.018, -0.007), -math.pi / 2, (0.00296, -0.00001, 0.0, 0.00222, -0.00024, 0.00258)),
+    "wrist_3_link": (0.615, (0.0, 0.0, -0.026), 0.0, (0.00040, 0.0, 0.0, 0.00041, 0.0, 0.00034)),
+}
+# joint_limits.yaml: effort (N*m), velocity (deg/s), position (+- deg)
+LIMITS = {
+    "shoulder_pan_joint": (330.0, 120.0, 360.0),
+    "shoulder_lift_joint": (330.0, 120.0, 360.0),
+    "elbow_joint": (150.0, 180.0, 180.0),
+    "wrist_1_joint": (54.0, 180.0, 360.0),
+    "wrist_2_joint": (54.0, 180.0, 360.0),
+    "wrist_3_joint": (54.0, 180.0, 360.0),
+}
+
+
+def _rpy(roll, pitch, yaw):
+    cr, sr, cp, sp, cy, sy = (
+        math.cos(roll),
+        math.sin(roll),
+        math.cos(pitch),
+        math.sin(pitch),
+        math.cos(yaw),
+        math.sin(yaw),
+    )
+    return np.array(
+        [
+            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+            [-sp, cp * sr, cp * cr],
+        ]
+    )
+
+
+def _pose(x, y, z, roll, pitch, yaw):
+    out = np.eye(4)
+    out[:3, :3], out[:3, 3] = _rpy(roll, pitch, yaw), (x, y, z)
+    return out
+
+
+def _ur_dh(q):
+    """tool0 in base: the DH product Rz(q) Tz(d) Tx(a) Rx(alpha), row by row."""
+    out = np.eye(4)
+    for qi, a, d, alpha in zip(q, A, D, ALPHA, strict=True):
+        ct, st_, ca, sa = math.cos(qi), math.sin(qi), math.cos(alpha), math.sin(alpha)
+        out = out @ np.array(
+            [[ct, -st_ * ca, st_ * sa, a * ct], [st_, ct * ca, -ct * sa, a * st_], [0, sa, ca, d], [0, 0, 0, 1]]
+        )
+    return out
+
+
+def _ur_description_frames(q):
+    """Every named frame of UR's description in base_link, at joint values q."""
+    frames = {"base_link": np.eye(4)}
+    for child, (parent, rpy) in FIXED.items():
+        if parent in frames:
+            frames[child] = frames[parent] @ _pose(0, 0, 0, *rpy)
+    parent = "base_link_inertia"
+    for (link, origin), qi in zip(KINEMATICS.items(), q, strict=True):
+        frames[link] = frames[parent] @ _pose(*origin) @ _pose(0, 0, 0, 0, 0, qi)
+        parent = link
+    for child, (parent, rpy) in FIXED.items():
+        if child not in frames:
+            frames[child] = frames[parent] @ _pose(0, 0, 0, *rpy)
+    return frames
+
+
+@pytest.fixture(scope="module")
+def ours():
+    with robot_text(UR10E, meshes=False) as (text, _):
+        return yourdfpy.URDF.load(io.BytesIO(text.encode("utf-8")), load_meshes=False, build_scene_graph=True)
+
+
+joint_values = st.lists(st.floats(-2 * math.pi, 2 * math.pi, allow_nan=False), min_size=6, max_size=6)
+
+
+@settings(max_examples=25, deadline=None)
+@given(q=joint_values)
+def test_tool0_in_base_is_urs_dh_product(q):
+    q[2] = max(-math.pi, min(math.pi, q[2]))  # (the elbow's limit)
+    found = pose(UR10E, "tool0", in_frame="base", at={j: repr(v) for j, v in zip(JOINTS, q, strict=True)}).matrix
+    expected = _ur_dh(q)
+    assert np.abs(found[:3, 3] - expected[:3, 3]).max() < 1e-9
+    assert np.abs(found[:3, :3] - expected[:3, :3]).max() < 1e-9
+
+
+@settings(max_examples=15, deadline=None)
+@given(q=joint_values)
+def test_every_named_frame_is_where_urs_description_puts_it(ours, q):
+    q[2] = max(-math.pi, min(math.pi, q[2]))
+    ours.update_cfg(dict(zip(JOINTS, q, strict=True)))
+    theirs = _ur_description_frames(q)
+    assert set(theirs) <= set(ours.link_map)
+    for frame, expected in theirs.items():
+        found = ours.get_transform(frame, "base_link")
+        # UR's calibration numbers carry 1e-11 m and 1e-10 rad of rounding (its 1.570796327 for pi/2)
+        assert np.abs(found[:3, 3] - expected[:3, 3]).max() < 1e-9, frame
+        assert np.abs(found[:3, :3] - expected[:3, :3]).max() < 1e-9, frame
+
+
+def test_masses_centres_of_mass_and_tensors_are_urs(ours):
+    for link, (mass, cog, roll, tensor) in PHYSICAL.items():
+        inertial = ours.link_map[link].inertial
+        assert inertial.mass == mass, link
+        assert np.abs(inertial.origin[:3, 3] - cog).max() < 1e-12, link
+        # the tensor is UR's in its rotated frame: compare it turned into the link frame both ways
+        ours_in_link = inertial.origin[:3, :3] @ inertial.inertia @ inertial.origin[:3, :3].T
+        ixx, ixy, ixz, iyy, iyz, izz = tensor
+        turn = _rpy(roll, 0, 0)
+        theirs_in_link = turn @ np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]]) @ turn.T
+        assert np.abs(ours_in_link - theirs_in_link).max() < 1e-15, link
+    assert ours.link_map["base_link_inertia"].inertial.mass == 4.0
+    assert ours.link_map["base_link"].inertial is None  # (UR's mounting frame has no body)
+
+
+def test_limits_are_urs(ours):
+    for name, (effort, velocity, position) in LIMITS.items():
+        limit = ours.joint_map[name].limit
+        assert limit.effort == effort and limit.velocity == pytest.approx(math.radians(velocity), rel=1e-15), name
+        assert limit.lower == pytest.approx(-math.radians(position), rel=1e-15), name
+        assert limit.upper == pytest.approx(math.radians(position), rel=1e-15), name
