@@ -32,6 +32,12 @@ def test_every_example_draws_as_docs_show_it(example):
     )
 
 
+def test_docs_view_shows_every_examples_picture():
+    shown = (REPO / "docs" / "view.md").read_text(encoding="utf-8")
+    missing = [p.stem for p in (*ROBOT_EXAMPLES, *SCENE_EXAMPLES) if f"(images/examples/{p.stem}.png)" not in shown]
+    assert not missing, f"add to docs/view.md's table: {missing}"
+
+
 def test_the_same_input_gives_the_same_bytes_and_a_joint_moves_the_picture():
     first, again = render(UR5), render(UR5)
     assert first == again
