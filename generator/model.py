@@ -24,6 +24,7 @@ InertiaKind = Literal["box", "cylinder", "sphere", "capsule", "tube", "mesh", "p
 Axle = Literal["x", "y", "z"]
 DEFAULT_ROW_RADIUS = 0.03  # m: a DH row's body (a cylinder between its joint frames) when the spec gives none
 DEFAULT_TOOL = "tool0"  # an arm's tool frame when the spec names none (ROS-Industrial's name)
+HOME_POSE = "home"  # the named pose a robot starts in (ros2_control initial_value, the first MuJoCo keyframe)
 
 
 # ------------------------------------------------------------------------------------- names of generated elements
@@ -339,6 +340,9 @@ class Robot:
     files: tuple[PackageFile, ...] = ()
     extension: str = ""  # the first content of urdf/NAME_extension.xacro's macro (the spec's `extension` file)
     extension_source: str = ""  # that file's name as the spec gives it
+    # named poses: (name, ((joint, position in rad or m), ...)), as the spec gives them (a joint left out is at its
+    # start: 0, or the limit nearest 0); `home` is where the robot starts
+    poses: tuple[tuple[str, tuple[tuple[str, float], ...]], ...] = ()
     source: str = field(default="", compare=False)
 
     @property

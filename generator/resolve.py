@@ -18,6 +18,7 @@ from .model import (
     AXIAL,
     DEFAULT_ROW_RADIUS,
     DEFAULT_TOOL,
+    HOME_POSE,
     MOVING,
     Arm,
     Box,
@@ -414,12 +415,14 @@ def _frame(name: str, data: dict[str, Any], package: _Package) -> tuple[Link, Jo
 def _controlled(
     data: dict[str, Any], robot_joints: list[tuple[str, Limit | None, bool]]
 ) -> tuple[ControlledJoint, ...] | None:
-    """Every moving, non-mimic joint with its interfaces (per-joint override, else wheel or global default)."""
+    """Every moving, non-mimic joint with its interfaces (per-joint override, else wheel or global default), starting
+    at its `home` position."""
     control = data.get("ros2_control")
     if control is None:
         return None
     default = control.get("interfaces", {})
     overrides = control.get("joints", {})
+    home = data.get("poses", {}).get(HOME_POSE, {})
     result = []
     for name, limit, is_wheel in robot_joints:
         base = WHEEL_INTERFACES if is_wheel else DEFAULT_INTERFACES
@@ -430,6 +433,7 @@ def _controlled(
         start = 0.0  # the zero position, moved inside the limits when they exclude it
         if limit is not None and limit.lower is not None and limit.upper is not None:
             start = min(max(0.0, limit.lower), limit.upper)
+        start = float(home.get(name, start))
         result.append(ControlledJoint(name=name, interfaces=chosen, initial_position=start))
     return tuple(result)
 
@@ -478,6 +482,10 @@ def resolve(spec: Spec) -> Robot:
         sensors=tuple(sensors),
         extension=spec.extension,
         extension_source=data.get("extension", ""),
+        poses=tuple(
+            (name, tuple((joint, float(value)) for joint, value in pose.items()))
+            for name, pose in data.get("poses", {}).items()
+        ),
         files=tuple(PackageFile(path, content) for path, content in sorted(package.files.items())),
         source=spec.raw.file,
     )

@@ -12,7 +12,9 @@ What it keeps that MuJoCo's URDF import loses (docs/export.md has the whole mapp
   make its convex hull: it has no volume to collide with);
 - mimic joints as joint equality constraints (q = offset + multiplier q_leader);
 - actuators from the ``<ros2_control>`` block's command interfaces (:mod:`xacrokit.export.mjcf_actuators`);
-- the parent and child of every joint excluded from colliding with each other;
+- the parent and child of every joint excluded from colliding with each other, and so are two bodies with collision
+  geometry joined through bodies without any (a tool or mounting frame between them), and a body and its
+  grandparent where a zero-length link joins them at one point (a spherical wrist);
 - Gazebo's ``mu1`` of a link as its collision geoms' sliding friction, with priority over what they touch;
 - a free joint on the root link of a mobile robot (``--base free``, or ``auto``: a robot with a wheel, a continuous
   joint whose child has a cylinder collision, and a root not called ``world``), a floor with ``--floor``;
@@ -36,12 +38,14 @@ import numpy as np
 
 from ..errors import XacrokitError
 from ..reader.mesh_copies import MeshRead
+from ..reader.named_poses import named_poses
 from ..reader.robot_source import urdf_floats as _floats
 from ..reader.urdf_view import Joint, Link, Origin, UrdfView
 from ..shared.input_files import CopiedFile, copied_pieces
 from ..shared.kinematic_tree import Tree
 from ..shared.units import MAX_MOMENT, bound_problem
 from .mjcf_actuators import num
+from .mjcf_keyframes import keyframes
 from .mjcf_meshes import FlatMesh, Meshes
 
 MJ_MINVAL = 1e-15  # MuJoCo's mjMINVAL: the least mass and moment a moving body may have
@@ -228,9 +232,11 @@ def mjcf(
     *,
     base: str = "auto",
     floor: bool = False,
+    poses: Mapping[str, Mapping[str, float]] | None = None,
 ) -> Export:
     """The MJCF of a URDF ``text``; ``read(filename)`` reads a mesh (:func:`~xacrokit.reader.mesh_copies.mesh_reader`:
-    safely, below the robot's folder); ``base``: auto, fixed or free.
+    safely, below the robot's folder); ``base``: auto, fixed or free; ``poses``: named poses (joint -> value), each a
+    keyframe, ``home`` first (else where the ros2_control blocks start the robot).
 
     Raises:
         XacrokitError: a URDF MuJoCo cannot take (not a tree, a mesh that cannot be found or read, bad numbers).
@@ -250,6 +256,7 @@ def mjcf(
     for mesh in meshes.assets:
         asset.append(mesh)
     _constraints(model, view, text, tree, free, export)
+    model.append(keyframes(model, named_poses(poses or {}, view), tree.joints))
     for element in (asset, model.find("contact")):
         if element is not None and len(element) == 0:
             model.remove(element)
@@ -264,8 +271,7 @@ def _constraints(model: Any, view: UrdfView, text: str, tree: _Tree, free: bool,
     from .mjcf_actuators import actuators, commanded, gains, mimics
 
     contact = etree.SubElement(model, "contact")
-    for joint in tree.joints:
-        parent, child = joint.parent or "", joint.child or ""
+    for parent, child in _adjacent(tree):
         if parent != "world" or tree.root != "world":
             etree.SubElement(contact, "exclude", body1=parent, body2=child)
     equality = mimics(tree.joints, export.notes)
@@ -276,6 +282,33 @@ def _constraints(model: Any, view: UrdfView, text: str, tree: _Tree, free: bool,
     acts = actuators(view, {j.name: j for j in tree.joints}, inertia, export.notes)
     if len(acts):
         model.append(acts)
+
+
+def _adjacent(tree: _Tree) -> list[tuple[str, str]]:
+    """The body pairs that must not collide, as MoveIt's setup assistant disables its "adjacent" pairs: every joint's
+    parent and child; a body with collision geometry and the nearest body above it that has some, past bodies without
+    any (a UR's geometry-less `base` frame sits between base_link and shoulder_link, whose shapes overlap where they
+    are joined); and a body and the one above its parent when its joint does not move it off its parent's origin
+    (a zero-length link, as a spherical wrist's: all three meet at one joint, their shapes round it)."""
+    joint_of = {joint.child or "": joint for joint in tree.joints}
+    parent_of = {child: joint.parent or "" for child, joint in joint_of.items()}
+    pairs = [(joint.parent or "", joint.child or "") for joint in tree.joints]
+    colliding = {name for name, link in tree.links.items() if link.collisions}
+    for name in colliding:
+        above = parent_of.get(name)
+        if above is None or above in colliding:
+            continue  # (the root, or already its joint's pair)
+        while above is not None and above not in colliding:
+            above = parent_of.get(above)
+        if above is not None:
+            pairs.append((above, name))
+    for name, joint in joint_of.items():
+        where = joint.origin.xyz if joint.origin is not None else None
+        offset = _floats(where, 3, where=f"joint {joint.name!r} origin xyz")
+        grandparent = parent_of.get(parent_of[name])
+        if grandparent is not None and max(map(abs, offset)) < 1e-9:
+            pairs.append((grandparent, name))
+    return list(dict.fromkeys(pairs))
 
 
 def _header(model: Any, export: Export) -> None:
@@ -506,13 +539,15 @@ def export_mjcf(
         SpecErrors: an invalid spec (located).
     """
     from ..reader.mesh_copies import mesh_reader
-    from ..reader.robot_source import robot_text
+    from ..reader.named_poses import spec_poses
+    from ..reader.robot_source import robot_read
     from ..write.atomic import is_staged
 
     if base not in ("auto", "fixed", "free"):
         raise XacrokitError(f"--base {base!r}: auto, fixed or free")
-    with robot_text(path, mappings, package_paths) as (text, packages):
-        export = mjcf(text, mesh_reader(Path(path), packages), base=base, floor=floor)
+    with robot_read(path, mappings, package_paths) as (source, text, packages):
+        poses = spec_poses(source.robot)
+        export = mjcf(text, mesh_reader(Path(path), packages), base=base, floor=floor, poses=poses)
         for name, mesh in export.meshes.items():  # (a spec's meshes, staged for the block: read while they last)
             if isinstance(mesh, CopiedFile) and is_staged(mesh.root):
                 export.meshes[name] = b"".join(copied_pieces(mesh))

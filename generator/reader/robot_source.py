@@ -123,13 +123,27 @@ def robot_text(
         XacrokitError: unreadable input, or name:=value arguments for input that is not xacro.
         SpecErrors: an invalid spec (located).
     """
+    with robot_read(path, mappings, package_paths, meshes=meshes) as (_, text, packages):
+        yield text, packages
+
+
+@contextlib.contextmanager
+def robot_read(
+    path: str | os.PathLike[str],
+    mappings: Mapping[str, str] | None = None,
+    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
+    *,
+    meshes: bool = True,
+) -> Iterator[tuple[RobotSource, str, Packages]]:
+    """As :func:`robot_text`, with the :class:`RobotSource` too (a spec's robot model, for what a URDF cannot say:
+    its named poses)."""
     from ..write.atomic import staged_packages
 
     where = Path(path)
     source = read_source(where, mappings, package_paths)
     text = declared(source.text, str(where) if source.kind == "urdf" else f"{where} (as expanded)")
     with staged_packages(source.carried if meshes else {}) as staged:
-        yield text, {**staged, **(source.packages or {})}
+        yield source, text, {**staged, **(source.packages or {})}
 
 
 UNDECLARED = "urn:xacrokit:undeclared:"

@@ -288,8 +288,10 @@ class _Entry:
         return copy
 
     def _settings(self, tree: Subtree, made: Copy) -> None:
-        """The subtree's ros2_control joint overrides and gazebo surfaces, copied under the new names."""
-        for section, names in ((("ros2_control", "joints"), tree.joints), (("gazebo", "links"), tree.links)):
+        """The subtree's ros2_control joint overrides, gazebo surfaces and joints' pose values, copied under the new
+        names (a pose's value as it is: equal values give mirror images)."""
+        poses = [(("poses", name), tree.joints) for name in self.data.get("poses", {})]
+        for section, names in ((("ros2_control", "joints"), tree.joints), (("gazebo", "links"), tree.links), *poses):
             given = self.data.get(section[0], {}).get(section[1], {})
             for name in names:  # (an entry the spec gives for the copy's name is the spec's: kept)
                 if name in given and name.replace(self.old, self.new) not in given:

@@ -214,6 +214,24 @@ def reference_errors(
             yield raw.error(
                 ("ros2_control", "joints", name), f"{name!r} {what}; only moving joints are controlled", key=True
             )
+    yield from _pose_reference_errors(raw, data, types)
+
+
+def _pose_reference_errors(raw: RawSpec, data: dict[str, Any], types: dict[str, str]) -> Iterator[SpecError]:
+    """A named pose gives moving joints that move by themselves."""
+    moving = sorted(n for n, t in types.items() if t in MOVING)
+    for pose, values in data.get("poses", {}).items():
+        for name in values:
+            where = ("poses", pose, name)
+            if types.get(name) not in MOVING:
+                what = (
+                    f"is not a joint{did_you_mean(name, moving)}" if name not in types else f"is a {types[name]} joint"
+                )
+                yield raw.error(where, f"{name!r} {what}; a pose gives the positions of moving joints", key=True)
+            elif mimic := data.get("joints", {}).get(name, {}).get("mimic"):
+                yield raw.error(
+                    where, f"{name!r} follows {mimic['joint']!r} (mimic): give {mimic['joint']!r}'s position", key=True
+                )
 
 
 def _joint_reference_errors(

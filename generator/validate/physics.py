@@ -49,6 +49,41 @@ def physics_errors(
             yield from _frame_errors(raw, item, path)
     for name, joint in data.get("joints", {}).items():
         yield from _joint_errors(raw, data, ("joints", name), joint, children)
+    yield from _pose_errors(raw, data, bodies)
+
+
+def _pose_errors(raw: RawSpec, data: dict[str, Any], bodies: Sequence[Body]) -> Iterator[SpecError]:
+    """A named pose's position outside its joint's limits (rad or m, as converted)."""
+    limits = {n: j.get("limit") for n, j in data.get("joints", {}).items() if j["type"] in ("revolute", "prismatic")}
+    limits.update(
+        (item["name"], item.get("limit"))
+        for kind, _, _, item in bodies
+        if kind == "row" and item.get("type", "revolute") in ("revolute", "prismatic")
+    )
+    for pose, values in data.get("poses", {}).items():
+        for name, value in values.items():
+            limit = limits.get(name)
+            if not isinstance(limit, dict) or not isinstance(value, (int, float)):
+                continue
+            low, high = limit.get("lower"), limit.get("upper")
+            if isinstance(low, (int, float)) and isinstance(high, (int, float)) and not low <= value <= high:
+                if _is_prismatic(data, bodies, name):
+                    said = f"{value:.6g} m is outside its limits [{low:.6g}, {high:.6g}] m"
+                else:
+                    degrees = ", ".join(f"{math.degrees(v):.6g}" for v in (low, high))
+                    said = (
+                        f"{value:.6g} rad ({math.degrees(value):.6g} deg) is outside its limits "
+                        f"[{low:.6g}, {high:.6g}] rad ([{degrees}] deg)"
+                    )
+                yield raw.error(("poses", pose, name), f"{name} = {said}")
+
+
+def _is_prismatic(data: dict[str, Any], bodies: Sequence[Body], name: str) -> bool:
+    if data.get("joints", {}).get(name, {}).get("type") == "prismatic":
+        return True
+    return any(
+        kind == "row" and item["name"] == name and item.get("type") == "prismatic" for kind, _, _, item in bodies
+    )
 
 
 def _link_errors(raw: RawSpec, link: dict[str, Any], path: PathKey) -> Iterator[SpecError]:

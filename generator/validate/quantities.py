@@ -374,6 +374,13 @@ class Quantities:
             self.limits(joint, ("joints", name), joint["type"])
         for kind, _, path, item in bodies(data):
             self.body(kind, path, item)
+        sliding = {n for n, j in data.get("joints", {}).items() if j.get("type") == "prismatic"}
+        sliding |= {
+            item["name"] for kind, _, _, item in bodies(data) if kind == "row" and item.get("type") == "prismatic"
+        }
+        for name, pose in data.get("poses", {}).items():  # (a position is a length on a prismatic joint)
+            for joint in pose:
+                self.convert(pose, joint, ("poses", name), "length" if joint in sliding else "angle")
         for _, _, path, part in parts(data):
             self.density(part, path)
             self.origin(part, "origin", path)

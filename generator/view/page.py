@@ -76,11 +76,14 @@ def _check(data: bytes) -> None:
         raise XacrokitError(f"the three.js tarball does not have the npm registry's integrity {THREE_INTEGRITY}")
 
 
-def robot_json(text: str, read: Any) -> dict[str, Any]:
-    """The robot as the page reads it: links with their visuals, joints with their origin, axis, limits, mimic, and
-    ``missing``: a line for each mesh that cannot be found or read (``read``, a
-    :func:`~xacrokit.reader.mesh_copies.mesh_reader`, raising XacrokitError for it), whose visual the page goes
-    without and lists."""
+def robot_json(text: str, read: Any, poses: Mapping[str, Mapping[str, float]] | None = None) -> dict[str, Any]:
+    """The robot as the page reads it: links with their visuals, joints with their origin, axis, limits, mimic,
+    ``home``: where each moving joint starts (:func:`~xacrokit.reader.named_poses.named_poses` of a spec's
+    ``poses``; a joint it leaves out at 0, or its limit nearest 0) and ``missing``: a line for each mesh that cannot
+    be found or read (``read``, a :func:`~xacrokit.reader.mesh_copies.mesh_reader`, raising XacrokitError for it),
+    whose visual the page goes without and lists."""
+    from ..model import HOME_POSE
+    from ..reader.named_poses import named_poses
     from ..reader.urdf_view import read_view
 
     view = read_view(text)
@@ -96,7 +99,19 @@ def robot_json(text: str, read: Any) -> dict[str, Any]:
         for link in view.links
     ]
     joints = [_joint(joint) for joint in view.joints if joint.parent is not None and joint.child is not None]
-    return {"name": view.name or "robot", "links": links, "joints": joints, "missing": missing}
+    given = named_poses(poses or {}, view)[HOME_POSE]
+    moving = [j for j in joints if j["type"] in ("revolute", "continuous", "prismatic") and "mimic" not in j]
+    home = {j["name"]: _start(j, given) for j in moving}
+    return {"name": view.name or "robot", "links": links, "joints": joints, "home": home, "missing": missing}
+
+
+def _start(joint: dict[str, Any], given: Mapping[str, float]) -> float:
+    """A joint's home position: given, else 0 moved into its limits."""
+    if joint["name"] in given:
+        return float(given[joint["name"]])
+    if "lower" not in joint:  # (continuous, or no limits given)
+        return 0.0
+    return min(max(0.0, joint["lower"]), joint["upper"])
 
 
 def _visual(
@@ -223,11 +238,12 @@ def page(
         SpecErrors: an invalid sizing file (located).
     """
     from ..reader.mesh_copies import mesh_reader
-    from ..reader.robot_source import robot_text
+    from ..reader.named_poses import spec_poses
+    from ..reader.robot_source import robot_read
     from ..render import environment
 
-    with robot_text(path, mappings, package_paths) as (text, packages):
-        robot = robot_json(text, mesh_reader(Path(path), packages))
+    with robot_read(path, mappings, package_paths) as (source, text, packages):
+        robot = robot_json(text, mesh_reader(Path(path), packages), spec_poses(source.robot))
     if missing is not None:
         missing.extend(robot["missing"])
     if sizing is not None:

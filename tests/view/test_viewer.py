@@ -39,6 +39,31 @@ def test_every_example_opens_offline_and_its_kinematics_are_pinocchios(browser, 
 
 
 @browser_only
+def test_the_page_opens_at_home(browser, tmp_path):
+    """The UR10e's home (shoulder lift and wrist 1 at -1.57, UR's start): the sliders and labels say it, the robot is
+    drawn there (pinocchio's poses at home)."""
+    spec = REPO / "examples" / "robots" / "ur10e.yaml"
+    html = tmp_path / "ur10e.html"
+    html.write_text(page(spec), encoding="utf-8")
+    open_page(browser, html)
+    home = {"shoulder_lift_joint": -1.57, "wrist_1_joint": -1.57}
+
+    def shown():
+        sliders = browser.find_elements("css selector", "input[data-joint]")
+        return {e.get_attribute("data-joint"): float(e.get_attribute("value")) for e in sliders}
+
+    expected = {name: home.get(name, 0.0) for name in browser.execute_script("return window.xacrokit.joints()")}
+    assert shown() == expected
+    label = browser.find_element("xpath", "//input[@data-joint='wrist_1_joint']/preceding-sibling::label")
+    assert label.text == "wrist_1_joint = -1.570"
+    from xacrokit.reader.robot_source import read_source
+
+    want = pinocchio_poses(read_source(spec).text, expected)["tool0"]
+    got = np.array(browser.execute_script("return window.xacrokit.linkPose('tool0')")).reshape(4, 4)
+    assert np.abs(got - want).max() < 1e-9
+
+
+@browser_only
 def test_moving_a_slider_changes_the_picture(browser, tmp_path):
     html = tmp_path / "ur5.html"
     html.write_text(page(REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"), encoding="utf-8")

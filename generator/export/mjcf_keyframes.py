@@ -1,0 +1,62 @@
+"""The exported model's keyframes: one ``<key>`` per named pose (:func:`xacrokit.reader.named_poses.named_poses`:
+``home`` first), a joint a pose leaves out at 0 (or the limit nearest 0). A key holds
+the whole ``qpos`` in MuJoCo's order (the document order of the joints: a free joint its body's position and
+orientation, a mimic joint its leader's value through the mimic's offset and multiplier) and ``ctrl`` (a position
+servo's target is its joint's value, a velocity servo's and a motor's 0), so that ``mj_resetDataKeyframe`` starts the
+robot holding that pose.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from ..reader.urdf_view import Joint
+from .mjcf_actuators import num
+
+
+def keyframes(model: Any, poses: Mapping[str, Mapping[str, float]], joints: Sequence[Joint]) -> Any:
+    """The ``<keyframe>`` element of ``model`` (an MJCF tree with its joints and actuators) for ``poses``."""
+    from lxml import etree
+
+    mimics = {j.name: j.mimic for j in joints if j.mimic is not None}
+    order = list(model.find("worldbody").iter("joint", "freejoint"))  # (MuJoCo's qpos order)
+    servos = list(model.find("actuator")) if model.find("actuator") is not None else []
+    element = etree.Element("keyframe")
+    for name, pose in poses.items():
+        values = {j.get("name"): _value(j, pose) for j in order if _kind(j) in ("hinge", "slide")}
+        for follower, mimic in mimics.items():  # (after every leader's value: a leader may come later)
+            if follower in values:
+                multiplier = float(mimic.multiplier) if mimic.multiplier is not None else 1.0
+                offset = float(mimic.offset) if mimic.offset is not None else 0.0
+                values[follower] = offset + multiplier * values.get(mimic.joint, 0.0)
+        qpos = [_fixed(j) if _kind(j) in ("free", "ball") else num(values[j.get("name")]) for j in order]
+        key = etree.SubElement(element, "key", name=name, qpos=" ".join(qpos))
+        if servos:  # (a position servo holds its joint's value; a velocity servo and a motor rest at 0)
+            ctrl = [num(values.get(a.get("joint"), 0.0)) if a.tag == "position" else "0" for a in servos]
+            key.set("ctrl", " ".join(ctrl))
+    return element
+
+
+def _kind(joint: Any) -> str:
+    return "free" if joint.tag == "freejoint" else str(joint.get("type", "hinge"))
+
+
+def _fixed(joint: Any) -> str:
+    """A free joint's qpos0 (where its body is placed) or a ball joint's (no turn)."""
+    if _kind(joint) == "ball":
+        return "1 0 0 0"
+    body = joint.getparent()
+    return f"{body.get('pos', '0 0 0')} {body.get('quat', '1 0 0 0')}"
+
+
+def _value(joint: Any, pose: Mapping[str, float]) -> float:
+    """A joint's value in a pose: given, else 0 moved into its range."""
+    name = joint.get("name")
+    if name in pose:
+        return float(pose[name])
+    bounds = joint.get("range")
+    if bounds is None:
+        return 0.0
+    lower, upper = (float(v) for v in bounds.split())
+    return min(max(0.0, lower), upper)
