@@ -346,6 +346,15 @@ class Robot:
     source: str = field(default="", compare=False)
 
     @property
+    def has_package_meshes(self) -> bool:
+        """A link draws or collides with a ``package://`` mesh (Gazebo then needs the package's model path)."""
+        return any(
+            isinstance(g.shape, Mesh) and g.shape.filename.startswith("package://")
+            for link in self.links
+            for g in (*link.visuals, *link.collisions)
+        )
+
+    @property
     def link_names(self) -> tuple[str, ...]:
         names = [link.name for link in self.links]
         for arm in self.arms:

@@ -41,6 +41,7 @@ def render_scene(scene: Scene, *, spec_name: str = "scene.yaml", macros: MacroMo
         "spec_name": said_name,
         "spec_command": command_text(scene.command or "gen-robot " + shlex.quote(spec_name)),
         "has_control": has_control,
+        "has_meshes": any(i.robot is not None and i.robot.has_package_meshes for i in scene.instances),
         "macros": macros,
         "fixed_frame": scene.world,
         "xacro_text": xacro_text,
@@ -88,6 +89,9 @@ def _robot_files(scene: Scene, spec_name: str, macros: MacroMode) -> list[Render
     return files
 
 
+JOINT_STATE_BROADCASTER = "joint_state_broadcaster"  # (without `joints`, it publishes every joint it is given)
+
+
 @dataclass
 class _Control:
     """The instances' controllers merged for the scene's one controller manager, the controllers spawned and loaded
@@ -120,9 +124,14 @@ def _instance_controllers(scene: Scene, spec_name: str, files: list[RenderedFile
         files.append(RenderedFile(f"config/{instance.name}_controllers.yaml", text))
         data = yaml.safe_load(text)
         managed = control.merged["controller_manager"]["ros__parameters"]
-        managed.update(data.pop("controller_manager")["ros__parameters"])
+        broadcaster = instance.prefix + JOINT_STATE_BROADCASTER
+        own = data.pop("controller_manager")["ros__parameters"]
+        managed[JOINT_STATE_BROADCASTER] = own.pop(broadcaster)  # (one for the scene: each publishes every joint)
+        managed.update(own)
         control.merged.update(data)
-        control.spawned += chosen["spawned"]
+        if JOINT_STATE_BROADCASTER not in control.spawned:
+            control.spawned.insert(0, JOINT_STATE_BROADCASTER)
+        control.spawned += [c for c in chosen["spawned"] if c != broadcaster]
         control.inactive += chosen["inactive"]
     return control
 

@@ -234,3 +234,56 @@ def test_sensor_blocks_use_only_sdformats_elements_and_the_bridge_only_topics_ga
     world = etree.parse(str(tmp_path / "pkg" / "worlds" / "sens.sdf")).getroot()
     systems = {p.get("filename"): p.get("name") for p in world.iter("plugin")}
     assert systems == FACTS["world_systems"]
+
+
+@pytest.mark.parametrize("example", ROBOT_EXAMPLES, ids=lambda p: p.stem)
+def test_a_package_with_meshes_exports_the_model_path_gazebo_finds_them_on(example, tmp_path):
+    """sdformat turns package://PKG/x into model://PKG/x, which Gazebo looks for in each GZ_SIM_RESOURCE_PATH entry;
+    ros_gz_sim's gz_sim.launch.py puts there every package's <gazebo_ros gazebo_model_path>, ${prefix} replaced by
+    the package's share folder (gazebosim/ros_gz, ros_gz_sim/launch/gz_sim.launch.py.in). Installed as share/PKG,
+    every mesh the URDF names is found that way."""
+    result = xacrokit.generate(example, tmp_path / "share" / "pkg")
+    package = result.model.package
+    share = tmp_path / "share" / package
+    (tmp_path / "share" / "pkg").rename(share)
+    manifest = etree.parse(str(share / "package.xml")).getroot()
+    exported = [e.get("gazebo_model_path") for e in manifest.iterfind("export/gazebo_ros")]
+    urdf = etree.parse(str(share / "urdf" / f"{result.model.name}.urdf")).getroot()
+    meshes = [m.get("filename") for m in urdf.iter("mesh")]
+    if not meshes:
+        assert exported == []  # (nothing to find: no export)
+        return
+    (model_path,) = exported
+    root = Path(model_path.replace("${prefix}", str(share)))
+    for uri in meshes:
+        assert uri.startswith(f"package://{package}/"), uri
+        assert (root / uri.removeprefix("package://")).resolve().is_file(), uri
+
+
+@pytest.mark.parametrize("example", ROBOT_EXAMPLES, ids=lambda p: p.stem)
+def test_joint_limits_yaml_is_the_urdfs_limits_in_moveits_layout(example, tmp_path):
+    """config/joint_limits.yaml (MoveIt's and UR's layout): every moving joint the URDF has, except mimic joints,
+    with the URDF's own numbers, read back from the URDF text here."""
+    result = xacrokit.generate(example, tmp_path / "pkg")
+    limits = yaml.safe_load((tmp_path / "pkg" / "config" / "joint_limits.yaml").read_text(encoding="utf-8"))
+    urdf = etree.parse(str(tmp_path / "pkg" / "urdf" / f"{result.model.name}.urdf")).getroot()
+    moving = [
+        j
+        for j in urdf.iterfind("joint")
+        if j.get("type") in ("revolute", "continuous", "prismatic") and j.find("mimic") is None
+    ]
+    assert sorted(limits["joint_limits"]) == sorted(j.get("name") for j in moving)
+    for joint in moving:
+        entry, limit = limits["joint_limits"][joint.get("name")], joint.find("limit")
+        assert entry["max_velocity"] == float(limit.get("velocity")) and entry["max_effort"] == float(
+            limit.get("effort")
+        )
+        assert entry["has_velocity_limits"] and entry["has_effort_limits"] and not entry["has_acceleration_limits"]
+        if joint.get("type") == "continuous":
+            assert entry["has_position_limits"] is False and "min_position" not in entry
+        else:
+            assert entry["has_position_limits"] is True
+            assert (entry["min_position"], entry["max_position"]) == (
+                float(limit.get("lower")),
+                float(limit.get("upper")),
+            )

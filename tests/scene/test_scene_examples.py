@@ -35,7 +35,13 @@ def test_bin_sorting_cell_prefixes_every_name_and_mounts_as_specified(cell):
     assert mimic.get("joint") == "left_gripper_left_finger_joint"  # the mimic reference is prefixed too
     control = {c.get("name"): [j.get("name") for j in c.findall("joint")] for c in root.findall("ros2_control")}
     assert control["left_ur10e"][0] == "left_shoulder_pan_joint"
-    assert control["left_gripper_parallel_gripper"] == ["left_gripper_left_finger_joint"]
+    # the mimic finger listed too, with state interfaces only: gz_ros2_control holds it to its leader so (issue 32)
+    assert control["left_gripper_parallel_gripper"] == [
+        "left_gripper_left_finger_joint",
+        "left_gripper_right_finger_joint",
+    ]
+    finger = root.find("ros2_control/joint[@name='left_gripper_right_finger_joint']")
+    assert finger.find("command_interface") is None and finger.find("state_interface[@name='position']") is not None
 
 
 def test_bin_sorting_cell_checks_clean_with_every_consumer():
@@ -67,6 +73,29 @@ def test_per_instance_controller_configs_list_prefixed_joints(cell):
     config = yaml.safe_load({f.path: f.content for f in cell.files}["config/arm_controllers.yaml"])
     assert config["left_position_controller"]["ros__parameters"]["joints"][0] == "left_shoulder_pan_joint"
     assert "left_joint_state_broadcaster" in config["controller_manager"]["ros__parameters"]
+
+
+@pytest.mark.parametrize("example", SCENE_EXAMPLES, ids=lambda p: p.stem)
+def test_a_scene_runs_one_joint_state_broadcaster(example, tmp_path):
+    """Each broadcaster without `joints` publishes every joint of the controller manager: one per instance would put
+    each message on /joint_states once per robot (issue 32)."""
+    import ast
+
+    result = xacrokit.generate(example, tmp_path / "pkg")
+    files = {f.path: f.content for f in result.files}
+    merged = yaml.safe_load(files[f"config/{result.model.name}_controllers.yaml"])
+    kinds = merged["controller_manager"]["ros__parameters"]
+    broadcasters = [n for n, v in kinds.items() if isinstance(v, dict) and "JointStateBroadcaster" in v["type"]]
+    assert broadcasters == ["joint_state_broadcaster"]
+    launch = ast.parse(files["launch/gazebo.launch.py"])
+    spawned = [
+        e.value
+        for node in ast.walk(launch)
+        if isinstance(node, ast.List)
+        for e in node.elts
+        if isinstance(e, ast.Constant) and isinstance(e.value, str) and e.value.endswith("broadcaster")
+    ]
+    assert spawned == ["joint_state_broadcaster"]
 
 
 def test_two_identical_arms_share_one_macro_and_materials(tmp_path):
