@@ -348,11 +348,9 @@ class Robot:
     @property
     def has_package_meshes(self) -> bool:
         """A link draws or collides with a ``package://`` mesh (Gazebo then needs the package's model path)."""
-        return any(
-            isinstance(g.shape, Mesh) and g.shape.filename.startswith("package://")
-            for link in self.links
-            for g in (*link.visuals, *link.collisions)
-        )
+        shapes = [g.shape for link in self.links for g in link.visuals]
+        shapes += [g.shape for link in self.links for g in link.collisions]
+        return any(isinstance(shape, Mesh) and shape.filename.startswith("package://") for shape in shapes)
 
     @property
     def link_names(self) -> tuple[str, ...]:
