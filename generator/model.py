@@ -346,6 +346,13 @@ class Robot:
     source: str = field(default="", compare=False)
 
     @property
+    def mass(self) -> float:
+        """The whole robot's mass (kg): its links', its arms' bodies' and its wheels'."""
+        links = sum(link.inertial.mass for link in self.links if link.inertial is not None)
+        rows = sum(row.body.inertia.mass for arm in self.arms for row in arm.rows if row.body is not None)
+        return links + rows + sum(wheel.mass for wheel in self.wheels)
+
+    @property
     def has_package_meshes(self) -> bool:
         """A link draws or collides with a ``package://`` mesh (Gazebo then needs the package's model path)."""
         shapes = [g.shape for link in self.links for g in link.visuals]

@@ -43,14 +43,14 @@ from ..reader.robot_source import urdf_floats as _floats
 from ..reader.urdf_view import Joint, Link, Origin, UrdfView
 from ..shared.input_files import CopiedFile, copied_pieces
 from ..shared.kinematic_tree import Tree
-from ..shared.units import MAX_MOMENT, bound_problem
+from ..shared.units import MAX_MOMENT, STANDARD_GRAVITY, bound_problem
 from .mjcf_actuators import num
 from .mjcf_keyframes import keyframes
 from .mjcf_meshes import FlatMesh, Meshes
 
 MJ_MINVAL = 1e-15  # MuJoCo's mjMINVAL: the least mass and moment a moving body may have
 MASSLESS = (1e-12, 1e-14)  # (kg, kg m^2): what a moving link without mass gets, MuJoCo needing more than 1e-15
-GRAVITY = 9.80665
+GRAVITY = STANDARD_GRAVITY
 
 
 @dataclass

@@ -9,6 +9,7 @@ from __future__ import annotations
 from typing import Any
 
 from ..model import Robot
+from ..shared.units import STANDARD_GRAVITY
 
 
 def controllers(robot: Robot, prefix: str = "", *, mounted: bool = False) -> dict[str, Any]:
@@ -69,11 +70,23 @@ def _differential_drive(robot: Robot, prefix: str) -> dict[str, Any] | None:
     if not left or not right or len(left) + len(right) != len(wheels):
         return None
     separation = sum(w.origin.xyz[1] for w in left) / len(left) - sum(w.origin.xyz[1] for w in right) / len(right)
+    radius = wheels[0].radius
+    speed = min(w.velocity for w in wheels) * radius  # (the slowest wheel's limit, at the rim)
+    # the most the wheels can accelerate the robot on flat ground: their efforts, sum(effort)/r over its mass, and
+    # at most mu g, beyond which they slip (an upper bound: their own spin-up and rolling resistance take some of it)
+    acceleration = None
+    if robot.mass > 0:
+        grip = min(w.mu1 for w in wheels) * STANDARD_GRAVITY
+        acceleration = min(sum(w.effort for w in wheels) / radius / robot.mass, grip)
     return {
+        "speed": speed,
+        "turn_rate": 2.0 * speed / separation,  # (the wheels at +-speed, turning on the spot)
+        "acceleration": acceleration,
+        "turn_acceleration": 2.0 * acceleration / separation if acceleration is not None else None,
         "left": [prefix + w.joint_name for w in left],
         "right": [prefix + w.joint_name for w in right],
         "separation": separation,
-        "radius": wheels[0].radius,
+        "radius": radius,
         "base_frame": prefix + robot.root,
         "odom_frame": prefix + "odom",
     }

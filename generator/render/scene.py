@@ -67,7 +67,14 @@ def render_scene(scene: Scene, *, spec_name: str = "scene.yaml", macros: MacroMo
         files.append(RenderedFile(f"config/{name}_controllers.yaml", text))
     files.append(RenderedFile(f"config/{name}_bridge.yaml", bridge_yaml(name, control.bridged)))
     stand_in = SimpleNamespace(name=name, package=scene.package, sensors=control.bridged)  # (what the templates read)
-    simulated = {**context, "robot": stand_in, "fixed_base": False, "spawn_z": "0.0", "spawned": control.spawned}
+    simulated = {
+        **context,
+        "robot": stand_in,
+        "fixed_base": False,
+        "spawn_z": "0.0",
+        "spawned": control.spawned,
+        "drive": None,
+    }
     simulated["inactive"] = control.inactive
     files.append(
         RenderedFile(

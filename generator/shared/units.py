@@ -38,6 +38,7 @@ Kind = Literal[
     "time",
 ]
 Value = Fraction | float  # exact while no pi is involved
+STANDARD_GRAVITY = 9.80665  # m/s^2, the standard acceleration of gravity (CGPM 1901): sizing's, MJCF's, a drive's grip
 
 # A decimal literal as specs (JSON, YAML 1.2) and URDF files write one: sign, digits, point, exponent.
 UNSIGNED_NUMBER = r"(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]+)?"  # (ASCII digits only: float() reads others too)

@@ -22,9 +22,10 @@ import numpy as np
 from ..errors import XacrokitError
 from ..reader.urdf_view import UrdfView, joint_tree, read_view
 from ..shared.joint_types import MOVING
+from ..shared.units import STANDARD_GRAVITY
 from ..shared.value_text import did_you_mean
 
-GRAVITY = 9.80665  # m/s^2, the standard acceleration of gravity (CGPM 1901), along -z of the root frame
+GRAVITY = STANDARD_GRAVITY  # m/s^2, along -z of the root frame
 
 
 @dataclass(frozen=True)

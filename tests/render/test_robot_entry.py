@@ -13,6 +13,7 @@ from xacrokit.expansion.xacro_expand import expand_file
 from xacrokit.model import mount_joint_name
 from xacrokit.pipeline import build_robot
 from xacrokit.render import render_package, simple_shape_link
+from xacrokit.render.control import controllers
 
 EXAMPLES = ROBOT_EXAMPLES
 XACRO = "{http://www.ros.org/wiki/xacro}"
@@ -26,18 +27,21 @@ def test_the_entry_is_the_arguments_and_one_macro_call(mode):
         files = {f.path: f.content for f in render_package(robot, macros=mode)}
         entry = etree.fromstring(files[f"urdf/{robot.name}.urdf.xacro"].encode())
         children = [e for e in entry if isinstance(e.tag, str)]
-        tags = [f"{XACRO}arg"] * 4 + [f"{XACRO}include", f"{XACRO}if", f"{XACRO}{robot.name}"]
+        driven = controllers(robot)["drive"] is not None  # (a diff drive's cmd_vel remap: one argument more)
+        names = ["prefix", "ros2_control", "controllers", "world"] + ["cmd_vel"] * driven
+        tags = [f"{XACRO}arg"] * len(names) + [f"{XACRO}include", f"{XACRO}if", f"{XACRO}{robot.name}"]
         assert [e.tag for e in children] == tags, spec
-        assert [e.get("name") for e in children[:4]] == ["prefix", "ros2_control", "controllers", "world"]
-        assert children[4].get("filename") == f"{robot.name}_macro.xacro"
-        assert children[5].get("value") == "$(arg world)" and [e.tag for e in children[5]] == ["link"]
-        assert children[5][0].get("name") == "world"  # (world:=true: the link a simulator fixes the root to)
-        call = children[6]
+        assert [e.get("name") for e in children[: len(names)]] == names
+        include, world, call = children[len(names) :]
+        assert include.get("filename") == f"{robot.name}_macro.xacro"
+        assert world.get("value") == "$(arg world)" and [e.tag for e in world] == ["link"]
+        assert world[0].get("name") == "world"  # (world:=true: the link a simulator fixes the root to)
         assert call.attrib == {
             "prefix": "$(arg prefix)",
             "parent": "${'world' if '$(arg world)' in ('true', 'True', '1') else ''}",
             "ros2_control": "$(arg ros2_control)",
             "controllers": "$(arg controllers)",
+            **({"cmd_vel": "$(arg cmd_vel)"} if driven else {}),
         }
         assert len(entry.findall(".//link")) == 1 and not entry.findall(".//joint") and not entry.findall(".//material")
         assert len(entry.findall(f".//{XACRO}{robot.name}")) == 1  # exactly one macro call

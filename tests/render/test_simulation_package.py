@@ -287,3 +287,40 @@ def test_joint_limits_yaml_is_the_urdfs_limits_in_moveits_layout(example, tmp_pa
                 float(limit.get("lower")),
                 float(limit.get("upper")),
             )
+
+
+@pytest.mark.parametrize(
+    "example", [p for p in ROBOT_EXAMPLES if p.stem in ("diff_drive", "rover")], ids=lambda p: p.stem
+)
+def test_the_diff_drive_tracks_its_base_frame_within_its_limits(example, tmp_path):
+    """diff_drive_controller's odometry is of the axle midpoint, published as base_frame_id: that frame sits above
+    it. Its speed limits are the wheels' velocity limit at the rim (v = w r, turning on the spot 2 v / separation),
+    its acceleration at most what the wheels' efforts give the robot's mass and mu g; commands come from /cmd_vel."""
+    import math
+
+    import yourdfpy
+
+    result = xacrokit.generate(example, tmp_path / "pkg")
+    config = yaml.safe_load((tmp_path / "pkg" / "config" / f"{result.model.name}_controllers.yaml").read_text())
+    if "diff_drive_controller" not in config:
+        pytest.skip("no differential drive")
+    drive = config["diff_drive_controller"]["ros__parameters"]
+    urdf = yourdfpy.URDF.load(str(tmp_path / "pkg" / "urdf" / f"{result.model.name}.urdf"), load_meshes=False)
+    wheels = [*drive["left_wheel_names"], *drive["right_wheel_names"]]
+    centres = [urdf.get_transform(urdf.joint_map[w].child, drive["base_frame_id"])[:3, 3] for w in wheels]
+    middle = sum(centres) / len(centres)
+    assert abs(middle[0]) < 1e-9 and abs(middle[1]) < 1e-9, middle
+    omega = min(urdf.joint_map[w].limit.velocity for w in wheels)
+    speed = omega * drive["wheel_radius"]
+    assert drive["linear.x.max_velocity"] == pytest.approx(speed, rel=1e-12) == -drive["linear.x.min_velocity"]
+    assert drive["angular.z.max_velocity"] == pytest.approx(2 * speed / drive["wheel_separation"], rel=1e-12)
+    mass = sum(link.inertial.mass for link in urdf.robot.links if link.inertial is not None)
+    efforts = sum(urdf.joint_map[w].limit.effort for w in wheels)
+    bound = min(efforts / drive["wheel_radius"] / mass, 1.0 * 9.80665)  # (the wheels' mu1: 1.0)
+    assert drive["linear.x.max_acceleration"] == pytest.approx(bound, rel=1e-12) == -drive["linear.x.max_deceleration"]
+    assert math.isfinite(drive["angular.z.max_acceleration"])
+    launch = (tmp_path / "pkg" / "launch" / "control.launch.py").read_text()
+    assert 'remappings=[("/diff_drive_controller/cmd_vel", LaunchConfiguration("cmd_vel"))]' in launch
+    gazebo = expand_file(tmp_path / "pkg" / "urdf" / f"{result.model.name}.urdf.xacro", {"ros2_control": "gazebo"})
+    remap = etree.fromstring(gazebo.encode()).find("gazebo/plugin/ros/remapping")
+    assert remap.text == "/diff_drive_controller/cmd_vel:=/cmd_vel"
