@@ -413,7 +413,7 @@ def _frame(name: str, data: dict[str, Any], package: _Package) -> tuple[Link, Jo
 
 
 def _controlled(
-    data: dict[str, Any], robot_joints: list[tuple[str, Limit | None, bool]], mimics: list[Joint]
+    data: dict[str, Any], robot_joints: list[tuple[str, Limit | None, bool]], mimics: list[tuple[str, Mimic]]
 ) -> tuple[ControlledJoint, ...] | None:
     """Every moving, non-mimic joint with its interfaces (per-joint override, else wheel or global default), starting
     at its `home` position; then every mimic joint with state interfaces only (gz_ros2_control holds a mimic joint to
@@ -438,10 +438,9 @@ def _controlled(
         result.append(ControlledJoint(name=name, interfaces=chosen, initial_position=start))
     starts = {c.name: c.initial_position for c in result}
     states = tuple(default.get("state", DEFAULT_INTERFACES.state))
-    for joint in mimics:
-        assert joint.mimic is not None  # (the caller passes mimic joints)
-        start = joint.mimic.offset + joint.mimic.multiplier * starts.get(joint.mimic.joint, 0.0)
-        result.append(ControlledJoint(name=joint.name, interfaces=Interfaces((), states), initial_position=start))
+    for name, mimic in mimics:
+        start = mimic.offset + mimic.multiplier * starts.get(mimic.joint, 0.0)
+        result.append(ControlledJoint(name=name, interfaces=Interfaces((), states), initial_position=start))
     return tuple(result)
 
 
@@ -484,7 +483,7 @@ def resolve(spec: Spec) -> Robot:
         joints=tuple(joints),
         arms=arms,
         wheels=wheels,
-        ros2_control=_controlled(data, moving, [j for j in joints if j.type in MOVING and j.mimic is not None]),
+        ros2_control=_controlled(data, moving, [(j.name, j.mimic) for j in joints if j.type in MOVING and j.mimic]),
         surfaces=surfaces,
         sensors=tuple(sensors),
         extension=spec.extension,

@@ -4,6 +4,7 @@ keyframes and the view page's sliders start from them."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 
 from ..model import HOME_POSE, Robot
@@ -12,17 +13,18 @@ from .urdf_view import UrdfView
 
 def initial_values(view: UrdfView) -> dict[str, float]:
     """Each joint's ``initial_value`` as the ``<ros2_control>`` blocks give it (a position state interface's param;
-    one that is not a number is left out)."""
+    one that is not a finite number is left out: a keyframe or a slider could not hold it)."""
     found: dict[str, float] = {}
     for block in view.ros2_control:
         for joint in block.element.findall("joint"):
             name = joint.get("name")
-            for state in joint.findall("state_interface[@name='position']"):
-                for param in state.findall("param[@name='initial_value']"):
-                    try:
-                        found.setdefault(name, float((param.text or "").strip()))
-                    except ValueError:
-                        continue
+            for param in joint.findall("state_interface[@name='position']/param[@name='initial_value']"):
+                try:
+                    value = float((param.text or "").strip())
+                except ValueError:
+                    continue
+                if name and math.isfinite(value):
+                    found.setdefault(name, value)
     return found
 
 

@@ -120,8 +120,8 @@ def dh_table_yaml(robot: Robot, arm_index: int) -> str:
 
 def joint_limits_yaml(robot: Robot) -> str:
     """config/joint_limits.yaml: every moving, non-mimic joint's limits in the layout MoveIt's joint_limits.yaml and
-    Universal Robots' config/UR/joint_limits.yaml use (has_*_limits flags beside the values); no acceleration limit
-    is known from a URDF, so none is claimed (MoveIt then needs one before it plans with time parameterisation)."""
+    Universal Robots' config/UR/joint_limits.yaml use (has_*_limits flags beside the values); a URDF states no
+    acceleration limit, so none is claimed (give one there before MoveIt times a trajectory: it assumes its own)."""
     limits: list[tuple[str, Limit | None]] = [
         (j.name, j.limit) for j in robot.joints if j.type in MOVING and j.mimic is None
     ]

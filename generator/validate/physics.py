@@ -54,11 +54,11 @@ def physics_errors(
 
 def _pose_errors(raw: RawSpec, data: dict[str, Any], bodies: Sequence[Body]) -> Iterator[SpecError]:
     """A named pose's position outside its joint's limits (rad or m, as converted)."""
-    limits = {n: j.get("limit") for n, j in data.get("joints", {}).items() if j["type"] in ("revolute", "prismatic")}
+    limits = {n: j.get("limit") for n, j in data.get("joints", {}).items() if j["type"] in LIMITED}
     limits.update(
         (item["name"], item.get("limit"))
         for kind, _, _, item in bodies
-        if kind == "row" and item.get("type", "revolute") in ("revolute", "prismatic")
+        if kind == "row" and item.get("type", "revolute") in LIMITED
     )
     for pose, values in data.get("poses", {}).items():
         for name, value in values.items():

@@ -114,3 +114,35 @@ def test_every_pose_is_a_keyframe_and_a_mimic_follows_its_leader(tmp_path):
         assert _qpos_of(m, d, "grip_mirror") == pytest.approx(-grip, abs=1e-15)  # (the mimic's q = -q_leader)
         servos = {mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_ACTUATOR, a): d.ctrl[a] for a in range(m.nu)}
         assert servos == pytest.approx({"lift": lift, "grip": grip}, abs=1e-15)  # (the mimic has no servo)
+
+
+def test_a_urdfs_ros2_control_start_is_home_and_odd_values_are_left_out(tmp_path):
+    """A URDF (no spec): home is its <ros2_control> initial_values; one that is not a finite number (nan, 1e999, a
+    word) is left out, the joint at 0, the model still loading."""
+    joint = (
+        '<joint name="{n}" type="revolute"><parent link="{p}"/><child link="{c}"/><origin xyz="0 0 0.1"/>'
+        '<axis xyz="0 1 0"/><limit lower="-2" upper="2" effort="10" velocity="1"/></joint>'
+    )
+    link = (
+        '<link name="{n}"><inertial><mass value="1"/>'
+        '<inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial></link>'
+    )
+    control = (
+        '<joint name="{n}"><command_interface name="position"/><state_interface name="position">'
+        '<param name="initial_value">{v}</param></state_interface></joint>'
+    )
+    values = {"j1": "0.75", "j2": "nan", "j3": "1e999", "j4": "abc"}
+    links = "".join(link.format(n=f"l{i}") for i in range(5))
+    joints = "".join(joint.format(n=f"j{i}", p=f"l{i - 1}", c=f"l{i}") for i in range(1, 5))
+    blocks = "".join(control.format(n=n, v=v) for n, v in values.items())
+    urdf = tmp_path / "r.urdf"
+    urdf.write_text(
+        f'<robot name="r">{links}{joints}<ros2_control name="r" type="system"><hardware><plugin>x</plugin>'
+        f"</hardware>{blocks}</ros2_control></robot>",
+        encoding="utf-8",
+    )
+    m = _load(urdf, tmp_path)
+    d = mujoco.MjData(m)
+    mujoco.mj_resetDataKeyframe(m, d, 0)
+    assert [_qpos_of(m, d, f"j{i}") for i in range(1, 5)] == [0.75, 0.0, 0.0, 0.0]
+    assert list(d.ctrl) == [0.75, 0.0, 0.0, 0.0]

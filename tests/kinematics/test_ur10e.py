@@ -19,6 +19,7 @@ import pytest
 import yourdfpy
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from scipy.spatial.transform import Rotation
 
 from conftest import REPO
 from xacrokit.kinematics import pose
@@ -75,21 +76,8 @@ LIMITS = {
 
 
 def _rpy(roll, pitch, yaw):
-    cr, sr, cp, sp, cy, sy = (
-        math.cos(roll),
-        math.sin(roll),
-        math.cos(pitch),
-        math.sin(pitch),
-        math.cos(yaw),
-        math.sin(yaw),
-    )
-    return np.array(
-        [
-            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-            [-sp, cp * sr, cp * cr],
-        ]
-    )
+    """URDF's rpy: Rz(yaw) Ry(pitch) Rx(roll), i.e. extrinsic x-y-z (scipy's, not our own code)."""
+    return Rotation.from_euler("xyz", [roll, pitch, yaw]).as_matrix()
 
 
 def _pose(x, y, z, roll, pitch, yaw):

@@ -26,13 +26,14 @@ DAMPING = {"shoulder_joint": 0.1, "elbow_joint": 0.05}
 SHOULDER_UPPER = 1.57  # (the shoulder's limit: the upper arm never quite horizontal)
 
 
-def _report():
+def _report(*options: str):
     result = gen_robot(
         "size",
         "examples/robots/two_dof_arm.yaml",
         "--sizing",
         "examples/sizing/two_dof_arm_lecture.yaml",
         "--json",
+        *options,
         cwd=REPO,
     )
     assert result.returncode == 0, result.stderr
@@ -82,18 +83,9 @@ def test_the_quintic_in_3_s_peaks_at_15_8_and_balances_its_energy(report):
     assert lost == pytest.approx(0.160714, abs=1e-6) and change == pytest.approx(-9.8515, abs=1e-4)
 
 
-def test_the_damping_is_what_makes_up_the_difference(report, tmp_path):
+def test_the_damping_is_what_makes_up_the_difference():
     """--no-joint-friction: the motors' energy is the potential energy's change alone."""
-    result = gen_robot(
-        "size",
-        "examples/robots/two_dof_arm.yaml",
-        "--sizing",
-        "examples/sizing/two_dof_arm_lecture.yaml",
-        "--json",
-        "--no-joint-friction",
-        cwd=REPO,
-    )
-    joints = json.loads(result.stdout)["joints"]
+    joints = _report("--no-joint-friction")["joints"]
     change = G * (_height(1.5, 1.5) - _height(0.0, 0.0))
     assert sum(j["motion"]["energy"] for j in joints) == pytest.approx(change, rel=1e-9)
 
