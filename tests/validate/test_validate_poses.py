@@ -57,8 +57,10 @@ def test_home_is_every_controlled_joints_initial_value_and_mirrors_copy_it():
         ("right_slide", 0.05),
     )
     starts = {j.name: j.initial_position for j in robot.ros2_control}
+    shoulder = math.radians(30)
     assert starts == pytest.approx(
-        {"left_shoulder": math.radians(30), "left_slide": 0.05, "right_shoulder": math.radians(30), "right_slide": 0.05}
+        {"left_shoulder": shoulder, "left_slide": 0.05, "right_shoulder": shoulder, "right_slide": 0.05}
+        | {"left_finger_joint": 0.1, "right_finger_joint": 0.1}  # (the mimic fingers: 2 x their slide's start)
     )
     root = etree.fromstring(emit_urdf(robot).encode())
     written = {
@@ -72,7 +74,10 @@ def test_without_a_home_joints_start_at_0_or_the_limit_nearest_it():
     text = _spec({"open": {"left_slide": 0.1}}).replace("lower: 0, upper: 0.2", "lower: 0.05, upper: 0.2")
     robot = resolve(validate(load_text(text, "posebot.yaml")))
     starts = {j.name: j.initial_position for j in robot.ros2_control}
-    assert starts == {"left_shoulder": 0.0, "left_slide": 0.05, "right_shoulder": 0.0, "right_slide": 0.05}
+    assert starts == {"left_shoulder": 0.0, "left_slide": 0.05, "right_shoulder": 0.0, "right_slide": 0.05} | {
+        "left_finger_joint": 0.1,
+        "right_finger_joint": 0.1,
+    }
 
 
 def test_bad_poses_are_located_errors():
