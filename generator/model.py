@@ -152,6 +152,7 @@ class Limit:
 class Dynamics:
     damping: float = 0.0
     friction: float = 0.0
+    armature: float = 0.0  # (reflected rotor inertia: MuJoCo's; a URDF has no place for it)
 
 
 @dataclass(frozen=True)

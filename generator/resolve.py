@@ -262,7 +262,11 @@ def _dynamics(data: dict[str, Any]) -> Dynamics | None:
     dynamics = data.get("dynamics")
     if dynamics is None:
         return None
-    return Dynamics(damping=float(dynamics.get("damping", 0.0)), friction=float(dynamics.get("friction", 0.0)))
+    return Dynamics(
+        damping=float(dynamics.get("damping", 0.0)),
+        friction=float(dynamics.get("friction", 0.0)),
+        armature=float(dynamics.get("armature", 0.0)),
+    )
 
 
 def _joint(name: str, data: dict[str, Any]) -> Joint:

@@ -37,6 +37,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import XacrokitError
+from ..model import Robot
 from ..reader.mesh_copies import MeshRead
 from ..reader.named_poses import named_poses
 from ..reader.robot_source import urdf_floats as _floats
@@ -233,10 +234,12 @@ def mjcf(
     base: str = "auto",
     floor: bool = False,
     poses: Mapping[str, Mapping[str, float]] | None = None,
+    armature: Mapping[str, float] | None = None,
 ) -> Export:
     """The MJCF of a URDF ``text``; ``read(filename)`` reads a mesh (:func:`~xacrokit.reader.mesh_copies.mesh_reader`:
     safely, below the robot's folder); ``base``: auto, fixed or free; ``poses``: named poses (joint -> value), each a
-    keyframe, ``home`` first (else where the ros2_control blocks start the robot).
+    keyframe, ``home`` first (else where the ros2_control blocks start the robot); ``armature``: joint -> reflected
+    rotor inertia, a spec's (a URDF cannot hold it; none by default).
 
     Raises:
         XacrokitError: a URDF MuJoCo cannot take (not a tree, a mesh that cannot be found or read, bad numbers).
@@ -256,6 +259,10 @@ def mjcf(
     for mesh in meshes.assets:
         asset.append(mesh)
     _constraints(model, view, text, tree, free, export)
+    reflected = armature or {}
+    for joint in model.find("worldbody").iter("joint"):
+        if reflected.get(joint.get("name"), 0.0) > 0:
+            joint.set("armature", num(reflected[joint.get("name")]))
     model.append(keyframes(model, named_poses(poses or {}, view), tree.joints))
     for element in (asset, model.find("contact")):
         if element is not None and len(element) == 0:
@@ -309,6 +316,16 @@ def _adjacent(tree: _Tree) -> list[tuple[str, str]]:
         if grandparent is not None and max(map(abs, offset)) < 1e-9:
             pairs.append((grandparent, name))
     return list(dict.fromkeys(pairs))
+
+
+def spec_armature(robot: Robot | None) -> dict[str, float]:
+    """Joint -> armature (kg m^2, or kg sliding) of a spec's joints and arm rows (``robot``: its model; None for a URDF
+    or xacro document, which has no place for it: none)."""
+    if robot is None:
+        return {}
+    dynamics = [(j.name, j.dynamics) for j in robot.joints]
+    dynamics += [(row.name, row.dynamics) for arm in robot.arms for row in arm.rows]
+    return {name: d.armature for name, d in dynamics if d is not None and d.armature > 0}
 
 
 def _header(model: Any, export: Export) -> None:
@@ -546,8 +563,9 @@ def export_mjcf(
     if base not in ("auto", "fixed", "free"):
         raise XacrokitError(f"--base {base!r}: auto, fixed or free")
     with robot_read(path, mappings, package_paths) as (source, text, packages):
-        poses = spec_poses(source.robot)
-        export = mjcf(text, mesh_reader(Path(path), packages), base=base, floor=floor, poses=poses)
+        read = mesh_reader(Path(path), packages)
+        robot = source.robot
+        export = mjcf(text, read, base=base, floor=floor, poses=spec_poses(robot), armature=spec_armature(robot))
         for name, mesh in export.meshes.items():  # (a spec's meshes, staged for the block: read while they last)
             if isinstance(mesh, CopiedFile) and is_staged(mesh.root):
                 export.meshes[name] = b"".join(copied_pieces(mesh))

@@ -146,3 +146,36 @@ def test_a_urdfs_ros2_control_start_is_home_and_odd_values_are_left_out(tmp_path
     mujoco.mj_resetDataKeyframe(m, d, 0)
     assert [_qpos_of(m, d, f"j{i}") for i in range(1, 5)] == [0.75, 0.0, 0.0, 0.0]
     assert list(d.ctrl) == [0.75, 0.0, 0.0, 0.0]
+
+
+def test_a_specs_armature_adds_to_the_mass_matrix_diagonal_only(tmp_path):
+    """dynamics.armature (J_rotor N^2), which a URDF cannot hold, reaches MuJoCo from the spec: the mass matrix is
+    pinocchio's (of the URDF, without it) plus the armature on its joint's diagonal entry."""
+    import pinocchio as pin
+
+    from xacrokit.reader.robot_source import read_source
+
+    text = (REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml").read_text(encoding="utf-8")
+    text = text.replace(
+        "limit: {lower: -2*pi, upper: 2*pi, effort: 150, velocity: 3.15}, dynamics: {damping: 0.0, friction: 0.0}}",
+        "limit: {lower: -2*pi, upper: 2*pi, effort: 150, velocity: 3.15}, dynamics: {damping: 0.0, friction: 0.0, "
+        "armature: 0.1}}",
+        2,
+    )
+    spec = tmp_path / "ur5_armature.yaml"
+    spec.write_text(text, encoding="utf-8")
+    m = _load(spec, tmp_path)
+    names = [mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_JOINT, j) for j in range(m.njnt)]
+    assert dict(zip(names, m.dof_armature, strict=True)) == {
+        n: (0.1 if n in ("shoulder_pan_joint", "shoulder_lift_joint") else 0.0) for n in names
+    }
+    model = pin.buildModelFromXML(read_source(spec).text)
+    q = np.array([0.3, -1.2, 0.8, -0.5, 0.4, 0.2])
+    d = mujoco.MjData(m)
+    d.qpos[:] = q
+    mujoco.mj_forward(m, d)
+    dense = np.zeros((m.nv, m.nv))
+    mujoco.mj_fullM(m, d, dense)
+    want = pin.crba(model, model.createData(), q)
+    want = np.triu(want) + np.triu(want, 1).T + np.diag(m.dof_armature)
+    assert np.abs(dense - want).max() < 1e-9
