@@ -201,7 +201,7 @@ def generate(
     via_xacro = via_xacro or extended or bool(robot.extension)  # (an extension is xacro: only xacro expands it)
     progress("expanding with xacro" if via_xacro else "emitting the URDF")
     files.append(expand_package(robot, files) if via_xacro else emitted_urdf(robot.name, emit_urdf(robot)))
-    said = spec.warnings + _check_warnings(files[-1].text, Path(spec_path), spec, robot)
+    said = spec.warnings + _check_warnings(files[-1].text, Path(spec_path), spec, robot) + _drive_warnings(spec, robot)
     warnings = tuple(sorted(said, key=lambda w: (w.line or 0, w.column or 0)))
     root, actions = _write(files, output, robot.package, force=force, dry_run=dry_run, progress=progress)
     return GenerateResult(model=robot, output=root, actions=actions, files=tuple(files), warnings=warnings)
@@ -252,6 +252,26 @@ def _check_warnings(urdf: str, spec_path: Path, spec: Spec, robot: Robot) -> tup
         message = f"{rule}: {finding.element_kind} {finding.element!r}: {finding.message}"
         said.append(SpecError(message, file=str(spec_path), line=finding.line))
     return tuple(said)
+
+
+AXLE_TOLERANCE = 1e-3  # m: a base frame this close to the axle midpoint tracks it (odometry's error in a turn ~ it)
+
+
+def _drive_warnings(spec: Spec, robot: Robot) -> tuple[SpecError, ...]:
+    """A differential drive whose base frame is not above its axle midpoint, said at the first wheel."""
+    from .render.control import axle_offset
+
+    offset = axle_offset(robot)
+    if offset is None or max(abs(v) for v in offset) <= AXLE_TOLERANCE:
+        return ()
+    wheel = robot.wheels[0]
+    line = _spec_lines(spec, robot).get(("joint", wheel.joint_name))
+    message = (
+        f"the wheels' axle midpoint is at x = {offset[0]:.4g}, y = {offset[1]:.4g} m from {robot.root}, the frame "
+        "diff_drive_controller publishes its odometry for (base_frame_id); its odometry is the midpoint's, so it is "
+        f"wrong whenever the robot turns: place {robot.root} above the midpoint (the diff-drive example does)"
+    )
+    return (SpecError(message, file=str(spec.raw.file), line=line),)
 
 
 def _write(

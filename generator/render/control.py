@@ -8,7 +8,10 @@ from __future__ import annotations
 
 from typing import Any
 
+import numpy as np
+
 from ..model import Robot
+from ..shared.transforms import origin_transform
 from ..shared.units import STANDARD_GRAVITY
 
 
@@ -47,6 +50,26 @@ def controllers(robot: Robot, prefix: str = "", *, mounted: bool = False) -> dic
         "spawned": spawned if robot.ros2_control is not None else [],
         "inactive": inactive,
     }
+
+
+def axle_offset(robot: Robot) -> tuple[float, float] | None:
+    """Where the differential drive's axle midpoint is in its base frame (the root link), x and y in m, the robot at
+    its zero pose; None without a drive or when a wheel's parent is not reached through the spec's joints.
+    diff_drive_controller's odometry is of that midpoint and it publishes it as the base frame: off it, the odometry
+    is wrong whenever the robot turns."""
+    if _differential_drive(robot, "") is None:
+        return None
+    joint_of = {joint.child: joint for joint in robot.joints}
+    centres = []
+    for wheel in robot.wheels:
+        pose, link = origin_transform(wheel.origin), wheel.parent
+        while link != robot.root:
+            joint = joint_of.get(link)
+            if joint is None:
+                return None
+            pose, link = origin_transform(joint.origin) @ pose, joint.parent
+        centres.append(pose[:3, 3])
+    return float(np.mean([c[0] for c in centres])), float(np.mean([c[1] for c in centres]))
 
 
 def _differential_drive(robot: Robot, prefix: str) -> dict[str, Any] | None:

@@ -324,3 +324,19 @@ def test_the_diff_drive_tracks_its_base_frame_within_its_limits(example, tmp_pat
     gazebo = expand_file(tmp_path / "pkg" / "urdf" / f"{result.model.name}.urdf.xacro", {"ros2_control": "gazebo"})
     remap = etree.fromstring(gazebo.encode()).find("gazebo/plugin/ros/remapping")
     assert remap.text == "/diff_drive_controller/cmd_vel:=/cmd_vel"
+
+
+def test_a_drive_whose_base_frame_is_off_the_axle_is_warned_at_its_wheel(tmp_path):
+    """The odometry is the axle midpoint's: a base frame 5 cm behind it (the diff-drive example as it was) is said,
+    located at the first wheel, with the offset; the example now has none."""
+    example = next(p for p in ROBOT_EXAMPLES if p.stem == "diff_drive")
+    assert not [w for w in xacrokit.generate(example, tmp_path / "now").warnings if "axle" in str(w)]
+    text = example.read_text(encoding="utf-8").replace(
+        "origin: {xyz: [0, 0.18, -0.055]}", "origin: {xyz: [0.05, 0.18, -0.055]}"
+    )
+    text = text.replace("origin: {xyz: [0, -0.18, -0.055]}", "origin: {xyz: [0.05, -0.18, -0.055]}")
+    spec = tmp_path / "diff_drive.yaml"
+    spec.write_text(text, encoding="utf-8")
+    (said,) = [w for w in xacrokit.generate(spec, tmp_path / "then").warnings if "axle" in str(w)]
+    assert said.line == text.splitlines().index("  left_wheel:") + 1
+    assert "x = 0.05, y = 0 m from base_footprint" in str(said)
