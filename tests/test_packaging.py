@@ -46,6 +46,8 @@ def test_wheel_contains_the_macro_library_and_data_packages(wheel):
     modules = {"xacrokit/" + p.relative_to(REPO / "generator").as_posix() for p in (REPO / "generator").rglob("*.py")}
     assert len(modules) > 90 and modules <= names, sorted(modules - names)
     assert {"xacrokit/cli/__main__.py", "xacrokit/check/checker.py", "xacrokit/write/outputs.py"} <= names
+    three = {f"xacrokit/view/three/{n}" for n in ("three.module.min.js", "OrbitControls.js", "LICENSE")}
+    assert three <= names  # (the viewer's three.js, shipped with its licence: no download at run time)
     entry_points = next(n for n in names if n.endswith("entry_points.txt"))
     assert "gen-robot = xacrokit.cli:main" in zipfile.ZipFile(wheel).read(entry_points).decode()
 

@@ -1,27 +1,23 @@
 """``gen-robot view``: one self-contained HTML page that shows a robot (URDF, xacro document, spec or scene) and moves
 its joints, offline from ``file://``: no request of any kind leaves the page.
 
-three.js comes from the npm registry, not from this repository: the pinned release's tarball is downloaded once,
-checked against the registry's sha512 integrity, cached (``~/.cache/xacrokit/npm``, or ``XACROKIT_NPM_CACHE``), and
-its module build and OrbitControls are inlined into the page through an import map of data: URLs. The robot is
-embedded as JSON (every ``<`` escaped, so that no name can close the script element); meshes are read with trimesh
-(STL, OBJ, PLY, and COLLADA through pycollada) and embedded as vertex and index arrays. The page's forward kinematics
-are the URDF's, in double precision (fixed-axis rpy, revolute, continuous, prismatic, mimic; a floating joint takes
-[x, y, z, roll, pitch, yaw], a planar one [x, y, theta] in the plane normal to its axis), and ``window.xacrokit``
-exposes ``setJoints({name: value})``, ``linkPose(name)`` (the 4x4 world transform, row-major), ``joints()`` and
-``multiJoints()`` for tests. With a sizing file (:mod:`xacrokit.view.page_motion`) the page plays its motion with the
-torque plot beside it (``playAt(t)``).
-"""
+three.js ships inside the package (``xacrokit/view/three/``: the pinned release's module build, OrbitControls and
+licence, unchanged from the npm registry's tarball, each checked against its recorded sha512), so that a page is
+made without network; its module build and OrbitControls are inlined into the page through an import map of data:
+URLs. The robot is embedded as JSON (every ``<`` escaped, so that no name can close the script element); meshes are
+read with trimesh (STL, OBJ, PLY, and COLLADA through pycollada) and embedded as vertex and index arrays. The page's
+forward kinematics are the URDF's, in double precision (fixed-axis rpy, revolute, continuous, prismatic, mimic; a
+floating joint takes [x, y, z, roll, pitch, yaw], a planar one [x, y, theta] in the plane normal to its axis), and
+``window.xacrokit`` exposes ``setJoints({name: value})``, ``linkPose(name)`` (the 4x4 world transform, row-major),
+``joints()`` and ``multiJoints()`` for tests. With a sizing file (:mod:`xacrokit.view.page_motion`) the page plays
+its motion with the torque plot beside it (``playAt(t)``)."""
 
 from __future__ import annotations
 
 import base64
 import hashlib
-import io
 import json
 import os
-import tarfile
-import urllib.request
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -32,48 +28,44 @@ from ..errors import XacrokitError
 from ..reader.urdf_view import Geometry, Inertial, Joint, Link, Origin, Shape, number, numbers
 
 THREE_VERSION = "0.170.0"
-THREE_TARBALL = f"https://registry.npmjs.org/three/-/three-{THREE_VERSION}.tgz"
+THREE_TARBALL = f"https://registry.npmjs.org/three/-/three-{THREE_VERSION}.tgz"  # (where the shipped files come from)
 THREE_INTEGRITY = "sha512-FQK+LEpYc0fBD+J8g6oSEyyNzjp+Q7Ks1C568WWaoMRLW+TkNNWmenWeGgJjV105Gd+p/2ql1ZcjYvNiPZBhuQ=="
-THREE_FILES = {"three": "package/build/three.module.min.js", "orbit": "package/examples/jsm/controls/OrbitControls.js"}
+# The files shipped in xacrokit/view/three/, unchanged from that tarball (its member, their sha512 in base64):
+# tests/view/test_three_shipped.py compares them with the tarball the registry serves.
+THREE_FILES = {
+    "three": (
+        "three.module.min.js",
+        "package/build/three.module.min.js",
+        "zTnt1Hf43YVf2to5DC6GE6cPRSC/xgPJDf3PLQussTsaDak1uHdbnWtIYnOQiL40AIa2OZfFkayQXVdzL1/DqA==",
+    ),
+    "orbit": (
+        "OrbitControls.js",
+        "package/examples/jsm/controls/OrbitControls.js",
+        "C/00cg5kyUalxGAr1OS+9XwRpXSAMwZVY5hqDycouZs0+syRRmXeThBqbPPvcEwDlZMaWX9X08wbRFDwI1Izdg==",
+    ),
+    "license": (
+        "LICENSE",
+        "package/LICENSE",
+        "NIIxW6k/aIPXYJ49SoMB/LXLu2MnsO0sU84p3CMdbj9UqhK2rLx9vMQT8fZJ98bnLUZ/jr8DSKhBTQKr6SFIPQ==",
+    ),
+}
 
 
-def npm_cache() -> Path:
-    return Path(os.environ.get("XACROKIT_NPM_CACHE") or Path.home() / ".cache" / "xacrokit" / "npm")
+def three_folder() -> Path:
+    """Where the package keeps three.js (installed with it: the page needs no network, ever)."""
+    return Path(__file__).resolve().parent / "three"
 
 
 def three_sources() -> dict[str, str]:
-    """three.js's module build and OrbitControls, from the pinned npm tarball (downloaded once, integrity-checked)."""
-    tarball = npm_cache() / f"three-{THREE_VERSION}.tgz"
-    if not tarball.is_file():
-        try:
-            with urllib.request.urlopen(THREE_TARBALL, timeout=120) as response:  # noqa: S310  (a pinned https URL)
-                data = response.read()
-        except OSError as exc:
-            raise XacrokitError(
-                f"three.js {THREE_VERSION} is not cached and cannot be downloaded from the npm registry ({exc}); "
-                f"put {THREE_TARBALL} at {tarball}"
-            ) from None
-        _check(data)
-        tarball.parent.mkdir(parents=True, exist_ok=True)
-        partial = tarball.with_suffix(".part")
-        partial.write_bytes(data)
-        partial.replace(tarball)
-    data = tarball.read_bytes()
-    _check(data)
-    with tarfile.open(fileobj=io.BytesIO(data), mode="r:gz") as archive:
-        found = {}
-        for key, member in THREE_FILES.items():
-            handle = archive.extractfile(member)
-            if handle is None:
-                raise XacrokitError(f"{tarball} holds no {member}")
-            found[key] = handle.read().decode("utf-8")
+    """three.js's module build and OrbitControls, as shipped (each file checked against its recorded sha512: a file
+    changed after installation is refused, not inlined into a page)."""
+    found = {}
+    for key, (name, _, digest) in THREE_FILES.items():
+        data = (three_folder() / name).read_bytes()
+        if base64.b64encode(hashlib.sha512(data).digest()).decode("ascii") != digest:
+            raise XacrokitError(f"{three_folder() / name} is not three.js {THREE_VERSION}'s file: reinstall xacrokit")
+        found[key] = data.decode("utf-8")
     return found
-
-
-def _check(data: bytes) -> None:
-    digest = "sha512-" + base64.b64encode(hashlib.sha512(data).digest()).decode("ascii")
-    if digest != THREE_INTEGRITY:
-        raise XacrokitError(f"the three.js tarball does not have the npm registry's integrity {THREE_INTEGRITY}")
 
 
 def robot_json(text: str, read: Any, poses: Mapping[str, Mapping[str, float]] | None = None) -> dict[str, Any]:
