@@ -51,6 +51,7 @@ from .model import (
     attach_joint_name,
 )
 from .shared.gc_pause import collector_paused
+from .shared.joint_types import rest_position
 from .shared.mesh_solids import MESH_FOLDER, is_relative, mesh_hull, mesh_path, package_mesh_path, tube_obj
 from .shared.sim_sensors import resolve_sensor
 from .shared.solid_inertia import (
@@ -435,10 +436,8 @@ def _controlled(
             base = Interfaces(tuple(default.get("command", base.command)), tuple(default.get("state", base.state)))
         override = overrides.get(name, {})
         chosen = Interfaces(tuple(override.get("command", base.command)), tuple(override.get("state", base.state)))
-        start = 0.0  # the zero position, moved inside the limits when they exclude it
-        if limit is not None and limit.lower is not None and limit.upper is not None:
-            start = min(max(0.0, limit.lower), limit.upper)
-        start = float(home.get(name, start))
+        rest = rest_position(limit.lower, limit.upper) if limit is not None else 0.0
+        start = float(home.get(name, rest))
         result.append(ControlledJoint(name=name, interfaces=chosen, initial_position=start))
     starts = {c.name: c.initial_position for c in result}
     states = tuple(default.get("state", DEFAULT_INTERFACES.state))

@@ -12,6 +12,7 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 from ..reader.urdf_view import Joint
+from ..shared.joint_types import rest_position
 from .mjcf_actuators import num
 
 
@@ -56,7 +57,5 @@ def _value(joint: Any, pose: Mapping[str, float]) -> float:
     if name in pose:
         return float(pose[name])
     bounds = joint.get("range")
-    if bounds is None:
-        return 0.0
-    lower, upper = (float(v) for v in bounds.split())
-    return min(max(0.0, lower), upper)
+    lower, upper = (float(v) for v in bounds.split()) if bounds is not None else (None, None)
+    return rest_position(lower, upper)

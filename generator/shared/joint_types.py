@@ -10,3 +10,11 @@ JOINT_TYPES: tuple[JointType, ...] = ("revolute", "continuous", "prismatic", "fi
 MOVING: tuple[JointType, ...] = ("revolute", "continuous", "prismatic")  # one degree of freedom, driven by a motor
 LIMITED: tuple[JointType, ...] = ("revolute", "prismatic")  # need lower and upper limits
 AXIAL: tuple[JointType, ...] = ("revolute", "continuous", "prismatic", "planar")  # have an <axis> (planar: the normal)
+
+
+def rest_position(lower: float | None, upper: float | None) -> float:
+    """Where a joint no pose names starts: 0, moved into its limits when they exclude it (ros2_control's
+    initial_value, a MuJoCo keyframe and the view page's sliders alike)."""
+    if lower is None or upper is None:
+        return 0.0
+    return min(max(0.0, lower), upper)

@@ -22,13 +22,12 @@ from ..errors import SpecError, SpecErrors
 from ..load import PathKey, RawSpec
 from ..shared.gc_pause import collector_paused
 from ..shared.sim_sensors import PRESETS, preset_body, resolve_sensor, sensor_problems
-from .bodies import Body, bodies, parts
+from .bodies import Body, bodies, joint_types, parts
 from .extension import extension_body
 from .mirror import copies_said, mirrored
 from .names import (
     duplicate_errors,
     edges,
-    joint_types,
     link_and_joint_names,
     reference_errors,
     repeated_paths,

@@ -9,11 +9,11 @@ wins).
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from typing import Any, Literal
 
 from ..load import PathKey
-from ..model import DEFAULT_TOOL, arm_base_name
+from ..model import DEFAULT_TOOL, arm_base_name, attach_joint_name
 
 BodyKind = Literal["link", "arm", "row", "tool", "wheel", "frame", "part"]
 
@@ -61,3 +61,17 @@ def geometries(path: PathKey, link: dict[str, Any]) -> Iterator[tuple[PathKey, d
     elif isinstance(collision, list):
         yield from (((*path, "collision", i), c) for i, c in enumerate(collision) if isinstance(c, dict))
     yield from (((*path, "visuals", i), v) for i, v in enumerate(link.get("visuals", ())) if isinstance(v, dict))
+
+
+def joint_types(data: dict[str, Any], bodies: Sequence[Body]) -> dict[str, str]:
+    """The type of every joint a reference may name: the spec's joints, arm rows, wheels' and frames' joints. (An
+    arm's base and tool joints are not among them.)"""
+    types = {n: j["type"] for n, j in data.get("joints", {}).items()}
+    for kind, name, _, item in bodies:
+        if kind == "row":
+            types[item["name"]] = item.get("type", "revolute")
+        elif kind == "wheel":
+            types[item.get("joint", attach_joint_name(name))] = "continuous"
+        elif kind == "frame":
+            types[item.get("joint", attach_joint_name(name))] = "fixed"
+    return types

@@ -59,20 +59,6 @@ def link_and_joint_names(data: dict[str, Any], bodies: Sequence[Body]) -> tuple[
     return links, joints
 
 
-def joint_types(data: dict[str, Any], bodies: Sequence[Body]) -> dict[str, str]:
-    """The type of every joint a reference may name: the spec's joints, arm rows, wheels' and frames' joints. (An
-    arm's base and tool joints are not among them.)"""
-    types = {n: j["type"] for n, j in data.get("joints", {}).items()}
-    for kind, name, _, item in bodies:
-        if kind == "row":
-            types[item["name"]] = item.get("type", "revolute")
-        elif kind == "wheel":
-            types[item.get("joint", attach_joint_name(name))] = "continuous"
-        elif kind == "frame":
-            types[item.get("joint", attach_joint_name(name))] = "fixed"
-    return types
-
-
 def duplicate_errors(raw: RawSpec, named: list[Named], what: str) -> Iterator[SpecError]:
     """A name given again after its first use, pointing at both."""
     first: dict[str, Named] = {}

@@ -13,7 +13,7 @@ from ..errors import SpecError
 from ..load import PathKey, RawSpec
 from ..model import AXIAL, LIMITED
 from ..shared.solid_inertia import tensor, tensor_problem
-from .bodies import Body, geometries
+from .bodies import Body, geometries, joint_types
 
 AXIS_LENGTHS = (1e-9, 1e9)  # what an axis may measure before it is normalised (resolve divides by its length)
 
@@ -60,6 +60,7 @@ def _pose_errors(raw: RawSpec, data: dict[str, Any], bodies: Sequence[Body]) -> 
         for kind, _, _, item in bodies
         if kind == "row" and item.get("type", "revolute") in LIMITED
     )
+    types = joint_types(data, bodies)
     for pose, values in data.get("poses", {}).items():
         for name, value in values.items():
             limit = limits.get(name)
@@ -67,7 +68,7 @@ def _pose_errors(raw: RawSpec, data: dict[str, Any], bodies: Sequence[Body]) -> 
                 continue
             low, high = limit.get("lower"), limit.get("upper")
             if isinstance(low, (int, float)) and isinstance(high, (int, float)) and not low <= value <= high:
-                if _is_prismatic(data, bodies, name):
+                if types.get(name) == "prismatic":
                     said = f"{value:.6g} m is outside its limits [{low:.6g}, {high:.6g}] m"
                 else:
                     degrees = ", ".join(f"{math.degrees(v):.6g}" for v in (low, high))
@@ -76,14 +77,6 @@ def _pose_errors(raw: RawSpec, data: dict[str, Any], bodies: Sequence[Body]) -> 
                         f"[{low:.6g}, {high:.6g}] rad ([{degrees}] deg)"
                     )
                 yield raw.error(("poses", pose, name), f"{name} = {said}")
-
-
-def _is_prismatic(data: dict[str, Any], bodies: Sequence[Body], name: str) -> bool:
-    if data.get("joints", {}).get(name, {}).get("type") == "prismatic":
-        return True
-    return any(
-        kind == "row" and item["name"] == name and item.get("type") == "prismatic" for kind, _, _, item in bodies
-    )
 
 
 def _link_errors(raw: RawSpec, link: dict[str, Any], path: PathKey) -> Iterator[SpecError]:

@@ -14,7 +14,7 @@ from ..shared.materials import MATERIALS, find_material, material_key
 from ..shared.transforms import rotation_rpy
 from ..shared.units import Kind, UnitError, bound_problem, parse_quantity, plain_number
 from ..shared.value_text import did_you_mean
-from .bodies import bodies, geometries, parts
+from .bodies import bodies, geometries, joint_types, parts
 from .physics import AXIS_LENGTHS, implausible
 
 # A plain-number angle beyond this many turns is most likely degrees: one turn for an orientation, two for a joint's
@@ -374,13 +374,10 @@ class Quantities:
             self.limits(joint, ("joints", name), joint["type"])
         for kind, _, path, item in bodies(data):
             self.body(kind, path, item)
-        sliding = {n for n, j in data.get("joints", {}).items() if j.get("type") == "prismatic"}
-        sliding |= {
-            item["name"] for kind, _, _, item in bodies(data) if kind == "row" and item.get("type") == "prismatic"
-        }
+        types = joint_types(data, list(bodies(data)))
         for name, pose in data.get("poses", {}).items():  # (a position is a length on a prismatic joint)
             for joint in pose:
-                self.convert(pose, joint, ("poses", name), "length" if joint in sliding else "angle")
+                self.convert(pose, joint, ("poses", name), "length" if types.get(joint) == "prismatic" else "angle")
         for _, _, path, part in parts(data):
             self.density(part, path)
             self.origin(part, "origin", path)

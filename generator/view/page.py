@@ -26,6 +26,7 @@ import numpy as np
 
 from ..errors import XacrokitError
 from ..reader.urdf_view import Geometry, Inertial, Joint, Link, Origin, Shape, number, numbers
+from ..shared.joint_types import rest_position
 
 THREE_VERSION = "0.170.0"
 THREE_TARBALL = f"https://registry.npmjs.org/three/-/three-{THREE_VERSION}.tgz"  # (where the shipped files come from)
@@ -101,9 +102,7 @@ def _start(joint: dict[str, Any], given: Mapping[str, float]) -> float:
     """A joint's home position: given, else 0 moved into its limits."""
     if joint["name"] in given:
         return float(given[joint["name"]])
-    if "lower" not in joint:  # (continuous, or no limits given)
-        return 0.0
-    return min(max(0.0, joint["lower"]), joint["upper"])
+    return rest_position(joint.get("lower"), joint.get("upper"))  # (none for continuous, or no limits given)
 
 
 def _visual(
