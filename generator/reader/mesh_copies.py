@@ -107,7 +107,6 @@ def read_mesh_below(
     except OSError as exc:
         raise MeshCopyRefused(f"{said}: cannot be read: {exc.strerror or exc}") from None
     suffix = pure.suffix.lower()
-    _unswept[0] += len(data)
     mesh = parse(data, suffix, said) if parse is not None else require_mesh(data, suffix, said, process)
     copy = CopiedFile(root, pure.as_posix(), identity, len(data), hashlib.sha256(data).hexdigest())
     return MeshRead(mesh, copy, data[:84])
@@ -159,6 +158,7 @@ def require_mesh(data: bytes, suffix: str, said: str, process: bool) -> Any:
     with a triangle."""
     import trimesh
 
+    _unswept[0] += len(data)  # (what trimesh reads makes the cycles a later sweep frees; numpy-stl's arrays make none)
     try:
         mesh: Any = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh", process=process)
         triangles = len(mesh.faces)
