@@ -16,8 +16,7 @@ finding names what a uniform solid of the stated mass filling the link's collisi
 have.
 
 Points of the geometry: a box's corners, a cylinder's two rims (RIM points each), a sphere's surface (SPHERE points),
-a mesh's vertices (after its scale; the maxima over them are those over
-its convex hull). A link whose mesh cannot be read is not judged. No lower bound is
+the vertices of a mesh's convex hull (after its scale: the maxima over them are those over every vertex). A link whose mesh cannot be read is not judged. No lower bound is
 applied: a body whose mass sits near its centre (a motor in a light housing) has moments far below the uniform solid's,
 and a point mass none at all.
 """
@@ -276,8 +275,8 @@ class RobotMeshes:
     trimesh; a mesh that cannot be read gives None (its link is not judged). A file read once is not read again while
     unchanged (its path, size and time: the robots of one package share their meshes), up to KEPT_BYTES of vertices.
 
-    The maxima the bounds take over a mesh's points are those over its convex hull, so every vertex is used as it is
-    (a hull would save memory, not time: qhull took longer than the reading)."""
+    The maxima the bounds take over a mesh's points are those over its convex hull: a mesh is kept as its hull's
+    vertices (:func:`_hull_vertices`)."""
 
     def __init__(self, urdf: Path, packages: Mapping[str, str | os.PathLike[str]] | None) -> None:
         from ..reader.mesh_copies import mesh_reader
