@@ -16,9 +16,9 @@ finding names what a uniform solid of the stated mass filling the link's collisi
 have.
 
 Points of the geometry: a box's corners, a cylinder's two rims (RIM points each), a sphere's surface (SPHERE points),
-the vertices of a mesh's convex hull (after its scale: the maxima over them are those over every vertex). A link whose mesh cannot be read is not judged. No lower bound is
-applied: a body whose mass sits near its centre (a motor in a light housing) has moments far below the uniform solid's,
-and a point mass none at all.
+the vertices of a mesh's convex hull (after its scale: the maxima over them are those over every vertex). A link whose
+mesh cannot be read is not judged. No lower bound is applied: a body whose mass sits near its centre (a motor in a
+light housing) has moments far below the uniform solid's, and a point mass none at all.
 """
 
 from __future__ import annotations
