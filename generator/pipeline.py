@@ -94,12 +94,12 @@ def expand_package(model: Robot | Scene, files: list[RenderedFile]) -> RenderedF
 @dataclass(frozen=True)
 class SpecURDF:
     """A spec's URDF made in memory (nothing written), for ``gen-robot check``: what the spec describes (a robot, or a
-    scene), where each link and joint of a robot is written in its spec (``(kind, name) -> line``; a scene's come
-    from several files: none), and the spec's warnings (see Spec.warnings)."""
+    scene), where each link and joint of a robot is written in its spec (``(kind, name) -> (line, column)``; a
+    scene's come from several files: none), and the spec's warnings (see Spec.warnings)."""
 
     urdf: str
     model: Robot | Scene
-    lines: dict[tuple[str, str], int]
+    lines: dict[tuple[str, str], tuple[int, int]]
     warnings: tuple[SpecError, ...]
 
 
@@ -121,15 +121,17 @@ def spec_urdf(spec_path: str | Path) -> SpecURDF:
     return SpecURDF(urdf, robot, _spec_lines(spec, robot), spec.warnings)
 
 
-def _spec_lines(spec: Spec, robot: Robot) -> dict[tuple[str, str], int]:
+def _spec_lines(spec: Spec, robot: Robot) -> dict[tuple[str, str], tuple[int, int]]:
     """Where each link and joint of ``robot`` is written in its spec: a named entry's key, an arm's generated base
-    and tool at the arm, a DH row's link and joint at the row, a mirror's copy at what it was copied from."""
-    lines: dict[tuple[str, str], int] = {}
+    and tool at the arm, a DH row's link and joint at the row, a mirror's copy at what it was copied from: (line,
+    column), 0 for either when it is not known."""
+    lines: dict[tuple[str, str], tuple[int, int]] = {}
     raw, data = spec.raw, spec.data
 
-    def at(path: tuple[str | int, ...]) -> int:
-        # a mapping entry by its key's line; a list item (a DH row) by its own, not by its list's
-        return raw.locate(path, key=isinstance(path[-1], str))[0] or 0
+    def at(path: tuple[str | int, ...]) -> tuple[int, int]:
+        # a mapping entry by its key's place; a list item (a DH row) by its own, not by its list's
+        line, column = raw.locate(path, key=isinstance(path[-1], str))
+        return line or 0, column or 0
 
     for name in data.get("links", {}):
         lines[("link", name)] = at(("links", name))
@@ -250,7 +252,7 @@ def _check_warnings(urdf: str, spec_path: Path, spec: Spec, robot: Robot) -> tup
             continue
         rule = f"{finding.rule} {RULES[finding.rule][0]} ({finding.severity} of gen-robot check)"
         message = f"{rule}: {finding.element_kind} {finding.element!r}: {finding.message}"
-        said.append(SpecError(message, file=str(spec_path), line=finding.line))
+        said.append(SpecError(message, file=str(spec_path), line=finding.line, column=finding.column))
     return tuple(said)
 
 
@@ -265,13 +267,13 @@ def _drive_warnings(spec: Spec, robot: Robot) -> tuple[SpecError, ...]:
     if offset is None or max(abs(v) for v in offset) <= AXLE_TOLERANCE:
         return ()
     wheel = robot.wheels[0]
-    line = _spec_lines(spec, robot).get(("joint", wheel.joint_name))
+    line, column = _spec_lines(spec, robot).get(("joint", wheel.joint_name), (None, None))
     message = (
         f"the wheels' axle midpoint is at x = {offset[0]:.4g}, y = {offset[1]:.4g} m from {robot.root}, the frame "
         "diff_drive_controller publishes its odometry for (base_frame_id); its odometry is the midpoint's, so it is "
         f"wrong whenever the robot turns: place {robot.root} above the midpoint (the diff-drive example does)"
     )
-    return (SpecError(message, file=str(spec.raw.file), line=line),)
+    return (SpecError(message, file=str(spec.raw.file), line=line, column=column),)
 
 
 def _write(

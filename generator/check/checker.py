@@ -89,7 +89,7 @@ def _judge(
     kind: InputKind,
     text: str,
     robot: Robot | None,
-    lines: dict[tuple[str, str], int] | None,
+    lines: dict[tuple[str, str], tuple[int, int]] | None,
     notes: tuple[Finding, ...],
     names: list[str],
     packages: Mapping[str, str | os.PathLike[str]] | None,
@@ -101,14 +101,16 @@ def _judge(
     if root is None:  # U001: not a URDF, nothing more to read
         return CheckReport(str(path), kind, None, tuple(read))
     say("running our rules")
-    doc = Doc(root, str(path), lines, source_lines=kind == "urdf")
+    doc = Doc(root, str(path), lines, source=text if kind == "urdf" else None)
     findings = [*notes, *read, *first_rules(doc)]
     structural = any(f.rule.startswith("S") for f in findings)
     # the consumers run while our other rules do (each in its own process): check takes about as long as the slowest
     if names and not structural:
         say(f"running {', '.join(names)} (and our other rules meanwhile)")
         preload_mesh_readers(doc)  # (before the consumers fork: they inherit it, and yourdfpy needs it too)
-    pending = start_verdicts(names, text, structural=structural, package_paths=packages, base_dir=path.parent)
+    pending = start_verdicts(
+        names, text, structural=structural, package_paths=packages, base_dir=path.parent, shown_as=str(path)
+    )
     findings += other_rules(doc, packages, path.parent, prefix)
     if robot is not None and not structural and robot.arms:
         from .spec_rules import kinematics_rules

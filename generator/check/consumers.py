@@ -18,13 +18,17 @@ import subprocess
 import sys
 import tempfile
 import threading
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from dataclasses import replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..errors import XacrokitError
 from ..expansion.bounded_child import Bounds, ChildFailed, OutOfBounds, start_bounded
 from .findings import ConsumerResult, Finding, rule_table, severity
+
+if TYPE_CHECKING:
+    from .consumer_host import ConsumerHost
 
 RULES = rule_table(
     {
@@ -230,9 +234,10 @@ def start_verdicts(
     structural: bool,
     package_paths: Mapping[str, str | os.PathLike[str]] | None,
     base_dir: Path,
+    shown_as: str = "the URDF",
 ) -> Callable[[], list[ConsumerResult]]:
     """:func:`verdicts`, started: the consumers run while the caller goes on (check runs its other rules meanwhile),
-    and the function returned waits for their verdicts."""
+    and the function returned waits for their verdicts (``shown_as``: how their messages name the file)."""
     if not names:
         return list
     if structural:  # a tree that is not a tree hangs check_urdf and crashes others; our finding says it all
@@ -256,8 +261,10 @@ def start_verdicts(
         # process of their own would start Python and import them again: a third of the time it takes); started
         # before the thread that runs check_urdf (a fork copies one thread only)
         forkable = hasattr(os, "fork")  # (elsewhere each runs as a process of its own, as check_urdf does)
-        forked = {n: _forked(n, urdf, package_paths) for n in names if forkable and n != "check_urdf" and available(n)}
-        others = _started([n for n in names if n not in forked], urdf, package_paths=package_paths)
+        python = [n for n in names if forkable and n != "check_urdf" and available(n)]
+        hosted = _HOST[0].start(python, urdf, package_paths) if _HOST and python else dict
+        forked = {n: _forked(n, urdf, package_paths) for n in python} if not _HOST else {}
+        others = _started([n for n in names if n not in python], urdf, package_paths=package_paths)
     except BaseException:
         folder.cleanup()
         raise
@@ -265,12 +272,33 @@ def start_verdicts(
     def collect() -> list[ConsumerResult]:
         try:
             results = {name: wait() for name, wait in forked.items()}
+            results.update(hosted())
             results.update((r.name, r) for r in others())
-            return [results[n] for n in names]
+            # (a message naming the scratch copy names the file checked: a verdict does not depend on where it ran)
+            return [replace(results[n], message=results[n].message.replace(str(urdf), shown_as)) for n in names]
         finally:
             folder.cleanup()
 
     return collect
+
+
+_HOST: list[ConsumerHost] = []  # (the host the Python consumers run in, while :func:`hosted_consumers` holds one)
+
+
+@contextlib.contextmanager
+def hosted_consumers() -> Iterator[None]:
+    """While it lasts, every check in this process runs its Python consumers in one long-lived child
+    (:mod:`xacrokit.check.consumer_host`: what MuJoCo has compiled is kept for the next robot) instead of a child per
+    consumer and file."""
+    from .consumer_host import ConsumerHost
+
+    host = ConsumerHost()
+    _HOST[:] = [host]
+    try:
+        yield
+    finally:
+        _HOST.clear()
+        host.stop()
 
 
 CONSUMER_BOUNDS = Bounds(seconds=TIMEOUT_S, memory=4 * 2**30, output=64 * 1024)
@@ -285,10 +313,10 @@ def _forked(
 
     def work() -> str:
         os.chdir(urdf.parent)  # (MuJoCo writes MUJOCO_LOG.TXT where it runs: into the scratch folder)
-        return _load(name, str(urdf), packages)
+        return load_with(name, str(urdf), packages)
 
     def described(exc: BaseException) -> dict[str, str] | None:
-        return {"message": _one_line(exc)} if isinstance(exc, Exception) else None
+        return {"message": one_line(exc)} if isinstance(exc, Exception) else None
 
     wait = start_bounded(work, CONSUMER_BOUNDS, errors=described, quiet=True)
 
@@ -308,7 +336,7 @@ def _forked(
     return verdict
 
 
-def _one_line(exc: BaseException) -> str:
+def one_line(exc: BaseException) -> str:
     """A consumer's complaint as check reports it: the exception's type and text on one line, at most 2,000
     characters."""
     return " ".join(f"{type(exc).__name__}: {exc}".split())[:2000]
@@ -333,7 +361,7 @@ def consumer_findings(results: Sequence[ConsumerResult], file: str) -> list[Find
     ]
 
 
-def _load(name: str, path: str, packages: Mapping[str, str] | None = None) -> str:
+def load_with(name: str, path: str, packages: Mapping[str, str] | None = None) -> str:
     """Load the URDF with one library; return a one-line description of what it saw."""
     if name == "pinocchio":
         import pinocchio
@@ -419,10 +447,10 @@ def main(argv: list[str] | None = None) -> int:
     name, path = words[:2]
     packages = json.loads(words[2]) if len(words) > 2 else {}
     try:
-        seen = _load(name, path, packages)
+        seen = load_with(name, path, packages)
         print(json.dumps({"status": "accepted", "message": seen}))
     except Exception as exc:  # a consumer's own complaint is its verdict
-        print(json.dumps({"status": "rejected", "message": _one_line(exc)}))
+        print(json.dumps({"status": "rejected", "message": one_line(exc)}))
     return 0
 
 

@@ -61,7 +61,7 @@ def other_rules(
 def generated_urdf_findings(
     urdf: str,
     spec_path: Path,
-    lines: dict[tuple[str, str], int],
+    lines: dict[tuple[str, str], tuple[int, int]],
     packages: Mapping[str, str | os.PathLike[str]] | None = None,
 ) -> list[Finding]:
     """What ``gen-robot check SPEC`` would say of the URDF a spec generates (its rules on the URDF, with the spec's
@@ -71,4 +71,4 @@ def generated_urdf_findings(
     root, read = parse_robot(urdf, str(spec_path))
     if root is None:
         return read
-    return [*read, *document_rules(Doc(root, str(spec_path), lines, source_lines=False), packages, spec_path.parent)]
+    return [*read, *document_rules(Doc(root, str(spec_path), lines), packages, spec_path.parent)]

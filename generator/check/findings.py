@@ -44,10 +44,19 @@ class Finding:
     message: str
     file: str | None = None
     line: int | None = None
+    column: int | None = None  # (1-based, like line; None where only the line is known, or neither)
 
     @property
     def name(self) -> str:
         return _ROWS[self.rule][0]
+
+    def place(self, source: str) -> str:
+        """Where the finding is, as ``file:line:column`` (``source``, the checked file, when it names no file of its
+        own; as much of the line and column as is known)."""
+        where = self.file or source
+        if self.line:
+            where += f":{self.line}" + (f":{self.column}" if self.column else "")
+        return where
 
     def to_dict(self) -> dict[str, object]:
         return {
@@ -57,6 +66,7 @@ class Finding:
             "element": {"kind": self.element_kind, "name": self.element},
             "file": self.file,
             "line": self.line,
+            "column": self.column,
             "message": self.message,
         }
 

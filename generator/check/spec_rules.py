@@ -53,7 +53,7 @@ def spec_findings(problems: Iterable[SpecError], rule: str = "V001") -> tuple[Fi
     found = []
     for e in problems:
         said = "V003" if rule == "V001" and isinstance(e, Implausible) else rule
-        found.append(Finding(said, severity(said), "value", e.path, e.message, e.file, e.line))
+        found.append(Finding(said, severity(said), "value", e.path, e.message, e.file, e.line, e.column))
     return tuple(found)
 
 

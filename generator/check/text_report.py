@@ -2,8 +2,14 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
 from .findings import CheckReport, Finding
 from .rule_table import RULES
+
+if TYPE_CHECKING:
+    from .file_workers import FileCheck
 
 _COLOURS = {"error": "\033[31m", "warning": "\033[33m", "ok": "\033[32m", "end": "\033[0m"}
 
@@ -14,7 +20,7 @@ def _paint(text: str, what: str, colour: bool) -> str:
 
 def _where(finding: Finding) -> str:
     if finding.file and finding.line:
-        return f" ({finding.file}:{finding.line})"
+        return f" ({finding.place(finding.file)})"
     return ""
 
 
@@ -34,10 +40,34 @@ def format_text(report: CheckReport, *, colour: bool = False, strict: bool = Fal
         ]
         lines.append("consumers: " + "; ".join(verdicts))
     failed = bool(report.errors) or (strict and bool(report.warnings))
+    lines.append(_paint(_verdict(report, failed), "error" if failed else "ok", colour))
+    return "\n".join(lines) + "\n"
+
+
+def format_files(checks: Sequence[FileCheck], *, colour: bool = False, strict: bool = False) -> str:
+    """A run over many files: a summary line per file (its errors and warnings below it, one line each, at
+    file:line:column), then a line for the run."""
+    lines = []
+    for check in checks:
+        if check.report is None:
+            lines.append(_paint(f"{check.source}: UNREADABLE: ", "error", colour) + (check.error or ""))
+            continue
+        report = check.report
+        failed = bool(report.errors) or (strict and bool(report.warnings))
+        lines.append(f"{check.source}: " + _paint(_verdict(report, failed), "error" if failed else "ok", colour))
+        for f in [*report.errors, *report.warnings]:
+            subject = f"{f.element_kind} {f.element!r}" if f.element else f.element_kind
+            lines.append(f"  {f.place(check.source)}: {f.rule} {f.name} ({f.severity}): {subject}: {f.message}")
+    codes = [c.exit_code(strict) for c in checks]
+    tally = f"{len(checks)} file(s) checked: {codes.count(0)} passed, {codes.count(1)} failed"
+    lines.append(tally + (f", {codes.count(2)} unreadable" if 2 in codes else ""))
+    return "\n".join(lines) + "\n"
+
+
+def _verdict(report: CheckReport, failed: bool) -> str:
     summary = f"{len(report.errors)} error(s), {len(report.warnings)} warning(s)"
     summary += f", {len(report.infos)} note(s)" if report.infos else ""
-    lines.append(_paint(("FAILED: " if failed else "OK: ") + summary, "error" if failed else "ok", colour))
-    return "\n".join(lines) + "\n"
+    return ("FAILED: " if failed else "OK: ") + summary
 
 
 def rules_markdown() -> str:

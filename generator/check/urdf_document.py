@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import functools
 import math
+import re
 from collections.abc import Mapping
 
 from lxml import etree
@@ -54,12 +55,17 @@ class Doc:
     each finding is placed (its element's line; for a spec, the spec's line of the link or joint it is about)."""
 
     def __init__(
-        self, root: etree._Element, file: str | None, lines: Mapping[tuple[str, str], int] | None, *, source_lines: bool
+        self,
+        root: etree._Element,
+        file: str | None,
+        lines: Mapping[tuple[str, str], tuple[int, int]] | None = None,
+        *,
+        source: str | None = None,
     ) -> None:
         self.root = root
         self.file = file
-        self.spec_lines = lines  # for spec input: (kind, name) -> line in the spec
-        self.source_lines = source_lines  # URDF input: element lines are the file's own
+        self.spec_lines = lines  # for spec input: (kind, name) -> (line, column) in the spec
+        self.source = source  # URDF input: its text (element lines are the file's own)
         self.view = view_of(root)
         self.link_names = {link.name for link in self.view.links}
         self.joint_by_name = {joint.name: joint.element for joint in self.view.joints}
@@ -83,18 +89,35 @@ class Doc:
         level: Severity | None = None,
     ) -> Finding:
         """A finding of ``rule`` (at the rule's severity, or ``level`` for a case the rule's table says is milder)
-        located at ``element``'s line."""
-        line = None
+        located at ``element``'s line and column (for a spec, the place of the link or joint it is about)."""
+        line, column = None, None
         if self.spec_lines is not None:
-            line = self.spec_lines.get((kind, name))
+            place = self.spec_lines.get((kind, name))
             owner = element
-            while line is None and owner is not None:  # a mesh, say: the line of the link or joint it belongs to
+            while place is None and owner is not None:  # a mesh, say: the place of the link or joint it belongs to
                 if owner.tag in ("link", "joint"):
-                    line = self.spec_lines.get((owner.tag, owner.get("name", "")))
+                    place = self.spec_lines.get((owner.tag, owner.get("name", "")))
                 owner = owner.getparent()
-        elif element is not None and self.source_lines:
+            line, column = place or (None, None)
+        elif element is not None and self.source is not None:
             line = element.sourceline  # (an expanded xacro's lines are not the xacro file's: leave them out)
-        return Finding(rule, level or severity(rule), kind, name, message, self.file, line)
+            column = self._column(line, element.tag) if isinstance(element.tag, str) else None
+        return Finding(rule, level or severity(rule), kind, name, message, self.file, line or None, column or None)
+
+    @functools.cached_property
+    def _source_lines(self) -> list[str]:
+        return (self.source or "").splitlines()
+
+    def _column(self, line: int | None, tag: str) -> int | None:
+        """Where on its line (1-based) an element is: its start tag when it begins there, else the line's first
+        character (lxml gives the line where the start tag ends, and no column)."""
+        if line is None or not 0 < line <= len(self._source_lines):
+            return None
+        text = self._source_lines[line - 1]
+        found = re.search(rf"<{re.escape(tag)}[\s/>]|<{re.escape(tag)}$", text)
+        if found is not None:
+            return found.start() + 1
+        return len(text) - len(text.lstrip()) + 1
 
 
 def number_of(attributes: Mapping[str, str] | None, key: str, default: float | None = None) -> float | None:

@@ -163,30 +163,69 @@ def _cmd_new(args: argparse.Namespace) -> int:
 def _cmd_check(args: argparse.Namespace) -> int:
     import json
 
-    from ..check import check
-    from ..check.text_report import format_text
+    from ..check.file_workers import CheckOptions, check_files, run_dict
+    from ..check.robot_files import robot_files
 
+    form = "json" if args.json else args.format
+    if args.jobs is not None and args.jobs < 1:
+        raise XacrokitError(f"-j/--jobs {args.jobs}: give the number of worker processes, 1 or more")
     if args.consumers in ("all", None):
         consumers = None
     elif args.consumers == "none":
         consumers = []
     else:
         consumers = [c.strip() for c in args.consumers.split(",") if c.strip()]
+    options = CheckOptions(parse_mappings(args.mappings), args.prefix, consumers, parse_packages(args.package))
+    if len(args.paths) == 1 and not args.robots_only and form in ("text", "json") and not Path(args.paths[0]).is_dir():
+        return _check_single(Path(args.paths[0]), options, form, args.strict)  # (one file: its report as before)
+    files = robot_files(args.paths, exclude=args.exclude, robots_only=args.robots_only)
+    if not files:
+        print(f"no robot file found in {', '.join(args.paths)}", file=sys.stderr)
+    with _progress() as progress:
+        checks = list(check_files(files, options, jobs=args.jobs, progress=progress))
+    if form == "json":
+        sys.stdout.write(json.dumps(run_dict(checks, strict=args.strict), indent=2) + "\n")
+    elif form == "sarif":
+        from ..check.sarif_report import sarif_log
+
+        sys.stdout.write(json.dumps(sarif_log(checks), indent=2) + "\n")
+    elif form == "junit":
+        from ..check.junit_report import junit_xml
+
+        sys.stdout.write(junit_xml(checks, strict=args.strict))
+    else:
+        from ..check.text_report import format_files
+
+        sys.stdout.write(format_files(checks, colour=_colour(), strict=args.strict))
+    return max((check.exit_code(args.strict) for check in checks), default=0)
+
+
+def _check_single(path: Path, options: Any, form: str, strict: bool) -> int:
+    """``gen-robot check FILE`` (text or JSON): the file's whole report; a file that cannot be read is the command's
+    error (exit 2), as it always was."""
+    import json
+
+    from ..check import check
+    from ..check.text_report import format_text
+
     with _progress() as progress:
         report = check(
-            args.path,
-            parse_mappings(args.mappings),
-            prefix=args.prefix,
-            consumers=consumers,
-            package_paths=parse_packages(args.package),
+            path,
+            options.mappings,
+            prefix=options.prefix,
+            consumers=options.consumers,
+            package_paths=options.package_paths,
             progress=progress,
         )
-    if args.json:
+    if form == "json":
         sys.stdout.write(json.dumps(report.to_dict(), indent=2) + "\n")
     else:
-        colour = sys.stdout.isatty() and "NO_COLOR" not in os.environ
-        sys.stdout.write(format_text(report, colour=colour, strict=args.strict))
-    return report.exit_code(strict=args.strict)
+        sys.stdout.write(format_text(report, colour=_colour(), strict=strict))
+    return report.exit_code(strict=strict)
+
+
+def _colour() -> bool:
+    return sys.stdout.isatty() and "NO_COLOR" not in os.environ
 
 
 def _cmd_schema(args: argparse.Namespace) -> int:
@@ -357,14 +396,52 @@ def _add_check_command(commands: Any) -> None:
     chk = commands.add_parser(
         "check",
         help="strictly verify a URDF, xacro document or spec (structure, joints, inertia, references, kinematics)",
-        description="Check PATH: a URDF, a xacro document (expanded with the name:=value arguments) or a spec "
-        "(generated in memory, never written). Our rules run first, then the independent consumers check_urdf, "
-        "pinocchio, yourdfpy and MuJoCo (when installed). Exit code 0 clean, 1 errors (or warnings with --strict), "
-        "2 unreadable input or usage.",
+        description="Check each PATH: a URDF, a xacro document (expanded with the name:=value arguments), a spec "
+        "(generated in memory, never written) or a folder of them. Our rules run first, then the independent "
+        "consumers check_urdf, pinocchio, yourdfpy and MuJoCo (when installed). One file gives its whole report; "
+        "several give a line per file (and its errors and warnings), checked in parallel worker processes. Exit "
+        "code, the worst over the files: 0 clean, 1 errors (or warnings with --strict), 2 unreadable input or usage.",
     )
-    chk.add_argument("path", help="a .urdf, .xacro or .yaml spec")
-    chk.add_argument("--json", action="store_true", help="print the report as JSON (schemas/check-report.schema.json)")
+    chk.add_argument(
+        "paths",
+        nargs="+",
+        metavar="PATH",
+        help="a .urdf, .xacro or .yaml spec, or a folder: searched for URDFs, xacro entries and robot and scene specs "
+        "(see docs/check.md)",
+    )
+    form = chk.add_mutually_exclusive_group()
+    form.add_argument(
+        "--format",
+        choices=("text", "json", "sarif", "junit"),
+        default="text",
+        help="the report: text (default), json (schemas/check-report.schema.json for one file, "
+        "check-run.schema.json for several), sarif (SARIF 2.1.0, for code scanning) or junit (JUnit XML, a test "
+        "case per file)",
+    )
+    form.add_argument("--json", action="store_true", help="short for --format json")
     chk.add_argument("--strict", action="store_true", help="warnings fail the check too (exit code 1)")
+    chk.add_argument(
+        "--exclude",
+        action="append",
+        default=[],
+        metavar="GLOB",
+        help="leave out the files found in folders whose path below the folder, or a folder's or its own name, "
+        "matches GLOB (repeatable): --exclude build --exclude '*_macro.xacro'",
+    )
+    chk.add_argument(
+        "-j",
+        "--jobs",
+        type=int,
+        default=None,
+        metavar="N",
+        help="check N files at once, each in a worker process (default: the number of CPUs)",
+    )
+    chk.add_argument(
+        "--robots-only",
+        action="store_true",
+        help="skip named files that are not robots, as folders do (YAML that is no robot or scene spec, xacro files "
+        "of macros alone): what the pre-commit hook passes",
+    )
     chk.add_argument(
         "--consumers",
         metavar="LIST",
@@ -419,7 +496,7 @@ def _add_tool_commands(commands: Any) -> None:
     materials.set_defaults(handler=_cmd_materials)
 
 
-SCHEMA_KINDS = ("robot", "scene", "check-report", "size-report", "sizing")
+SCHEMA_KINDS = ("robot", "scene", "check-report", "check-run", "size-report", "sizing")
 COMMANDS = tuple(
     "generate new check size report graph view render export import pose jacobian ik fleet schema expand macros "
     "materials".split()

@@ -103,7 +103,7 @@ def start_bounded(
     if pid == 0:  # the child: never returns
         os.close(reader)
         if quiet:
-            _silence()
+            silence()
         _child(work, bounds, errors, writer)
     os.close(writer)
 
@@ -148,7 +148,7 @@ def _outcome(
     try:
         message = json.loads(received.decode("utf-8"))
     except ValueError:
-        raise ChildFailed(_status_words(status)) from None
+        raise ChildFailed(status_words(status)) from None
     if not quiet:
         with contextlib.suppress(Exception):
             sys.stderr.write(message.get("stderr", ""))
@@ -162,7 +162,7 @@ def _outcome(
     raise ChildFailed(str(message.get("detail", "no result")))
 
 
-def _silence() -> None:
+def silence() -> None:
     """The child's standard output and error, to nowhere: the file descriptors (what C code prints) and Python's
     streams (new objects: the parent's may have been locked by another thread at the fork)."""
     faulthandler.disable()  # (a crash is the child's verdict; faulthandler, on in a test run, would print it)
@@ -207,7 +207,7 @@ def _child(
     code = 0
     try:
         signal.signal(signal.SIGINT, signal.SIG_DFL)  # (Ctrl-C reaches the child too: let it just end)
-        _limit(bounds)
+        limit_resources(bounds)
         captured = io.StringIO()
         message: dict[str, Any]
         try:
@@ -236,14 +236,17 @@ def _child(
         os._exit(code)
 
 
-def _limit(bounds: Bounds) -> None:
-    """The child's resource limits: address space (the parent's, plus ``bounds.memory``) and CPU time."""
+def limit_resources(bounds: Bounds, *, cpu: bool = True) -> None:
+    """This child's resource limits: address space (its parent's, plus ``bounds.memory``) and, with ``cpu``, CPU
+    time (a child that lives for many pieces of work takes none: its parent stops it when a piece is late)."""
     with contextlib.suppress(OSError, ValueError):
         with open("/proc/self/statm") as statm:  # (Linux: the size of the address space, in pages, first)
             pages = int(statm.read().split()[0])
         _, hard = resource.getrlimit(resource.RLIMIT_AS)
         wanted = pages * resource.getpagesize() + bounds.memory
         resource.setrlimit(resource.RLIMIT_AS, (wanted if hard == resource.RLIM_INFINITY else min(wanted, hard), hard))
+    if not cpu:
+        return
     with contextlib.suppress(OSError, ValueError):
         _, hard = resource.getrlimit(resource.RLIMIT_CPU)
         seconds = math.ceil(bounds.seconds) + 1
@@ -252,7 +255,8 @@ def _limit(bounds: Bounds) -> None:
         )
 
 
-def _status_words(status: int) -> str:
+def status_words(status: int) -> str:
+    """How a child ended, in words: 'killed by SIGSEGV', 'exit status 1'."""
     if os.WIFSIGNALED(status):
         number = os.WTERMSIG(status)
         with contextlib.suppress(ValueError):

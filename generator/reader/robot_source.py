@@ -63,7 +63,7 @@ class RobotSource:
     kind: InputKind
     packages: Mapping[str, str | os.PathLike[str]] | None = None
     robot: Robot | None = None
-    lines: dict[tuple[str, str], int] | None = None
+    lines: dict[tuple[str, str], tuple[int, int]] | None = None  # (kind, name) -> (line, column) in the spec
     warnings: tuple[SpecError, ...] = ()
     carried: dict[str, Any] = field(default_factory=dict)
 

@@ -57,3 +57,11 @@ def test_invalid_specs_are_findings_and_unreadable_ones_exit_2(tmp_path):
     assert text.returncode == 1 and "V002 spec-valid" in text.stdout and f"{bad}:3" in text.stdout
     missing = gen_robot("check", tmp_path / "missing.yaml")  # nothing to report on
     assert missing.returncode == 2 and "cannot read the spec" in missing.stderr and not missing.stdout
+
+
+def test_the_schema_names_every_rule_of_the_table():
+    """The report schema's rule ids are the rule table's, in its order (a rule added to the table and not to the
+    schema made every report naming it invalid: G002-G006, I008 and I009 were missing until 2026-11-27)."""
+    from xacrokit.check import RULES
+
+    assert SCHEMA["$defs"]["finding"]["properties"]["rule"]["enum"] == list(RULES)

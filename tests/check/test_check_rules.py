@@ -72,7 +72,7 @@ def test_k001_catches_a_urdf_that_does_not_follow_its_dh_table(tmp_path):
     spec = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
     robot = build_robot(spec)
     good = expand_package(robot, render_package(robot, macros="copy")).content  # the library's dh_arm
-    doc = Doc(etree.fromstring(good.encode()), str(spec), {}, source_lines=False)
+    doc = Doc(etree.fromstring(good.encode()), str(spec), {})
     assert list(kinematics_rules(doc, robot, good)) == []
     wrong_spec = tmp_path / "ur5.yaml"
     wrong_spec.write_text(spec.read_text(encoding="utf-8").replace("a: -0.39225", "a: -0.39"), encoding="utf-8")

@@ -31,7 +31,7 @@ def test_schema_command_prints_a_valid_2020_12_schema_with_descriptions():
         assert "description" in definition, name
 
 
-@pytest.mark.parametrize("kind", ["robot", "scene", "check-report"])
+@pytest.mark.parametrize("kind", ["robot", "scene", "check-report", "check-run"])
 def test_schema_command_prints_each_schema(kind):
     result = gen_robot("schema", "--kind", kind)
     schema = json.loads(result.stdout)

@@ -1,0 +1,185 @@
+"""Checking many files in one call: worker processes that each pay the imports once.
+
+Before the workers start, this process imports what checking needs (our rules, xacro, the generator for specs, the
+consumers' libraries: pinocchio, yourdfpy with trimesh, MuJoCo) and then forks ``jobs`` workers, which share those
+modules with it; each worker checks one file at a time with :func:`~xacrokit.check.checker.check`, exactly as a call
+per file would, and keeps what it has read for the next robot: the meshes our rules read, and what the consumers keep
+(they run in one bounded host per worker, :mod:`xacrokit.check.consumer_host`, where MuJoCo keeps the meshes it has
+compiled). The largest files are started first (the run ends sooner), the results come back in the
+order the files were given. A file that cannot be read is a result too (its message, exit code 2): the other files
+are still checked. Where there is no ``fork`` (or for one file, or one job) the files are checked here, one by one.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from ..errors import XacrokitError
+from .consumers import hosted_consumers
+from .findings import CheckReport
+
+
+@dataclass(frozen=True)
+class FileCheck:
+    """One file's outcome: its report, or why it could not be checked (``error``: the file cannot be read, exit 2)."""
+
+    source: str
+    report: CheckReport | None
+    error: str | None = None
+    seconds: float = 0.0  # (how long the check took, for JUnit's time)
+
+    def exit_code(self, strict: bool = False) -> int:
+        if self.report is None:
+            return 2
+        return self.report.exit_code(strict=strict)
+
+
+def run_dict(checks: Sequence[FileCheck], *, strict: bool = False) -> dict[str, Any]:
+    """A run over many files as JSON data (schemas/check-run.schema.json): each file's report as ``gen-robot check
+    --json FILE`` gives it, or its source and why it cannot be read."""
+    codes = [check.exit_code(strict) for check in checks]
+    return {
+        "format": "xacrokit-check-run/1",
+        "summary": {
+            "files": len(checks),
+            "passed": codes.count(0),
+            "failed": codes.count(1),
+            "unreadable": codes.count(2),
+            "exit_code": max(codes, default=0),
+        },
+        "reports": [
+            check.report.to_dict() if check.report is not None else {"source": check.source, "error": check.error}
+            for check in checks
+        ],
+    }
+
+
+@dataclass(frozen=True)
+class CheckOptions:
+    """What :func:`~xacrokit.check.checker.check` takes besides the path, the same for every file of a run."""
+
+    mappings: Mapping[str, str] = field(default_factory=dict)
+    prefix: str | None = None
+    consumers: Sequence[str] | None = None
+    package_paths: Mapping[str, str | Path] | None = None
+    trust: bool = False
+
+
+def check_files(
+    files: Sequence[Path],
+    options: CheckOptions,
+    *,
+    jobs: int | None = None,
+    progress: Callable[[str], None] | None = None,
+) -> Iterator[FileCheck]:
+    """Check ``files`` in ``jobs`` worker processes (default: the CPU count), yielding each file's outcome in the
+    order given, as soon as it and those before it are done."""
+    from .consumers import chosen
+
+    names = chosen(options.consumers)  # (an unknown or missing consumer is refused before any file is read)
+    jobs = max(1, min(jobs or os.cpu_count() or 1, len(files)))
+    say = progress or (lambda message: None)
+    if jobs == 1 or not hasattr(os, "fork"):
+        with hosted_consumers():
+            for index, path in enumerate(files):
+                say(f"checking {index + 1}/{len(files)}: {path.name}")
+                yield check_one(path, options)
+        return
+    _import_for(names, files)
+    yield from _in_workers(files, options, jobs, say)
+
+
+def check_one(path: Path, options: CheckOptions) -> FileCheck:
+    """One file's outcome (what ``gen-robot check PATH`` says of it alone)."""
+    import time
+
+    from .checker import check
+
+    start = time.perf_counter()
+    try:
+        report = check(
+            path,
+            options.mappings,
+            prefix=options.prefix,
+            consumers=options.consumers,
+            package_paths=options.package_paths,
+            trust=options.trust,
+        )
+    except XacrokitError as exc:
+        return FileCheck(str(path), None, str(exc), time.perf_counter() - start)
+    return FileCheck(str(path), report, None, time.perf_counter() - start)
+
+
+def _in_workers(
+    files: Sequence[Path], options: CheckOptions, jobs: int, say: Callable[[str], None]
+) -> Iterator[FileCheck]:
+    import multiprocessing
+    from concurrent.futures import Future, ProcessPoolExecutor
+
+    # (fork: the workers start from this process with its imports; all of them before any thread of the pool runs)
+    pool = ProcessPoolExecutor(
+        max_workers=jobs, mp_context=multiprocessing.get_context("fork"), initializer=_worker_starts
+    )
+    try:
+        largest_first = sorted(range(len(files)), key=lambda i: -_size(files[i]))
+        futures: dict[int, Future[FileCheck]] = {i: pool.submit(check_one, files[i], options) for i in largest_first}
+        for index, path in enumerate(files):
+            say(f"checked {index}/{len(files)}; waiting for {path.name}")
+            yield _outcome(path, futures[index])
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
+
+
+_WORKER = contextlib.ExitStack()  # (what a worker holds for its life: its consumers' host)
+
+
+def _worker_starts() -> None:
+    """A worker's start: its Python consumers run in one host for all its files (the host ends when the worker does:
+    its requests' pipe closes)."""
+    _WORKER.enter_context(hosted_consumers())
+
+
+def _outcome(path: Path, future: Any) -> FileCheck:
+    """The worker's result for ``path``; a worker that ended without one (killed, out of memory) is said as the file's
+    error."""
+    from concurrent.futures.process import BrokenProcessPool
+
+    try:
+        result: FileCheck = future.result()
+    except BrokenProcessPool as exc:
+        return FileCheck(
+            str(path), None, f"{path}: the worker checking it ended without a verdict ({exc}); check it alone"
+        )
+    return result
+
+
+def _size(path: Path) -> int:
+    try:
+        return path.stat().st_size
+    except OSError:
+        return 0
+
+
+def _import_for(names: Sequence[str], files: Sequence[Path]) -> None:
+    """Import what the workers will need, here, before they fork (each then has it without importing it again)."""
+    import importlib
+
+    from ..reader.robot_source import input_kind
+
+    modules = ["xacrokit.check.rule_table", "xacrokit.check.checker", "stl", "scipy.spatial", "trimesh"]
+    modules += [LIBRARIES[name] for name in names if name in LIBRARIES]
+    kinds = {input_kind(path) for path in files}
+    if "xacro" in kinds:
+        modules.append("xacrokit.expansion.xacro_expand")
+    if "spec" in kinds:
+        modules.append("xacrokit.pipeline")
+    for module in modules:
+        importlib.import_module(module)
+
+
+LIBRARIES = {"pinocchio": "pinocchio", "yourdfpy": "yourdfpy", "mujoco": "mujoco"}  # consumer -> its module

@@ -1,0 +1,135 @@
+"""Which files ``gen-robot check`` takes: the paths it is given, and the robots in the folders among them.
+
+In a folder (searched recursively, in name order, without following symbolic links or entering folders whose name
+starts with a dot) a robot file is
+
+- a URDF: ``*.urdf``;
+- a xacro entry: a ``*.xacro`` (``*.urdf.xacro`` too) whose ``<robot>`` has a name or makes something (an element
+  other than ``xacro:macro``, ``xacro:property``, ``xacro:arg`` and ``xacro:include`` at its top level), and that no
+  xacro document of the folder includes (by its file name); a nameless file of macros alone is a library, and an
+  included one a part, each checked through the entries that include it;
+- a spec: ``*.yaml``/``*.yml`` whose top level has ``robot`` and ``links`` (a robot spec) or ``scene`` and
+  ``instances`` (a scene spec); other YAML (controllers, launch parameters, sizing files) is not a robot.
+
+A file named on the command line is checked whatever it is, unless ``robots_only`` (what the pre-commit hook passes:
+it names every changed ``.urdf``, ``.xacro`` and YAML file). ``exclude`` globs leave out the files found in folders
+whose path below the folder, or one of its folders' names or its own name, matches one (``build``, ``*_macro.xacro``,
+``legacy/*.urdf``).
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import os
+import re
+from collections.abc import Iterable, Sequence
+from pathlib import Path, PurePosixPath
+from typing import Any
+
+from lxml import etree
+
+from ..errors import XacrokitError
+from ..shared.xml_parse import parser
+
+HEAD_BYTES = 1 << 20  # bytes of a YAML or xacro file read to tell whether it is a robot (its top level comes first)
+_LIBRARY = {"macro", "property", "arg", "include"}  # xacro's top-level elements that make nothing by themselves
+# (xacro knows its elements by the prefix xacro:, whichever namespace URI it is bound to: both ros.org forms are used)
+_SPEC_KEYS = re.compile(r"^(robot|links|scene|instances)\s*:", re.MULTILINE)
+
+
+def robot_files(
+    paths: Sequence[str | os.PathLike[str]], *, exclude: Sequence[str] = (), robots_only: bool = False
+) -> list[Path]:
+    """The files to check, each once, in the order given (a folder's in name order).
+
+    Raises:
+        XacrokitError: a path that does not exist, or is neither a file nor a folder.
+    """
+    found: dict[Path, None] = {}
+    for given in paths:
+        path = Path(given)
+        if path.is_dir():
+            found.update(dict.fromkeys(_search(path, exclude)))
+        elif path.is_file():
+            if not robots_only or is_robot_file(path):
+                found[path] = None
+        else:
+            raise XacrokitError(
+                f"{path}: no such file or folder; give a URDF, xacro document, spec or a folder of them"
+            )
+    return list(found)
+
+
+def _search(folder: Path, exclude: Sequence[str]) -> Iterable[Path]:
+    found: list[Path] = []
+    included: set[str] = set()  # (the file names xacro documents of the folder include: parts, not entries)
+    for top, folders, files in os.walk(folder):  # (symbolic links to folders are not followed: no loop, no escape)
+        below = PurePosixPath(Path(top).relative_to(folder).as_posix())
+        folders[:] = sorted(f for f in folders if not f.startswith(".") and not _excluded(below / f, exclude))
+        for name in sorted(files):
+            path = Path(top, name)
+            if name.lower().endswith(".xacro"):
+                included.update(_included_names(path))
+            if not _excluded(below / name, exclude) and path.is_file() and is_robot_file(path):
+                found.append(path)
+    kept = [path for path in found if not path.name.lower().endswith(".xacro") or path.name not in included]
+    return sorted(kept, key=lambda path: path.relative_to(folder).parts)  # (name order, folders among files)
+
+
+def _excluded(relative: PurePosixPath, exclude: Sequence[str]) -> bool:
+    text = relative.as_posix()
+    return any(fnmatch.fnmatchcase(text, glob) or fnmatch.fnmatchcase(relative.name, glob) for glob in exclude)
+
+
+def is_robot_file(path: Path) -> bool:
+    """Whether ``path`` is a robot ``gen-robot check`` takes from a folder (see the module's notes; that no other
+    xacro document of the folder includes it is asked by the search)."""
+    name = path.name.lower()
+    if name.endswith(".urdf"):
+        return True
+    if name.endswith(".xacro"):
+        return _makes_something(_xacro_root(path))
+    if name.endswith((".yaml", ".yml")):
+        keys = {m.group(1) for m in _SPEC_KEYS.finditer(_head(path))}
+        return {"robot", "links"} <= keys or {"scene", "instances"} <= keys
+    return False
+
+
+def _head(path: Path) -> str:
+    try:
+        with path.open("rb") as stream:
+            return stream.read(HEAD_BYTES).decode("utf-8", "replace")
+    except OSError:
+        return ""
+
+
+def _xacro_root(path: Path) -> Any:
+    """The root element of a xacro file (None when it does not read as XML)."""
+    try:
+        return etree.fromstring(_head(path).encode("utf-8"), parser(recover=False))
+    except etree.XMLSyntaxError:
+        return None
+
+
+def _makes_something(root: Any) -> bool:
+    """Whether a xacro document makes something at its top level (one that does not read is taken: check says why)."""
+    if root is None or root.get("name"):
+        return True  # (a named <robot> is a robot, though it only includes the files that make its parts)
+    for child in root:
+        if not isinstance(child.tag, str):
+            continue  # (a comment or processing instruction)
+        if child.prefix != "xacro" or etree.QName(child).localname not in _LIBRARY:
+            return True
+    return False
+
+
+def _included_names(path: Path) -> set[str]:
+    """The file names a xacro document includes (``xacro:include filename``'s last part)."""
+    root = _xacro_root(path)
+    if root is None:
+        return set()
+    return {
+        PurePosixPath(element.get("filename", "")).name
+        for element in root.iter()
+        if isinstance(element.tag, str) and element.prefix == "xacro" and etree.QName(element).localname == "include"
+    }
