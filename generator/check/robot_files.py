@@ -50,12 +50,13 @@ def robot_files(
         path = Path(given)
         if path.is_dir():
             found.update(dict.fromkeys(_search(path, exclude)))
-        elif path.is_file():
+        elif os.path.lexists(path):  # (a file; or a FIFO, a device, a broken link: check says why it cannot read it)
             if not robots_only or is_robot_file(path):
                 found[path] = None
         else:
+            hint = " (a xacro argument is written name:=value)" if "=" in str(given) else ""
             raise XacrokitError(
-                f"{path}: no such file or folder; give a URDF, xacro document, spec or a folder of them"
+                f"{path}: no such file or folder; give a URDF, xacro document, spec or a folder of them{hint}"
             )
     return list(found)
 

@@ -28,6 +28,7 @@ from .arguments import add_force_option, fleet_count, parse_mappings, parse_pack
 from .subcommands import add_commands
 
 if TYPE_CHECKING:
+    from ..check.file_workers import CheckOptions
     from ..pipeline import GenerateResult
 
 
@@ -175,12 +176,18 @@ def _cmd_check(args: argparse.Namespace) -> int:
         consumers = []
     else:
         consumers = [c.strip() for c in args.consumers.split(",") if c.strip()]
-    options = CheckOptions(parse_mappings(args.mappings), args.prefix, consumers, parse_packages(args.package))
-    if len(args.paths) == 1 and not args.robots_only and form in ("text", "json") and not Path(args.paths[0]).is_dir():
-        return _check_single(Path(args.paths[0]), options, form, args.strict)  # (one file: its report as before)
-    files = robot_files(args.paths, exclude=args.exclude, robots_only=args.robots_only)
+    # (the paths and the name:=value words come as one list of positionals: a word with ':=' is a mapping, as xacro
+    # reads its own command line)
+    paths = [word for word in args.paths if ":=" not in word]
+    mappings = parse_mappings([word for word in args.paths if ":=" in word] + args.mappings)
+    if not paths:
+        raise XacrokitError("check: give a file or folder to check (name:=value words are xacro arguments)")
+    options = CheckOptions(mappings, args.prefix, consumers, parse_packages(args.package), args.trust)
+    if len(paths) == 1 and not args.robots_only and form in ("text", "json") and not Path(paths[0]).is_dir():
+        return _check_single(Path(paths[0]), options, form, args.strict)  # (one file: its report as before)
+    files = robot_files(paths, exclude=args.exclude, robots_only=args.robots_only)
     if not files:
-        print(f"no robot file found in {', '.join(args.paths)}", file=sys.stderr)
+        print(f"no robot file found in {', '.join(paths)}", file=sys.stderr)
     with _progress() as progress:
         checks = list(check_files(files, options, jobs=args.jobs, progress=progress))
     if form == "json":
@@ -200,7 +207,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
     return max((check.exit_code(args.strict) for check in checks), default=0)
 
 
-def _check_single(path: Path, options: Any, form: str, strict: bool) -> int:
+def _check_single(path: Path, options: CheckOptions, form: str, strict: bool) -> int:
     """``gen-robot check FILE`` (text or JSON): the file's whole report; a file that cannot be read is the command's
     error (exit 2), as it always was."""
     import json
@@ -216,6 +223,7 @@ def _check_single(path: Path, options: Any, form: str, strict: bool) -> int:
             consumers=options.consumers,
             package_paths=options.package_paths,
             progress=progress,
+            trust=options.trust,
         )
     if form == "json":
         sys.stdout.write(json.dumps(report.to_dict(), indent=2) + "\n")

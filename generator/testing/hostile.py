@@ -224,7 +224,7 @@ ARGUMENT_CASES = (
     ("misspelt_option", ["{spec}", "--dryrun"]),
     ("unknown_command", ["genrate", "{spec}"]),
     ("check_without_path", ["check"]),
-    ("bad_mapping", ["check", "{spec}", "not-a-mapping"]),
+    ("bad_mapping", ["check", "{spec}", "prefix=r1_"]),
     ("missing_spec", ["{out}.yaml"]),
 )
 

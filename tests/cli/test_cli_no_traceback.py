@@ -7,6 +7,7 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -40,7 +41,6 @@ def odd_files(tmp_path):
         (("check", "/dev/zero"), "cannot read the spec: it is not a regular file"),
         (("check", "{d}/fifo.urdf"), "it is not a regular file (a device, a FIFO or a socket)"),
         (("check", "{d}/loop_a.urdf"), "a loop of symbolic links"),
-        (("check", "{d}"), "it is a folder, not a file"),
         (("expand", "{d}/loop_a.urdf"), "a loop of symbolic links"),
         (("expand", "{d}/binary.xacro"), "it is not UTF-8 text"),
         (("check", "{d}/binary.xacro"), "it is not UTF-8 text"),
@@ -53,6 +53,20 @@ def odd_files(tmp_path):
 def test_inputs_that_are_no_document_are_refused_with_a_reason(odd_files, words, message):
     result = gen_robot(*(w.format(d=odd_files) for w in words))
     refused(result, message)
+
+
+def test_a_folder_of_odd_files_is_searched_without_opening_what_is_no_file(odd_files):
+    """check searches a folder: a FIFO and a loop of links are no robot files (never opened: a FIFO would block), nor
+    is a document its folder includes (self.xacro includes itself), the documents that cannot be read are said each
+    with its reason, and the exit code is 2."""
+    result = gen_robot("check", odd_files, "--consumers", "none", "-j", "2")
+    assert result.returncode == 2 and "Traceback" not in result.stderr
+    said = {line.split(": UNREADABLE: ")[0]: line for line in result.stdout.splitlines() if ": UNREADABLE: " in line}
+    assert sorted(Path(name).name for name in said) == ["binary.xacro", "keyword.xacro", "recursive.xacro"]
+    assert "not UTF-8" in said[str(odd_files / "binary.xacro")]
+    assert "calls itself without end" in said[str(odd_files / "recursive.xacro")]
+    assert "missing attribute 'filename'" in said[str(odd_files / "keyword.xacro")]
+    assert result.stdout.splitlines()[-1] == "3 file(s) checked: 0 passed, 0 failed, 3 unreadable"
 
 
 def test_scene_paths_no_file_system_takes_and_macros_named_like_xacro_elements(tmp_path):

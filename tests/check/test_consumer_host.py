@@ -1,0 +1,67 @@
+"""The consumers' host of a worker checking many files: a consumer that crashes, hangs or runs out of memory there
+is that consumer's verdict, the consumers after it still give theirs, and the next file gets a new host."""
+
+from __future__ import annotations
+
+import os
+import signal
+import time
+from dataclasses import replace
+
+import pytest
+
+from xacrokit.check import consumers
+from xacrokit.check.consumer_host import ConsumerHost
+
+pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="the host is a forked child")
+
+
+def fake_load(name: str, path: str, packages: object = None) -> str:
+    """A consumer that does what the file's name says (the host forks after the patch: it runs this)."""
+    if name == "pinocchio" and "crash" in path:
+        os.kill(os.getpid(), signal.SIGSEGV)
+    if name == "pinocchio" and "hang" in path:
+        time.sleep(60)
+    if name == "pinocchio" and "greedy" in path:
+        return str(len(bytearray(8 * 2**30)))  # (past the host's 4 GiB bound)
+    if name == "yourdfpy" and "refused" in path:
+        raise ValueError("no such link")
+    return f"{name} loaded {os.path.basename(path)} in {os.getpid()}"
+
+
+@pytest.fixture
+def host(monkeypatch):
+    monkeypatch.setattr(consumers, "load_with", fake_load)
+    monkeypatch.setattr(consumers, "CONSUMER_BOUNDS", replace(consumers.CONSUMER_BOUNDS, seconds=2.0))
+    started = ConsumerHost()
+    yield started
+    started.stop()
+
+
+def verdicts(host: ConsumerHost, path: str) -> dict[str, tuple[str, str]]:
+    found = host.start(["pinocchio", "yourdfpy"], path, None)()  # type: ignore[arg-type]
+    return {name: (result.status, result.message) for name, result in found.items()}
+
+
+def test_one_host_serves_file_after_file(host, tmp_path):
+    first = verdicts(host, str(tmp_path / "a.urdf"))
+    second = verdicts(host, str(tmp_path / "b.urdf"))
+    assert first["pinocchio"][0] == second["yourdfpy"][0] == "accepted"
+    pids = {message.rsplit(" ", 1)[1] for _, message in [*first.values(), *second.values()]}
+    assert len(pids) == 1 and pids != {str(os.getpid())}  # (one child, not this process)
+    assert verdicts(host, str(tmp_path / "refused.urdf"))["yourdfpy"] == ("rejected", "ValueError: no such link")
+
+
+@pytest.mark.parametrize(
+    ("name", "status", "said"),
+    [
+        ("crash.urdf", "crashed", "killed by SIGSEGV"),
+        ("hang.urdf", "timeout", "no verdict within 2 s; stopped"),
+        ("greedy.urdf", "rejected", "went past its memory bound; stopped"),
+    ],
+)
+def test_a_consumer_that_ends_the_host_is_its_verdict_and_the_rest_go_on(host, tmp_path, name, status, said):
+    found = verdicts(host, str(tmp_path / name))
+    assert found["pinocchio"] == (status, said)
+    assert found["yourdfpy"][0] == "accepted"  # (sent again, to a new host)
+    assert verdicts(host, str(tmp_path / "next.urdf"))["pinocchio"][0] == "accepted"
