@@ -8,11 +8,18 @@ process, median of RUNS runs, all runs of a file interleaved (so that a slow mom
 - ``rules``: ``gen-robot check FILE --consumers none`` (our rules alone).
 
 It prints the ratio check / slowest consumer alone (target <= 1.5) and the rules' time (target < 0.3 s on 130 links).
-Usage: python benchmarks/check_speed.py [RUNS]
+
+With ``--many`` it measures ``gen-robot check PATH...`` (issue 33, item 1) instead: the real-robot corpus of
+tests/realworld.py (129 URDFs of pinned registry packages, downloaded once into its cache), every consumer on, in one
+call with the default workers (the CPU count), against a process per file for every SAMPLE-th file; it prints the
+seconds per file of each and their ratio (target: at most 0.15 s a file in one call, on 2 cores).
+Usage: python benchmarks/check_speed.py [RUNS] | --many
 """
 
 from __future__ import annotations
 
+import json
+import os
 import statistics
 import subprocess
 import sys
@@ -75,5 +82,32 @@ def main(runs: int) -> None:
         )
 
 
+SAMPLE = 8  # every 8th corpus file is also checked in a process of its own (17 of 129)
+
+
+def many() -> None:
+    sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
+    from realworld import SOURCES, corpus, unpacked
+
+    files = corpus()
+    packages = [f"--package={name}={unpacked(s) / folder}" for s in SOURCES for name, folder in s.packages]
+    one_call = [GEN_ROBOT, "check", *(str(f.path) for f in files), *packages, "--json"]
+    start = time.perf_counter()
+    done = subprocess.run(one_call, capture_output=True, text=True, check=False, timeout=1200)
+    together = (time.perf_counter() - start) / len(files)
+    reports = json.loads(done.stdout)["reports"]
+    alone = []
+    for robot in files[::SAMPLE]:
+        alone.append(timed([GEN_ROBOT, "check", str(robot.path), *packages, "--json"], robot.path.parent))
+    each = statistics.mean(alone)
+    print(f"gen-robot check on the real-robot corpus ({len(files)} files, {len(reports)} reports), every consumer on")
+    print(f"one call, {os.cpu_count()} workers: {together:.3f} s a file ({together * len(files):.1f} s in all)")
+    print(f"a process per file ({len(alone)} files, mean): {each:.3f} s a file")
+    print(f"ratio one call / a process per file: {together / each:.2f}")
+
+
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 5)
+    if sys.argv[1:] == ["--many"]:
+        many()
+    else:
+        main(int(sys.argv[1]) if len(sys.argv) > 1 else 5)

@@ -5,7 +5,8 @@ consumers' libraries: pinocchio, yourdfpy with trimesh, MuJoCo) and then forks `
 modules with it; each worker checks one file at a time with :func:`~xacrokit.check.checker.check`, exactly as a call
 per file would, and keeps what it has read for the next robot: the meshes our rules read, and what the consumers keep
 (they run in one bounded host per worker, :mod:`xacrokit.check.consumer_host`, where MuJoCo keeps the meshes it has
-compiled). The largest files are started first (the run ends sooner), the results come back in the
+compiled). The robots that use the same meshes go to one worker (:func:`_shares`), the largest shares first; the
+results come back in the
 order the files were given. A file that cannot be read is a result too (its message, exit code 2): the other files
 are still checked. Where there is no ``fork`` (or for one file, or one job) the files are checked here, one by one.
 """
@@ -13,7 +14,9 @@ are still checked. Where there is no ``fork`` (or for one file, or one job) the 
 from __future__ import annotations
 
 import contextlib
+import math
 import os
+import re
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -126,13 +129,48 @@ def _in_workers(
         max_workers=jobs, mp_context=multiprocessing.get_context("fork"), initializer=_worker_starts
     )
     try:
-        largest_first = sorted(range(len(files)), key=lambda i: -_size(files[i]))
-        futures: dict[int, Future[FileCheck]] = {i: pool.submit(check_one, files[i], options) for i in largest_first}
+        shares = _shares(files, jobs)
+        futures: list[Future[list[FileCheck]]] = [
+            pool.submit(_check_share, [files[i] for i in s], options) for s in shares
+        ]
+        where = {index: (number, place) for number, share in enumerate(shares) for place, index in enumerate(share)}
         for index, path in enumerate(files):
             say(f"checked {index}/{len(files)}; waiting for {path.name}")
-            yield _outcome(path, futures[index])
+            number, place = where[index]
+            yield _outcome(path, futures[number], place)
     finally:
         pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _shares(files: Sequence[Path], jobs: int) -> list[list[int]]:
+    """The files (their indices) as the workers take them: the robots that use the same meshes together (one worker
+    then reads them, and its MuJoCo compiles them, once), a share at most a worker's part of the whole (so that one
+    package of many robots still keeps every worker busy), the largest shares first."""
+    most = max(1, math.ceil(len(files) / jobs))
+    groups: dict[str, list[int]] = {}
+    for index, path in enumerate(files):
+        groups.setdefault(_mesh_folder(path), []).append(index)
+    shares = [group[start : start + most] for group in groups.values() for start in range(0, len(group), most)]
+    return sorted(shares, key=lambda share: -sum(_size(files[i]) for i in share))
+
+
+_MESH_NAME = re.compile(rb"""filename\s*=\s*["']([^"']+)["']""")
+
+
+def _mesh_folder(path: Path) -> str:
+    """Where a URDF's first mesh is (its URI's folder), which the robots of one package share; else its own folder."""
+    try:
+        with path.open("rb") as stream:
+            found = _MESH_NAME.search(stream.read(1 << 20)) if path.suffix.lower() == ".urdf" else None
+    except OSError:
+        found = None
+    if found is None:
+        return str(path.parent)
+    return found.group(1).decode("utf-8", "replace").rpartition("/")[0]
+
+
+def _check_share(files: list[Path], options: CheckOptions) -> list[FileCheck]:
+    return [check_one(path, options) for path in files]
 
 
 _WORKER = contextlib.ExitStack()  # (what a worker holds for its life: its consumers' host)
@@ -144,13 +182,13 @@ def _worker_starts() -> None:
     _WORKER.enter_context(hosted_consumers())
 
 
-def _outcome(path: Path, future: Any) -> FileCheck:
-    """The worker's result for ``path``; a worker that ended without one (killed, out of memory) is said as the file's
-    error."""
+def _outcome(path: Path, future: Any, place: int) -> FileCheck:
+    """The worker's result for ``path`` (at ``place`` in its share); a worker that ended without one (killed, out of
+    memory) is said as the file's error."""
     from concurrent.futures.process import BrokenProcessPool
 
     try:
-        result: FileCheck = future.result()
+        result: FileCheck = future.result()[place]
     except BrokenProcessPool as exc:
         return FileCheck(
             str(path), None, f"{path}: the worker checking it ended without a verdict ({exc}); check it alone"

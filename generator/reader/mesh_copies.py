@@ -113,16 +113,21 @@ def read_mesh_below(
 
 
 SWEEP_BYTES = 2 * 1024 * 1024  # mesh bytes read between two collections of the meshes dropped since
-_unswept = [0]
+FULL_SWEEPS = 16  # one collection in this many is a full one
+_unswept = [0, 0]  # (bytes since the last collection, collections since the last full one)
 
 
 def _collect_read_meshes() -> None:
     """Free the meshes read before and dropped since, once they add up to SWEEP_BYTES: trimesh's caches make
     reference cycles, which only the cyclic collector frees, and it seldom runs for a few large arrays (16 meshes of
     4 MB took 362 MB instead of 170 MB). Not on every mesh: a full collection per mesh made a page of TIAGo's 130
-    small meshes 1 s slower."""
+    small meshes 1 s slower. The young generations hold the meshes read since the last collection (the collector is
+    paused while a stage runs: nothing else promotes them), so most collections take those alone (a full one scans
+    every module loaded too: 23 ms in a check worker with pinocchio and MuJoCo, 88 times over the 129 corpus files);
+    every FULL_SWEEPS-th is full, for meshes a caller held through a collection and dropped later."""
     if _unswept[0] >= SWEEP_BYTES:
-        gc.collect()
+        _unswept[1] = (_unswept[1] + 1) % FULL_SWEEPS
+        gc.collect(2 if _unswept[1] == 0 else 1)
         _unswept[0] = 0
 
 
