@@ -376,10 +376,28 @@ def _hull_vertices(points: np.ndarray) -> np.ndarray:
 
     if len(points) < 5:
         return points
+    distinct = _distinct(points)
     try:
-        return points[ConvexHull(points.astype(np.float64)).vertices]
+        return distinct[ConvexHull(distinct.astype(np.float64)).vertices]
     except (QhullError, ValueError):
-        return points
+        return distinct
+
+
+_MIX = (np.uint64(0x9E3779B97F4A7C15), np.uint64(0xC2B2AE3D27D4EB4F), np.uint64(0x165667B19E3779F9))
+
+
+def _distinct(points: np.ndarray) -> np.ndarray:
+    """The points (float32, N x 3) each once: an STL repeats every vertex for each triangle that has it (about six
+    times), and qhull takes half the time without the copies. Told apart by a 64-bit mix of their bits (one sort of
+    integers; np.unique on rows sorts them field by field, slower than qhull itself), then proven: should two distinct
+    points share a mix, every point is kept."""
+    rows = np.ascontiguousarray(points, dtype=np.float32)
+    bits = rows.view(np.uint32).astype(np.uint64)
+    with np.errstate(over="ignore"):  # (the mix wraps around by design)
+        key = (bits[:, 0] * _MIX[0]) ^ (bits[:, 1] * _MIX[1]) ^ (bits[:, 2] * _MIX[2])
+    _, first, back = np.unique(key, return_index=True, return_inverse=True)
+    kept = rows[first]
+    return kept if np.array_equal(kept[back.reshape(-1)], rows) else rows
 
 
 def _enclosed(mesh: Any, scale: tuple[float, float, float]) -> Solid | None:

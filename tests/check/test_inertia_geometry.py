@@ -177,3 +177,28 @@ def test_a_flat_plates_own_tensor_passes_and_many_shapes_are_judged_in_bounded_m
     )
     text = _urdf('<sphere radius="0.05"/>', 1.0, np.eye(3) * 1e-3).replace("<visual>", spheres + "<visual>", 1)
     assert _i008(tmp_path, text) == []  # (a row of spheres 4 m long: 1e-3 fits)
+
+
+def test_a_mesh_is_kept_as_its_hulls_distinct_vertices(monkeypatch):
+    """What the rules keep of a mesh (its convex hull's vertices, each once) gives the maxima every vertex gives, along
+    any direction and of the squared distance from any axis; two distinct vertices that share a hash are both kept."""
+    import numpy as np
+
+    from xacrokit.check import inertia_geometry
+
+    rng = np.random.default_rng(7)
+    corners = rng.normal(size=(400, 3)).astype(np.float32)
+    triangles = corners[rng.integers(0, 400, size=(3000, 3))].reshape(-1, 3)  # (an STL's vertex copies)
+    kept = inertia_geometry._hull_vertices(triangles)
+    assert len(kept) < 400 and len(np.unique(kept, axis=0)) == len(kept)
+
+    def bounds(points: np.ndarray, n: np.ndarray, centre: np.ndarray) -> tuple[float, float]:
+        along = ((points - centre) @ n) ** 2
+        return float(along.max()), float((((points - centre) ** 2).sum(axis=1) - along).max())
+
+    for n in rng.normal(size=(50, 3)):
+        n /= np.linalg.norm(n)
+        centre = rng.normal(size=3)
+        assert np.allclose(bounds(kept, n, centre), bounds(triangles, n, centre), rtol=1e-12)
+    monkeypatch.setattr(inertia_geometry, "_MIX", (np.uint64(0), np.uint64(0), np.uint64(0)))  # (every key equal)
+    assert len(inertia_geometry._distinct(triangles)) == len(triangles)
