@@ -2,8 +2,10 @@
 
 Modules: ``checker`` (check), ``urdf_document`` (the URDF as check reads it), one module per rule family holding its
 rules and their rows of the table (``number_rules``, ``structure_rules``, ``joint_rules``, ``inertia_rules``,
-``reference_rules``, ``sensor_rules``, ``spec_rules``), ``consumers`` (the independent consumers), ``rule_table`` (the
-whole table, RULES), ``findings`` (Finding, CheckReport) and ``text_report`` (the text form).
+``reference_rules``, ``sensor_rules``, ``spec_rules``), ``consumers`` (the independent consumers; ``consumer_host``,
+their host in a worker), ``rule_table`` (the whole table, RULES), ``findings`` (Finding, CheckReport), ``robot_files``
+(the robots among files and folders), ``file_workers`` (many files in worker processes) and the reports:
+``text_report``, ``sarif_report``, ``junit_report``.
 
 The names below load on first use: ``python -m xacrokit.check.consumers`` runs in a subprocess per consumer, and
 importing this package must not load that module (nor the rules) before it runs.
@@ -18,10 +20,22 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from .checker import check, input_kind
+    from .file_workers import CheckOptions, FileCheck, check_files
     from .findings import CheckReport, Finding
+    from .robot_files import robot_files
     from .rule_table import RULES
 
-__all__ = ["RULES", "CheckReport", "Finding", "check", "input_kind"]
+__all__ = [
+    "RULES",
+    "CheckOptions",
+    "CheckReport",
+    "FileCheck",
+    "Finding",
+    "check",
+    "check_files",
+    "input_kind",
+    "robot_files",
+]
 
 _LAZY = {
     "check": "checker",
@@ -29,6 +43,10 @@ _LAZY = {
     "RULES": "rule_table",
     "CheckReport": "findings",
     "Finding": "findings",
+    "check_files": "file_workers",
+    "CheckOptions": "file_workers",
+    "FileCheck": "file_workers",
+    "robot_files": "robot_files",
 }
 
 

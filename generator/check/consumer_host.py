@@ -21,14 +21,18 @@ import time
 from collections.abc import Callable, Mapping
 from pathlib import Path
 
-from ..expansion.bounded_child import limit_resources, silence, status_words
+from ..expansion.bounded_child import Bounds, limit_resources, silence, status_words
 from .findings import ConsumerResult
+
+Load = Callable[[str, str, Mapping[str, str]], str]  # (consumer, URDF path, packages) -> what it saw; raises to refuse
 
 
 class ConsumerHost:
-    """A child that loads URDFs with the Python consumers, started when first asked and again after it ends."""
+    """A child that loads URDFs with the Python consumers (``load``), within ``bounds`` for each load, started when
+    first asked and again after it ends."""
 
-    def __init__(self) -> None:
+    def __init__(self, load: Load, bounds: Bounds) -> None:
+        self.load, self.bounds = load, bounds
         self._pid: int | None = None
         self._send = self._receive = -1
         self._pending = b""
@@ -39,8 +43,6 @@ class ConsumerHost:
         """Send the host ``urdf`` for each named consumer (starting the host when none runs: call this before
         starting any thread); the function returned waits for their verdicts. A consumer that ends the host (late,
         out of memory, crashed) has that verdict; those after it are sent again, to a new host."""
-        from .consumers import CONSUMER_BOUNDS
-
         if self._pid is None:
             self._start()
         said = {k: str(v) for k, v in (packages or {}).items()}
@@ -52,7 +54,7 @@ class ConsumerHost:
         def collect() -> dict[str, ConsumerResult]:
             found = {}
             for index, name in enumerate(names):
-                found[name] = self._result(name, self._answer(time.monotonic() + CONSUMER_BOUNDS.seconds))
+                found[name] = self._result(name, self._answer(time.monotonic() + self.bounds.seconds))
                 if self._pid is None and index + 1 < len(names):
                     found.update(self.start(names[index + 1 :], urdf, packages)())
                     break
@@ -61,11 +63,9 @@ class ConsumerHost:
         return collect
 
     def _result(self, name: str, answer: dict[str, str] | str) -> ConsumerResult:
-        from .consumers import CONSUMER_BOUNDS
-
         if answer == "timeout":
             self.stop()
-            return ConsumerResult(name, "timeout", f"no verdict within {CONSUMER_BOUNDS.seconds:g} s; stopped")
+            return ConsumerResult(name, "timeout", f"no verdict within {self.bounds.seconds:g} s; stopped")
         if isinstance(answer, str):  # (the host ended without an answer: its end is the verdict)
             return ConsumerResult(name, "crashed", self.stop() or "ended without a verdict")
         if answer["status"] == "memory":
@@ -97,8 +97,6 @@ class ConsumerHost:
         return answer if isinstance(answer, dict) and "status" in answer else "ended"
 
     def _start(self) -> None:
-        from .consumers import CONSUMER_BOUNDS
-
         requests, self._send = os.pipe()
         self._receive, answers = os.pipe()
         pid = os.fork()
@@ -109,8 +107,8 @@ class ConsumerHost:
             try:
                 signal.signal(signal.SIGINT, signal.SIG_DFL)
                 silence()
-                limit_resources(CONSUMER_BOUNDS, cpu=False)
-                _serve(requests, answers)
+                limit_resources(self.bounds, cpu=False)
+                _serve(self.load, requests, answers)
                 code = 0
             finally:
                 os._exit(code)
@@ -133,10 +131,8 @@ class ConsumerHost:
         return "" if os.WIFSIGNALED(status) and os.WTERMSIG(status) == signal.SIGKILL else status_words(status)
 
 
-def _serve(requests: int, answers: int) -> None:
+def _serve(load: Load, requests: int, answers: int) -> None:
     """The host's loop: a request line in, an answer line out, until the parent closes the requests."""
-    from .consumers import load_with, one_line
-
     with os.fdopen(requests, "rb") as incoming, os.fdopen(answers, "wb", buffering=0) as outgoing:
         for line in incoming:
             request = json.loads(line)
@@ -145,7 +141,7 @@ def _serve(requests: int, answers: int) -> None:
                 os.chdir(Path(request["path"]).parent)  # (MuJoCo writes MUJOCO_LOG.TXT where it runs)
                 answer = {
                     "status": "accepted",
-                    "message": load_with(request["name"], request["path"], request["packages"]),
+                    "message": load(request["name"], request["path"], request["packages"]),
                 }
             except MemoryError:
                 answer = {"status": "memory", "message": ""}
@@ -154,3 +150,9 @@ def _serve(requests: int, answers: int) -> None:
             outgoing.write(json.dumps(answer).encode("utf-8") + b"\n")
             if answer["status"] == "memory":
                 return  # (a host that ran out of memory is not trusted with the next file)
+
+
+def one_line(exc: BaseException) -> str:
+    """A consumer's complaint as check reports it: the exception's type and text on one line, at most 2,000
+    characters."""
+    return " ".join(f"{type(exc).__name__}: {exc}".split())[:2000]

@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..errors import XacrokitError
 from ..expansion.bounded_child import Bounds, ChildFailed, OutOfBounds, start_bounded
+from .consumer_host import one_line
 from .findings import ConsumerResult, Finding, rule_table, severity
 
 if TYPE_CHECKING:
@@ -292,7 +293,7 @@ def hosted_consumers() -> Iterator[None]:
     consumer and file."""
     from .consumer_host import ConsumerHost
 
-    host = ConsumerHost()
+    host = ConsumerHost(load_with, CONSUMER_BOUNDS)
     _HOST[:] = [host]
     try:
         yield
@@ -334,12 +335,6 @@ def _forked(
         return ConsumerResult(name, "accepted", text or "")
 
     return verdict
-
-
-def one_line(exc: BaseException) -> str:
-    """A consumer's complaint as check reports it: the exception's type and text on one line, at most 2,000
-    characters."""
-    return " ".join(f"{type(exc).__name__}: {exc}".split())[:2000]
 
 
 def _read(data: bytes) -> Any:

@@ -428,6 +428,21 @@ def _add_check_command(commands: Any) -> None:
     )
     form.add_argument("--json", action="store_true", help="short for --format json")
     chk.add_argument("--strict", action="store_true", help="warnings fail the check too (exit code 1)")
+    _add_many_files_options(chk)
+    chk.add_argument(
+        "--consumers",
+        metavar="LIST",
+        default="all",
+        help="comma list of check_urdf, pinocchio, yourdfpy, mujoco; 'all' (default: those installed) or 'none'",
+    )
+    chk.add_argument(
+        "--prefix", help="require every link, joint, gazebo reference and ros2_control joint to start with this prefix"
+    )
+    _add_xacro_options(chk)
+    chk.set_defaults(handler=_cmd_check)
+
+
+def _add_many_files_options(chk: argparse.ArgumentParser) -> None:
     chk.add_argument(
         "--exclude",
         action="append",
@@ -450,17 +465,6 @@ def _add_check_command(commands: Any) -> None:
         help="skip named files that are not robots, as folders do (YAML that is no robot or scene spec, xacro files "
         "of macros alone): what the pre-commit hook passes",
     )
-    chk.add_argument(
-        "--consumers",
-        metavar="LIST",
-        default="all",
-        help="comma list of check_urdf, pinocchio, yourdfpy, mujoco; 'all' (default: those installed) or 'none'",
-    )
-    chk.add_argument(
-        "--prefix", help="require every link, joint, gazebo reference and ros2_control joint to start with this prefix"
-    )
-    _add_xacro_options(chk)
-    chk.set_defaults(handler=_cmd_check)
 
 
 def _add_tool_commands(commands: Any) -> None:

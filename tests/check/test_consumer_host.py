@@ -17,7 +17,7 @@ pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="the host is a f
 
 
 def fake_load(name: str, path: str, packages: object = None) -> str:
-    """A consumer that does what the file's name says (the host forks after the patch: it runs this)."""
+    """A consumer that does what the file's name says."""
     if name == "pinocchio" and "crash" in path:
         os.kill(os.getpid(), signal.SIGSEGV)
     if name == "pinocchio" and "hang" in path:
@@ -30,10 +30,8 @@ def fake_load(name: str, path: str, packages: object = None) -> str:
 
 
 @pytest.fixture
-def host(monkeypatch):
-    monkeypatch.setattr(consumers, "load_with", fake_load)
-    monkeypatch.setattr(consumers, "CONSUMER_BOUNDS", replace(consumers.CONSUMER_BOUNDS, seconds=2.0))
-    started = ConsumerHost()
+def host():
+    started = ConsumerHost(fake_load, replace(consumers.CONSUMER_BOUNDS, seconds=2.0))
     yield started
     started.stop()
 

@@ -122,7 +122,7 @@ def test_exit_codes_are_said_one_way_in_the_help_the_module_and_the_docs():
 
 def test_usage_mistakes_get_a_suggestion_and_name_only_what_is_missing():
     missing = gen_robot("check")
-    assert missing.returncode == 2 and "the following arguments are required: path\n" in missing.stderr
+    assert missing.returncode == 2 and "the following arguments are required: PATH\n" in missing.stderr
     typo = gen_robot(SPEC, "--dryrun")
     assert typo.returncode == 2 and "unrecognized arguments: --dryrun; did you mean --dry-run?" in typo.stderr
     typo = gen_robot("check", SPEC, "--jsn")
