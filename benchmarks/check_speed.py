@@ -13,7 +13,7 @@ With ``--many`` it measures ``gen-robot check PATH...`` (issue 33, item 1) inste
 tests/realworld.py (129 URDFs of pinned registry packages, downloaded once into its cache), every consumer on, in one
 call with the default workers (the CPU count), against a process per file for every SAMPLE-th file; it prints the
 seconds per file of each and their ratio (target: at most 0.15 s a file in one call, on 2 cores).
-Usage: python benchmarks/check_speed.py [RUNS] | --many
+Usage: python benchmarks/check_speed.py [RUNS] | --many [FILES] (the first FILES of the corpus: all by default)
 """
 
 from __future__ import annotations
@@ -85,11 +85,11 @@ def main(runs: int) -> None:
 SAMPLE = 8  # every 8th corpus file is also checked in a process of its own (17 of 129)
 
 
-def many() -> None:
+def many(limit: int | None = None) -> None:
     sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
     from realworld import SOURCES, corpus, unpacked
 
-    files = corpus()
+    files = corpus()[:limit]
     packages = [f"--package={name}={unpacked(s) / folder}" for s in SOURCES for name, folder in s.packages]
     one_call = [GEN_ROBOT, "check", *(str(f.path) for f in files), *packages, "--json"]
     start = time.perf_counter()
@@ -107,7 +107,7 @@ def many() -> None:
 
 
 if __name__ == "__main__":
-    if sys.argv[1:] == ["--many"]:
-        many()
+    if sys.argv[1:2] == ["--many"]:
+        many(int(sys.argv[2]) if len(sys.argv) > 2 else None)
     else:
         main(int(sys.argv[1]) if len(sys.argv) > 1 else 5)

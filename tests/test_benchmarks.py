@@ -52,6 +52,21 @@ def test_check_speed_script_runs():
         assert 0.5 < ratio < 10  # (a ratio, measured: not a timing target, which RESULTS.md records)
 
 
+def test_check_speed_script_times_many_files_in_one_call():
+    """benchmarks/check_speed.py --many: the corpus in one call against a process per file (its first 6 files)."""
+    result = subprocess.run(
+        [sys.executable, str(REPO / "benchmarks" / "check_speed.py"), "--many", "6"],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert "(6 files, 6 reports)" in lines[0]
+    ratio = float(lines[-1].rsplit(" ", 1)[1])
+    assert 0.01 < ratio < 10  # (a ratio, measured: the target is RESULTS.md's)
+
+
 def test_size_speed_script_runs():
     """benchmarks/size_speed.py: the static search's time and the motion analysis against bare pinocchio (one run)."""
     result = subprocess.run(

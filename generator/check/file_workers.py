@@ -177,9 +177,12 @@ _WORKER = contextlib.ExitStack()  # (what a worker holds for its life: its consu
 
 
 def _worker_starts() -> None:
-    """A worker's start: its Python consumers run in one host for all its files (the host ends when the worker does:
-    its requests' pipe closes)."""
+    """A worker's start: its Python consumers run in one host for all its files, stopped (and waited for) when the
+    worker ends."""
+    from multiprocessing import util
+
     _WORKER.enter_context(hosted_consumers())
+    util.Finalize(None, _WORKER.close, exitpriority=10)  # (a worker ends through multiprocessing's finalizers)
 
 
 def _outcome(path: Path, future: Any, place: int) -> FileCheck:
