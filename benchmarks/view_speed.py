@@ -1,10 +1,14 @@
-"""How fast gen-robot view's page is in headless Chromium (issue 17, item 7), measured in one run on this machine:
+"""How fast and how small gen-robot view's page is (issue 17, item 7; issue 33, item 5), measured in one run on this
+machine, in headless Chromium:
 
 - a fleet of 1,000 links (the diff-drive example, 9 links, x 111, and the world): the time from asking for the page
-  to ``window.xacrokit`` being ready with the robot drawn once (target under 2 s);
+  to ``window.xacrokit`` being ready with the robot drawn once (target under 1 s; issue 17's was 2 s);
 - a 100+-link robot (the same fleet x 12: 109 links): one ``setJoints`` with every wheel moved, which re-poses every
   link and draws the frame, timed inside the page with performance.now(), median of 50 (target under 16 ms, one
-  frame).
+  frame);
+- example-robot-data's Panda and Go1 (from the test extra; left out when it is not installed): the page's size
+  (targets under 3 MB and 8 MB), the time ``gen-robot view`` takes to make it, as a process, and the time the page
+  takes to open (no target).
 
 Needs Debian's chromium and chromium-driver (and selenium). Usage: python benchmarks/view_speed.py
 """
@@ -51,6 +55,37 @@ def fleet_page(folder: Path, count: int) -> tuple[Path, int]:
     return html, urdf.read_text(encoding="utf-8").count("<link ")
 
 
+REAL = (("Panda", "panda_description/urdf/panda.urdf", 3.0), ("Go1", "go1_description/urdf/go1.urdf", 8.0))
+
+
+def real_pages(folder: Path) -> list[tuple[str, Path, float, float]]:
+    """example-robot-data's Panda and Go1 pages: (name, page, seconds gen-robot view took, target in MB); none when
+    example-robot-data is not installed."""
+    shares = [Path(entry, "cmeel.prefix", "share", "example-robot-data") for entry in sys.path]
+    share = next((candidate for candidate in shares if candidate.is_dir()), None)
+    if share is None:
+        print("example-robot-data is not installed: no Panda or Go1 page (pip install -e '.[test]')")
+        return []
+    found = []
+    for name, urdf, target in REAL:
+        html = folder / f"{name}.html"
+        command = [sys.executable, "-m", "xacrokit.cli", "view", str(share / "robots" / urdf), "-o", str(html)]
+        start = time.perf_counter()
+        subprocess.run([*command, "--package", f"example-robot-data={share}"], check=True, capture_output=True)
+        found.append((name, html, time.perf_counter() - start, target))
+    return found
+
+
+def opened(browser, html: Path) -> float:
+    """Seconds from asking for the page to its robot drawn and ``window.xacrokit`` ready."""
+    browser.get("about:blank")
+    start = time.perf_counter()
+    browser.get(html.as_uri())
+    while not browser.execute_script("return !!(window.xacrokit && window.xacrokit.ready)"):
+        time.sleep(0.005)
+    return time.perf_counter() - start
+
+
 def main() -> None:
     if not (shutil.which("chromium") and shutil.which("chromedriver")):
         raise SystemExit("chromium and chromedriver are not installed")
@@ -58,18 +93,11 @@ def main() -> None:
         folder = Path(scratch)
         big, big_links = fleet_page(folder, 111)
         small, small_links = fleet_page(folder, 12)
+        real = real_pages(folder)
         browser = driver()
         try:
-            browser.get("about:blank")
-            start = time.perf_counter()
-            browser.get(big.as_uri())
-            while not browser.execute_script("return !!(window.xacrokit && window.xacrokit.ready)"):
-                time.sleep(0.005)
-            opened = time.perf_counter() - start
-            print(f"{big_links}-link fleet page: open and draw {opened:.2f} s (target < 2 s)")
-            browser.get(small.as_uri())
-            while not browser.execute_script("return !!(window.xacrokit && window.xacrokit.ready)"):
-                time.sleep(0.005)
+            print(f"{big_links}-link fleet page: open and draw {opened(browser, big):.2f} s (target < 1 s)")
+            opened(browser, small)
             times = browser.execute_script(
                 """
                 const names = window.xacrokit.joints(), out = [];
@@ -86,6 +114,12 @@ def main() -> None:
                 f"{small_links}-link robot: a joint move re-poses and draws in {statistics.median(times):.2f} ms "
                 "(median of 50; target < 16 ms)"
             )
+            for name, html, made, target in real:
+                size = html.stat().st_size / 1e6
+                print(
+                    f"{name} page: {size:.2f} MB (target < {target:.0f} MB), made in {made:.2f} s, "
+                    f"open and draw {opened(browser, html):.2f} s"
+                )
         finally:
             browser.quit()
 

@@ -8,13 +8,16 @@ from __future__ import annotations
 import base64
 import hashlib
 import io
+import json
 import os
 import shutil
 import socket
 import tarfile
+import urllib.parse
 import urllib.request
 from pathlib import Path
 
+import lxml.html
 import pytest
 
 from conftest import REPO
@@ -70,7 +73,11 @@ def test_a_page_is_made_without_any_network(monkeypatch):
     monkeypatch.setattr(socket.socket, "connect", refused)
     monkeypatch.setattr(urllib.request, "urlopen", refused)
     html = view_page.page(REPO / "examples" / "robots" / "two_dof_arm.yaml")
-    assert "data:text/javascript;base64," in html and len(html) > 900_000  # (three.js inlined)
+    imports = json.loads(lxml.html.fromstring(html).find(".//script[@type='importmap']").text)["imports"]
+    sources = view_page.three_sources()
+    for name, key in (("three", "three"), ("three/addons/controls/OrbitControls.js", "orbit")):  # (inlined, unchanged)
+        kind, _, data = imports[name].partition(",")
+        assert kind == "data:text/javascript" and urllib.parse.unquote(data) == sources[key], name
 
 
 def test_a_changed_shipped_file_is_refused(monkeypatch, tmp_path):

@@ -76,6 +76,25 @@ def test_moving_a_slider_changes_the_picture(browser, tmp_path):
     assert abs(float(slider.get_attribute("value")) + 1.2) < 1e-9
 
 
+@browser_only
+def test_the_labels_follow_set_joints(browser, tmp_path):
+    """setJoints moves the sliders and their labels say the new values (they read '= 0.000' before); a value beyond a
+    slider's end is said as the robot is posed, though the slider stops at its end."""
+    html = tmp_path / "ur5.html"
+    html.write_text(page(REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"), encoding="utf-8")
+    open_page(browser, html)
+    browser.execute_script("window.xacrokit.setJoints({shoulder_lift_joint: -1.2, elbow_joint: 4.0})")
+
+    def label(joint):
+        return browser.find_element("xpath", f"//input[@data-joint='{joint}']/preceding-sibling::label").text
+
+    assert label("shoulder_lift_joint") == "shoulder_lift_joint = -1.200"
+    assert label("elbow_joint") == "elbow_joint = 4.000"  # (elbow: -pi to pi)
+    assert label("wrist_2_joint") == "wrist_2_joint = 0.000"
+    elbow = browser.find_element("css selector", 'input[data-joint="elbow_joint"]')
+    assert abs(float(elbow.get_attribute("value")) - np.pi) < 1e-6
+
+
 def test_names_cannot_break_out_of_the_page(tmp_path):
     evil = "</script><script>alert(1)</script>"
     urdf = tmp_path / "evil.urdf"
