@@ -96,3 +96,29 @@ SAMPLE = [
 @pytest.mark.parametrize("key", SAMPLE)
 def test_the_consumers_verdicts_are_the_recorded_ones(key):
     assert rejected_by(robots()[key]) == FILES[key].get("rejected_by", [])
+
+
+def test_the_corpus_in_one_call_gives_each_file_its_judged_findings():
+    """gen-robot check on the corpus' folders in one call (worker processes, the files found by the folder search):
+    the same files, and each report has exactly the findings judged for its file alone."""
+    import json
+    import subprocess
+    import sys
+
+    from realworld import SOURCES, unpacked
+
+    by_path = {str(robot.path): key for key, robot in robots().items()}
+    folders = [str(unpacked(source) / source.urdfs) for source in SOURCES]
+    packages = [f"--package={name}={unpacked(s) / folder}" for s in SOURCES for name, folder in s.packages]
+    command = [sys.executable, "-m", "xacrokit.cli", "check", *folders, *packages, "--exclude", "*.xacro"]
+    done = subprocess.run([*command, "--consumers", "none", "--json", "-j", "2"], capture_output=True, text=True)
+    reports = json.loads(done.stdout)["reports"]
+    assert sorted(r["source"] for r in reports) == sorted(by_path)
+    for report in reports:
+        said = sorted(
+            f"{f['rule']} {f['severity']} {f['element']['kind']} {f['element']['name']}"
+            for f in report["findings"]
+            if f["severity"] != "info"
+        )
+        assert said == [line for line, _ in judged(by_path[report["source"]])], report["source"]
+    assert done.returncode == 1
