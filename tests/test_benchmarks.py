@@ -11,14 +11,17 @@ import pytest
 from conftest import REPO
 
 
-def test_benchmark_script_runs():
+def run_script(name: str, *args: str) -> subprocess.CompletedProcess:
+    """A benchmark script run as a reader would run it; it must end well (its figures are the test's to read)."""
     result = subprocess.run(
-        [sys.executable, str(REPO / "benchmarks" / "bench.py"), "check", "cli"],
-        capture_output=True,
-        text=True,
-        timeout=600,
+        [sys.executable, str(REPO / "benchmarks" / name), *args], capture_output=True, text=True, timeout=600
     )
     assert result.returncode == 0, result.stderr
+    return result
+
+
+def test_benchmark_script_runs():
+    result = run_script("bench.py", "check", "cli")
     for words in ("1000 links:", "ratio t(3000)/t(1000)", "rooted cycle reported (S002)", "gen-robot --help"):
         assert words in result.stdout
 
@@ -38,13 +41,7 @@ def test_benchmark_stage_measurement_runs(tmp_path, monkeypatch):
 
 def test_check_speed_script_runs():
     """benchmarks/check_speed.py: gen-robot check against its consumers alone, on three real robots (one run)."""
-    result = subprocess.run(
-        [sys.executable, str(REPO / "benchmarks" / "check_speed.py"), "1"],
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
-    assert result.returncode == 0, result.stderr
+    result = run_script("check_speed.py", "1")
     rows = [line for line in result.stdout.splitlines() if "(slowest: " in line]
     assert [row.split()[0] for row in rows] == ["xarm7.urdf", "g1_29dof_with_hand_rev_1_0.urdf", "tiago_dual.urdf"]
     for row in rows:
@@ -54,13 +51,7 @@ def test_check_speed_script_runs():
 
 def test_check_speed_script_times_many_files_in_one_call():
     """benchmarks/check_speed.py --many: the corpus in one call against a process per file (its first 6 files)."""
-    result = subprocess.run(
-        [sys.executable, str(REPO / "benchmarks" / "check_speed.py"), "--many", "6"],
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
-    assert result.returncode == 0, result.stderr
+    result = run_script("check_speed.py", "--many", "6")
     lines = result.stdout.splitlines()
     assert "(6 files, 6 reports)" in lines[0]
     ratio = float(lines[-1].rsplit(" ", 1)[1])
@@ -69,13 +60,7 @@ def test_check_speed_script_times_many_files_in_one_call():
 
 def test_size_speed_script_runs():
     """benchmarks/size_speed.py: the static search's time and the motion analysis against bare pinocchio (one run)."""
-    result = subprocess.run(
-        [sys.executable, str(REPO / "benchmarks" / "size_speed.py"), "1"],
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
-    assert result.returncode == 0, result.stderr
+    result = run_script("size_speed.py", "1")
     assert "static worst-case search, 6-axis UR5 with 5 kg:" in result.stdout
     ratio = float(result.stdout.split("ratio ")[1].split()[0])
     assert 0.5 < ratio < 20  # (a ratio, measured: not a timing target, which RESULTS.md records)
@@ -83,13 +68,7 @@ def test_size_speed_script_runs():
 
 def test_import_speed_script_runs():
     """benchmarks/import_speed.py: gen-robot import of a 130-link robot as a process (one run)."""
-    result = subprocess.run(
-        [sys.executable, str(REPO / "benchmarks" / "import_speed.py"), "1"],
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
-    assert result.returncode == 0, result.stderr
+    result = run_script("import_speed.py", "1")
     assert "130-link robot (TIAGo dual): gen-robot import as a process" in result.stdout
     assert "of which starting gen-robot" in result.stdout
 
@@ -97,18 +76,12 @@ def test_import_speed_script_runs():
 @pytest.mark.skipif(not (shutil.which("chromium") and shutil.which("chromedriver")), reason="no chromium here")
 def test_view_speed_script_runs():
     """benchmarks/view_speed.py: a 1,000-link page opened in headless Chromium, a joint move timed in the page."""
-    result = subprocess.run(
-        [sys.executable, str(REPO / "benchmarks" / "view_speed.py")], capture_output=True, text=True, timeout=600
-    )
-    assert result.returncode == 0, result.stderr
+    result = run_script("view_speed.py")
     assert "1000-link fleet page: open and draw" in result.stdout and "109-link robot: a joint move" in result.stdout
 
 
 def test_mesh_memory_script_runs():
     """benchmarks/mesh_memory.py: import and export of a robot with 1 and with 3 meshes, peak memory (one run)."""
-    result = subprocess.run(
-        [sys.executable, str(REPO / "benchmarks" / "mesh_memory.py"), "3"], capture_output=True, text=True, timeout=600
-    )
-    assert result.returncode == 0, result.stderr
+    result = run_script("mesh_memory.py", "3")
     for command in ("import", "export"):
         assert f"gen-robot {command}: peak" in result.stdout and "with 3 (12 MB of meshes): ratio" in result.stdout

@@ -72,6 +72,20 @@ class CheckOptions:
     package_paths: Mapping[str, str | Path] | None = None
     trust: bool = False
 
+    def check(self, path: Path, progress: Callable[[str], None] | None = None) -> CheckReport:
+        """:func:`~xacrokit.check.checker.check` of ``path`` with these options."""
+        from .checker import check
+
+        return check(
+            path,
+            self.mappings,
+            prefix=self.prefix,
+            consumers=self.consumers,
+            package_paths=self.package_paths,
+            progress=progress,
+            trust=self.trust,
+        )
+
 
 def check_files(
     files: Sequence[Path],
@@ -101,18 +115,9 @@ def check_one(path: Path, options: CheckOptions) -> FileCheck:
     """One file's outcome (what ``gen-robot check PATH`` says of it alone)."""
     import time
 
-    from .checker import check
-
     start = time.perf_counter()
     try:
-        report = check(
-            path,
-            options.mappings,
-            prefix=options.prefix,
-            consumers=options.consumers,
-            package_paths=options.package_paths,
-            trust=options.trust,
-        )
+        report = options.check(path)
     except XacrokitError as exc:
         return FileCheck(str(path), None, str(exc), time.perf_counter() - start)
     return FileCheck(str(path), report, None, time.perf_counter() - start)

@@ -212,19 +212,10 @@ def _check_single(path: Path, options: CheckOptions, form: str, strict: bool) ->
     error (exit 2), as it always was."""
     import json
 
-    from ..check import check
     from ..check.text_report import format_text
 
     with _progress() as progress:
-        report = check(
-            path,
-            options.mappings,
-            prefix=options.prefix,
-            consumers=options.consumers,
-            package_paths=options.package_paths,
-            progress=progress,
-            trust=options.trust,
-        )
+        report = options.check(path, progress)
     if form == "json":
         sys.stdout.write(json.dumps(report.to_dict(), indent=2) + "\n")
     else:
