@@ -7,7 +7,9 @@ robots of one package share. Loading the 129 corpus files one child each costs M
 it is sent with each consumer in turn and answers one JSON line per consumer. Its bounds are those of a consumer's
 child: it is quiet, its address space is bounded (its parent's plus CONSUMER_BOUNDS.memory), and a load that takes
 longer than CONSUMER_BOUNDS.seconds, breaks the memory bound or crashes the host is that consumer's verdict (timeout,
-rejected, crashed) and ends the host; the next file gets a new one. Answers are JSON, never pickle.
+rejected, crashed) and ends the host; the next file gets a new one. A host that has grown by half its memory bound
+(MuJoCo's cache grows with every mesh it compiles) is started afresh before the next file, so that a long run never
+meets the bound by what it kept. Answers are JSON, never pickle.
 """
 
 from __future__ import annotations
@@ -36,6 +38,7 @@ class ConsumerHost:
         self._pid: int | None = None
         self._send = self._receive = -1
         self._pending = b""
+        self._grown = 0  # (bytes the host has grown by since it started, as its last answer says)
 
     def start(
         self, names: list[str], urdf: Path, packages: Mapping[str, str | os.PathLike[str]] | None
@@ -43,6 +46,8 @@ class ConsumerHost:
         """Send the host ``urdf`` for each named consumer (starting the host when none runs: call this before
         starting any thread); the function returned waits for their verdicts. A consumer that ends the host (late,
         out of memory, crashed) has that verdict; those after it are sent again, to a new host."""
+        if self._pid is not None and self._grown > self.bounds.memory // 2:
+            self.stop()  # (what MuJoCo keeps grows with every mesh: a host past half its bound starts afresh)
         if self._pid is None:
             self._start()
         said = {k: str(v) for k, v in (packages or {}).items()}
@@ -71,6 +76,7 @@ class ConsumerHost:
         if answer["status"] == "memory":
             self.stop()
             return ConsumerResult(name, "rejected", "went past its memory bound; stopped")
+        self._grown = int(answer.get("grown", 0))
         return ConsumerResult(name, "accepted" if answer["status"] == "accepted" else "rejected", answer["message"])
 
     def _answer(self, deadline: float) -> dict[str, str] | str:
@@ -114,7 +120,7 @@ class ConsumerHost:
                 os._exit(code)
         os.close(requests)
         os.close(answers)
-        self._pid, self._pending = pid, b""
+        self._pid, self._pending, self._grown = pid, b"", 0
 
     def stop(self) -> str:
         """End the host (if it runs); how it ended, in words ('' when it was not running)."""
@@ -132,7 +138,9 @@ class ConsumerHost:
 
 
 def _serve(load: Load, requests: int, answers: int) -> None:
-    """The host's loop: a request line in, an answer line out, until the parent closes the requests."""
+    """The host's loop: a request line in, an answer line out (with how much the host has grown), until the parent
+    closes the requests."""
+    start = _resident()
     with os.fdopen(requests, "rb") as incoming, os.fdopen(answers, "wb", buffering=0) as outgoing:
         for line in incoming:
             request = json.loads(line)
@@ -147,9 +155,18 @@ def _serve(load: Load, requests: int, answers: int) -> None:
                 answer = {"status": "memory", "message": ""}
             except Exception as exc:  # noqa: BLE001  (a consumer's own complaint is its verdict)
                 answer = {"status": "rejected", "message": one_line(exc)}
-            outgoing.write(json.dumps(answer).encode("utf-8") + b"\n")
+            outgoing.write(json.dumps({**answer, "grown": _resident() - start}).encode("utf-8") + b"\n")
             if answer["status"] == "memory":
                 return  # (a host that ran out of memory is not trusted with the next file)
+
+
+def _resident() -> int:
+    """This process's resident memory (bytes; 0 where /proc cannot tell)."""
+    try:
+        with open("/proc/self/statm") as statm:
+            return int(statm.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
+    except (OSError, ValueError, IndexError):
+        return 0
 
 
 def one_line(exc: BaseException) -> str:

@@ -6,9 +6,9 @@ modules with it; each worker checks one file at a time with :func:`~xacrokit.che
 per file would, and keeps what it has read for the next robot: the meshes our rules read, and what the consumers keep
 (they run in one bounded host per worker, :mod:`xacrokit.check.consumer_host`, where MuJoCo keeps the meshes it has
 compiled). The robots that use the same meshes go to one worker (:func:`_shares`), the largest shares first; the
-results come back in the
-order the files were given. A file that cannot be read is a result too (its message, exit code 2): the other files
-are still checked. Where there is no ``fork`` (or for one file, or one job) the files are checked here, one by one.
+results come back in the order the files were given. A file that cannot be read is a result too (its message, exit
+code 2): the other files are still checked. Where there is no ``fork`` (or for one file, or one job) the files are
+checked here, one by one.
 """
 
 from __future__ import annotations
@@ -164,11 +164,10 @@ _MESH_NAME = re.compile(rb"""filename\s*=\s*["']([^"']+)["']""")
 
 def _mesh_folder(path: Path) -> str:
     """Where a URDF's first mesh is (its URI's folder), which the robots of one package share; else its own folder."""
-    try:
-        with path.open("rb") as stream:
-            found = _MESH_NAME.search(stream.read(1 << 20)) if path.suffix.lower() == ".urdf" else None
-    except OSError:
-        found = None
+    found = None
+    if path.suffix.lower() == ".urdf" and path.is_file():  # (never opened otherwise: a FIFO would block)
+        with contextlib.suppress(OSError), path.open("rb") as stream:
+            found = _MESH_NAME.search(stream.read(1 << 20))
     if found is None:
         return str(path.parent)
     return found.group(1).decode("utf-8", "replace").rpartition("/")[0]

@@ -97,6 +97,8 @@ def is_robot_file(path: Path) -> bool:
 
 
 def _head(path: Path) -> str:
+    if not path.is_file():
+        return ""  # (a FIFO, a device: never opened, it could block; check says why it cannot read it)
     try:
         with path.open("rb") as stream:
             return stream.read(HEAD_BYTES).decode("utf-8", "replace")

@@ -42,6 +42,8 @@ def input_kind(path: Path) -> InputKind:
         return "xacro"
     if name.endswith((".urdf", ".xml")):
         return "urdf"
+    if not path.is_file():
+        return "urdf"  # (a FIFO or a device is never opened here, it could block: reading it says why it cannot be)
     try:
         with path.open("rb") as file:
             head = file.read(4096)

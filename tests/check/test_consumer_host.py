@@ -16,6 +16,9 @@ from xacrokit.check.consumer_host import ConsumerHost
 pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="the host is a forked child")
 
 
+KEPT: list[bytearray] = []
+
+
 def fake_load(name: str, path: str, packages: object = None) -> str:
     """A consumer that does what the file's name says."""
     if name == "pinocchio" and "crash" in path:
@@ -26,6 +29,10 @@ def fake_load(name: str, path: str, packages: object = None) -> str:
         return str(len(bytearray(8 * 2**30)))  # (past the host's 4 GiB bound)
     if name == "yourdfpy" and "refused" in path:
         raise ValueError("no such link")
+    if "hoard" in path:
+        kept = bytearray(80 * 2**20)
+        kept[::4096] = b"\x01" * len(range(0, len(kept), 4096))  # (every page written, so resident)
+        KEPT.append(kept)  # (kept, as MuJoCo keeps what it compiled)
     return f"{name} loaded {os.path.basename(path)} in {os.getpid()}"
 
 
@@ -63,3 +70,19 @@ def test_a_consumer_that_ends_the_host_is_its_verdict_and_the_rest_go_on(host, t
     assert found["pinocchio"] == (status, said)
     assert found["yourdfpy"][0] == "accepted"  # (sent again, to a new host)
     assert verdicts(host, str(tmp_path / "next.urdf"))["pinocchio"][0] == "accepted"
+
+
+def test_a_host_grown_past_half_its_memory_bound_starts_afresh(tmp_path):
+    """MuJoCo's cache grows with every mesh: a host that has grown by half its bound is replaced before the next file
+    (here a bound of 128 MiB and 80 MiB kept by the first load), so a long run never meets the bound by what it
+    kept."""
+    host = ConsumerHost(fake_load, replace(consumers.CONSUMER_BOUNDS, memory=128 * 2**20))
+    try:
+        first = host.start(["pinocchio"], tmp_path / "hoard.urdf", None)()["pinocchio"]  # type: ignore[arg-type]
+        again = host.start(["pinocchio"], tmp_path / "plain.urdf", None)()["pinocchio"]  # type: ignore[arg-type]
+        after = host.start(["pinocchio"], tmp_path / "plain.urdf", None)()["pinocchio"]  # type: ignore[arg-type]
+    finally:
+        host.stop()
+    assert first.status == again.status == after.status == "accepted"
+    pids = [result.message.rsplit(" ", 1)[1] for result in (first, again, after)]
+    assert pids[0] != pids[1] == pids[2]
