@@ -26,6 +26,7 @@ def odd_files(tmp_path):
     (tmp_path / "loop_a.urdf").symlink_to(tmp_path / "loop_b.urdf")
     (tmp_path / "loop_b.urdf").symlink_to(tmp_path / "loop_a.urdf")
     os.mkfifo(tmp_path / "fifo.urdf")
+    os.mkfifo(tmp_path / "fifo")
     (tmp_path / "binary.xacro").write_bytes(bytes(range(128, 256)) * 8)
     (tmp_path / "recursive.xacro").write_text(
         XACRO_HEADER + '<xacro:macro name="m" params="n"><xacro:m n="${n}"/></xacro:macro><xacro:m n="1"/></robot>'
@@ -38,7 +39,8 @@ def odd_files(tmp_path):
 @pytest.mark.parametrize(
     ("words", "message"),
     [
-        (("check", "/dev/zero"), "cannot read the spec: it is not a regular file"),
+        (("check", "/dev/zero"), "cannot read /dev/zero: it is not a regular file"),
+        (("check", "{d}/fifo"), "it is not a regular file (a device, a FIFO or a socket)"),  # (no suffix: never read)
         (("check", "{d}/fifo.urdf"), "it is not a regular file (a device, a FIFO or a socket)"),
         (("check", "{d}/loop_a.urdf"), "a loop of symbolic links"),
         (("expand", "{d}/loop_a.urdf"), "a loop of symbolic links"),
