@@ -55,12 +55,13 @@ def sarif_log(checks: Sequence[FileCheck]) -> dict[str, Any]:
 def _rule(rule: str, row: tuple[str, str, str]) -> dict[str, Any]:
     name, severity, checks = row
     text = f"{rule} {name} ({severity}): checks that {checks}."
+    said = checks.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")  # (<robot> is no HTML tag here)
     return {
         "id": rule,
         "name": name,
         "shortDescription": {"text": _clause(checks)},
         "fullDescription": {"text": f"Checks that {checks}."[:1024]},
-        "help": {"text": f"{text} See {DOCS} (rule {rule}).", "markdown": f"**{rule} {name}** ({severity}): {checks}."},
+        "help": {"text": f"{text} See {DOCS} (rule {rule}).", "markdown": f"**{rule} {name}** ({severity}): {said}."},
         "defaultConfiguration": {"level": LEVELS[severity]},
     }
 
