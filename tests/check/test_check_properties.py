@@ -120,14 +120,14 @@ joints:
     result = gen_robot(spec, "-o", tmp_path / "pkg")
     assert result.returncode == 0
     assert result.stderr.splitlines() == [
-        f"gen-robot: warning: {spec}:4: I005 inertia-placeholder (warning of gen-robot check): link 'arm': inertia is "
+        f"gen-robot: warning: {spec}:4:3: I005 inertia-placeholder (warning of gen-robot check): link 'arm': inertia is "
         "0.01 * identity, a common placeholder; compute it from the body (e.g. xacrokit's inertia macros)",
-        f"gen-robot: warning: {spec}:4: I008 inertia-fits-geometry (warning of gen-robot check): link 'arm': its "
+        f"gen-robot: warning: {spec}:4:3: I008 inertia-fits-geometry (warning of gen-robot check): link 'arm': its "
         "moments spread the mass 0.0707 m (rms) along the link's x axis from the centre of mass, but the link's "
         "geometry reaches at most 0.025 m that way (the two moments across that axis minus the one about it are "
         "2 sum(m d^2), d along it: 0.01 kg*m^2 here, at most 0.00125); a uniform box of 1 kg filling its collision "
         "geometry has ixx, iyy, izz = 0.00771, 0.00771, 0.000417 kg*m^2",
-        f"gen-robot: warning: {spec}:6: J013 limit-range (warning of gen-robot check): joint 'shoulder': limit lower "
+        f"gen-robot: warning: {spec}:6:3: J013 limit-range (warning of gen-robot check): joint 'shoulder': limit lower "
         "and upper are both 0.0: the joint cannot move; give it its real limits (a CAD exporter writes 0 and 0 when "
         "it knows none), make it continuous if it turns without end, or fixed if it never moves",
     ]
