@@ -43,7 +43,7 @@ def robot_files(
     """The files to check, each once, in the order given (a folder's in name order).
 
     Raises:
-        XacrokitError: a path that does not exist, or is neither a file nor a folder.
+        XacrokitError: a path that does not exist (a FIFO or a device named is taken: check says it cannot read it).
     """
     found: dict[Path, None] = {}
     for given in paths:
@@ -69,9 +69,10 @@ def _search(folder: Path, exclude: Sequence[str]) -> Iterable[Path]:
         folders[:] = sorted(f for f in folders if not f.startswith(".") and not _excluded(below / f, exclude))
         for name in sorted(files):
             path = Path(top, name)
-            if name.lower().endswith(".xacro"):
-                included.update(_included_names(path))
-            if not _excluded(below / name, exclude) and path.is_file() and is_robot_file(path):
+            root = _xacro_root(path) if name.lower().endswith(".xacro") else None  # (each xacro file read once)
+            if root is not None:
+                included.update(_included_names(root))
+            if not _excluded(below / name, exclude) and path.is_file() and _is_robot(path, root):
                 found.append(path)
     kept = [path for path in found if not path.name.lower().endswith(".xacro") or path.name not in included]
     return sorted(kept, key=lambda path: path.relative_to(folder).parts)  # (name order, folders among files)
@@ -85,11 +86,16 @@ def _excluded(relative: PurePosixPath, exclude: Sequence[str]) -> bool:
 def is_robot_file(path: Path) -> bool:
     """Whether ``path`` is a robot ``gen-robot check`` takes from a folder (see the module's notes; that no other
     xacro document of the folder includes it is asked by the search)."""
+    return _is_robot(path, _xacro_root(path) if path.name.lower().endswith(".xacro") else None)
+
+
+def _is_robot(path: Path, root: Any) -> bool:
+    """:func:`is_robot_file`, a xacro file's ``root`` already read (None: it does not read as XML)."""
     name = path.name.lower()
     if name.endswith(".urdf"):
         return True
     if name.endswith(".xacro"):
-        return _makes_something(_xacro_root(path))
+        return _makes_something(root)
     if name.endswith((".yaml", ".yml")):
         keys = {m.group(1) for m in _SPEC_KEYS.finditer(_head(path))}
         return {"robot", "links"} <= keys or {"scene", "instances"} <= keys
@@ -126,11 +132,8 @@ def _makes_something(root: Any) -> bool:
     return False
 
 
-def _included_names(path: Path) -> set[str]:
-    """The file names a xacro document includes (``xacro:include filename``'s last part)."""
-    root = _xacro_root(path)
-    if root is None:
-        return set()
+def _included_names(root: Any) -> set[str]:
+    """The file names a xacro document (its root element) includes (``xacro:include filename``'s last part)."""
     return {
         PurePosixPath(element.get("filename", "")).name
         for element in root.iter()
