@@ -50,6 +50,11 @@ class Finding:
     def name(self) -> str:
         return _ROWS[self.rule][0]
 
+    @property
+    def subject(self) -> str:
+        """What the finding is about, as reports say it: ``joint 'elbow'``, or the kind alone (``robot``)."""
+        return f"{self.element_kind} {self.element!r}" if self.element else self.element_kind
+
     def place(self, source: str) -> str:
         """Where the finding is, as ``file:line:column`` (``source``, the checked file, when it names no file of its
         own; as much of the line and column as is known)."""
@@ -57,6 +62,11 @@ class Finding:
         if self.line:
             where += f":{self.line}" + (f":{self.column}" if self.column else "")
         return where
+
+    def said(self, source: str) -> str:
+        """The finding on one line, as a run over many files prints it: ``file:line:column: RULE name (severity):
+        subject: message``."""
+        return f"{self.place(source)}: {self.rule} {self.name} ({self.severity}): {self.subject}: {self.message}"
 
     def to_dict(self) -> dict[str, object]:
         return {

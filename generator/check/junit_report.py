@@ -15,7 +15,6 @@ from collections.abc import Sequence
 from lxml import etree
 
 from .file_workers import FileCheck
-from .findings import Finding
 
 SUITE = "gen-robot check"
 
@@ -45,15 +44,10 @@ def _case(check: FileCheck, strict: bool) -> etree._Element:
         return case
     failing = check.report.errors + (check.report.warnings if strict else [])
     for finding in failing:
-        said = _xml_text(_said(finding, check.source))
+        said = _xml_text(finding.said(check.source))
         failure = etree.SubElement(case, "failure", type=finding.rule, message=_one_line(said))
         failure.text = said
     return case
-
-
-def _said(finding: Finding, source: str) -> str:
-    subject = f"{finding.element_kind} {finding.element!r}" if finding.element else finding.element_kind
-    return f"{finding.place(source)}: {finding.rule} {finding.name} ({finding.severity}): {subject}: {finding.message}"
 
 
 def _one_line(text: str) -> str:

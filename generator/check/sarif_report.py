@@ -73,12 +73,11 @@ def _clause(text: str) -> str:
 
 
 def _result(finding: Finding, source: str, order: dict[str, int]) -> dict[str, Any]:
-    subject = f"{finding.element_kind} {finding.element!r}" if finding.element else finding.element_kind
     return {
         "ruleId": finding.rule,
         "ruleIndex": order[finding.rule],
         "level": LEVELS[finding.severity],
-        "message": {"text": f"{subject}: {finding.message}"},
+        "message": {"text": f"{finding.subject}: {finding.message}"},
         "locations": [_location(finding.file or source, finding.line, finding.column)],
     }
 

@@ -31,15 +31,14 @@ def format_text(report: CheckReport, *, colour: bool = False, strict: bool = Fal
             head = f"{len(findings)} {severity}{'s' if len(findings) != 1 else ''}:"
             lines.append(_paint(head, severity, colour) if severity != "note" else head)
             for f in findings:
-                subject = f"{f.element_kind} {f.element!r}" if f.element else f.element_kind
-                lines.append(f"  {f.rule} {f.name}: {subject}{_where(f)}: {f.message}")
+                lines.append(f"  {f.rule} {f.name}: {f.subject}{_where(f)}: {f.message}")
     if report.consumers:
         verdicts = [
             f"{c.name} {c.status}" + (f" ({c.message})" if c.message and c.status != "accepted" else "")
             for c in report.consumers
         ]
         lines.append("consumers: " + "; ".join(verdicts))
-    failed = bool(report.errors) or (strict and bool(report.warnings))
+    failed = report.exit_code(strict) == 1
     lines.append(_paint(_verdict(report, failed), "error" if failed else "ok", colour))
     return "\n".join(lines) + "\n"
 
@@ -53,11 +52,10 @@ def format_files(checks: Sequence[FileCheck], *, colour: bool = False, strict: b
             lines.append(_paint(f"{check.source}: UNREADABLE: ", "error", colour) + (check.error or ""))
             continue
         report = check.report
-        failed = bool(report.errors) or (strict and bool(report.warnings))
+        failed = report.exit_code(strict) == 1
         lines.append(f"{check.source}: " + _paint(_verdict(report, failed), "error" if failed else "ok", colour))
         for f in [*report.errors, *report.warnings]:
-            subject = f"{f.element_kind} {f.element!r}" if f.element else f.element_kind
-            lines.append(f"  {f.place(check.source)}: {f.rule} {f.name} ({f.severity}): {subject}: {f.message}")
+            lines.append(f"  {f.said(check.source)}")
     codes = [c.exit_code(strict) for c in checks]
     tally = f"{len(checks)} file(s) checked: {codes.count(0)} passed, {codes.count(1)} failed"
     lines.append(tally + (f", {codes.count(2)} unreadable" if 2 in codes else ""))
