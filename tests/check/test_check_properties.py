@@ -120,8 +120,8 @@ joints:
     result = gen_robot(spec, "-o", tmp_path / "pkg")
     assert result.returncode == 0
     assert result.stderr.splitlines() == [
-        f"gen-robot: warning: {spec}:4:3: I005 inertia-placeholder (warning of gen-robot check): link 'arm': inertia is "
-        "0.01 * identity, a common placeholder; compute it from the body (e.g. xacrokit's inertia macros)",
+        f"gen-robot: warning: {spec}:4:3: I005 inertia-placeholder (warning of gen-robot check): link 'arm': inertia "
+        "is 0.01 * identity, a common placeholder; compute it from the body (e.g. xacrokit's inertia macros)",
         f"gen-robot: warning: {spec}:4:3: I008 inertia-fits-geometry (warning of gen-robot check): link 'arm': its "
         "moments spread the mass 0.0707 m (rms) along the link's x axis from the centre of mass, but the link's "
         "geometry reaches at most 0.025 m that way (the two moments across that axis minus the one about it are "
