@@ -4,10 +4,11 @@ In a folder (searched recursively, in name order, without following symbolic lin
 starts with a dot) a robot file is
 
 - a URDF: ``*.urdf``;
-- a xacro entry: a ``*.xacro`` (``*.urdf.xacro`` too) whose ``<robot>`` has a name or makes something (an element
-  other than ``xacro:macro``, ``xacro:property``, ``xacro:arg`` and ``xacro:include`` at its top level), and that no
-  xacro document of the folder includes (by its file name); a nameless file of macros alone is a library, and an
-  included one a part, each checked through the entries that include it;
+- a xacro entry: a ``*.xacro`` (``*.urdf.xacro`` too) that makes something at its top level (an element other than
+  ``xacro:macro``, ``xacro:property``, ``xacro:arg`` and ``xacro:include``), or defines no macro and includes the
+  files that make its parts, and that no xacro document of the folder includes (by its file name); a file that
+  defines macros and makes nothing is a library, and an included one a part, each checked through the entries that
+  include it;
 - a spec: ``*.yaml``/``*.yml`` whose top level has ``robot`` and ``links`` (a robot spec) or ``scene`` and
   ``instances`` (a scene spec); other YAML (controllers, launch parameters, sizing files) is not a robot.
 
@@ -121,15 +122,19 @@ def _xacro_root(path: Path) -> Any:
 
 
 def _makes_something(root: Any) -> bool:
-    """Whether a xacro document makes something at its top level (one that does not read is taken: check says why)."""
-    if root is None or root.get("name"):
-        return True  # (a named <robot> is a robot, though it only includes the files that make its parts)
-    for child in root:
-        if not isinstance(child.tag, str):
-            continue  # (a comment or processing instruction)
-        if child.prefix != "xacro" or etree.QName(child).localname not in _LIBRARY:
-            return True
-    return False
+    """Whether a xacro document is an entry: it makes something at its top level (an element other than xacro's
+    macro, property, arg and include), or it defines no macro and includes the files that make the robot's parts. A
+    file defining macros and making nothing is a library, named or not (a camera's ``_d435.urdf.xacro``). One that
+    does not read as XML is taken: check says why."""
+    if root is None:
+        return True
+    tops = [etree.QName(child).localname for child in root if isinstance(child.tag, str) and child.prefix == "xacro"]
+    if any(
+        isinstance(child.tag, str) and (child.prefix != "xacro" or etree.QName(child).localname not in _LIBRARY)
+        for child in root
+    ):
+        return True
+    return "macro" not in tops and ("include" in tops or bool(root.get("name")))
 
 
 def _included_names(root: Any) -> set[str]:

@@ -41,6 +41,10 @@ def test_a_folder_gives_its_robots_and_nothing_else(tmp_path):
     )
     (package / "materials.xacro").write_text(f'<robot {xacro}><material name="grey"/></robot>')  # (included: a part)
     (package / "library.xacro").write_text(f'<robot {xacro}><xacro:property name="p" value="1"/></robot>')
+    (package / "camera.urdf.xacro").write_text(  # (named, but macros only: a library, as realsense's _d435 is)
+        f'<robot name="sensor" {xacro}><xacro:include filename="lens.xacro"/><xacro:macro name="cam"/></robot>'
+    )
+    (package / "alone.xacro").write_text(f'<robot name="stretch" {xacro}><xacro:include filename="arm.xacro"/></robot>')
     (package / "fragment_alone.xacro").write_text(f'<robot {xacro}><link name="b"/></robot>')  # makes something
     (tmp_path / "config").mkdir()
     (tmp_path / "config" / "controllers.yaml").write_text("controller_manager:\n  ros__parameters: {}\n")
@@ -53,6 +57,7 @@ def test_a_folder_gives_its_robots_and_nothing_else(tmp_path):
     assert found == [
         "arm.urdf",
         "config/robot.yaml",
+        "my_description/urdf/alone.xacro",  # (includes alone, as hello-robot's entries do)
         "my_description/urdf/fragment_alone.xacro",
         "my_description/urdf/robot.urdf.xacro",
         "scene.yml",
