@@ -48,11 +48,9 @@ def write_starter(name: str, *, kind: str = "arm", output: str | Path | None = N
         raise XacrokitError(
             f"cannot make the folder {path.parent}: {exc.strerror or exc} (a file in the way?)"
         ) from None
-    try:
-        with path.open("x", encoding="utf-8") as handle:
-            handle.write(text)
-    except FileExistsError:
-        raise XacrokitError(f"{path} already exists; not overwritten (choose another name or -o PATH)") from None
-    except OSError as exc:
-        raise XacrokitError(f"cannot write {path}: {exc.strerror}") from None
+    if os.path.lexists(path):  # (never overwritten, not even a starter of ours: it may be someone's first edit away)
+        raise XacrokitError(f"{path} already exists; not overwritten (choose another name or -o PATH)")
+    from ..write.outputs import output_file  # (atomic, never through a link; an interrupted run is repaired)
+
+    output_file(path, text)
     return path

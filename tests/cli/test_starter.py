@@ -95,3 +95,16 @@ def test_starter_names_no_path_of_this_machine_and_says_how_to_get_the_schema(tm
     assert written.returncode == 0
     (tmp_path / schema_file).write_text(written.stdout, encoding="utf-8")
     jsonschema.validate(yaml.safe_load(text), json.loads((tmp_path / schema_file).read_text(encoding="utf-8")))
+
+
+def test_a_starter_is_never_written_through_a_link_nor_over_a_file(tmp_path):
+    """gen-robot new writes with the project's writer: a dangling link where the spec would go is refused (its target
+    is not made), an existing file is kept, and a spec written leaves no temporary file beside it."""
+    (tmp_path / "bot.yaml").symlink_to(tmp_path / "elsewhere.yaml")
+    refused = gen_robot("new", "bot", "-o", tmp_path / "bot.yaml")
+    assert refused.returncode == 2 and "already exists; not overwritten" in refused.stderr
+    assert not (tmp_path / "elsewhere.yaml").exists()
+    written = write_starter("arm2", output=tmp_path / "specs/")
+    assert written == tmp_path / "specs" / "arm2.yaml" and written.read_text(encoding="utf-8") == starter_text("arm2")
+    assert sorted(p.name for p in written.parent.iterdir() if not p.name.startswith(".xacrokit")) == ["arm2.yaml"]
+    assert gen_robot("new", "arm2", "-o", written).returncode == 2 and written.read_text() == starter_text("arm2")
