@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 
 class XacrokitError(Exception):
     """Root of xacrokit's errors. The CLI turns these into a message and exit code 2, never a traceback."""
@@ -77,5 +79,7 @@ class SpecErrors(XacrokitError):
         count = len(self.errors)
         if count == 1 and self.errors[0].line is None:  # about the file as a whole (unreadable, missing): one line
             return str(self.errors[0])
-        head = f"{count} problem{'s' if count != 1 else ''} in the spec:"
+        files = {e.file for e in self.errors}  # (a spec, a sizing file, a scene and the specs it names)
+        where = Path(next(iter(files))).name if len(files) == 1 else f"{len(files)} files"
+        head = f"{count} problem{'s' if count != 1 else ''} in {where}:"
         return "\n".join([head, *(f"  {e}" for e in self.errors)])
