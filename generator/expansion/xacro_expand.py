@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import re
 import xml.parsers.expat
 from collections.abc import Callable, Iterator, Mapping
 from pathlib import Path
@@ -98,6 +99,18 @@ def _macro_stack() -> tuple[str, ...]:
 
 def _file_stack() -> tuple[str, ...]:
     return tuple(str(f) for f in reversed(xacro.filestack or []) if f)
+
+
+def _with_hint(message: str) -> str:
+    """xacro's message, and for an argument the document declares without a default, how to give it."""
+    undefined = re.fullmatch(r"Undefined substitution argument (\S+)", message.strip())
+    if undefined is None:
+        return message
+    name = undefined.group(1)
+    return (
+        f"{message.strip()}: $(arg {name}) has no value where the document uses it (no default declared before that "
+        f'use; UR\'s <robot name="$(arg name)"> comes before its <xacro:arg>): give it as {name}:=VALUE'
+    )
 
 
 def _xacro_message(exc: BaseException) -> str:
@@ -233,7 +246,7 @@ def _expand(
         if any(isinstance(cause, MemoryError) for cause in _causes(exc)):
             raise MemoryError from None  # (what xacro wraps is no error of the document's text: a bound, said as one)
         raise ExpandError(
-            _xacro_message(exc), file=where, macro_stack=_macro_stack(), file_stack=_file_stack()
+            _with_hint(_xacro_message(exc)), file=where, macro_stack=_macro_stack(), file_stack=_file_stack()
         ) from None
     except xml.parsers.expat.ExpatError as exc:
         raise ExpandError(f"not well-formed XML: {exc}", file=_file_stack()[0] if _file_stack() else where) from None

@@ -67,6 +67,11 @@ def test_find_resolution_is_restored_after_expansion(expand):
         (XACRO_HEADER + "<link name='a'>\n", "not well-formed XML"),
         (xacro_doc('<link name="${undefined_property}"/>', ()), "undefined_property"),
         (xacro_doc("<xacro:no_such_macro/>", ()), "unknown macro name: xacro:no_such_macro"),
+        (
+            XACRO_HEADER + '<link name="$(arg ur_type)"/><xacro:arg name="ur_type" default="ur5e"/></robot>\n',
+            r"Undefined substitution argument ur_type: \$\(arg ur_type\) has no value where the document uses it "
+            r"\(no default declared before that use; .*\): give it as ur_type:=VALUE",
+        ),
     ],
 )
 def test_bad_documents_raise_expand_error(expand, doc, words):
