@@ -248,7 +248,8 @@ def test_several_visuals_and_collisions_a_collision_alone_and_values_no_body_has
     (tmp_path / "strict.yaml").write_text(strict, encoding="utf-8")
     refused = gen_robot(tmp_path / "strict.yaml", "-o", tmp_path / "refused")
     assert refused.returncode == 2 and not (tmp_path / "refused").exists()
-    assert refused.stderr.count("strict.yaml:") == 4, refused.stderr
+    assert refused.stderr.count(f"{tmp_path / 'strict.yaml'}:") == 4, refused.stderr  # (one line per problem)
+    assert refused.stderr.startswith("gen-robot: error: 4 problems in strict.yaml:\n"), refused.stderr
 
 
 def test_a_relative_mesh_is_copied_beside_the_spec_and_into_the_package(tmp_path):
