@@ -9,7 +9,7 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from ..reader.urdf_view import Geometry, Joint, joint_tree
+from ..shared.urdf_view import Geometry, Joint, joint_tree
 from ..shared.transforms import transform
 from .findings import Finding, rule_table
 from .inertia_geometry import RobotMeshes, placement, shape_in_link

@@ -15,7 +15,7 @@ from collections.abc import Iterator, Mapping
 
 import numpy as np
 
-from ..reader.urdf_view import Link
+from ..shared.urdf_view import Link
 from ..shared.solid_inertia import is_placeholder
 from .findings import Finding, rule_table
 from .inertia_geometry import MeshReach, link_reach

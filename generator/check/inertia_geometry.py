@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from ..reader.urdf_view import Geometry, Link, Origin, Shape
+from ..shared.urdf_view import Geometry, Link, Origin, Shape
 from ..shared.solid_inertia import box_moments, combine, cylinder_moments, sphere_moment, tensor
 from ..shared.transforms import rpy_matrix
 from .findings import Finding, rule_table

@@ -9,7 +9,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..reader.urdf_view import Link, Shape
+from ..shared.urdf_view import Link, Shape
 from ..shared.joint_types import MOVING
 from ..shared.solid_inertia import (
     TOLERANCE,

@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from ..reader.urdf_view import Attributes, Joint, Mimic
+from ..shared.urdf_view import Attributes, Joint, Mimic
 from ..shared.joint_types import AXIAL, JOINT_TYPES, LIMITED, MOVING
 from ..shared.kinematic_tree import cycles
 from .findings import Finding, Severity, rule_table

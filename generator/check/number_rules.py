@@ -6,7 +6,7 @@ import math
 import re
 from collections.abc import Iterator
 
-from ..reader.urdf_view import Shape
+from ..shared.urdf_view import Shape
 from ..shared.units import NUMBER
 from .findings import Finding, rule_table
 from .urdf_document import Doc

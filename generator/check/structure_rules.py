@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator, Sequence
 
-from ..reader.urdf_view import Joint, Link
+from ..shared.urdf_view import Joint, Link
 from ..shared.kinematic_tree import Tree
 from .findings import Finding, rule_table
 from .urdf_document import Doc

@@ -10,7 +10,7 @@ from collections.abc import Mapping
 
 from lxml import etree
 
-from ..reader.urdf_view import joint_tree, view_of
+from ..shared.urdf_view import joint_tree, view_of
 from ..shared.xml_parse import parse_urdf
 from .findings import Finding, Severity, rule_table, severity
 
@@ -51,7 +51,7 @@ def _undeclared(prefix: str, line: int, file: str) -> Finding:
 
 
 class Doc:
-    """The URDF the rules read: its typed view (:mod:`xacrokit.reader.urdf_view`, what the rules walk), and where
+    """The URDF the rules read: its typed view (:mod:`xacrokit.shared.urdf_view`, what the rules walk), and where
     each finding is placed (its element's line; for a spec, the spec's line of the link or joint it is about)."""
 
     def __init__(

@@ -41,7 +41,7 @@ from ..model import Robot
 from ..reader.mesh_copies import MeshRead
 from ..reader.named_poses import named_poses
 from ..reader.robot_source import urdf_floats as _floats
-from ..reader.urdf_view import Joint, Link, Origin, UrdfView
+from ..shared.urdf_view import Joint, Link, Origin, UrdfView
 from ..shared.input_files import CopiedFile, copied_pieces
 from ..shared.kinematic_tree import Tree
 from ..shared.units import MAX_MOMENT, STANDARD_GRAVITY, bound_problem
@@ -244,7 +244,7 @@ def mjcf(
     Raises:
         XacrokitError: a URDF MuJoCo cannot take (not a tree, a mesh that cannot be found or read, bad numbers).
     """
-    from ..reader.urdf_view import length_problems, read_view
+    from ..shared.urdf_view import length_problems, read_view
 
     view = read_view(text)
     problems = length_problems(view)

@@ -28,7 +28,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import XacrokitError
-from ..reader.urdf_view import Joint, UrdfView
+from ..shared.urdf_view import Joint, UrdfView
 
 BANDWIDTH = 10.0  # Hz
 SLIP = 0.1  # a velocity servo gives its full effort when it lags by this fraction of the velocity limit

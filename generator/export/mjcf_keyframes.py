@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from ..reader.urdf_view import Joint
+from ..shared.urdf_view import Joint
 from ..shared.joint_types import rest_position
 from .mjcf_actuators import num
 

@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..reader.robot_source import urdf_floats
-from ..reader.urdf_view import Inertial, Joint, Link, Material, MaterialRef, Origin, Shape, UrdfView
+from ..shared.urdf_view import Inertial, Joint, Link, Material, MaterialRef, Origin, Shape, UrdfView
 from ..shared.input_files import CopiedFile
 from .wheel_match import wheels
 
@@ -111,7 +111,7 @@ def _shape(shape: Shape | None, where: str, problems: list[str]) -> dict[str, An
 def import_text(text: str, name_hint: str = "robot", source: str = "") -> Imported:
     """The spec of a URDF text (see the module's notes); ``source``: the file it was read from, which locates what
     is reported (``FILE:LINE: link 'x': ...``; a xacro document's lines are its expansion's)."""
-    from ..reader.urdf_view import read_view
+    from ..shared.urdf_view import read_view
 
     view = read_view(text, source or "<robot>")
     result = Imported(spec={})

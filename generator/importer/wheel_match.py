@@ -17,7 +17,7 @@ import re
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from ..reader.urdf_view import UrdfView
+    from ..shared.urdf_view import UrdfView
 
 AXLES = {"x": ([1.0, 0.0, 0.0], [0.0, math.pi / 2, 0.0]), "y": ([0.0, 1.0, 0.0], [math.pi / 2, 0.0, 0.0])}
 AXLES["z"] = ([0.0, 0.0, 1.0], [0.0, 0.0, 0.0])

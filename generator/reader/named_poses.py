@@ -8,7 +8,7 @@ import math
 from collections.abc import Mapping
 
 from ..model import HOME_POSE, Robot
-from .urdf_view import UrdfView
+from ..shared.urdf_view import UrdfView
 
 
 def initial_values(view: UrdfView) -> dict[str, float]:

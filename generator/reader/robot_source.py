@@ -3,7 +3,7 @@ reads it here. A URDF, xacro document, spec or scene becomes URDF text (:func:`r
 a spec's model, lines and warnings and the files its package will carry), and :func:`robot_text` hands the text on
 with the packages its ``package://`` URIs may name (a spec's own meshes staged where its package will carry them);
 ``shared.ros_packages.mesh_file`` resolves a mesh URI with them. The text is walked through
-:mod:`xacrokit.reader.urdf_view`.
+:mod:`xacrokit.shared.urdf_view`.
 
 A URDF that uses a namespace prefix it never declares (``<limit drake:acceleration="..."/>``: check's U003; every
 URDF consumer reads past it) is handed on with those names in a namespace of their own

@@ -13,7 +13,7 @@ from pathlib import Path
 from ..errors import ExpandError, SpecError
 from ..load import PathKey, RawSpec
 from ..model import Instance, Origin, ThirdPartyMacro
-from ..reader.urdf_view import read_view
+from ..shared.urdf_view import read_view
 from ..render import render_probe
 
 Found = tuple[tuple[str, ...], tuple[str, ...]]  # (links, joints)

@@ -25,7 +25,7 @@ from ..validate.bodies import bodies, parts
 from ..validate.solids import body_solids
 
 if TYPE_CHECKING:
-    from ..reader.urdf_view import Link as ViewLink
+    from ..shared.urdf_view import Link as ViewLink
 
 FORMULAS = {
     "box": "solid box, m/12 (b^2 + c^2)",
@@ -88,7 +88,7 @@ def design_report(spec_path: str | Path) -> DesignReport:
 
 def _links(robot: Robot, urdf: str) -> list[Link]:
     """The robot's links as the model holds them (arms and wheels through their emitted form, ``urdf``)."""
-    from ..reader.urdf_view import read_view
+    from ..shared.urdf_view import read_view
 
     by_name = {link.name: link for link in robot.links}
     return [by_name.get(link.name) or _from_urdf(link) for link in read_view(urdf, f"{robot.name} (generated)").links]

@@ -70,7 +70,7 @@ class BaseSizing:
 def find_wheels(robot: SizingRobot, text: str, named: Sequence[str] = ()) -> list[Wheel]:
     """The wheels: continuous joints whose child link has a cylinder (or those ``named``), with radius, inertia about
     the axle (pinocchio's body inertia, moved to the joint's axis) and limits."""
-    from ..reader.urdf_view import read_view
+    from ..shared.urdf_view import read_view
 
     view = read_view(text)
     radii = {}

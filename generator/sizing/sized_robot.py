@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import XacrokitError
-from ..reader.urdf_view import UrdfView, joint_tree, read_view
+from ..shared.urdf_view import UrdfView, joint_tree, read_view
 from ..shared.joint_types import MOVING
 from ..shared.units import STANDARD_GRAVITY
 from ..shared.value_text import did_you_mean

@@ -27,7 +27,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import XacrokitError
-from ..reader.urdf_view import Geometry, Inertial, Joint, Link, Origin, Shape, number, numbers
+from ..shared.urdf_view import Geometry, Inertial, Joint, Link, Origin, Shape, number, numbers
 from ..shared.joint_types import rest_position
 from .page_meshes import PageMeshes
 
@@ -81,7 +81,7 @@ def robot_json(text: str, read: Any, poses: Mapping[str, Mapping[str, float]] | 
     XacrokitError for it), whose visual the page goes without and lists."""
     from ..model import HOME_POSE
     from ..reader.named_poses import named_poses
-    from ..reader.urdf_view import read_view
+    from ..shared.urdf_view import read_view
 
     view = read_view(text)
     missing: list[str] = []  # (a mesh the page cannot show: said in the page and by the command)

@@ -58,7 +58,7 @@ def _placed_meshes(
         except (LookupError, ValueError) as exc:
             raise XacrokitError(f"mesh {fname!r}: {exc}") from None
 
-    from ..reader.urdf_view import length_problems, read_view
+    from ..shared.urdf_view import length_problems, read_view
 
     view = read_view(text)
     if len(view.links) > MAX_LINKS:
@@ -122,7 +122,7 @@ def world_transforms(graph: Any) -> dict[str, np.ndarray]:
 
 def _mesh_names(text: str) -> list[str]:
     """The mesh files the robot's visuals name (what yourdfpy will open: each must be there)."""
-    from ..reader.urdf_view import read_view
+    from ..shared.urdf_view import read_view
 
     return sorted(
         {

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 from ..errors import XacrokitError
 
 if TYPE_CHECKING:
-    from ..reader.urdf_view import Joint
+    from ..shared.urdf_view import Joint
 
 
 DOT_SECONDS = 50  # the longest Graphviz may take to lay out an SVG (a chain of 20,000 links: about 100 s, then fails)
@@ -41,7 +41,7 @@ def _number(value: str | None) -> str:
 
 def tree_dot(urdf: str, name: str | None = None) -> str:
     """The DOT text of the URDF's kinematic tree."""
-    from ..reader.urdf_view import read_view
+    from ..shared.urdf_view import read_view
 
     view = read_view(urdf)
     lines = [

@@ -279,7 +279,7 @@ def test_a_result_that_is_not_a_number_fails_and_is_listed(arm_file, monkeypatch
 def test_a_chain_longer_than_size_searches_is_refused_before_pinocchio_reads_it(tmp_path):
     """A chain of 5,000 moving joints crashed pinocchio (signal 11), 100 took 62 s: size takes at most
     MAX_MOVING_CHAIN in a chain and says so (issue 28); a tree of many short chains is not limited by it."""
-    from xacrokit.reader.urdf_view import read_view
+    from xacrokit.shared.urdf_view import read_view
     from xacrokit.sizing.sized_robot import MAX_MOVING_CHAIN, moving_chain
 
     def chain(links: int, *, branches: int = 1) -> str:

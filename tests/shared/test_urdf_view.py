@@ -1,4 +1,4 @@
-"""The one view of a URDF (xacrokit.reader.urdf_view) and its hardened parse (xacrokit.shared.xml_parse): every part
+"""The one view of a URDF (xacrokit.shared.urdf_view) and its hardened parse (xacrokit.shared.xml_parse): every part
 read as the file gives it, with its line; the same robot as an independent reader (yourdfpy) sees; no entity, DTD or
 network ever followed."""
 
@@ -12,7 +12,7 @@ import yourdfpy
 import xacrokit
 from conftest import ROBOT_EXAMPLES
 from xacrokit.errors import XacrokitError
-from xacrokit.reader.urdf_view import number, numbers, read_view
+from xacrokit.shared.urdf_view import number, numbers, read_view
 from xacrokit.shared.xml_parse import parse_urdf
 
 URDF = """<?xml version="1.0"?>

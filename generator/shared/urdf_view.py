@@ -20,8 +20,8 @@ from typing import Any
 
 from lxml import etree
 
-from ..shared.kinematic_tree import Tree
-from ..shared.xml_parse import read_urdf_root
+from .kinematic_tree import Tree
+from .xml_parse import read_urdf_root
 
 Attributes = Mapping[str, str]
 
