@@ -9,8 +9,8 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from ..shared.urdf_view import Geometry, Joint, joint_tree
 from ..shared.transforms import transform
+from ..shared.urdf_view import Geometry, Joint, joint_tree
 from .findings import Finding, rule_table
 from .inertia_geometry import RobotMeshes, placement, shape_in_link
 from .urdf_document import Doc, triple_of

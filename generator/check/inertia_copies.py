@@ -15,8 +15,8 @@ from collections.abc import Iterator, Mapping
 
 import numpy as np
 
-from ..shared.urdf_view import Link
 from ..shared.solid_inertia import is_placeholder
+from ..shared.urdf_view import Link
 from .findings import Finding, rule_table
 from .inertia_geometry import MeshReach, link_reach
 from .urdf_document import Doc

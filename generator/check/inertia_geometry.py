@@ -33,9 +33,9 @@ from typing import Any
 
 import numpy as np
 
-from ..shared.urdf_view import Geometry, Link, Origin, Shape
 from ..shared.solid_inertia import box_moments, combine, cylinder_moments, sphere_moment, tensor
 from ..shared.transforms import rpy_matrix
+from ..shared.urdf_view import Geometry, Link, Origin, Shape
 from .findings import Finding, rule_table
 from .urdf_document import Doc, number_of, triple_of
 

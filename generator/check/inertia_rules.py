@@ -9,7 +9,6 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
-from ..shared.urdf_view import Link, Shape
 from ..shared.joint_types import MOVING
 from ..shared.solid_inertia import (
     TOLERANCE,
@@ -19,6 +18,7 @@ from ..shared.solid_inertia import (
     moments_problem,
     principal_moments,
 )
+from ..shared.urdf_view import Link, Shape
 from .findings import Finding, rule_table
 from .inertia_copies import copied_inertias
 from .inertia_geometry import MARKER, MeshReach, geometry_finding, link_reach

@@ -6,9 +6,9 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator
 
-from ..shared.urdf_view import Attributes, Joint, Mimic
 from ..shared.joint_types import AXIAL, JOINT_TYPES, LIMITED, MOVING
 from ..shared.kinematic_tree import cycles
+from ..shared.urdf_view import Attributes, Joint, Mimic
 from .findings import Finding, Severity, rule_table
 from .urdf_document import Doc, number_of
 

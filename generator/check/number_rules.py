@@ -6,8 +6,8 @@ import math
 import re
 from collections.abc import Iterator
 
-from ..shared.urdf_view import Shape
 from ..shared.units import NUMBER
+from ..shared.urdf_view import Shape
 from .findings import Finding, rule_table
 from .urdf_document import Doc
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator, Sequence
 
-from ..shared.urdf_view import Joint, Link
 from ..shared.kinematic_tree import Tree
+from ..shared.urdf_view import Joint, Link
 from .findings import Finding, rule_table
 from .urdf_document import Doc
 

@@ -41,10 +41,10 @@ from ..model import Robot
 from ..reader.mesh_copies import MeshRead
 from ..reader.named_poses import named_poses
 from ..reader.robot_source import urdf_floats as _floats
-from ..shared.urdf_view import Joint, Link, Origin, UrdfView
 from ..shared.input_files import CopiedFile, copied_pieces
 from ..shared.kinematic_tree import Tree
 from ..shared.units import MAX_MOMENT, STANDARD_GRAVITY, bound_problem
+from ..shared.urdf_view import Joint, Link, Origin, UrdfView
 from .mjcf_actuators import num
 from .mjcf_keyframes import keyframes
 from .mjcf_meshes import FlatMesh, Meshes

@@ -11,8 +11,8 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from ..shared.urdf_view import Joint
 from ..shared.joint_types import rest_position
+from ..shared.urdf_view import Joint
 from .mjcf_actuators import num
 
 

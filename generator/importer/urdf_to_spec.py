@@ -29,8 +29,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..reader.robot_source import urdf_floats
-from ..shared.urdf_view import Inertial, Joint, Link, Material, MaterialRef, Origin, Shape, UrdfView
 from ..shared.input_files import CopiedFile
+from ..shared.urdf_view import Inertial, Joint, Link, Material, MaterialRef, Origin, Shape, UrdfView
 from .wheel_match import wheels
 
 IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")

@@ -18,9 +18,9 @@ from typing import Any
 import numpy as np
 
 from ..errors import XacrokitError
-from ..shared.urdf_view import UrdfView, joint_tree, number, read_view
 from ..shared.joint_types import MOVING
 from ..shared.units import UnitError, parse_quantity
+from ..shared.urdf_view import UrdfView, joint_tree, number, read_view
 from ..shared.value_text import did_you_mean
 
 MAX_DEPTH = 1000  # links from the root to a leaf: pinocchio's URDF reader crashes on chains of thousands

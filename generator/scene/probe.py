@@ -13,8 +13,8 @@ from pathlib import Path
 from ..errors import ExpandError, SpecError
 from ..load import PathKey, RawSpec
 from ..model import Instance, Origin, ThirdPartyMacro
-from ..shared.urdf_view import read_view
 from ..render import render_probe
+from ..shared.urdf_view import read_view
 
 Found = tuple[tuple[str, ...], tuple[str, ...]]  # (links, joints)
 

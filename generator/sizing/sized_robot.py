@@ -20,9 +20,9 @@ from typing import Any
 import numpy as np
 
 from ..errors import XacrokitError
-from ..shared.urdf_view import UrdfView, joint_tree, read_view
 from ..shared.joint_types import MOVING
 from ..shared.units import STANDARD_GRAVITY
+from ..shared.urdf_view import UrdfView, joint_tree, read_view
 from ..shared.value_text import did_you_mean
 
 GRAVITY = STANDARD_GRAVITY  # m/s^2, along -z of the root frame

@@ -27,8 +27,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import XacrokitError
-from ..shared.urdf_view import Geometry, Inertial, Joint, Link, Origin, Shape, number, numbers
 from ..shared.joint_types import rest_position
+from ..shared.urdf_view import Geometry, Inertial, Joint, Link, Origin, Shape, number, numbers
 from .page_meshes import PageMeshes
 
 THREE_VERSION = "0.170.0"
