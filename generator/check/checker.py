@@ -14,8 +14,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..errors import SpecErrors
-from ..expansion.expression_guard import trusting
 from ..reader import InputKind
+from ..reader.robot_input import RobotInput
 from ..reader.robot_source import input_kind, read_source
 from ..shared.gc_pause import collector_paused
 from ..write.atomic import staged_packages
@@ -66,8 +66,8 @@ def check(
     names = chosen(consumers)
     say(f"reading {path.name}")
     try:
-        with trusting(trust):
-            source = read_source(path, mappings, package_paths)
+        # (untrusted unless told, or unless the environment says so: None)
+        source = read_source(RobotInput(path, mappings or {}, package_paths or {}, True if trust else None))
     except SpecErrors as exc:
         if all(e.line is None for e in exc.errors):  # the file itself cannot be read: no report to give
             raise

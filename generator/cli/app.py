@@ -22,9 +22,16 @@ from typing import TYPE_CHECKING, Any, NoReturn
 
 from .. import __version__
 from ..errors import XacrokitError
-from ..expansion.expression_guard import trusting
 from ..shared.progress_line import Progress
-from .arguments import add_force_option, fleet_count, parse_mappings, parse_packages, require_plain_output, spacing
+from .arguments import (
+    add_force_option,
+    add_robot_options,
+    add_trust_option,
+    fleet_count,
+    require_plain_output,
+    robot_input,
+    spacing,
+)
 from .subcommands import add_commands
 
 if TYPE_CHECKING:
@@ -35,7 +42,8 @@ if TYPE_CHECKING:
 def _cmd_expand(args: argparse.Namespace) -> int:
     from ..expansion.xacro_expand import expand_file
 
-    urdf = expand_file(args.file, parse_mappings(args.mappings), package_paths=parse_packages(args.package))
+    given = robot_input(args, args.file)
+    urdf = expand_file(given.path, given.mappings, package_paths=given.packages, trust=given.trust)
     if args.output is not None:
         from ..write.outputs import output_file
 
@@ -179,10 +187,12 @@ def _cmd_check(args: argparse.Namespace) -> int:
     # (the paths and the name:=value words come as one list of positionals: a word with ':=' is a mapping, as xacro
     # reads its own command line)
     paths = [word for word in args.paths if ":=" not in word]
-    mappings = parse_mappings([word for word in args.paths if ":=" in word] + args.mappings)
     if not paths:
         raise XacrokitError("check: give a file or folder to check (name:=value words are xacro arguments)")
-    options = CheckOptions(mappings, args.prefix, consumers, parse_packages(args.package), args.trust)
+    # (one robot input's arguments, packages and trust for every file checked)
+    given = robot_input(args, paths[0], mappings=[word for word in args.paths if ":=" in word] + args.mappings)
+    packages = {name: Path(folder) for name, folder in given.packages.items()}
+    options = CheckOptions(dict(given.mappings), args.prefix, consumers, packages, bool(given.trust))
     if len(paths) == 1 and not args.robots_only and form in ("text", "json") and not Path(paths[0]).is_dir():
         return _check_single(Path(paths[0]), options, form, args.strict)  # (one file: its report as before)
     files = robot_files(paths, exclude=args.exclude, robots_only=args.robots_only)
@@ -280,33 +290,7 @@ def _add_write_options(parser: argparse.ArgumentParser, default_output: str) -> 
         "and copies them into the package; find calls them through $(find xacrokit) (the package then depends "
         "on xacrokit). All three describe the same robot",
     )
-    parser.add_argument(
-        "--trust",
-        action="store_true",
-        help="evaluate every xacro expression of a scene's third-party macros, as xacro does (for macros that are "
-        "your own; by default, expressions that could reach Python's internals are refused: see docs/macros.md, "
-        "Untrusted documents)",
-    )
-
-
-def _add_xacro_options(parser: argparse.ArgumentParser) -> None:
-    # (default=[]: argparse otherwise calls an optional list of positionals required when the path is missing)
-    parser.add_argument(
-        "mappings", nargs="*", default=[], metavar="name:=value", help="values for the document's xacro:args"
-    )
-    parser.add_argument(
-        "--package",
-        action="append",
-        default=[],
-        metavar="NAME=PATH",
-        help="folder for $(find NAME) and package://NAME; repeatable",
-    )
-    parser.add_argument(
-        "--trust",
-        action="store_true",
-        help="evaluate every xacro expression, as xacro does (for your own documents; by default, expressions that "
-        "could reach Python's internals are refused: see docs/macros.md, Untrusted documents)",
-    )
+    add_trust_option(parser, what="every xacro expression of a scene's third-party macros")
 
 
 EXIT_CODES = (
@@ -337,7 +321,7 @@ def build_parser() -> argparse.ArgumentParser:
     commands = parser.add_subparsers(dest="command", metavar="COMMAND")
     _add_generate_commands(commands)
     _add_check_command(commands)
-    add_commands(commands, _add_xacro_options)
+    add_commands(commands)
     _add_tool_commands(commands)
     return parser
 
@@ -429,7 +413,7 @@ def _add_check_command(commands: Any) -> None:
     chk.add_argument(
         "--prefix", help="require every link, joint, gazebo reference and ros2_control joint to start with this prefix"
     )
-    _add_xacro_options(chk)
+    add_robot_options(chk)
     chk.set_defaults(handler=_cmd_check)
 
 
@@ -479,7 +463,7 @@ def _add_tool_commands(commands: Any) -> None:
     expand.add_argument("file", help="the .xacro document")
     expand.add_argument("-o", "--output", help="write the URDF here (atomically) instead of to standard output")
     add_force_option(expand)
-    _add_xacro_options(expand)
+    add_robot_options(expand)
     expand.set_defaults(handler=_cmd_expand)
 
     macros = commands.add_parser(
@@ -553,8 +537,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.print_help(sys.stderr)
         return 2
     try:
-        with trusting(getattr(args, "trust", False)):
-            return args.handler(args)
+        return int(args.handler(args))
     except XacrokitError as exc:
         print(f"gen-robot: error: {exc}", file=sys.stderr)
         return exc.exit_code

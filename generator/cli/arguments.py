@@ -6,8 +6,13 @@ from __future__ import annotations
 import argparse
 import os
 import re
+from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..errors import ExpandError, XacrokitError
+
+if TYPE_CHECKING:
+    from ..reader.robot_input import RobotInput
 
 
 def require_plain_output(output: str, *, folder: bool) -> None:
@@ -83,3 +88,42 @@ def parse_mappings(words: list[str]) -> dict[str, str]:
             raise ExpandError(f"expected an argument as name:=value, got {word!r}", file="<command line>")
         result[name] = value
     return result
+
+
+def add_trust_option(parser: argparse.ArgumentParser, *, what: str = "every xacro expression") -> None:
+    """--trust: the one declaration of the option; what it reaches is the robot input's ``trust``
+    (:func:`robot_input`) or a scene's third-party macros (generate)."""
+    parser.add_argument(
+        "--trust",
+        action="store_true",
+        help=f"evaluate {what}, as xacro does (for your own documents; by default, expressions that could reach "
+        "Python's internals are refused: see docs/macros.md, Untrusted documents)",
+    )
+
+
+def add_robot_options(parser: argparse.ArgumentParser) -> None:
+    """What every command that reads a robot takes besides its path: name:=value xacro arguments, --package and
+    --trust (:func:`robot_input` makes the robot input of them)."""
+    # (default=[]: argparse otherwise calls an optional list of positionals required when the path is missing)
+    parser.add_argument(
+        "mappings", nargs="*", default=[], metavar="name:=value", help="values for the document's xacro:args"
+    )
+    parser.add_argument(
+        "--package",
+        action="append",
+        default=[],
+        metavar="NAME=PATH",
+        help="folder for $(find NAME) and package://NAME; repeatable",
+    )
+    add_trust_option(parser)
+
+
+def robot_input(args: argparse.Namespace, path: str, *, mappings: list[str] | None = None) -> RobotInput:
+    """The robot input of a command's arguments: ``path`` with the name:=value words (``mappings`` when the command
+    parsed them itself), --package and --trust. The one place the command line makes one."""
+    from ..expansion.expression_guard import trusted_by_default
+    from ..reader.robot_input import RobotInput
+
+    words = args.mappings if mappings is None else mappings
+    trust = True if getattr(args, "trust", False) else trusted_by_default()
+    return RobotInput(Path(path), parse_mappings(words), parse_packages(getattr(args, "package", [])), trust)

@@ -5,13 +5,12 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Callable
 from typing import Any
 
-from .arguments import add_force_option, parse_mappings, parse_packages
+from .arguments import add_force_option, add_robot_options, robot_input
 
 
-def add_export_command(commands: Any, add_xacro_options: Callable[[argparse.ArgumentParser], None]) -> None:
+def add_export_command(commands: Any) -> None:
     """Add ``export`` to the CLI's subcommands."""
     export = commands.add_parser(
         "export",
@@ -33,20 +32,15 @@ def add_export_command(commands: Any, add_xacro_options: Callable[[argparse.Argu
     )
     export.add_argument("--floor", action="store_true", help="add a ground plane at z = 0")
     add_force_option(export)
-    add_xacro_options(export)
+    add_robot_options(export)
     export.set_defaults(handler=_cmd_export)
 
 
 def _cmd_export(args: argparse.Namespace) -> int:
     from ..export.mjcf import export_mjcf, write_export
+    from ..reader.read_robot import read_robot
 
-    model = export_mjcf(
-        args.path,
-        parse_mappings(args.mappings),
-        package_paths=parse_packages(args.package),
-        base=args.base,
-        floor=args.floor,
-    )
+    model = export_mjcf(read_robot(robot_input(args, args.path)), base=args.base, floor=args.floor)
     for note in model.notes:
         print(f"gen-robot export: note: {note}", file=sys.stderr)
     write_export(model, args.output, force=args.force)

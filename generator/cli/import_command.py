@@ -5,15 +5,14 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 from ..errors import XacrokitError
-from .arguments import add_force_option, parse_mappings, parse_packages
+from .arguments import add_force_option, add_robot_options, robot_input
 
 
-def add_import_command(commands: Any, add_xacro_options: Callable[[argparse.ArgumentParser], None]) -> None:
+def add_import_command(commands: Any) -> None:
     """Add ``import`` to the CLI's subcommands."""
     imported = commands.add_parser(
         "import",
@@ -27,15 +26,16 @@ def add_import_command(commands: Any, add_xacro_options: Callable[[argparse.Argu
     imported.add_argument("path", help="a .urdf or .xacro file")
     imported.add_argument("-o", "--output", help="the spec to write (atomically); standard output without it")
     add_force_option(imported)
-    add_xacro_options(imported)
+    add_robot_options(imported)
     imported.set_defaults(handler=_cmd_import)
 
 
 def _cmd_import(args: argparse.Namespace) -> int:
     from ..importer.urdf_to_spec import import_robot, spec_yaml
+    from ..reader.read_robot import read_robot
     from ..write.outputs import OutputFile, write_outputs
 
-    result = import_robot(args.path, parse_mappings(args.mappings), package_paths=parse_packages(args.package))
+    result = import_robot(read_robot(robot_input(args, args.path)))
     if result.refused:  # (the spec written would not generate: nothing is written, exit 2; every reason said)
         raise XacrokitError(
             f"{args.path}: the robot cannot be imported, the spec refuses it:\n  " + "\n  ".join(result.unsupported)

@@ -4,17 +4,22 @@ over :mod:`xacrokit.kinematics`, imported when the command runs: the CLI starts 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import sys
-from collections.abc import Callable
-from typing import Any
+from collections.abc import Iterator
+from typing import TYPE_CHECKING, Any
 
-from .arguments import parse_mappings, parse_packages
+from .arguments import add_robot_options, robot_input
+
+if TYPE_CHECKING:
+    from ..reader.kinematic_model import LimitWarning
+    from ..reader.read_robot import ReadRobot
 
 ROTATION_FORMS = ("rpy", "quat_xyzw", "quat_wxyz", "rotvec", "matrix")
 
 
-def add_kinematics_commands(commands: Any, add_xacro_options: Callable[[argparse.ArgumentParser], None]) -> None:
+def add_kinematics_commands(commands: Any) -> None:
     """Add ``pose`` and ``jacobian`` to the CLI's subcommands."""
     pose = commands.add_parser(
         "pose",
@@ -30,7 +35,7 @@ def add_kinematics_commands(commands: Any, add_xacro_options: Callable[[argparse
         metavar="X,Y,Z",
         help="also a point given in FRAME's axes (m), expressed in --in: T_IN_FRAME p (an object a camera sees)",
     )
-    add_xacro_options(pose)
+    add_robot_options(pose)
     pose.set_defaults(handler=_cmd_pose)
     jac = commands.add_parser(
         "jacobian",
@@ -46,11 +51,11 @@ def add_kinematics_commands(commands: Any, add_xacro_options: Callable[[argparse
         metavar="FX,FY,FZ[,MX,MY,MZ]",
         help="a force (N) and moment (N*m) the tool exerts on the environment, in --in's axes: prints tau = J^T w",
     )
-    add_xacro_options(jac)
+    add_robot_options(jac)
     jac.set_defaults(handler=_cmd_jacobian)
 
 
-def add_ik_command(commands: Any, add_xacro_options: Callable[[argparse.ArgumentParser], None]) -> None:
+def add_ik_command(commands: Any) -> None:
     """Add ``ik`` to the CLI's subcommands."""
     ik = commands.add_parser(
         "ik",
@@ -68,7 +73,7 @@ def add_ik_command(commands: Any, add_xacro_options: Callable[[argparse.Argument
     ik.add_argument("--position-only", action="store_true", help="reach the position, any orientation")
     ik.add_argument("--all", dest="every", action="store_true", help="list every distinct solution found")
     ik.add_argument("--json", action="store_true", help="print JSON")
-    add_xacro_options(ik)
+    add_robot_options(ik)
     ik.set_defaults(handler=_cmd_ik)
 
 
@@ -89,19 +94,41 @@ def _target(text: str) -> list[float]:
     return values
 
 
+def _read(args: argparse.Namespace) -> ReadRobot:
+    from ..reader.read_robot import read_robot
+
+    return read_robot(robot_input(args, args.robot))
+
+
+@contextlib.contextmanager
+def _flags(args: argparse.Namespace) -> Iterator[None]:
+    """The kinematics' errors said with the option or argument that named what was wrong."""
+    from ..errors import XacrokitError
+    from ..kinematics import MovingFrame
+    from ..reader.kinematic_model import JointValueError, UnknownName
+
+    try:
+        yield
+    except UnknownName as exc:
+        flag = f"--at {exc.name}" if exc.role == "joint" else "FRAME" if exc.name == args.frame else "--in"
+        raise XacrokitError(f"{flag}: {exc.detail}") from None
+    except JointValueError as exc:
+        raise XacrokitError(f"--at {exc.joint}={exc.text}: {exc.reason}") from None
+    except MovingFrame as exc:
+        raise XacrokitError(
+            f"--in {args.in_frame}: it moves with joint {exc.joint!r}; give a frame fixed to the root"
+        ) from None
+
+
 def _cmd_ik(args: argparse.Namespace) -> int:
     from ..kinematics import inverse_kinematics
 
-    found = inverse_kinematics(
-        args.robot,
-        args.frame,
-        _target(args.to),
-        in_frame=args.in_frame,
-        position_only=args.position_only,
-        every=args.every,
-        mappings=parse_mappings(args.mappings),
-        package_paths=parse_packages(args.package),
-    )
+    target = _target(args.to)
+    robot = _read(args)
+    with _flags(args):
+        found = inverse_kinematics(
+            robot, args.frame, target, in_frame=args.in_frame, position_only=args.position_only, every=args.every
+        )
     if args.json:
         out: dict[str, Any] = {"frame": found.frame, "in": found.in_frame}
         out["solutions"] = [{"joints": values, "error": error} for values, error in found.solutions]
@@ -148,19 +175,13 @@ def _values(args: argparse.Namespace) -> dict[str, str]:
     return given
 
 
-def _asked(args: argparse.Namespace) -> dict[str, Any]:
-    """What pose and jacobian are asked besides the robot and frame: --in, --at, name:=value and --package."""
-    return {
-        "in_frame": args.in_frame,
-        "at": _values(args),
-        "mappings": parse_mappings(args.mappings),
-        "package_paths": parse_packages(args.package),
-    }
-
-
-def _warn(warnings: list[str]) -> None:
+def _warn(warnings: list[LimitWarning]) -> None:
     for warning in warnings:
-        sys.stderr.write(f"gen-robot: warning: {warning}\n")
+        lower, upper = warning.limits
+        sys.stderr.write(
+            f"gen-robot: warning: --at {warning.joint}={warning.text}: {warning.value:g} is outside the joint's "
+            f"limits [{lower:g}, {upper:g}]\n"
+        )
 
 
 def _numbers(text: str, counts: tuple[int, ...], said: str) -> list[float]:
@@ -179,7 +200,10 @@ def _numbers(text: str, counts: tuple[int, ...], said: str) -> list[float]:
 def _cmd_pose(args: argparse.Namespace) -> int:
     from ..kinematics import pose
 
-    found = pose(args.robot, args.frame, **_asked(args))
+    at = _values(args)
+    robot = _read(args)
+    with _flags(args):
+        found = pose(robot, args.frame, in_frame=args.in_frame, at=at)
     _warn(found.warnings)
     described = pose_dict(found.matrix, args.rotation)
     if args.point is not None:
@@ -202,7 +226,10 @@ def _cmd_pose(args: argparse.Namespace) -> int:
 def _cmd_jacobian(args: argparse.Namespace) -> int:
     from ..kinematics import jacobian, joint_torques
 
-    found = jacobian(args.robot, args.frame, **_asked(args))
+    at = _values(args)
+    robot = _read(args)
+    with _flags(args):
+        found = jacobian(robot, args.frame, in_frame=args.in_frame, at=at)
     _warn(found.pose.warnings)
     torques = None
     if args.wrench is not None:

@@ -7,15 +7,18 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from .arguments import add_force_option, parse_mappings, parse_packages
+from ..errors import XacrokitError
+from ..shared.units import UnitError, bound_problem, parse_quantity
+from .arguments import add_force_option, add_robot_options, robot_input
+
+if TYPE_CHECKING:
+    from ..sizing import Load, Payload
 
 
-def add_size_command(commands: Any, add_xacro_options: Callable[[argparse.ArgumentParser], None]) -> None:
-    """Add ``size`` to the CLI's subcommands (``add_xacro_options``: the name:=value, --package and --trust options
-    every command that reads xacro takes)."""
+def add_size_command(commands: Any) -> None:
+    """Add ``size`` to the CLI's subcommands."""
     sz = commands.add_parser(
         "size",
         help="size the joints' motors: the worst static torque of each over its range, with payloads and loads",
@@ -35,13 +38,15 @@ def add_size_command(commands: Any, add_xacro_options: Callable[[argparse.Argume
         help="a point mass at a frame's origin, e.g. '5 kg@tool0'; repeatable",
     )
     sz.add_argument(
-        "--force",
+        "--load",
         action="append",
         default=[],
         metavar="FX,FY,FZ@FRAME",
         help="a force (N, world axes) the "
         "environment applies at a frame's origin, e.g. '0,0,-50@tool0' (pressing down on the tool); repeatable",
     )
+    # (size's loads were --force until 0.2, while --force elsewhere overwrites: kept one release, said deprecated)
+    sz.add_argument("--force", action="append", default=[], metavar="FX,FY,FZ@FRAME", help="deprecated: --load")
     sz.add_argument(
         "--sizing",
         metavar="FILE",
@@ -63,26 +68,33 @@ def add_size_command(commands: Any, add_xacro_options: Callable[[argparse.Argume
         "--report", metavar="DIR", help="also write DIR/size_report.md with PNG plots of the motion and the drives"
     )
     add_force_option(sz, "--overwrite")
-    add_xacro_options(sz)
+    add_robot_options(sz)
     sz.set_defaults(handler=_cmd_size)
 
 
 def _cmd_size(args: argparse.Namespace) -> int:
-    from ..sizing import format_text, parse_gravity, parse_load, parse_payload, size  # (numpy, pinocchio: here only)
+    from ..reader.kinematic_model import UnknownName
+    from ..reader.read_robot import read_robot
+    from ..sizing import format_text, size  # (heavy: numpy, pinocchio)
 
+    if args.force:
+        print("gen-robot size: warning: --force is deprecated for a load: use --load", file=sys.stderr)
     payloads = [parse_payload(text) for text in args.payload]
-    loads = [parse_load(text) for text in args.force]
+    loads = [parse_load(text) for text in [*args.load, *args.force]]
     gravity = parse_gravity(args.gravity) if args.gravity is not None else None
-    report = size(
-        args.path,
-        parse_mappings(args.mappings),
-        payloads=payloads,
-        loads=loads,
-        sizing=args.sizing,
-        package_paths=parse_packages(args.package),
-        gravity=gravity,
-        joint_friction=not args.no_joint_friction,
-    )
+    robot = read_robot(robot_input(args, args.path))
+    try:
+        report = size(
+            robot,
+            payloads=payloads,
+            loads=loads,
+            sizing=args.sizing,
+            gravity=gravity,
+            joint_friction=not args.no_joint_friction,
+        )
+    except UnknownName as exc:
+        flag = "--payload" if any(p.frame == exc.name for p in payloads) else "--load"
+        raise XacrokitError(f"{flag}: {exc.detail}") from None
     if args.report:
         from ..sizing.report_document import write_report
 
@@ -92,6 +104,64 @@ def _cmd_size(args: argparse.Namespace) -> int:
     else:
         sys.stdout.write(format_text(report))
     return report.exit_code
+
+
+def parse_payload(text: str) -> Payload:
+    """``MASS@FRAME`` ('5 kg@tool0', '500 g@tool0'): a point mass at the frame's origin."""
+    from ..sizing import Payload  # (heavy: numpy)
+
+    mass_text, frame = _at(text, "--payload", "MASS@FRAME, e.g. '5 kg@tool0'")
+    try:
+        mass = parse_quantity(mass_text, "mass")
+    except UnitError as exc:
+        raise XacrokitError(f"--payload {text!r}: {exc}") from None
+    if not mass > 0:
+        raise XacrokitError(f"--payload {text!r}: the mass must be > 0 kg")
+    beyond = bound_problem("mass", mass)
+    if beyond is not None:
+        raise XacrokitError(f"--payload {text!r}: {beyond}")
+    return Payload(frame=frame, mass=mass)
+
+
+def parse_gravity(text: str) -> float:
+    """``--gravity``: m/s^2 as a number or with a unit ('9.81', '9.81 m/s2'), from 0 to MOST_GRAVITY."""
+    from ..sizing.sizing_file import gravity_problem  # (heavy: numpy)
+
+    try:
+        gravity = parse_quantity(text, "acceleration")
+    except UnitError as exc:
+        raise XacrokitError(f"--gravity {text!r}: {exc}") from None
+    problem = gravity_problem(gravity)
+    if problem is not None:
+        raise XacrokitError(f"--gravity {text!r}: {problem}")
+    return gravity
+
+
+def parse_load(text: str) -> Load:
+    """``FX,FY,FZ@FRAME`` ('0,0,-50 N@tool0'; each component a force, N by default): the force the environment
+    applies to the robot at the frame's origin, in world axes."""
+    from ..sizing import Load  # (heavy: numpy)
+
+    vector, frame = _at(text, "--load", "FX,FY,FZ@FRAME in N, world axes, e.g. '0,0,-50@tool0'")
+    parts = [p.strip() for p in vector.split(",")]
+    unit = parts[-1].split()[-1] if parts and len(parts[-1].split()) == 2 else ""
+    if len(parts) != 3:
+        raise XacrokitError(f"--load {text!r}: give three components FX,FY,FZ (N, world axes), e.g. '0,0,-50@tool0'")
+    try:
+        force = tuple(parse_quantity(p if len(p.split()) == 2 or not unit else f"{p} {unit}", "force") for p in parts)
+    except UnitError as exc:
+        raise XacrokitError(f"--load {text!r}: {exc}") from None
+    beyond = next((p for p in (bound_problem("force", f) for f in force) if p is not None), None)
+    if beyond is not None:
+        raise XacrokitError(f"--load {text!r}: {beyond}")
+    return Load(frame=frame, force=(force[0], force[1], force[2]))
+
+
+def _at(text: str, option: str, form: str) -> tuple[str, str]:
+    value, sep, frame = text.rpartition("@")
+    if not sep or not value.strip() or not frame.strip():
+        raise XacrokitError(f"{option} {text!r}: expected {form}")
+    return value.strip(), frame.strip()
 
 
 def add_report_command(commands: Any) -> None:

@@ -3,8 +3,6 @@ graph, view and render, export, import, pose, jacobian and ik."""
 
 from __future__ import annotations
 
-import argparse
-from collections.abc import Callable
 from typing import Any
 
 from .export_command import add_export_command
@@ -14,12 +12,13 @@ from .size_commands import add_report_command, add_size_command
 from .view_commands import add_view_commands
 
 
-def add_commands(commands: Any, add_xacro_options: Callable[[argparse.ArgumentParser], None]) -> None:
-    """Add size, report, graph, view, render, export, import, pose, jacobian and ik to the CLI's subcommands."""
-    add_size_command(commands, add_xacro_options)
+def add_commands(commands: Any) -> None:
+    """Add size, report, graph, view, render, export, import, pose, jacobian and ik to the CLI's subcommands (each
+    module's ``add_*`` takes the subcommands alone: its robot options come from ``arguments.add_robot_options``)."""
+    add_size_command(commands)
     add_report_command(commands)
-    add_view_commands(commands, add_xacro_options)
-    add_export_command(commands, add_xacro_options)
-    add_import_command(commands, add_xacro_options)
-    add_kinematics_commands(commands, add_xacro_options)
-    add_ik_command(commands, add_xacro_options)
+    add_view_commands(commands)
+    add_export_command(commands)
+    add_import_command(commands)
+    add_kinematics_commands(commands)
+    add_ik_command(commands)

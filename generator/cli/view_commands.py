@@ -7,14 +7,22 @@ from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from .arguments import add_force_option, parse_mappings, parse_packages
+from .arguments import add_force_option, add_robot_options, robot_input
+
+if TYPE_CHECKING:
+    from ..reader.read_robot import ReadRobot
 
 
-def add_view_commands(commands: Any, add_xacro_options: Callable[[argparse.ArgumentParser], None]) -> None:
+def _read(args: argparse.Namespace) -> ReadRobot:
+    from ..reader.read_robot import read_robot
+
+    return read_robot(robot_input(args, args.path))
+
+
+def add_view_commands(commands: Any) -> None:
     """Add ``graph`` and ``render`` to the CLI's subcommands."""
     graph = commands.add_parser(
         "graph",
@@ -26,7 +34,7 @@ def add_view_commands(commands: Any, add_xacro_options: Callable[[argparse.Argum
     graph.add_argument("path", help="a .urdf, .xacro or .yaml spec")
     graph.add_argument("-o", "--output", help="FILE.dot or FILE.svg (written atomically)")
     add_force_option(graph)
-    add_xacro_options(graph)
+    add_robot_options(graph)
     graph.set_defaults(handler=_cmd_graph)
 
     view = commands.add_parser(
@@ -50,7 +58,7 @@ def add_view_commands(commands: Any, add_xacro_options: Callable[[argparse.Argum
         help="a sizing file with a motion (as gen-robot size reads it): the page plays it, its torque plot beside it",
     )
     view.add_argument("--port", type=int, default=8765, help="with --watch: the port (0: any free one; default 8765)")
-    add_xacro_options(view)
+    add_robot_options(view)
     view.set_defaults(handler=_cmd_view)
 
     render = commands.add_parser(
@@ -70,7 +78,7 @@ def add_view_commands(commands: Any, add_xacro_options: Callable[[argparse.Argum
         help="a joint's value (rad or m, or with a unit: 'elbow_joint=90 deg'); repeatable",
     )
     render.add_argument("--size", default="800x600", metavar="WxH", help="pixels (default 800x600)")
-    add_xacro_options(render)
+    add_robot_options(render)
     render.set_defaults(handler=_cmd_render)
 
 
@@ -79,7 +87,7 @@ def _cmd_graph(args: argparse.Namespace) -> int:
     from ..view.tree_graph import graph, svg
     from ..write.outputs import output_file
 
-    dot = graph(args.path, parse_mappings(args.mappings), package_paths=parse_packages(args.package))
+    dot = graph(_read(args))
     if not args.output:
         sys.stdout.write(dot)
         return 0
@@ -117,13 +125,7 @@ def _cmd_render(args: argparse.Namespace) -> int:
         raise XacrokitError(f"--size {args.size!r}: expected WIDTHxHEIGHT in pixels, e.g. 800x600") from None
     if not (16 <= width <= 8000 and 16 <= height <= 8000):
         raise XacrokitError(f"--size {args.size!r}: each side must be 16 to 8000 pixels")
-    picture = render(
-        args.path,
-        parse_mappings(args.mappings),
-        joints=joints,
-        package_paths=parse_packages(args.package),
-        size=(width, height),
-    )
+    picture = render(_read(args), joints=joints, size=(width, height))
     output_file(Path(args.output), picture, force=args.force)
     return 0
 
@@ -133,13 +135,14 @@ def _cmd_view(args: argparse.Namespace) -> int:
     from ..view.page import page
     from ..write.outputs import output_file
 
-    mappings, packages = parse_mappings(args.mappings), parse_packages(args.package)
+    given = robot_input(args, args.path)
     if args.watch:
+        from ..reader.read_robot import read_robot
         from ..view.watch_server import POLL, POLLER, Watcher
 
-        def build(version: int) -> str:
+        def build(version: int) -> str:  # (the robot read anew each time a file changes)
             poller = POLLER.format(version=version, poll=int(POLL * 1000))
-            return page(args.path, mappings, package_paths=packages, poller=poller, sizing=args.sizing)
+            return page(read_robot(given), poller=poller, sizing=args.sizing)
 
         def say(message: str) -> None:
             print(f"gen-robot view: {message}", flush=True)
@@ -149,7 +152,7 @@ def _cmd_view(args: argparse.Namespace) -> int:
     if not args.output:
         raise XacrokitError("gen-robot view needs -o PAGE.html (or --watch to serve it)")
     missing: list[str] = []
-    text = page(args.path, mappings, package_paths=packages, sizing=args.sizing, missing=missing)
+    text = page(_read(args), sizing=args.sizing, missing=missing)
     for line in missing:
         print(f"gen-robot view: warning: not shown: {line}", file=sys.stderr)
     output_file(Path(args.output), text, force=args.force)

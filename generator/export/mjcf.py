@@ -38,8 +38,11 @@ import numpy as np
 
 from ..errors import XacrokitError
 from ..model import Robot
+from ..reader.kinematic_model import unit_axis
 from ..reader.mesh_copies import MeshRead
 from ..reader.named_poses import named_poses
+from ..reader.read_robot import ReadRobot
+from ..reader.robot_input import RobotInput
 from ..reader.robot_source import urdf_floats as _floats
 from ..shared.input_files import CopiedFile, copied_pieces
 from ..shared.kinematic_tree import Tree
@@ -228,7 +231,7 @@ class _Bodies:
 
 
 def mjcf(
-    text: str,
+    robot: ReadRobot,
     read: Callable[[str], MeshRead],
     *,
     base: str = "auto",
@@ -236,7 +239,7 @@ def mjcf(
     poses: Mapping[str, Mapping[str, float]] | None = None,
     armature: Mapping[str, float] | None = None,
 ) -> Export:
-    """The MJCF of a URDF ``text``; ``read(filename)`` reads a mesh (:func:`~xacrokit.reader.mesh_copies.mesh_reader`:
+    """The MJCF of a read ``robot``; ``read(filename)`` reads a mesh (:func:`~xacrokit.reader.mesh_copies.mesh_reader`:
     safely, below the robot's folder); ``base``: auto, fixed or free; ``poses``: named poses (joint -> value), each a
     keyframe, ``home`` first (else where the ros2_control blocks start the robot); ``armature``: joint -> reflected
     rotor inertia, a spec's (a URDF cannot hold it; none by default).
@@ -244,9 +247,9 @@ def mjcf(
     Raises:
         XacrokitError: a URDF MuJoCo cannot take (not a tree, a mesh that cannot be found or read, bad numbers).
     """
-    from ..shared.urdf_view import length_problems, read_view
+    from ..shared.urdf_view import length_problems
 
-    view = read_view(text)
+    view = robot.view
     problems = length_problems(view)
     if problems:
         raise XacrokitError("MuJoCo cannot take the robot: " + "; ".join(problems))
@@ -258,7 +261,7 @@ def mjcf(
     _Bodies(tree, free, view.colours(), _frictions(view), meshes, export).body(tree.root, world, None)
     for mesh in meshes.assets:
         asset.append(mesh)
-    _constraints(model, view, text, tree, free, export)
+    _constraints(model, robot, tree, free, export)
     reflected = armature or {}
     for joint in model.find("worldbody").iter("joint"):
         if reflected.get(joint.get("name"), 0.0) > 0:
@@ -271,7 +274,7 @@ def mjcf(
     return export
 
 
-def _constraints(model: Any, view: UrdfView, text: str, tree: _Tree, free: bool, export: Export) -> None:
+def _constraints(model: Any, robot: ReadRobot, tree: _Tree, free: bool, export: Export) -> None:
     """Contact exclusions (every joint's parent and child), mimic equalities and actuators."""
     from lxml import etree
 
@@ -284,8 +287,9 @@ def _constraints(model: Any, view: UrdfView, text: str, tree: _Tree, free: bool,
     equality = mimics(tree.joints, export.notes)
     if len(equality):
         model.append(equality)
+    view = robot.view
     driven = list(commanded(view))
-    inertia = gains(text, driven, free) if driven else {}
+    inertia = gains(robot.free_floating if free else robot.kinematics.model, driven) if driven else {}
     acts = actuators(view, {j.name: j for j in tree.joints}, inertia, export.notes)
     if len(acts):
         model.append(acts)
@@ -374,11 +378,7 @@ def _add_joint(body: Any, joint: Joint) -> bool:
     if kind == "fixed":
         return False
     said = f"joint {name!r}"
-    axis = np.array(_floats(joint.axis, 3, where=f"{said} axis")) if joint.axis is not None else np.array([1.0, 0, 0])
-    if not np.abs(axis).max() > 0:
-        raise XacrokitError(f"joint {name!r}: its axis is zero")
-    axis = axis / np.abs(axis).max()  # (first: the norm of an axis of 1e308 overflows)
-    axis = axis / np.linalg.norm(axis)
+    axis = unit_axis(joint)
     extra = {}
     for urdf_key, mjcf_key in (("damping", "damping"), ("friction", "frictionloss")):
         given = joint.dynamics.get(urdf_key) if joint.dynamics is not None else None
@@ -542,14 +542,9 @@ def write_export(export: Export, output: str | os.PathLike[str], *, force: bool 
 
 
 def export_mjcf(
-    path: str | os.PathLike[str],
-    mappings: Mapping[str, str] | None = None,
-    *,
-    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
-    base: str = "auto",
-    floor: bool = False,
+    robot: ReadRobot | RobotInput | str | os.PathLike[str], *, base: str = "auto", floor: bool = False
 ) -> Export:
-    """The MJCF of the robot at ``path`` (URDF, xacro document, spec or scene; see :func:`mjcf`).
+    """The MJCF of a read robot (URDF, xacro document, spec or scene; or what to read; see :func:`mjcf`).
 
     Raises:
         XacrokitError: unreadable input, a mesh that cannot be found or read, a robot MuJoCo cannot take.
@@ -557,15 +552,16 @@ def export_mjcf(
     """
     from ..reader.mesh_copies import mesh_reader
     from ..reader.named_poses import spec_poses
-    from ..reader.robot_source import robot_read
+    from ..reader.read_robot import read_robot
     from ..write.atomic import is_staged
 
     if base not in ("auto", "fixed", "free"):
         raise XacrokitError(f"--base {base!r}: auto, fixed or free")
-    with robot_read(path, mappings, package_paths) as (source, text, packages):
-        read = mesh_reader(Path(path), packages)
-        robot = source.robot
-        export = mjcf(text, read, base=base, floor=floor, poses=spec_poses(robot), armature=spec_armature(robot))
+    read_in = read_robot(robot)
+    with read_in.mesh_packages() as packages:
+        read = mesh_reader(read_in.path, packages)
+        spec = read_in.spec
+        export = mjcf(read_in, read, base=base, floor=floor, poses=spec_poses(spec), armature=spec_armature(spec))
         for name, mesh in export.meshes.items():  # (a spec's meshes, staged for the block: read while they last)
             if isinstance(mesh, CopiedFile) and is_staged(mesh.root):
                 export.meshes[name] = b"".join(copied_pieces(mesh))

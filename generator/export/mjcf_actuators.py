@@ -65,14 +65,11 @@ def commanded(view: UrdfView) -> dict[str, str]:
     return found
 
 
-def gains(text: str, joints: Sequence[str], free: bool) -> dict[str, float]:
-    """M_ii at q = 0 of each named joint (kg m^2 or kg), from pinocchio's crba on the URDF ``text``."""
+def gains(model: Any, joints: Sequence[str]) -> dict[str, float]:
+    """M_ii at q = 0 of each named joint (kg m^2 or kg), from pinocchio's crba on the robot's ``model`` (fixed, or on
+    a free-flyer root as the MJCF's base)."""
     import pinocchio as pin
 
-    try:
-        model = pin.buildModelFromXML(text, pin.JointModelFreeFlyer()) if free else pin.buildModelFromXML(text)
-    except (RuntimeError, ValueError) as exc:
-        raise XacrokitError(f"pinocchio cannot read the robot to set the actuators' gains: {exc}") from None
     data = model.createData()
     mass = pin.crba(model, data, pin.neutral(model))
     mass = np.triu(mass) + np.triu(mass, 1).T

@@ -28,6 +28,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from ..reader.read_robot import ReadRobot
+from ..reader.robot_input import RobotInput
 from ..reader.robot_source import urdf_floats
 from ..shared.input_files import CopiedFile
 from ..shared.urdf_view import Inertial, Joint, Link, Material, MaterialRef, Origin, Shape, UrdfView
@@ -109,11 +111,15 @@ def _shape(shape: Shape | None, where: str, problems: list[str]) -> dict[str, An
 
 
 def import_text(text: str, name_hint: str = "robot", source: str = "") -> Imported:
-    """The spec of a URDF text (see the module's notes); ``source``: the file it was read from, which locates what
-    is reported (``FILE:LINE: link 'x': ...``; a xacro document's lines are its expansion's)."""
+    """The spec of a URDF text (:func:`import_view` of its view, parsed here)."""
     from ..shared.urdf_view import read_view
 
-    view = read_view(text, source or "<robot>")
+    return import_view(read_view(text, source or "<robot>"), name_hint, source)
+
+
+def import_view(view: UrdfView, name_hint: str = "robot", source: str = "") -> Imported:
+    """The spec of a robot's view (see the module's notes); ``source``: the file it was read from, which locates
+    what is reported (``FILE:LINE: link 'x': ...``; a xacro document's lines are its expansion's)."""
     result = Imported(spec={})
     result.spec["robot"] = _robot_name(view.name or name_hint, result)
     for link in view.links:
@@ -460,27 +466,17 @@ def _joint(joint: Joint, where: str, problems: list[str]) -> dict[str, Any]:
     return entry
 
 
-def import_robot(
-    path: str | os.PathLike[str],
-    mappings: Mapping[str, str] | None = None,
-    *,
-    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
-) -> Imported:
-    """The spec of a URDF or xacro document (``mappings``: its xacro arguments).
+def import_robot(robot: ReadRobot | RobotInput | str | os.PathLike[str]) -> Imported:
+    """The spec of a read URDF or xacro document (or what to read: a xacro document's arguments in its input).
 
     Raises:
         XacrokitError: unreadable input, or a robot with nothing the spec can hold.
     """
-    from pathlib import Path
+    from ..reader.read_robot import read_robot
 
-    from ..reader.robot_source import robot_text
-
-    with robot_text(path, mappings, package_paths, meshes=False) as (text, packages):
-        from ..reader.robot_source import input_kind
-
-        source = str(path) if input_kind(Path(path)) == "urdf" else f"{path} (as expanded)"
-        imported = import_text(text, Path(path).stem.split(".")[0], source)
-        _relative_meshes(imported, Path(path), packages, source)
+    read = read_robot(robot)
+    imported = import_view(read.view, read.path.stem.split(".")[0], read.where)
+    _relative_meshes(imported, read.path, read.packages, read.where)
     return imported
 
 

@@ -24,8 +24,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import XacrokitError
+from ..reader.kinematic_model import KinematicModel, LimitWarning, joint_values
+from ..reader.read_robot import ReadRobot, read_robot
+from ..reader.robot_input import RobotInput
 from .inverse import Chain, distinct, solve, starts
-from .kinematic_model import KinematicRobot, joint_values, load_kinematics
+
+Robot = ReadRobot | RobotInput | str | os.PathLike[str]  # what the functions take: a read robot (or what to read)
 
 REACHED = 1e-9  # m, or the pose error's norm: a solution farther from the target than this is not one
 
@@ -38,7 +42,7 @@ class Pose:
     in_frame: str
     matrix: np.ndarray
     values: dict[str, float]
-    warnings: list[str]
+    warnings: list[LimitWarning]
 
 
 @dataclass(frozen=True)
@@ -50,50 +54,35 @@ class Jacobian:
     matrix: np.ndarray
 
 
-def _placed(robot: KinematicRobot, q: np.ndarray) -> None:
+def _placed(robot: KinematicModel, q: np.ndarray) -> None:
     import pinocchio as pin
 
     pin.framesForwardKinematics(robot.model, robot.data, q)
 
 
-def _pose(robot: KinematicRobot, frame: str, in_frame: str, values: dict[str, float], warnings: list[str]) -> Pose:
-    target, base = robot.frame_id(frame, "FRAME"), robot.frame_id(in_frame, "--in")
+def _pose(
+    robot: KinematicModel, frame: str, in_frame: str, values: dict[str, float], warnings: list[LimitWarning]
+) -> Pose:
+    target, base = robot.frame_id(frame), robot.frame_id(in_frame)
     _placed(robot, robot.configuration(values))
     matrix = robot.data.oMf[base].actInv(robot.data.oMf[target]).homogeneous
     return Pose(frame, in_frame, np.array(matrix), values, warnings)
 
 
-def pose(
-    path: str | os.PathLike[str],
-    frame: str,
-    *,
-    in_frame: str | None = None,
-    at: Mapping[str, str] | None = None,
-    mappings: Mapping[str, str] | None = None,
-    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
-) -> Pose:
-    """The pose of ``frame`` in ``in_frame`` (default: the root link) with the joints ``at`` (name -> value text with
-    an optional unit; 0 where not given).
+def pose(robot: Robot, frame: str, *, in_frame: str | None = None, at: Mapping[str, str] | None = None) -> Pose:
+    """The pose of ``frame`` in ``in_frame`` (default: the root link) of the read ``robot`` with the joints ``at``
+    (name -> value text with an optional unit; 0 where not given).
 
     Raises:
-        XacrokitError: unreadable input, an unknown frame or joint (with the closest names), a value that does not
-            parse.
-        SpecErrors: an invalid spec (located).
+        UnknownName: an unknown frame or joint (with the closest names); JointValueError: a value that does not
+            parse; XacrokitError: a robot the kinematics cannot take (and, given a path, unreadable input).
     """
-    robot = load_kinematics(path, mappings, package_paths=package_paths)
-    values, warnings = joint_values(robot, at or {})
-    return _pose(robot, frame, in_frame or robot.root, values, warnings)
+    model = read_robot(robot).kinematics
+    values, warnings = joint_values(model, at or {})
+    return _pose(model, frame, in_frame or model.root, values, warnings)
 
 
-def jacobian(
-    path: str | os.PathLike[str],
-    frame: str,
-    *,
-    in_frame: str | None = None,
-    at: Mapping[str, str] | None = None,
-    mappings: Mapping[str, str] | None = None,
-    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
-) -> Jacobian:
+def jacobian(robot: Robot, frame: str, *, in_frame: str | None = None, at: Mapping[str, str] | None = None) -> Jacobian:
     """The geometric Jacobian of ``frame``'s origin (see the module's conventions) at the joints ``at``.
 
     Raises:
@@ -101,19 +90,19 @@ def jacobian(
     """
     import pinocchio as pin
 
-    robot = load_kinematics(path, mappings, package_paths=package_paths)
-    values, warnings = joint_values(robot, at or {})
-    placed = _pose(robot, frame, in_frame or robot.root, values, warnings)
-    q = robot.configuration(values)
-    target, base = robot.frame_id(frame, "FRAME"), robot.frame_id(placed.in_frame, "--in")
-    world = pin.computeFrameJacobian(robot.model, robot.data, q, target, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
-    world = np.asarray(world).reshape(6, robot.model.nv)  # (pinocchio gives a 1-DOF robot's as a vector)
-    columns = {j.name: world[:, j.v_index].copy() for j in robot.joints}
-    for follower in robot.followers:
+    model = read_robot(robot).kinematics
+    values, warnings = joint_values(model, at or {})
+    placed = _pose(model, frame, in_frame or model.root, values, warnings)
+    q = model.configuration(values)
+    target, base = model.frame_id(frame), model.frame_id(placed.in_frame)
+    world = pin.computeFrameJacobian(model.model, model.data, q, target, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+    world = np.asarray(world).reshape(6, model.model.nv)  # (pinocchio gives a 1-DOF robot's as a vector)
+    columns = {j.name: world[:, j.v_index].copy() for j in model.joints}
+    for follower in model.followers:
         columns[follower.leader] = columns[follower.leader] + follower.multiplier * world[:, follower.joint.v_index]
-    turn = robot.data.oMf[base].rotation.T  # (world axes -> IN's axes)
+    turn = model.data.oMf[base].rotation.T  # (world axes -> IN's axes)
     matrix = np.array([np.concatenate([turn @ c[:3], turn @ c[3:]]) for c in columns.values()]).T
-    return Jacobian(placed, [j.name for j in robot.joints], matrix.reshape(6, len(robot.joints)))
+    return Jacobian(placed, [j.name for j in model.joints], matrix.reshape(6, len(model.joints)))
 
 
 def joint_torques(jac: Jacobian, wrench: Sequence[float]) -> np.ndarray:
@@ -121,6 +110,15 @@ def joint_torques(jac: Jacobian, wrench: Sequence[float]) -> np.ndarray:
     w = np.zeros(6)
     w[: len(wrench)] = wrench
     return np.asarray(jac.matrix.T @ w)
+
+
+class MovingFrame(XacrokitError):
+    """The frame a target is given in (``frame``) moves with a joint (``joint``); the command line says which option
+    named it."""
+
+    def __init__(self, frame: str, joint: str) -> None:
+        super().__init__(f"frame {frame!r} moves with joint {joint!r}; give a frame fixed to the root")
+        self.frame, self.joint = frame, joint
 
 
 @dataclass(frozen=True)
@@ -135,7 +133,7 @@ class Solutions:
     closest: tuple[dict[str, float], float] | None
 
 
-def _chain(robot: KinematicRobot, frame: int) -> Chain:
+def _chain(robot: KinematicModel, frame: int) -> Chain:
     columns = {j.name: [(j.v_index, 1.0)] for j in robot.joints}
     for follower in robot.followers:
         columns[follower.leader].append((follower.joint.v_index, follower.multiplier))
@@ -150,49 +148,49 @@ def _chain(robot: KinematicRobot, frame: int) -> Chain:
 
 
 def inverse_kinematics(
-    path: str | os.PathLike[str],
+    robot: Robot,
     frame: str,
     to: Sequence[float],
     *,
     in_frame: str | None = None,
     position_only: bool = False,
     every: bool = False,
-    mappings: Mapping[str, str] | None = None,
-    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
 ) -> Solutions:
     """Joint values within the limits that put ``frame`` at ``to`` (x, y, z in m, then roll, pitch, yaw in rad,
     URDF's convention; 3 numbers or ``position_only``: the position only) in ``in_frame`` (default: the root link;
     it must not move with a joint). ``every``: every distinct solution of the STARTS starts, else the first found.
 
     Raises:
-        XacrokitError: as :func:`pose`, or an ``in_frame`` that moves with a joint.
+        XacrokitError: as :func:`pose`, an ``in_frame`` that moves with a joint (:class:`MovingFrame`), or a robot
+            without a joint to move.
     """
     import pinocchio as pin
 
     from ..shared.transforms import rpy_matrix
 
-    robot = load_kinematics(path, mappings, package_paths=package_paths)
-    target_id, base = robot.frame_id(frame, "FRAME"), robot.frame_id(in_frame or robot.root, "--in")
-    if robot.model.frames[base].parentJoint != 0:
-        moved_by = robot.model.names[robot.model.frames[base].parentJoint]
-        raise XacrokitError(f"--in {in_frame}: it moves with joint {moved_by!r}; give a frame fixed to the root")
-    if not robot.joints:
-        raise XacrokitError(f"{path}: the robot has no revolute, continuous or prismatic joint to move")
+    read = read_robot(robot)
+    model = read.kinematics
+    target_id, base = model.frame_id(frame), model.frame_id(in_frame or model.root)
+    if model.model.frames[base].parentJoint != 0:
+        moved_by = model.model.names[model.model.frames[base].parentJoint]
+        raise MovingFrame(in_frame or model.root, moved_by)
+    if not model.joints:
+        raise XacrokitError(f"{read.path}: the robot has no revolute, continuous or prismatic joint to move")
     position_only = position_only or len(to) == 3
-    _placed(robot, robot.configuration({}))
+    _placed(model, model.configuration({}))
     rotation = rpy_matrix(*to[3:6]) if not position_only else np.eye(3)
-    goal = robot.data.oMf[base] * pin.SE3(rotation, np.array(to[:3], dtype=float))
-    chain = _chain(robot, target_id)
+    goal = model.data.oMf[base] * pin.SE3(rotation, np.array(to[:3], dtype=float))
+    chain = _chain(model, target_id)
     found = []
-    for start in starts(chain, np.zeros(len(robot.joints))):
+    for start in starts(chain, np.zeros(len(model.joints))):
         values, error = solve(chain, goal, position_only=position_only, start=start)
         found.append((values, error))
         if error <= REACHED and not every:
             break
-    names = [j.name for j in robot.joints]
+    names = [j.name for j in model.joints]
     named = [(dict(zip(names, map(float, v), strict=True)), e) for v, e in found]
     reached = [
         (dict(zip(names, map(float, v), strict=True)), e) for v, e in distinct([f for f in found if f[1] <= REACHED])
     ]
     closest = None if reached else min(named, key=lambda item: item[1])
-    return Solutions(frame, in_frame or robot.root, names, reached, closest)
+    return Solutions(frame, in_frame or model.root, names, reached, closest)

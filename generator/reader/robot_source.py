@@ -1,21 +1,17 @@
-"""The one reader of robots: every command that takes a robot (check, view, render, graph, size, export, import)
-reads it here. A URDF, xacro document, spec or scene becomes URDF text (:func:`read_source`: with what it came from,
-a spec's model, lines and warnings and the files its package will carry), and :func:`robot_text` hands the text on
-with the packages its ``package://`` URIs may name (a spec's own meshes staged where its package will carry them);
-``shared.ros_packages.mesh_file`` resolves a mesh URI with them. The text is walked through
-:mod:`xacrokit.shared.urdf_view`.
+"""A robot's file to URDF text: a URDF read, a xacro document expanded, a spec generated in memory
+(:func:`read_source`, with what it came from: a spec's model, lines and warnings and the files its package will
+carry). :mod:`xacrokit.reader.read_robot` makes the read robot every command takes from it.
 
 A URDF that uses a namespace prefix it never declares (``<limit drake:acceleration="..."/>``: check's U003; every
 URDF consumer reads past it) is handed on with those names in a namespace of their own
-(``urn:xacrokit:undeclared:PREFIX``), so that the XML readers behind these commands read it too."""
+(``urn:xacrokit:undeclared:PREFIX``), so that the XML readers behind these commands read it too (:func:`declared`)."""
 
 from __future__ import annotations
 
-import contextlib
 import math
 import os
 import re
-from collections.abc import Iterator, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -24,11 +20,11 @@ from ..errors import SpecError, XacrokitError
 from ..shared.input_files import read_input, require_regular_file
 from ..shared.ros_packages import with_nearby_packages
 from . import InputKind
+from .robot_input import RobotInput
 
 if TYPE_CHECKING:
     from ..model import Robot
 
-Packages = dict[str, str | os.PathLike[str]]
 MAX_URDF_BYTES = 256 * 1024 * 1024  # a URDF with meshes inlined runs to megabytes; 256 MiB is far beyond any robot
 
 
@@ -70,39 +66,31 @@ class RobotSource:
     carried: dict[str, Any] = field(default_factory=dict)
 
 
-def read_source(
-    path: Path,
-    mappings: Mapping[str, str] | None = None,
-    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
-) -> RobotSource:
-    """The robot at ``path`` as URDF text: a spec generated in memory (never written), a xacro document expanded with
-    ``mappings``, a URDF read (a regular file of at most MAX_URDF_BYTES). A URDF or xacro file inside a ROS package
-    finds that package and its workspace siblings for ``package://`` and ``$(find)`` by itself.
+def read_source(robot: RobotInput) -> RobotSource:
+    """The robot ``robot`` names as URDF text: a spec generated in memory (never written), a xacro document expanded
+    with its mappings, a URDF read (a regular file of at most MAX_URDF_BYTES). A URDF or xacro file inside a ROS
+    package finds that package and its workspace siblings for ``package://`` and ``$(find)`` by itself.
 
     Raises:
         XacrokitError: unreadable input, or name:=value arguments for input that is not xacro.
         SpecErrors: an invalid spec (located); ExpandError: a xacro document that does not expand.
     """
+    path = robot.path
     kind = input_kind(path)
-    if mappings and kind != "xacro":
+    if robot.mappings and kind != "xacro":
         raise XacrokitError("name:=value arguments only apply to xacro input")
     if kind == "spec":  # (a spec's own reader says why it cannot be read, located)
-        from ..model import Robot
-        from ..pipeline import spec_urdf  # (the whole generator: loaded for spec input only)
-
-        described = spec_urdf(path)
-        robot = described.model if isinstance(described.model, Robot) else None  # (only a robot has DH arms)
-        carried = dict(described.model.carried_files)
-        return RobotSource(described.urdf, kind, package_paths, robot, described.lines, described.warnings, carried)
+        return _spec_source(robot)
     try:
         require_regular_file(path, MAX_URDF_BYTES)
     except OSError as exc:
         raise XacrokitError(f"cannot read {path}: {exc.strerror}") from None
-    packages = with_nearby_packages(path, package_paths)
+    packages = with_nearby_packages(path, robot.packages)
     if kind == "xacro":
         from ..expansion.xacro_expand import expand_file  # (xacro: loaded for xacro input only)
 
-        return RobotSource(expand_file(path, mappings, package_paths=packages), kind, packages)
+        text = expand_file(path, robot.mappings, package_paths=packages, trust=robot.trust)
+        return RobotSource(text, kind, packages)
     try:
         return RobotSource(read_input(path, MAX_URDF_BYTES).decode("utf-8"), kind, packages)
     except (OSError, UnicodeDecodeError) as exc:
@@ -110,51 +98,26 @@ def read_source(
         raise XacrokitError(f"cannot read {path}: {why}") from None
 
 
-@contextlib.contextmanager
-def robot_text(
-    path: str | os.PathLike[str],
-    mappings: Mapping[str, str] | None = None,
-    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
-    *,
-    meshes: bool = True,
-) -> Iterator[tuple[str, Packages]]:
-    """(URDF text, packages) of the robot at ``path``, for the ``with`` block (a spec's staged meshes live that long;
-    ``meshes=False`` for a reader of the text alone: nothing staged).
+def _spec_source(robot: RobotInput) -> RobotSource:
+    """A robot or scene spec's URDF, generated in memory (a scene's third-party macros trusted as ``robot`` says)."""
+    from ..expansion.expression_guard import trusting
+    from ..model import Robot
+    from ..pipeline import spec_urdf  # (the whole generator: loaded for spec input only)
 
-    Raises:
-        XacrokitError: unreadable input, or name:=value arguments for input that is not xacro.
-        SpecErrors: an invalid spec (located).
-    """
-    with robot_read(path, mappings, package_paths, meshes=meshes) as (_, text, packages):
-        yield text, packages
-
-
-@contextlib.contextmanager
-def robot_read(
-    path: str | os.PathLike[str],
-    mappings: Mapping[str, str] | None = None,
-    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
-    *,
-    meshes: bool = True,
-) -> Iterator[tuple[RobotSource, str, Packages]]:
-    """As :func:`robot_text`, with the :class:`RobotSource` too (a spec's robot model, for what a URDF cannot say:
-    its named poses)."""
-    from ..write.atomic import staged_packages
-
-    where = Path(path)
-    source = read_source(where, mappings, package_paths)
-    text = declared(source.text, str(where) if source.kind == "urdf" else f"{where} (as expanded)")
-    with staged_packages(source.carried if meshes else {}) as staged:
-        yield source, text, {**staged, **(source.packages or {})}
+    with trusting(bool(robot.trust)):
+        described = spec_urdf(robot.path)
+    model = described.model if isinstance(described.model, Robot) else None  # (only a robot has DH arms)
+    carried = dict(described.model.carried_files)
+    return RobotSource(described.urdf, "spec", robot.packages, model, described.lines, described.warnings, carried)
 
 
 UNDECLARED = "urn:xacrokit:undeclared:"
 
 
-def declared(text: str, where: str = "<robot>") -> str:
-    """``text`` itself when it is well-formed XML with its namespaces declared and a ``<robot>`` root; when its only
-    faults are namespace prefixes used without a declaration, the same document with each such name put in the
-    namespace ``urn:xacrokit:undeclared:PREFIX``.
+def declared(text: str, where: str = "<robot>") -> tuple[str, Any]:
+    """``text`` itself and its parsed ``<robot>`` root when it is well-formed XML with its namespaces declared; when
+    its only faults are namespace prefixes used without a declaration, the same document with each such name put in
+    the namespace ``urn:xacrokit:undeclared:PREFIX`` (and its root, so changed: lines are the file's).
 
     Raises:
         XacrokitError: not well-formed XML (located: ``where:line``), or a root that is not ``<robot>``.
@@ -167,7 +130,7 @@ def declared(text: str, where: str = "<robot>") -> str:
     if parsed.root is None:
         raise XacrokitError(f"{parsed.where(where)}: {parsed.error}: not a URDF")
     if not parsed.undeclared:
-        return text
+        return text, parsed.root
     for element in parsed.root.iter(etree.Element):
         if ":" in element.tag and not element.tag.startswith("{"):
             prefix, _, local = element.tag.partition(":")
@@ -175,7 +138,7 @@ def declared(text: str, where: str = "<robot>") -> str:
         for key in [k for k in element.attrib if ":" in k and not k.startswith("{")]:
             prefix, _, local = key.partition(":")
             element.set(f"{{{UNDECLARED}{prefix}}}{local}", element.attrib.pop(key))
-    return str(etree.tostring(parsed.root, encoding="unicode"))
+    return str(etree.tostring(parsed.root, encoding="unicode")), parsed.root
 
 
 def urdf_floats(text: str | None, count: int, default: float = 0.0, *, where: str = "") -> list[float]:

@@ -23,10 +23,11 @@ import dataclasses
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
-from .sized_robot import GRAVITY, SizingRobot
+from .sized_robot import GRAVITY, LoadedRobot
 
 
 @dataclass(frozen=True)
@@ -67,27 +68,26 @@ class BaseSizing:
         return math.fsum(self.powers)
 
 
-def find_wheels(robot: SizingRobot, text: str, named: Sequence[str] = ()) -> list[Wheel]:
+def find_wheels(robot: LoadedRobot, named: Sequence[str] = ()) -> list[Wheel]:
     """The wheels: continuous joints whose child link has a cylinder (or those ``named``), with radius, inertia about
     the axle (pinocchio's body inertia, moved to the joint's axis) and limits."""
-    from ..shared.urdf_view import read_view
+    from ..reader.kinematic_model import unit_axis
 
-    view = read_view(text)
+    view = robot.robot.view
     radii = {}
     for link in view.links:  # (its first cylinder collision's radius, else its first cylinder visual's)
         cylinders = [g.shape for g in (*link.collisions, *link.visuals) if g.shape and g.shape.kind == "cylinder"]
         if cylinders and cylinders[0].get("radius"):
             radii[link.name] = float(cylinders[0].get("radius") or "")
     children = {j.name: j.child for j in view.joints if j.child is not None}
-    axes = {j.name: j.axis for j in view.joints}
+    declared = {j.name: j for j in view.joints}
     found = []
     for joint in robot.joints:
         child = children.get(joint.name)
         wanted = joint.name in named if named else joint.kind == "continuous" and child in radii
         if not wanted or child not in radii:
             continue
-        axis = np.array([float(v) for v in (axes.get(joint.name) or "1 0 0").split()])
-        axis = axis / np.linalg.norm(axis)
+        axis = unit_axis(declared[joint.name])
         body = robot.model.inertias[robot.model.getJointId(joint.name)]
         lever = np.asarray(body.lever)
         about_origin = np.asarray(body.inertia) + body.mass * (lever @ lever * np.eye(3) - np.outer(lever, lever))
@@ -95,11 +95,12 @@ def find_wheels(robot: SizingRobot, text: str, named: Sequence[str] = ()) -> lis
     return found
 
 
-def whole_mass(text: str, extra: float) -> float:
-    """The robot's mass: every link's (a free-flyer root, so that the root link counts) plus ``extra``."""
+def whole_mass(free_floating: Any, extra: float) -> float:
+    """The robot's mass: every link's (its model on a free-flyer root, so that the root link counts) plus
+    ``extra``."""
     import pinocchio as pin
 
-    return float(pin.computeTotalMass(pin.buildModelFromXML(text, pin.JointModelFreeFlyer()))) + extra
+    return float(pin.computeTotalMass(free_floating)) + extra
 
 
 def size_base(drive: BaseMotion, wheels: Sequence[Wheel], mass: float, gravity: float = GRAVITY) -> BaseSizing:
@@ -114,14 +115,14 @@ def size_base(drive: BaseMotion, wheels: Sequence[Wheel], mass: float, gravity: 
     return BaseSizing(mass, force, tuple(wheels), torques, speeds, powers)
 
 
-def dynamics_force(text: str, drive: BaseMotion, extra: float, gravity: float = GRAVITY) -> float:
+def dynamics_force(free_floating: Any, drive: BaseMotion, extra: float, gravity: float = GRAVITY) -> float:
     """The check beside the closed form: the force along the slope that pinocchio's inverse dynamics needs on a
     free-flyer root to accelerate the whole robot (joints still, ``extra`` kg of payload on the root) at ``a`` up
     the slope, gravity turned by it: m a + m g sin(theta) when the closed form is right (rolling resistance is not a
     body force: it is added after)."""
     import pinocchio as pin
 
-    model = pin.buildModelFromXML(text, pin.JointModelFreeFlyer())
+    model = free_floating.copy()  # (the read robot's model stays as it is)
     if extra:
         model.appendBodyToJoint(1, pin.Inertia(extra, np.zeros(3), np.zeros((3, 3))), pin.SE3.Identity())
     model.gravity = pin.Motion(
@@ -133,10 +134,11 @@ def dynamics_force(text: str, drive: BaseMotion, extra: float, gravity: float = 
     return float(tau[0])
 
 
-def base_of(robot: SizingRobot, drive: BaseMotion, payload_mass: float) -> BaseSizing | str:
+def base_of(robot: LoadedRobot, drive: BaseMotion, payload_mass: float) -> BaseSizing | str:
     """The base sizing of the robot, or why there is none (no wheels found)."""
-    wheels = find_wheels(robot, robot.text, drive.wheels)
+    wheels = find_wheels(robot, drive.wheels)
     if not wheels:
         return "no wheels found (continuous joints whose child link is drawn as a cylinder); name them in mobile.wheels"
-    sized = size_base(drive, wheels, whole_mass(robot.text, payload_mass), robot.gravity)
-    return dataclasses.replace(sized, dynamics_force=dynamics_force(robot.text, drive, payload_mass, robot.gravity))
+    free = robot.robot.free_floating
+    sized = size_base(drive, wheels, whole_mass(free, payload_mass), robot.gravity)
+    return dataclasses.replace(sized, dynamics_force=dynamics_force(free, drive, payload_mass, robot.gravity))

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .sized_robot import SizingRobot, configurations
+from .sized_robot import LoadedRobot, joint_configurations
 
 QUINTIC_SPEED = 15.0 / 8.0  # peak ds/du of 10u^3 - 15u^4 + 6u^5
 QUINTIC_ACCELERATION = 10.0 / math.sqrt(3.0)  # peak |d2s/du2|
@@ -238,7 +238,7 @@ def trajectory(motion: Motion) -> Trajectory:
     )
 
 
-def inverse_dynamics(robot: SizingRobot, path: Trajectory) -> np.ndarray:
+def inverse_dynamics(robot: LoadedRobot, path: Trajectory) -> np.ndarray:
     """The moving joints' torques at every sample: rnea(q, v, a) with the loads as external forces (each load's
     force and moment moved to its frame's parent joint), one row per sample; with ``robot.joint_friction``, plus each
     joint's viscous damping and Coulomb friction as the URDF's <dynamics> gives them (pinocchio reads them):
@@ -247,7 +247,7 @@ def inverse_dynamics(robot: SizingRobot, path: Trajectory) -> np.ndarray:
 
     model, data = robot.model, robot.data
     rows = [j.v_index for j in robot.joints]
-    qs = configurations(robot, path.q)
+    qs = joint_configurations(robot, path.q)
     vs, accelerations = np.zeros((len(path.t), model.nv)), np.zeros((len(path.t), model.nv))
     vs[:, rows], accelerations[:, rows] = path.v, path.a
     result = np.empty((len(path.t), len(rows)))
@@ -269,13 +269,13 @@ def inverse_dynamics(robot: SizingRobot, path: Trajectory) -> np.ndarray:
     return result
 
 
-def joint_motions(robot: SizingRobot, path: Trajectory, torque: np.ndarray) -> list[JointMotion]:
+def joint_motions(robot: LoadedRobot, path: Trajectory, torque: np.ndarray) -> list[JointMotion]:
     """Per joint: the peaks, the RMS torque over the whole cycle and the energies (trapezoidal rule in time), and the
     largest inertia the joint moves (the mass matrix's diagonal, pinocchio's crba)."""
     import pinocchio as pin
 
     rows = [j.v_index for j in robot.joints]
-    qs = configurations(robot, path.q)
+    qs = joint_configurations(robot, path.q)
     diagonals = np.empty((len(path.t), robot.model.nv))
     for k in range(len(path.t)):
         diagonals[k] = np.diagonal(pin.crba(robot.model, robot.data, qs[k]))
@@ -302,20 +302,21 @@ def joint_motions(robot: SizingRobot, path: Trajectory, torque: np.ndarray) -> l
     return result
 
 
-def waypoint_errors(robot: SizingRobot, waypoints: Sequence[Sequence[float]]) -> list[str]:
+def waypoint_errors(robot: LoadedRobot, waypoints: Sequence[Sequence[float]]) -> list[str]:
     """Waypoint values outside their joint's range, said as 'waypoint k: joint value outside [lower, upper]'."""
     problems = []
     for k, point in enumerate(waypoints):
         for joint, value in zip(robot.joints, point, strict=True):
-            if joint.kind != "continuous" and not joint.lower - 1e-12 <= value <= joint.upper + 1e-12:
+            if joint.kind != "continuous" and not joint.span[0] - 1e-12 <= value <= joint.span[1] + 1e-12:
                 problems.append(
-                    f"waypoint {k}: {joint.name} = {value:g} is outside its range [{joint.lower:g}, {joint.upper:g}]"
+                    f"waypoint {k}: {joint.name} = {value:g} is outside its range "
+                    f"[{joint.span[0]:g}, {joint.span[1]:g}]"
                 )
     return problems
 
 
 def reach(
-    robot: SizingRobot,
+    robot: LoadedRobot,
     frame: str,
     xyz: Sequence[float],
     rpy: Sequence[float] | None,
@@ -333,8 +334,8 @@ def reach(
     from ..shared.transforms import rpy_matrix
 
     target = pin.SE3(rpy_matrix(*rpy) if rpy is not None else np.eye(3), np.array(xyz, dtype=float))
-    lower = np.array([j.lower for j in robot.joints])
-    upper = np.array([j.upper for j in robot.joints])
+    lower = np.array([j.span[0] for j in robot.joints])
+    upper = np.array([j.span[1] for j in robot.joints])
     columns = [[(j.v_index, 1.0)] for j in robot.joints]
     chain = Chain(robot.model, robot.model.getFrameId(frame), columns, lower, upper, robot.configuration)
     values, error = solve(chain, target, position_only=rpy is None, start=start)

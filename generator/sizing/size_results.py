@@ -20,7 +20,7 @@ import numpy as np
 
 from .mobile import BaseMotion, BaseSizing
 from .motion import JointMotion, Trajectory
-from .sized_robot import GRAVITY, Load, Payload, SizingRobot
+from .sized_robot import GRAVITY, Load, LoadedRobot, Payload
 from .static import StaticPeak
 
 if TYPE_CHECKING:
@@ -70,7 +70,7 @@ class SizeReport:
     @staticmethod
     def of(
         path: str,
-        robot: SizingRobot,
+        robot: LoadedRobot,
         peaks: list[StaticPeak],
         payloads: tuple[Payload, ...],
         loads: tuple[Load, ...],

@@ -34,7 +34,7 @@ from .motion import (
     segment_timing,
     waypoint_errors,
 )
-from .sized_robot import Load, Payload, SizingRobot, frame_names
+from .sized_robot import Load, LoadedRobot, Payload, frame_names
 
 
 @dataclass(frozen=True)
@@ -176,7 +176,7 @@ def _optional(read: _Reader, item: dict[str, Any], key: str, kind: Kind, where: 
     return read.quantity(item[key], kind, (*where, key), positive=True) if key in item else None
 
 
-def motion_of(sizing: Sizing, robot: SizingRobot) -> Motion | None:
+def motion_of(sizing: Sizing, robot: LoadedRobot) -> Motion | None:
     """The sizing file's motion for ``robot``: waypoints in the robot's joint order (a joint left out keeps its
     value), limits per joint. Raises SpecErrors (located) for an unknown joint, a missing limit, a value that does
     not parse or a waypoint outside a joint's range."""
@@ -235,7 +235,7 @@ def motion_of(sizing: Sizing, robot: SizingRobot) -> Motion | None:
     return motion
 
 
-def _duration_errors(raw: RawSpec, motion: Motion, robot: SizingRobot, data: dict[str, Any]) -> list[SpecError]:
+def _duration_errors(raw: RawSpec, motion: Motion, robot: LoadedRobot, data: dict[str, Any]) -> list[SpecError]:
     """A segment asked to last less than its joints' limits allow, at the duration that asks it, with the shortest."""
     errors = []
     points = [np.array(w, dtype=float) for w in motion.waypoints]
@@ -254,7 +254,7 @@ def _duration_errors(raw: RawSpec, motion: Motion, robot: SizingRobot, data: dic
     return errors
 
 
-def _sampling_error(raw: RawSpec, motion: Motion, robot: SizingRobot, data: dict[str, Any]) -> SpecError | None:
+def _sampling_error(raw: RawSpec, motion: Motion, robot: LoadedRobot, data: dict[str, Any]) -> SpecError | None:
     """The cycle sampled beyond MAX_SAMPLES, located at what makes it long (:func:`_why_long`); None when it is
     within the cap."""
     points = [np.array(w, dtype=float) for w in motion.waypoints]
@@ -275,7 +275,7 @@ def _sampling_error(raw: RawSpec, motion: Motion, robot: SizingRobot, data: dict
 
 
 def _why_long(
-    motion: Motion, robot: SizingRobot, data: dict[str, Any], timings: list[SegmentTiming]
+    motion: Motion, robot: LoadedRobot, data: dict[str, Any], timings: list[SegmentTiming]
 ) -> tuple[PathKey, str]:
     """Where a cycle too long to sample comes from, and why: a step finer than the default, the dwell, the limit
     that sets its longest segment, or many segments."""
@@ -315,7 +315,7 @@ IK_REACHED = 1e-6  # m / rad: a pose error left above this is "unreachable"
 
 
 def _reached(
-    read: _Reader, robot: SizingRobot, pose: dict[str, Any], where: PathKey, start: list[float]
+    read: _Reader, robot: LoadedRobot, pose: dict[str, Any], where: PathKey, start: list[float]
 ) -> list[float]:
     """The joint values inverse kinematics finds for a waypoint's pose, from the previous waypoint's."""
     raw = read.raw
@@ -359,7 +359,7 @@ def _reached(
     return values
 
 
-def _per_joint(read: _Reader, given: Any, robot: SizingRobot, what: str, where: PathKey) -> list[float]:
+def _per_joint(read: _Reader, given: Any, robot: LoadedRobot, what: str, where: PathKey) -> list[float]:
     """A limit for every moving joint: one value for all, a mapping by name, or (speeds) the URDF's velocity limit."""
     raw = read.raw
     values = []
@@ -391,7 +391,7 @@ def _per_joint(read: _Reader, given: Any, robot: SizingRobot, what: str, where: 
     return values
 
 
-def name_errors(sizing: Sizing, robot: SizingRobot) -> list[SpecError]:
+def name_errors(sizing: Sizing, robot: LoadedRobot) -> list[SpecError]:
     """The frames and joints the sizing file names that the robot lacks, located, with the closest name."""
     raw = sizing.raw
     if raw is None:

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .sized_robot import SizingRobot
+from .sized_robot import LoadedRobot
 
 SAMPLES_PER_JOINT = 256  # uniform random samples per moving joint (seeded: the same search every run), capped
 MAX_SAMPLES = 8192
@@ -42,7 +42,7 @@ class StaticPeak:
     moving_it: tuple[str, ...] = ()
 
 
-def torques(robot: SizingRobot, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def torques(robot: LoadedRobot, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(gravity, loads) joint torques of the moving joints at ``values``: g(q) and -J(q)^T w."""
     import pinocchio as pin
 
@@ -60,7 +60,7 @@ def torques(robot: SizingRobot, values: np.ndarray) -> tuple[np.ndarray, np.ndar
     return gravity, loads
 
 
-def gravity_gradient(robot: SizingRobot, values: np.ndarray) -> np.ndarray:
+def gravity_gradient(robot: LoadedRobot, values: np.ndarray) -> np.ndarray:
     """d g / d q of the moving joints at ``values`` (row: the torque, column: the joint), pinocchio's
     computeGeneralizedGravityDerivatives (for a continuous joint, along its angle)."""
     import pinocchio as pin
@@ -70,13 +70,13 @@ def gravity_gradient(robot: SizingRobot, values: np.ndarray) -> np.ndarray:
     return np.asarray(derivative)[np.ix_(rows, rows)]
 
 
-def static_peaks(robot: SizingRobot, *, seed: int = 0) -> list[StaticPeak]:
+def static_peaks(robot: LoadedRobot, *, seed: int = 0) -> list[StaticPeak]:
     """The worst static torque of every moving joint over the joints' ranges (see the module's notes)."""
     from scipy.optimize import minimize
 
     joints = robot.joints
-    lower = np.array([j.lower for j in joints])
-    upper = np.array([j.upper for j in joints])
+    lower = np.array([j.span[0] for j in joints])
+    upper = np.array([j.span[1] for j in joints])
     count = min(MAX_SAMPLES, SAMPLES_PER_JOINT * len(joints))
     unit = np.random.default_rng(seed).random((count, len(joints)))
     samples = [*(lower + unit * (upper - lower)), *_landmarks(lower, upper)]
@@ -132,7 +132,7 @@ def static_peaks(robot: SizingRobot, *, seed: int = 0) -> list[StaticPeak]:
 
 
 def _moving_it(
-    robot: SizingRobot, pose: np.ndarray, index: int, ranges: tuple[np.ndarray, np.ndarray], tolerance: float
+    robot: LoadedRobot, pose: np.ndarray, index: int, ranges: tuple[np.ndarray, np.ndarray], tolerance: float
 ) -> tuple[str, ...]:
     """The joints whose value changes joint ``index``'s torque from ``pose``: each tried at the ends and the middle
     of its range, the others held (a shoulder pan about the vertical changes no gravity torque: it is left out)."""

@@ -22,14 +22,18 @@ import os
 import urllib.parse
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..errors import XacrokitError
 from ..shared.joint_types import rest_position
-from ..shared.urdf_view import Geometry, Inertial, Joint, Link, Origin, Shape, number, numbers
+from ..shared.urdf_view import Geometry, Inertial, Joint, Link, Origin, Shape, UrdfView, number, numbers
 from .page_meshes import PageMeshes
+
+if TYPE_CHECKING:
+    from ..reader.read_robot import ReadRobot
+    from ..reader.robot_input import RobotInput
 
 THREE_VERSION = "0.170.0"
 THREE_TARBALL = f"https://registry.npmjs.org/three/-/three-{THREE_VERSION}.tgz"  # (where the shipped files come from)
@@ -72,7 +76,7 @@ def three_sources() -> dict[str, str]:
     return found
 
 
-def robot_json(text: str, read: Any, poses: Mapping[str, Mapping[str, float]] | None = None) -> dict[str, Any]:
+def robot_json(view: UrdfView, read: Any, poses: Mapping[str, Mapping[str, float]] | None = None) -> dict[str, Any]:
     """The robot as the page reads it: links with their visuals, joints with their origin, axis, limits, mimic,
     ``home``: where each moving joint starts (:func:`~xacrokit.reader.named_poses.named_poses` of a spec's
     ``poses``; a joint it leaves out at 0, or its limit nearest 0), ``meshes``: each mesh file once
@@ -81,9 +85,7 @@ def robot_json(text: str, read: Any, poses: Mapping[str, Mapping[str, float]] | 
     XacrokitError for it), whose visual the page goes without and lists."""
     from ..model import HOME_POSE
     from ..reader.named_poses import named_poses
-    from ..shared.urdf_view import read_view
 
-    view = read_view(text)
     missing: list[str] = []  # (a mesh the page cannot show: said in the page and by the command)
     colours = view.colours()
     meshes = PageMeshes(read)
@@ -216,17 +218,15 @@ def _origin(origin: Origin | None) -> dict[str, list[float]]:
 
 
 def page(
-    path: str | os.PathLike[str],
-    mappings: Mapping[str, str] | None = None,
+    robot: ReadRobot | RobotInput | str | os.PathLike[str],
     *,
-    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
     poller: str = "",
     sizing: str | os.PathLike[str] | None = None,
     missing: list[str] | None = None,
 ) -> str:
-    """The HTML page of the robot at ``path`` (see the module's notes); ``poller``: the script ``--watch`` adds (it
-    may then ask its own origin, and only that); ``sizing``: a sizing file whose motion the page plays; ``missing``:
-    a list the meshes the page goes without are added to (the page lists them too).
+    """The HTML page of a read robot (or what to read; see the module's notes); ``poller``: the script ``--watch``
+    adds (it may then ask its own origin, and only that); ``sizing``: a sizing file whose motion the page plays;
+    ``missing``: a list the meshes the page goes without are added to (the page lists them too).
 
     Raises:
         XacrokitError: unreadable input, a sizing file without a motion, or three.js unavailable.
@@ -234,18 +234,19 @@ def page(
     """
     from ..reader.mesh_copies import mesh_reader
     from ..reader.named_poses import spec_poses
-    from ..reader.robot_source import robot_read
+    from ..reader.read_robot import read_robot
     from ..render import environment
 
-    with robot_read(path, mappings, package_paths) as (source, text, packages):
-        read = mesh_reader(Path(path), packages, process=False)  # (page_meshes merges by position alone)
-        robot = robot_json(text, read, spec_poses(source.robot))
+    read_in = read_robot(robot)
+    with read_in.mesh_packages() as packages:
+        read = mesh_reader(read_in.path, packages, process=False)  # (page_meshes merges by position alone)
+        shown = robot_json(read_in.view, read, spec_poses(read_in.spec))
     if missing is not None:
-        missing.extend(robot["missing"])
+        missing.extend(shown["missing"])
     if sizing is not None:
         from .page_motion import motion_json
 
-        robot["motion"] = motion_json(path, sizing, mappings, package_paths=package_paths)
+        shown["motion"] = motion_json(read_in, sizing)
     sources = three_sources()
     imports = {
         "three": _script_url(sources["three"]),
@@ -255,8 +256,8 @@ def page(
         environment()
         .get_template("viewer/view.html.j2")
         .render(
-            title=robot["name"],
-            robot_json=_script_json(robot),
+            title=shown["name"],
+            robot_json=_script_json(shown),
             import_map=_script_json({"imports": imports}),
             three_version=THREE_VERSION,
             poller=poller,

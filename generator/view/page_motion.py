@@ -11,24 +11,20 @@ from __future__ import annotations
 import base64
 import io
 import os
-from collections.abc import Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..errors import XacrokitError
 
+if TYPE_CHECKING:
+    from ..reader.read_robot import ReadRobot
+
 FRAME = 1.0 / 60.0  # the page's frame: no two samples sent closer in time
 MOST = 20_000  # samples at most (a 5-minute cycle at 60 per second is 18,000)
 
 
-def motion_json(
-    path: str | os.PathLike[str],
-    sizing: str | os.PathLike[str],
-    mappings: Mapping[str, str] | None = None,
-    *,
-    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
-) -> dict[str, Any]:
+def motion_json(robot: ReadRobot, sizing: str | os.PathLike[str]) -> dict[str, Any]:
     """The motion of the sizing file, as the page reads it: joint names, times (s), positions and torques per
     sample, and the torque plot (a PNG data: URL, the plot area's edges as fractions of the picture, and the times
     at its left and right edges).
@@ -39,7 +35,7 @@ def motion_json(
     """
     from ..sizing import size
 
-    report = size(path, mappings, sizing=sizing, package_paths=package_paths)
+    report = size(robot, sizing=sizing)
     if report.samples is None:
         raise XacrokitError(f"{sizing}: the sizing file has no motion to play (add motion: with waypoints)")
     trajectory, torque = report.samples

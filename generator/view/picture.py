@@ -12,11 +12,16 @@ import io
 import os
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..errors import XacrokitError
+
+if TYPE_CHECKING:
+    from ..reader.read_robot import ReadRobot
+    from ..reader.robot_input import RobotInput
+    from ..shared.urdf_view import UrdfView
 
 LIGHT = np.array([0.3, -0.5, 0.8]) / np.linalg.norm([0.3, -0.5, 0.8])
 VIEW = (22.0, -55.0)  # elevation and azimuth, degrees: the robot's front-left from above (x forward, z up)
@@ -24,29 +29,28 @@ GREY = (0.62, 0.64, 0.68)
 
 
 def render(
-    path: str | os.PathLike[str],
-    mappings: Mapping[str, str] | None = None,
+    robot: ReadRobot | RobotInput | str | os.PathLike[str],
     *,
     joints: Mapping[str, float] | None = None,
-    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
     size: tuple[int, int] = (800, 600),
 ) -> bytes:
-    """The PNG of the robot at ``joints`` (name -> rad or m; the others at 0).
+    """The PNG of a read robot (or what to read) at ``joints`` (name -> rad or m; the others at 0).
 
     Raises:
         XacrokitError: unreadable input, a mesh that cannot be found or read, or an unknown joint.
     """
-    from ..reader.robot_source import robot_text
+    from ..reader.read_robot import read_robot
 
-    with robot_text(path, mappings, package_paths) as (text, packages):
-        meshes = _placed_meshes(text, packages, Path(path), joints or {})
+    read = read_robot(robot)
+    with read.mesh_packages() as packages:
+        meshes = _placed_meshes(read, packages, joints or {})
     return _draw(meshes, size)
 
 
 def _placed_meshes(
-    text: str, packages: Mapping[str, str | os.PathLike[str]], urdf: Path, joints: Mapping[str, float]
+    robot: ReadRobot, packages: Mapping[str, str | os.PathLike[str]], joints: Mapping[str, float]
 ) -> list[tuple[np.ndarray, np.ndarray, tuple[float, float, float]]]:
-    """(vertices, faces, colour) of every visual of the robot read from ``urdf``, placed in the root link's frame."""
+    """(vertices, faces, colour) of every visual of the read robot, placed in the root link's frame."""
     import yourdfpy
 
     from ..reader.mesh_copies import mesh_root, require_mesh_file
@@ -58,9 +62,9 @@ def _placed_meshes(
         except (LookupError, ValueError) as exc:
             raise XacrokitError(f"mesh {fname!r}: {exc}") from None
 
-    from ..shared.urdf_view import length_problems, read_view
+    from ..shared.urdf_view import length_problems
 
-    view = read_view(text)
+    urdf, view = robot.path, robot.view
     if len(view.links) > MAX_LINKS:
         raise XacrokitError(
             f"the robot has {len(view.links):,} links; render draws at most {MAX_LINKS:,} (yourdfpy's scene takes "
@@ -69,7 +73,7 @@ def _placed_meshes(
     problems = length_problems(view)
     if problems:
         raise XacrokitError("cannot draw the robot: " + "; ".join(problems))
-    for element in _mesh_names(text):  # (yourdfpy opens them itself: each checked first, as mesh_reader would)
+    for element in _mesh_names(view):  # (yourdfpy opens them itself: each checked first, as mesh_reader would)
         file = Path(resolve(element))
         if not file.is_file():
             raise XacrokitError(f"mesh {element!r} is not there ({file}); the picture would miss it")
@@ -78,21 +82,22 @@ def _placed_meshes(
         except (LookupError, ValueError) as exc:
             raise XacrokitError(f"mesh {element!r}: {exc}") from None
         require_mesh_file(root, file, where=f"mesh {element!r}")
-    try:
-        robot = yourdfpy.URDF.load(io.StringIO(text), filename_handler=resolve, build_scene_graph=True)
+    try:  # (yourdfpy's own reader of the root already parsed: URDF.load would parse the text again)
+        described = yourdfpy.URDF._parse_robot(xml_element=_for_yourdfpy(view.root))
+        placed_robot = yourdfpy.URDF(robot=described, filename_handler=resolve, build_scene_graph=True)
     except XacrokitError:
         raise
     except Exception as exc:  # noqa: BLE001  (yourdfpy and trimesh raise what their readers raise)
         raise XacrokitError(f"cannot draw the robot: {type(exc).__name__}: {exc}") from None
-    unknown = sorted(set(joints) - set(robot.actuated_joint_names))
+    unknown = sorted(set(joints) - set(placed_robot.actuated_joint_names))
     if unknown:
         raise XacrokitError(f"--joint: no moving joint {', '.join(map(repr, unknown))} in the robot")
     if joints:
-        robot.update_cfg({name: float(value) for name, value in joints.items()})
+        placed_robot.update_cfg({name: float(value) for name, value in joints.items()})
     found = []
-    placed = world_transforms(robot.scene.graph)
-    for name, geometry in robot.scene.geometry.items():
-        for node in robot.scene.graph.geometry_nodes.get(name, []):
+    placed = world_transforms(placed_robot.scene.graph)
+    for name, geometry in placed_robot.scene.geometry.items():
+        for node in placed_robot.scene.graph.geometry_nodes.get(name, []):
             transform = placed[node]
             vertices = np.asarray(geometry.vertices) @ transform[:3, :3].T + transform[:3, 3]
             found.append((vertices, np.asarray(geometry.faces), _colour(geometry)))
@@ -120,14 +125,25 @@ def world_transforms(graph: Any) -> dict[str, np.ndarray]:
     return placed
 
 
-def _mesh_names(text: str) -> list[str]:
-    """The mesh files the robot's visuals name (what yourdfpy will open: each must be there)."""
-    from ..shared.urdf_view import read_view
+def _for_yourdfpy(root: Any) -> Any:
+    """A copy of the robot's root as yourdfpy's ``URDF.load`` makes it before reading it: comments stripped and
+    namespaces cleaned (the view's own root is left as it is)."""
+    import copy
 
+    from lxml import etree
+
+    element = copy.deepcopy(root)
+    etree.strip_tags(element, etree.Comment)
+    etree.cleanup_namespaces(element)
+    return element
+
+
+def _mesh_names(view: UrdfView) -> list[str]:
+    """The mesh files the robot's visuals name (what yourdfpy will open: each must be there)."""
     return sorted(
         {
             visual.shape.get("filename") or ""
-            for link in read_view(text).links
+            for link in view.links
             for visual in link.visuals
             if visual.shape is not None and visual.shape.kind == "mesh"
         }

@@ -12,13 +12,14 @@ from __future__ import annotations
 import os
 import shutil
 import subprocess
-from collections.abc import Mapping
 from typing import TYPE_CHECKING
 
 from ..errors import XacrokitError
 
 if TYPE_CHECKING:
-    from ..shared.urdf_view import Joint
+    from ..reader.read_robot import ReadRobot
+    from ..reader.robot_input import RobotInput
+    from ..shared.urdf_view import Joint, UrdfView
 
 
 DOT_SECONDS = 50  # the longest Graphviz may take to lay out an SVG (a chain of 20,000 links: about 100 s, then fails)
@@ -39,11 +40,8 @@ def _number(value: str | None) -> str:
         return str(value)
 
 
-def tree_dot(urdf: str, name: str | None = None) -> str:
-    """The DOT text of the URDF's kinematic tree."""
-    from ..shared.urdf_view import read_view
-
-    view = read_view(urdf)
+def tree_dot(view: UrdfView, name: str | None = None) -> str:
+    """The DOT text of a robot's kinematic tree (its view)."""
     lines = [
         f"digraph {dot_string(name or view.name or 'robot')} {{",
         "  rankdir=TB;",
@@ -81,24 +79,15 @@ def _joint_label(joint: Joint) -> list[str]:
     return parts
 
 
-def graph(
-    path: str | os.PathLike[str],
-    mappings: Mapping[str, str] | None = None,
-    *,
-    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
-) -> str:
-    """The DOT text of a URDF, xacro document, spec or scene's kinematic tree.
+def graph(robot: ReadRobot | RobotInput | str | os.PathLike[str]) -> str:
+    """The DOT text of a read robot's kinematic tree (a URDF, xacro document, spec or scene; or what to read).
 
     Raises:
         XacrokitError: unreadable input (SpecErrors for an invalid spec, located).
     """
-    from ..reader.robot_source import robot_text
+    from ..reader.read_robot import read_robot
 
-    with robot_text(path, mappings, package_paths, meshes=False) as (text, _):
-        try:
-            return tree_dot(text)
-        except Exception as exc:  # noqa: BLE001  (lxml's parse errors: the file is not XML)
-            raise XacrokitError(f"{path}: not a URDF: {exc}") from None
+    return tree_dot(read_robot(robot).view)
 
 
 def svg(dot: str) -> bytes:
