@@ -247,12 +247,13 @@ def mjcf(
     Raises:
         XacrokitError: a URDF MuJoCo cannot take (not a tree, a mesh that cannot be found or read, bad numbers).
     """
-    from ..shared.urdf_view import length_problems
+    from ..reader.kinematic_model import require_placeable
 
     view = robot.view
-    problems = length_problems(view)
-    if problems:
-        raise XacrokitError("MuJoCo cannot take the robot: " + "; ".join(problems))
+    try:
+        require_placeable(view)  # (the same values refused in the same words as pose, size and render)
+    except XacrokitError as exc:
+        raise XacrokitError(f"MuJoCo cannot take the robot: {exc}") from None
     tree = _tree(view)
     free = base == "free" or (base == "auto" and tree.root != "world" and _has_wheel(tree.joints, tree.links))
     export = Export(xml="")

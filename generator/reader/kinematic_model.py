@@ -84,7 +84,8 @@ class KinematicModel:
         """pinocchio's q: the joints at ``values`` (by name; 0 where not given), the followers at their leaders'."""
         given = [(j, values.get(j.name, 0.0)) for j in self.joints]
         given += [(f.joint, f.multiplier * values.get(f.leader, 0.0) + f.offset) for f in self.followers]
-        return configurations(self.model, [j for j, _ in given], np.array([[v for _, v in given]]))[0]
+        q: np.ndarray = configurations(self.model, [j for j, _ in given], np.array([[v for _, v in given]]))[0]
+        return q
 
     def frame_id(self, name: str) -> int:
         """pinocchio's id of the link or joint frame ``name`` (a link before a joint of the same name).
@@ -162,9 +163,7 @@ def build_kinematics(text: str, view: UrdfView, name: str) -> KinematicModel:
     root, deepest = _root_and_depth(view)
     if deepest > MAX_DEPTH:
         raise XacrokitError(f"the robot's tree is {deepest} links deep; at most {MAX_DEPTH} are queried")
-    problems = length_problems(view)
-    if problems:
-        raise XacrokitError("; ".join(problems))
+    require_placeable(view)
     try:
         model = pin.buildModelFromXML(_with_unit_axes(text, view))
     except (RuntimeError, ValueError) as exc:
@@ -185,6 +184,25 @@ def build_kinematics(text: str, view: UrdfView, name: str) -> KinematicModel:
     )
 
 
+def require_placeable(view: UrdfView) -> None:
+    """Refuse what no command can place a robot's parts with, in the same words for every command (pose, size,
+    render, export): a joint origin that is not finite numbers, a moving joint's axis that is not or is zero, a
+    length beyond 1e4 m (:func:`~xacrokit.shared.urdf_view.length_problems`).
+
+    Raises:
+        XacrokitError: the first such value, named by its joint and attribute (lengths: all of them).
+    """
+    for joint in view.joints:
+        if joint.origin is not None:
+            urdf_floats(joint.origin.xyz, 3, where=f"joint {joint.name!r} origin xyz")
+            urdf_floats(joint.origin.rpy, 3, where=f"joint {joint.name!r} origin rpy")
+        if joint.type in MOVING or joint.type == "planar":
+            unit_axis(joint)
+    problems = length_problems(view)
+    if problems:
+        raise XacrokitError("; ".join(problems))
+
+
 def unit_axis(joint: Joint) -> np.ndarray:
     """A joint's axis as a unit vector (URDF's default 1 0 0 without ``<axis>``), scaled before its norm so that an
     axis of 1e308 1e308 0 is the diagonal it names.
@@ -203,19 +221,16 @@ def unit_axis(joint: Joint) -> np.ndarray:
 
 def _with_unit_axes(text: str, view: UrdfView) -> str:
     """``text``, or, when a moving joint's axis would not survive pinocchio's own normalisation (its norm overflows
-    or underflows) or an origin is not finite numbers, the refusal: the axes rewritten as unit vectors (a copy; the
-    view stays as read)."""
+    or underflows), a copy with those axes written as unit vectors (the view stays as read)."""
     from lxml import etree
 
     rewritten: dict[str, np.ndarray] = {}
     for joint in view.joints:
-        if joint.origin is not None:
-            urdf_floats(joint.origin.xyz, 3, where=f"joint {joint.name!r} origin xyz")
-            urdf_floats(joint.origin.rpy, 3, where=f"joint {joint.name!r} origin rpy")
-        if joint.type in MOVING or joint.type in ("planar",):
+        if joint.type in MOVING or joint.type == "planar":
             axis = unit_axis(joint)
             given = np.array(urdf_floats(joint.axis, 3)) if joint.axis is not None else axis
-            norm = float(np.sqrt(np.sum(given * given)))
+            with np.errstate(over="ignore", under="ignore"):  # (as pinocchio's own norm: its square overflows)
+                norm = float(np.sqrt(np.sum(given * given)))
             if not (math.isfinite(norm) and norm > 1e-150):
                 rewritten[joint.name] = axis
     if not rewritten:

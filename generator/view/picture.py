@@ -62,7 +62,7 @@ def _placed_meshes(
         except (LookupError, ValueError) as exc:
             raise XacrokitError(f"mesh {fname!r}: {exc}") from None
 
-    from ..shared.urdf_view import length_problems
+    from ..reader.kinematic_model import require_placeable
 
     urdf, view = robot.path, robot.view
     if len(view.links) > MAX_LINKS:
@@ -70,9 +70,10 @@ def _placed_meshes(
             f"the robot has {len(view.links):,} links; render draws at most {MAX_LINKS:,} (yourdfpy's scene takes "
             "time that grows with the square of the links: 24 s for 5,000): gen-robot view draws any number"
         )
-    problems = length_problems(view)
-    if problems:
-        raise XacrokitError("cannot draw the robot: " + "; ".join(problems))
+    try:
+        require_placeable(view)  # (the same values refused in the same words as pose, size and export)
+    except XacrokitError as exc:
+        raise XacrokitError(f"cannot draw the robot: {exc}") from None
     for element in _mesh_names(view):  # (yourdfpy opens them itself: each checked first, as mesh_reader would)
         file = Path(resolve(element))
         if not file.is_file():
