@@ -29,12 +29,13 @@ from .model import (
     Sphere,
     Wheel,
     attach_joint_name,
+    material_name,
     mount_joint_name,
 )
 from .shared.gc_pause import collector_paused
 from .shared.sim_sensors import sensor_element, topic_namespace
 from .shared.transforms import screw_pose
-from .shared.value_text import material_name, num, vec
+from .shared.value_text import num, vec
 from .shared.xml_parse import parse_xml
 
 AXIS_VECTORS = {"x": "1 0 0", "y": "0 1 0", "z": "0 0 1"}

@@ -1,9 +1,10 @@
 """The resolved robot and scene: plain frozen dataclasses in SI units, the single source of truth after validation.
 
 What a package says about the robot or scene (its templates and the direct URDF emitter) comes from this model. Also
-here, as the one place for them: the joint types and the names of the links and joints xacrokit makes for a spec's
-arms, wheels, frames and scene mounts (validate, resolve, emit, render, scenes and the spec line map that check
-uses all ask these functions).
+here, as the one place for them: the joint types, a simulated sensor's record (both defined in :mod:`xacrokit.shared`,
+below the model, which the facts there need), the names of the links and joints xacrokit makes for a spec's arms,
+wheels, frames and scene mounts, and of its materials (validate, resolve, emit, render, scenes and the spec line map
+that check uses all ask these functions).
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ from typing import Literal
 
 from .errors import SpecError
 from .shared.joint_types import AXIAL, JOINT_TYPES, LIMITED, MOVING, JointType  # noqa: F401  (part of the model)
+from .shared.sim_sensors import Sensor  # (part of the model: its fields are the sensor's values in sim_sensors' tables)
 
 Vec3 = tuple[float, float, float]
 ZERO: Vec3 = (0.0, 0.0, 0.0)
@@ -41,6 +43,12 @@ def arm_base_name(arm: str) -> str:
 def mount_joint_name(root: str) -> str:
     """The fixed joint that mounts a robot's root link on its parent (a scene instance, a macro call with parent)."""
     return f"{root}_mount_joint"
+
+
+def material_name(robot: Robot, name: str | None) -> str:
+    """A material as the URDF names it, namespaced by its robot so that several robots (and instances) in one scene
+    never clash; '' for none."""
+    return f"{robot.name}/{name}" if name else ""
 
 
 @dataclass(frozen=True)
@@ -291,36 +299,6 @@ class Surface:
     mu2: float | None = None
     kp: float | None = None
     kd: float | None = None
-
-
-@dataclass(frozen=True)
-class Sensor:
-    """A simulated sensor at a frame (:mod:`xacrokit.shared.sim_sensors`): every value resolved (preset, then defaults).
-    ``frame`` is the link its readings are stamped with (a camera's optical frame)."""
-
-    link: str
-    kind: str  # lidar, lidar_3d, camera, depth_camera, rgbd_camera or imu
-    frame: str
-    topic: str
-    update_rate: float
-    samples: int = 0
-    min_angle: float = 0.0
-    max_angle: float = 0.0
-    vertical_samples: int = 0
-    vertical_min: float = 0.0
-    vertical_max: float = 0.0
-    range_min: float = 0.0
-    range_max: float = 0.0
-    range_resolution: float = 0.0
-    width: int = 0
-    height: int = 0
-    fov: float = 0.0
-    image_format: str = "R8G8B8"
-    near: float = 0.0
-    far: float = 0.0
-    noise_mean: float = 0.0
-    noise_stddev: float = 0.0
-    accel_stddev: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -53,7 +53,7 @@ from .model import (
 from .shared.gc_pause import collector_paused
 from .shared.joint_types import rest_position
 from .shared.mesh_solids import MESH_FOLDER, is_relative, mesh_hull, mesh_path, package_mesh_path, tube_obj
-from .shared.sim_sensors import resolve_sensor
+from .shared.sim_sensors import CAMERAS, OPTICAL_RPY, Sensor, resolve_sensor
 from .shared.solid_inertia import (
     box_moments,
     capsule_moments,
@@ -417,6 +417,12 @@ def _frame(name: str, data: dict[str, Any], package: _Package) -> tuple[Link, Jo
     return _link(name, body, package), joint
 
 
+def _optical_joint(sensor: Sensor) -> Joint:
+    """The fixed joint of a camera's optical frame on the sensor's frame (REP 103: z forward, x right, y down)."""
+    name, parent, child = attach_joint_name(sensor.frame), sensor.link, sensor.frame
+    return Joint(name=name, type="fixed", parent=parent, child=child, origin=Origin(rpy=OPTICAL_RPY))
+
+
 def _controlled(
     data: dict[str, Any], robot_joints: list[tuple[str, Limit | None, bool]], mimics: list[tuple[str, Mimic]]
 ) -> tuple[ControlledJoint, ...] | None:
@@ -460,11 +466,11 @@ def resolve(spec: Spec) -> Robot:
         links.append(link)
         joints.append(joint)
         if isinstance(frame.get("sensor"), dict):
-            sensor, optical = resolve_sensor(name, frame["sensor"])
+            sensor = resolve_sensor(name, frame["sensor"])
             sensors.append(sensor)
-            if optical is not None:
-                links.append(optical[0])
-                joints.append(optical[1])
+            if sensor.kind in CAMERAS:  # its optical frame (REP 103), the link its readings are stamped with
+                links.append(Link(name=sensor.frame))
+                joints.append(_optical_joint(sensor))
     arms = tuple(_arm(name, arm) for name, arm in data.get("arms", {}).items())
     wheels = tuple(_wheel(name, wheel) for name, wheel in data.get("wheels", {}).items())
     moving = [(j.name, j.limit, False) for j in joints if j.type in MOVING and j.mimic is None]

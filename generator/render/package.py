@@ -21,11 +21,11 @@ from markupsafe import Markup
 
 from .. import __version__
 from ..emit import joint_element, link_element, robot_elements
-from ..model import MOVING, Box, Cylinder, Limit, Link, Mesh, Robot, Sphere, mount_joint_name
+from ..model import MOVING, Box, Cylinder, Limit, Link, Mesh, Robot, Sphere, material_name, mount_joint_name
 from ..shared.gc_pause import collector_paused
 from ..shared.package_data import macros_dir
 from ..shared.sim_sensors import XACRO_NAMESPACE, bridge_entries, sensor_element
-from ..shared.value_text import command_text, comment_text, material_name, xacro_text
+from ..shared.value_text import command_text, comment_text, xacro_text
 from ..shared.xml_parse import parse_xml
 from .control import controllers
 from .environment import MacroMode, RenderedFile, environment

@@ -1,19 +1,20 @@
 """Simulated sensors on a spec's frames (``frames: NAME: sensor:``): their values resolved from the spec, the preset and
-the type's defaults; the ``<gazebo reference>`` block with Gazebo Harmonic's ``<sensor>`` (both writers: the direct
-emitter and the package's gazebo.xacro get the same element, the xacro one with ``${prefix}`` in it); the camera's
-optical frame (REP 103); and the ros_gz_bridge entries of ``config/NAME_bridge.yaml``. docs/sensors.md documents
-every default and preset with its source.
+the type's defaults into a :class:`Sensor` (a record of the model, defined here beside its tables: the model imports
+it); the ``<gazebo reference>`` block with Gazebo Harmonic's ``<sensor>`` (both writers: the direct emitter and the
+package's gazebo.xacro get the same element, the xacro one with ``${prefix}`` in it); the camera's optical frame (REP
+103: its name and pose; resolve adds its link and joint); and the ros_gz_bridge entries of ``config/NAME_bridge.yaml``.
+docs/sensors.md documents every default and preset with its source.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from dataclasses import dataclass
 from typing import Any
 
 from lxml import etree
 
-from ..model import Joint, Link, Origin, Sensor
 from .value_text import num
 
 GZ_TYPES = {
@@ -90,6 +91,36 @@ PRESETS: dict[str, tuple[str, dict[str, Any], dict[str, Any]]] = {
 OPTICAL_RPY = (-math.pi / 2.0, 0.0, -math.pi / 2.0)  # REP 103: the optical frame's z forward, x right, y down
 
 
+@dataclass(frozen=True)
+class Sensor:
+    """A simulated sensor at a frame, part of the model (:mod:`xacrokit.model`): every value resolved (preset, then
+    defaults). ``frame`` is the link its readings are stamped with (a camera's optical frame)."""
+
+    link: str
+    kind: str  # lidar, lidar_3d, camera, depth_camera, rgbd_camera or imu
+    frame: str
+    topic: str
+    update_rate: float
+    samples: int = 0
+    min_angle: float = 0.0
+    max_angle: float = 0.0
+    vertical_samples: int = 0
+    vertical_min: float = 0.0
+    vertical_max: float = 0.0
+    range_min: float = 0.0
+    range_max: float = 0.0
+    range_resolution: float = 0.0
+    width: int = 0
+    height: int = 0
+    fov: float = 0.0
+    image_format: str = "R8G8B8"
+    near: float = 0.0
+    far: float = 0.0
+    noise_mean: float = 0.0
+    noise_stddev: float = 0.0
+    accel_stddev: float = 0.0
+
+
 def preset_body(data: Mapping[str, Any]) -> dict[str | int, Any]:
     """The shape and mass a frame's sensor preset gives a frame that has neither (an empty dict otherwise)."""
     sensor = data.get("sensor")
@@ -114,8 +145,9 @@ def optical_name(frame: str, data: Mapping[str, Any]) -> str:
     return f"{frame.removesuffix('_link')}_optical_frame"
 
 
-def resolve_sensor(frame: str, data: Mapping[str, Any]) -> tuple[Sensor, tuple[Link, Joint] | None]:
-    """The sensor of a frame (its spec mapping, quantities already SI) and, for a camera, its optical frame."""
+def resolve_sensor(frame: str, data: Mapping[str, Any]) -> Sensor:
+    """The sensor of a frame (its spec mapping, quantities already SI); a camera's readings are stamped with its
+    optical frame (``Sensor.frame``), a link at OPTICAL_RPY from the frame that resolve adds."""
     preset = PRESETS.get(data.get("preset", ""))
     kind = sensor_kind(data)
     values: dict[str, Any] = dict(DEFAULTS[kind])
@@ -148,15 +180,8 @@ def resolve_sensor(frame: str, data: Mapping[str, Any]) -> tuple[Sensor, tuple[L
     values.update({key: value for key, value in given.items() if value is not None})
     if kind == "depth_camera" and "image_format" not in values:
         values["image_format"] = "R_FLOAT32"
-    optical = None
-    stamp = frame
-    if kind in CAMERAS:
-        stamp = optical_name(frame, data)
-        optical = (
-            Link(name=stamp),
-            Joint(name=f"{stamp}_joint", type="fixed", parent=frame, child=stamp, origin=Origin(rpy=OPTICAL_RPY)),
-        )
-    return Sensor(link=frame, kind=kind, frame=stamp, **values), optical
+    stamp = optical_name(frame, data) if kind in CAMERAS else frame
+    return Sensor(link=frame, kind=kind, frame=stamp, **values)
 
 
 def sensor_problems(frame: str, sensor: Sensor) -> list[tuple[tuple[str, ...], str]]:

@@ -1,15 +1,46 @@
-"""Rigid transforms and the DH product, written from the textbook definitions (numpy, 4x4 homogeneous)."""
+"""Rigid transforms and the DH product, written from the textbook definitions (numpy, 4x4 homogeneous).
+
+They take the model's records (:class:`xacrokit.model.Origin`, :class:`xacrokit.model.DHRow`) by the fields they read
+(:class:`Pose`, :class:`DHScrew`): the model sits above ``shared``, which imports nothing of it."""
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 
-if TYPE_CHECKING:
-    from ..model import DHRow, Origin
+Vec3 = tuple[float, float, float]
+
+
+class Pose(Protocol):
+    """A pose in a parent frame, as :class:`xacrokit.model.Origin` holds it: xyz in m, rpy in rad."""
+
+    @property
+    def xyz(self) -> Vec3: ...
+
+    @property
+    def rpy(self) -> Vec3: ...
+
+
+class DHScrew(Protocol):
+    """One DH row, as :class:`xacrokit.model.DHRow` holds it: a, d in m, alpha, theta in rad, and its joint type."""
+
+    @property
+    def a(self) -> float: ...
+
+    @property
+    def alpha(self) -> float: ...
+
+    @property
+    def d(self) -> float: ...
+
+    @property
+    def theta(self) -> float: ...
+
+    @property
+    def type(self) -> str: ...
 
 
 def dh_body_end(
@@ -98,6 +129,41 @@ def rotation_rpy(
     return (roll, pitch, yaw)
 
 
+def matrix_quaternion(matrix: np.ndarray) -> tuple[float, float, float, float]:
+    """The unit quaternion (x, y, z, w: ROS's order) of a rotation matrix, by scipy's Rotation (its sign as scipy
+    gives it)."""
+    from scipy.spatial.transform import Rotation  # (heavy: scipy, loaded by the features that turn rotations)
+
+    x, y, z, w = (float(v) for v in Rotation.from_matrix(matrix).as_quat())
+    return x, y, z, w
+
+
+def rpy_quaternion(rpy: Sequence[float]) -> tuple[float, float, float, float]:
+    """The unit quaternion (x, y, z, w) of URDF's fixed-axis roll, pitch, yaw (R = Rz(y) Ry(p) Rx(r): scipy's
+    extrinsic 'xyz' Euler angles)."""
+    from scipy.spatial.transform import Rotation  # (heavy: scipy)
+
+    x, y, z, w = (float(v) for v in Rotation.from_euler("xyz", [rpy[0], rpy[1], rpy[2]]).as_quat())
+    return x, y, z, w
+
+
+def rotation_forms(matrix: np.ndarray) -> dict[str, list[float] | list[list[float]]]:
+    """A rotation matrix in every form the commands print: rpy (URDF's, pitch in [-pi/2, pi/2]), quat_xyzw and
+    quat_wxyz (w >= 0), rotvec (axis x angle) and the matrix."""
+    import pinocchio  # (heavy: loaded by the features that print rotations)
+    from scipy.spatial.transform import Rotation
+
+    quat = np.array(matrix_quaternion(matrix))
+    quat = -quat if quat[3] < 0 else quat
+    return {
+        "rpy": [float(v) for v in pinocchio.rpy.matrixToRpy(matrix)],
+        "quat_xyzw": [float(v) for v in quat],
+        "quat_wxyz": [float(quat[3]), *map(float, quat[:3])],
+        "rotvec": [float(v) for v in Rotation.from_matrix(matrix).as_rotvec()],
+        "matrix": [[float(v) for v in row] for row in matrix],
+    }
+
+
 def rot_x(angle: float) -> np.ndarray:
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
@@ -125,11 +191,11 @@ def transform(rotation: np.ndarray, translation: Sequence[float]) -> np.ndarray:
     return result
 
 
-def origin_transform(origin: Origin) -> np.ndarray:
+def origin_transform(origin: Pose) -> np.ndarray:
     return transform(rpy_matrix(*origin.rpy), origin.xyz)
 
 
-def dh_step(row: DHRow, q: float, convention: str) -> np.ndarray:
+def dh_step(row: DHScrew, q: float, convention: str) -> np.ndarray:
     """One DH row at joint value q.
 
     standard: Rz(theta) Tz(d) Tx(a) Rx(alpha); modified: Rx(alpha) Tx(a) Rz(theta) Tz(d). q adds to theta (revolute,
@@ -145,7 +211,7 @@ def dh_step(row: DHRow, q: float, convention: str) -> np.ndarray:
     return screw_z @ screw_x if convention == "standard" else screw_x @ screw_z
 
 
-def dh_chain(rows: Sequence[DHRow], q: Sequence[float], convention: str, base: Origin, tool: Origin) -> np.ndarray:
+def dh_chain(rows: Sequence[DHScrew], q: Sequence[float], convention: str, base: Pose, tool: Pose) -> np.ndarray:
     """Pose of the tool frame in the arm's parent: base origin, the DH rows at joint values q, the tool offset."""
     result = origin_transform(base)
     for row, value in zip(rows, q, strict=True):

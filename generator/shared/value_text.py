@@ -1,4 +1,4 @@
-"""How values are written into generated files: numbers, vectors, material names and text xacro must copy verbatim.
+"""How values are written into generated files: numbers, vectors, comments and text xacro must copy verbatim.
 
 One place for these rules, shared by the direct emitter (``emit``), the templates (``render``) and scenes. Numbers
 are written with ``repr`` (round-trip exact) and never as ``-0.0``.
@@ -8,8 +8,6 @@ from __future__ import annotations
 
 import re
 from collections.abc import Iterable
-
-from ..model import Robot
 
 
 def num(value: float) -> str:
@@ -30,11 +28,6 @@ _NUMBER_TEXT: dict[float, str] = {}
 def vec(values: tuple[float, ...]) -> str:
     """Numbers separated by single spaces, each as :func:`num` writes it."""
     return " ".join(num(v) for v in values)
-
-
-def material_name(robot: Robot, name: str | None) -> str:
-    """Materials are namespaced by robot so several robots (and instances) in one scene never clash."""
-    return f"{robot.name}/{name}" if name else ""
 
 
 def comment_text(value: object) -> str:

@@ -112,7 +112,7 @@ def sensor_errors(raw: RawSpec, data: dict[str, Any]) -> list[SpecError]:
                 message = f"preset {given['preset']!r} is a {preset[0]}, not a {given['type']}: give one or the other"
                 errors.append(raw.error(("frames", name, "sensor", "preset"), message))
                 continue
-            sensor, _ = resolve_sensor(name, given)
+            sensor = resolve_sensor(name, given)
             for keys, message in sensor_problems(name, sensor):
                 path = ("frames", name, "sensor", *keys)
                 errors.append(raw.error(path if _has(frame["sensor"], keys) else ("frames", name, "sensor"), message))

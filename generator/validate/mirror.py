@@ -274,7 +274,7 @@ class _Entry:
         """A frame's sensor, its names renamed (the topic, given or the type's, so that the two never share one) and
         a lidar's rays turned to the mirror image's."""
         copy = dict(sensor)
-        resolved, _ = resolve_sensor(frame, sensor)
+        resolved = resolve_sensor(frame, sensor)
         copy["topic"] = self.renamed(resolved.topic, "sensor topic")
         if "optical_frame" in sensor:
             copy["optical_frame"] = self.renamed(sensor["optical_frame"], "optical frame")

@@ -55,7 +55,7 @@ def link_and_joint_names(data: dict[str, Any], bodies: Sequence[Body]) -> tuple[
             optical = optical_name(name, item["sensor"])  # (a camera's optical frame: a link and its joint)
             where = (*path, "sensor", "optical_frame") if "optical_frame" in item["sensor"] else (*path, "sensor")
             links.append(Named(optical, where, "optical_frame" not in item["sensor"]))
-            joints.append(Named(f"{optical}_joint", where, "optical_frame" not in item["sensor"]))
+            joints.append(Named(attach_joint_name(optical), where, "optical_frame" not in item["sensor"]))
     return links, joints
 
 
