@@ -257,21 +257,12 @@ def _cmd_jacobian(args: argparse.Namespace) -> int:
 
 def pose_dict(matrix: Any, rotation: str = "rpy") -> dict[str, Any]:
     """A 4x4 pose as the commands print it: xyz, rpy (URDF), quat_xyzw (w >= 0), the matrix, and ``rotation`` in the
-    form named (rpy, quat_xyzw, quat_wxyz, rotvec, matrix: scipy's Rotation for the quaternion and rotation vector)."""
+    form named (:func:`xacrokit.shared.transforms.rotation_forms`)."""
     import numpy as np
-    import pinocchio as pin
-    from scipy.spatial.transform import Rotation
 
-    turn = np.asarray(matrix)[:3, :3]
-    quat = Rotation.from_matrix(turn).as_quat()
-    quat = -quat if quat[3] < 0 else quat
-    forms = {
-        "rpy": [float(v) for v in pin.rpy.matrixToRpy(turn)],
-        "quat_xyzw": [float(v) for v in quat],
-        "quat_wxyz": [float(quat[3]), *map(float, quat[:3])],
-        "rotvec": [float(v) for v in Rotation.from_matrix(turn).as_rotvec()],
-        "matrix": [[float(v) for v in row] for row in turn],
-    }
+    from ..shared.transforms import rotation_forms
+
+    forms = rotation_forms(np.asarray(matrix)[:3, :3])
     return {
         "xyz": [float(v) for v in np.asarray(matrix)[:3, 3]],
         "rpy": forms["rpy"],

@@ -27,7 +27,6 @@ header comment.
 
 from __future__ import annotations
 
-import math
 import os
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
@@ -46,6 +45,7 @@ from ..reader.robot_input import RobotInput
 from ..reader.robot_source import urdf_floats as _floats
 from ..shared.input_files import CopiedFile, copied_pieces
 from ..shared.kinematic_tree import Tree
+from ..shared.transforms import matrix_quaternion, rpy_quaternion
 from ..shared.units import MAX_MOMENT, STANDARD_GRAVITY, bound_problem
 from ..shared.urdf_view import Joint, Link, Origin, UrdfView
 from .mjcf_actuators import num
@@ -73,18 +73,6 @@ def nums(values: Any) -> str:
     return " ".join(num(v) for v in values)
 
 
-def quaternion(rpy: tuple[float, float, float]) -> list[float]:
-    """MuJoCo's quaternion (w, x, y, z) of the URDF's fixed-axis roll, pitch, yaw (R = Rz(y) Ry(p) Rx(r))."""
-    r, p, y = (v / 2.0 for v in rpy)
-    cr, sr, cp, sp, cy, sy = math.cos(r), math.sin(r), math.cos(p), math.sin(p), math.cos(y), math.sin(y)
-    return [
-        cr * cp * cy + sr * sp * sy,
-        sr * cp * cy - cr * sp * sy,
-        cr * sp * cy + sr * cp * sy,
-        cr * cp * sy - sr * sp * cy,
-    ]
-
-
 def _origin(origin: Origin | None, where: str) -> tuple[list[float], list[float]]:
     if origin is None:
         return [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]
@@ -97,7 +85,8 @@ def _place(node: Any, origin: Origin | None, where: str) -> None:
     if any(xyz):
         node.set("pos", nums(xyz))
     if any(rpy):
-        node.set("quat", nums(quaternion((rpy[0], rpy[1], rpy[2]))))
+        x, y, z, w = rpy_quaternion(rpy)
+        node.set("quat", nums((w, x, y, z)))  # (MuJoCo's order)
 
 
 @dataclass(frozen=True)
@@ -445,9 +434,7 @@ def _inertial(body: Any, link: Link, moving: bool, massless: list[str], repairs:
         return
     moments, axes = fixed  # (principal moments and axes: MuJoCo's own eigensolver stumbles on near-equal tiny ones)
     repairs[link.name] = float(np.linalg.norm(axes @ np.diag(moments) @ axes.T - matrix, 2))
-    from scipy.spatial.transform import Rotation
-
-    x, y, z, w = Rotation.from_matrix(axes).as_quat()
+    x, y, z, w = matrix_quaternion(axes)
     element.set("quat", nums((w, x, y, z)))
     element.set("diaginertia", nums(moments))
 

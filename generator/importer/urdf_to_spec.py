@@ -9,7 +9,7 @@ What the spec says, the spec keeps, with its numbers written exactly (YAML float
 - its inertial as ``mass`` and an explicit ``inertia`` tensor with its frame, as the file says it; or as ``mass``
   alone when the tensor is the one the spec computes from the shape (a uniform solid in the shape's axes, to 1e-12);
 - each joint with its type, parent, child, origin, axis, limit, dynamics, mimic, safety controller and calibration;
-- wheels that are exactly what ``wheels:`` writes (:mod:`.import_wheels`);
+- wheels that are exactly what ``wheels:`` writes (:mod:`.wheel_match`);
 - values no real body has under ``strict: false`` (:attr:`Imported.as_given`).
 
 What the spec cannot say is reported at its element's line, not dropped silently (:attr:`Imported.unsupported`): a

@@ -12,7 +12,7 @@ Conventions, stated once (docs/kinematics.md says them to users):
   motion is added to its leader's column, times its multiplier), in the file's order;
 * ``tau = J^T w``, w the wrench (force N, moment N*m, in IN's axes, at FRAME's origin) the tool exerts on the
   environment: tau is the torque each joint's motor must add to exert it (held still, gravity aside); the reaction
-  the environment applies is -w, which is what ``size --force`` takes.
+  the environment applies is -w, which is what ``size --load`` takes.
 """
 
 from __future__ import annotations

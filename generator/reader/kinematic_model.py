@@ -87,6 +87,13 @@ class KinematicModel:
         q: np.ndarray = configurations(self.model, [j for j, _ in given], np.array([[v for _, v in given]]))[0]
         return q
 
+    def placed(self, q: np.ndarray) -> Any:
+        """Every frame placed in the root's at pinocchio's ``q`` (pinocchio's ``oMf``, in the model's data)."""
+        import pinocchio as pin
+
+        pin.framesForwardKinematics(self.model, self.data, q)
+        return self.data.oMf
+
     def frame_id(self, name: str) -> int:
         """pinocchio's id of the link or joint frame ``name`` (a link before a joint of the same name).
 
