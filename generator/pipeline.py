@@ -2,6 +2,9 @@
 
 Nothing touches the output folder before every earlier stage has succeeded: the rendered package is expanded in a
 scratch folder first, so a spec that does not validate, or a package xacro cannot expand, writes nothing at all.
+Generation imports nothing of check: the ``gen-robot SPEC`` command composes the two, asking check's rules to judge
+the URDF generated (:func:`xacrokit.check.document_rules.generation_warnings`, with what :class:`GenerateResult`
+carries for it).
 """
 
 from __future__ import annotations
@@ -23,25 +26,44 @@ from .render import MacroMode, RenderedFile, render_package, render_scene
 from .resolve import resolve
 from .scene import build_scene, is_scene
 from .validate import Spec, validate
-from .write.atomic import staged_packages, write_text_atomic
+from .write.atomic import write_text_atomic
 from .write.package_writer import FileAction, write
+
+
+@dataclass(frozen=True)
+class SpecSource:
+    """Where a robot's package came from, for judging its URDF at the spec's lines: the spec file as given, where
+    each link and joint is written in it (``(kind, name) -> (line, column)``, as :class:`SpecURDF` has them) and the
+    spec's own warnings (Spec.warnings: a part of GenerateResult.warnings)."""
+
+    file: Path
+    lines: dict[tuple[str, str], tuple[int, int]]
+    warnings: tuple[SpecError, ...]
 
 
 @dataclass(frozen=True)
 class GenerateResult:
     """What ``generate`` did: what the spec describes (a robot, or a scene for a scene spec), where, and each file's
-    action."""
+    action; for a robot spec, where its parts are written in it (``source``)."""
 
     model: Robot | Scene
     output: Path
     actions: tuple[FileAction, ...]
     files: tuple[RenderedFile, ...]
-    warnings: tuple[SpecError, ...] = ()  # valid values that look like a units mistake (see Spec.warnings)
+    # valid values that look like a units mistake (see Spec.warnings), a drive's odometry frame off its axle: in line
+    # order (check's rules on the URDF: xacrokit.check.document_rules.generation_warnings)
+    warnings: tuple[SpecError, ...] = ()
+    source: SpecSource | None = None  # a robot spec's (None for a scene)
 
     @property
     def name(self) -> str:
         """The robot's or scene's name (it names the files)."""
         return self.model.name
+
+    @property
+    def urdf(self) -> str:
+        """The text of ``urdf/NAME.urdf``, the URDF generated."""
+        return next(file.text for file in self.files if file.path == f"urdf/{self.name}.urdf")
 
     @property
     def package(self) -> str:
@@ -181,6 +203,11 @@ def generate(
             bounded (docs/macros.md, Untrusted documents). What xacrokit writes itself is always expanded trusted.
         progress: called with a short message as each stage starts (the CLI shows it on a terminal).
 
+    Returns:
+        What was done. Its ``warnings`` are the generator's (values that look like a units mistake, a drive's
+        odometry frame off its axle); what ``gen-robot check --strict`` would fail on in the URDF is check's to say:
+        :func:`xacrokit.check.document_rules.generation_warnings` gives both, as ``gen-robot SPEC`` prints them.
+
     Raises:
         SpecErrors: the spec is invalid (nothing written).
         ExpandError: xacro could not expand the generated package (nothing written).
@@ -203,10 +230,13 @@ def generate(
     via_xacro = via_xacro or extended or bool(robot.extension)  # (an extension is xacro: only xacro expands it)
     progress("expanding with xacro" if via_xacro else "emitting the URDF")
     files.append(expand_package(robot, files) if via_xacro else emitted_urdf(robot.name, emit_urdf(robot)))
-    said = spec.warnings + _check_warnings(files[-1].text, Path(spec_path), spec, robot) + _drive_warnings(spec, robot)
+    source = SpecSource(Path(spec_path), _spec_lines(spec, robot), spec.warnings)
+    said = spec.warnings + _drive_warnings(spec, robot, source.lines)
     warnings = tuple(sorted(said, key=lambda w: (w.line or 0, w.column or 0)))
     root, actions = _write(files, output, robot.package, force=force, dry_run=dry_run, progress=progress)
-    return GenerateResult(model=robot, output=root, actions=actions, files=tuple(files), warnings=warnings)
+    return GenerateResult(
+        model=robot, output=root, actions=actions, files=tuple(files), warnings=warnings, source=source
+    )
 
 
 def _with_extensions(files: list[RenderedFile], root: Path) -> bool:
@@ -238,28 +268,10 @@ def _with_extensions(files: list[RenderedFile], root: Path) -> bool:
 EXTENSION_LIMIT = 4 * 1024 * 1024  # bytes of a package's extension file read back
 
 
-def _check_warnings(urdf: str, spec_path: Path, spec: Spec, robot: Robot) -> tuple[SpecError, ...]:
-    """What ``gen-robot check --strict SPEC`` would fail on in the URDF (its warnings, and the errors a valid spec
-    can still give, such as a mesh file that is not there), as warnings at the spec's lines."""
-    from .check.document_rules import generated_urdf_findings
-    from .check.rule_table import RULES
-
-    said = []
-    with staged_packages(robot.carried_files) as staged:  # (its meshes, where the package will carry them)
-        found = generated_urdf_findings(urdf, spec_path, _spec_lines(spec, robot), staged or None)
-    for finding in found:
-        if finding.severity == "info":
-            continue
-        rule = f"{finding.rule} {RULES[finding.rule][0]} ({finding.severity} of gen-robot check)"
-        message = f"{rule}: {finding.element_kind} {finding.element!r}: {finding.message}"
-        said.append(SpecError(message, file=str(spec_path), line=finding.line, column=finding.column))
-    return tuple(said)
-
-
 AXLE_TOLERANCE = 1e-3  # m: a base frame this close to the axle midpoint tracks it (odometry's error in a turn ~ it)
 
 
-def _drive_warnings(spec: Spec, robot: Robot) -> tuple[SpecError, ...]:
+def _drive_warnings(spec: Spec, robot: Robot, lines: dict[tuple[str, str], tuple[int, int]]) -> tuple[SpecError, ...]:
     """A differential drive whose base frame is not above its axle midpoint, said at the first wheel."""
     from .render.control import axle_offset
 
@@ -267,7 +279,7 @@ def _drive_warnings(spec: Spec, robot: Robot) -> tuple[SpecError, ...]:
     if offset is None or max(abs(v) for v in offset) <= AXLE_TOLERANCE:
         return ()
     wheel = robot.wheels[0]
-    line, column = _spec_lines(spec, robot).get(("joint", wheel.joint_name), (None, None))
+    line, column = lines.get(("joint", wheel.joint_name), (None, None))
     message = (
         f"the wheels' axle midpoint is at x = {offset[0]:.4g}, y = {offset[1]:.4g} m from {robot.root}, the frame "
         "diff_drive_controller publishes its odometry for (base_frame_id); its odometry is the midpoint's, so it is "

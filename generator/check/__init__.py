@@ -1,11 +1,12 @@
 """The check stage: a strict verifier for any URDF, xacro document or spec (see :func:`check`).
 
-Modules: ``checker`` (check), ``urdf_document`` (the URDF as check reads it), one module per rule family holding its
-rules and their rows of the table (``number_rules``, ``structure_rules``, ``joint_rules``, ``inertia_rules``,
-``reference_rules``, ``sensor_rules``, ``spec_rules``), ``consumers`` (the independent consumers; ``consumer_host``,
-their host in a worker), ``rule_table`` (the whole table, RULES), ``findings`` (Finding, CheckReport), ``robot_files``
-(the robots among files and folders), ``file_workers`` (many files in worker processes) and the reports:
-``text_report``, ``sarif_report``, ``junit_report``.
+Modules: ``checker`` (check), ``urdf_document`` (the URDF as check reads it), ``document_rules`` (the rules on a URDF
+alone, and ``generation_warnings``: what ``gen-robot SPEC`` says of the package it wrote), one module per rule family
+holding its rules and their rows of the table (``number_rules``, ``structure_rules``, ``joint_rules``,
+``inertia_rules``, ``reference_rules``, ``sensor_rules``, ``spec_rules``), ``consumers`` (the independent consumers;
+``consumer_host``, their host in a worker), ``rule_table`` (the whole table, RULES), ``findings`` (Finding,
+CheckReport), ``robot_files`` (the robots among files and folders), ``file_workers`` (many files in worker processes)
+and the reports: ``text_report``, ``sarif_report``, ``junit_report``.
 
 The names below load on first use: ``python -m xacrokit.check.consumers`` runs in a subprocess per consumer, and
 importing this package must not load that module (nor the rules) before it runs.
@@ -20,6 +21,7 @@ from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from .checker import check, input_kind
+    from .document_rules import generation_warnings
     from .file_workers import CheckOptions, FileCheck, check_files
     from .findings import CheckReport, Finding
     from .robot_files import robot_files
@@ -33,6 +35,7 @@ __all__ = [
     "Finding",
     "check",
     "check_files",
+    "generation_warnings",
     "input_kind",
     "robot_files",
 ]
@@ -47,6 +50,7 @@ _LAZY = {
     "CheckOptions": "file_workers",
     "FileCheck": "file_workers",
     "robot_files": "robot_files",
+    "generation_warnings": "document_rules",  # (what gen-robot SPEC says: generate's warnings and check's)
 }
 
 

@@ -64,6 +64,7 @@ def _progress() -> Iterator[Progress]:
 
 
 def _cmd_generate(args: argparse.Namespace) -> int:
+    from ..check.document_rules import generation_warnings
     from ..pipeline import generate
 
     if args.output is not None:
@@ -77,9 +78,12 @@ def _cmd_generate(args: argparse.Namespace) -> int:
             force=args.force,
             macros=args.macros,
             via_xacro=args.via_xacro,
+            trust=args.trust,  # (a scene's third-party macros: --trust reaches them as the argument, nothing else)
             progress=progress,
         )
-    _print_warnings(result)
+        progress("judging the URDF with check's rules")  # (the command composes: generation imports no check)
+        warnings = generation_warnings(result)
+    _say_warnings(warnings)
     width = max(len(a.action) for a in result.actions)
     for action in result.actions:
         note = f"  ({action.reason})" if action.reason else ""
@@ -91,9 +95,14 @@ def _cmd_generate(args: argparse.Namespace) -> int:
 
 
 def _print_warnings(result: GenerateResult) -> None:
-    """Valid values that look like a units mistake, located; before the plan, so that a long plan does not hide
+    """The result's warnings (valid values that look like a units mistake, located), as :func:`_say_warnings` says
     them."""
-    for warning in result.warnings:
+    _say_warnings(result.warnings)
+
+
+def _say_warnings(warnings: Sequence[XacrokitError]) -> None:
+    """Located warnings, before the plan, so that a long plan does not hide them."""
+    for warning in warnings:
         print(f"gen-robot: warning: {warning}", file=sys.stderr)
 
 

@@ -9,8 +9,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import xacrokit
-from conftest import gen_robot, mesh_package_at
-from xacrokit.check import RULES, check
+from conftest import REPO, gen_robot, mesh_package_at
+from xacrokit.check import RULES, check, generation_warnings
 from xacrokit.pipeline import build_robot, expand_package
 from xacrokit.render import render_package
 from xacrokit.testing import URDF_FAULTS, inject_urdf_fault, valid_specs
@@ -88,11 +88,12 @@ def test_valid_specs_are_accepted_by_every_consumer(tmp_path_factory, mesh_packa
 @given(spec=valid_specs())
 def test_generating_says_everything_check_strict_would_fail_on(tmp_path_factory, spec):
     """gen-robot SPEC writes no package that `check --strict SPEC` then fails without having said why: each warning
-    and error of check (the spec's own V001 and the rules on the URDF) is one of the generator's warnings."""
+    and error of check (the spec's own V001 and the rules on the URDF) is one of the warnings the command says (the
+    generator's and check's rules' on its URDF, composed by generation_warnings)."""
     folder = tmp_path_factory.mktemp("said")
     path = folder / "spec.yaml"
     path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
-    said = [w.message for w in xacrokit.generate(path, folder / "out", dry_run=True).warnings]
+    said = [w.message for w in generation_warnings(xacrokit.generate(path, folder / "out", dry_run=True))]
     failing = [f for f in check(path, consumers=[]).findings if f.severity != "info"]
     for finding in failing:
         if finding.rule == "V001":
@@ -132,3 +133,38 @@ joints:
         "it knows none), make it continuous if it turns without end, or fixed if it never moves",
     ]
     assert gen_robot("check", spec, "--consumers", "none", "--strict").returncode == 1  # (what was said)
+    generated = xacrokit.generate(spec, tmp_path / "again", dry_run=True)
+    assert generated.warnings == ()  # generation leaves check's to check: the command composes the two
+    said = [f"gen-robot: warning: {w}" for w in generation_warnings(generated)]
+    assert said == result.stderr.splitlines()
+
+
+def test_at_one_place_the_spec_speaks_first_then_check_then_the_generator(tmp_path, monkeypatch):
+    """generation_warnings merges check's findings into generate's warnings in line order as gen-robot SPEC always
+    said them: where a spec warning, a check finding and the generator's drive warning share a line and column, in
+    that order (check's used to be said between the two from inside generate)."""
+    from dataclasses import replace
+
+    from xacrokit.check import document_rules
+    from xacrokit.check.findings import Finding
+    from xacrokit.errors import SpecError
+
+    example = (REPO / "examples" / "robots" / "diff_drive.yaml").read_text(encoding="utf-8")
+    spec = tmp_path / "drive.yaml"  # the base frame 5 cm behind the axle: the generator's drive warning
+    spec.write_text(example.replace("xyz: [0, 0.18, -0.055]", "xyz: [0.05, 0.18, -0.055]"), encoding="utf-8")
+    result = xacrokit.generate(spec, tmp_path / "pkg", dry_run=True)
+    (drive,) = result.warnings
+    assert "axle midpoint" in drive.message and result.source is not None
+    ours = SpecError("the spec's", file=str(spec), path="$.wheels.left_wheel", line=drive.line, column=drive.column)
+    source = replace(result.source, warnings=(ours,))
+    result = replace(result, warnings=(ours, drive), source=source)
+    found = [
+        Finding("J013", "warning", "joint", "left_wheel_joint", "check's", line=drive.line, column=drive.column),
+        Finding("I005", "info", "link", "left_wheel", "not said: an info", line=1, column=1),
+        Finding("I005", "warning", "link", "base_link", "check's first", line=1, column=1),
+    ]
+    monkeypatch.setattr(document_rules, "generated_urdf_findings", lambda *args: found)
+    said = generation_warnings(result)
+    assert len(said) == 4 and said[1] is ours and said[3] is drive, [str(w) for w in said]
+    assert said[0].message.endswith("link 'base_link': check's first") and said[0].line == 1
+    assert said[2].message == "J013 limit-range (warning of gen-robot check): joint 'left_wheel_joint': check's"
