@@ -27,6 +27,7 @@ from .model import (
     Scene,
     Shape,
     Sphere,
+    Vec3,
     Wheel,
     attach_joint_name,
     material_name,
@@ -63,29 +64,22 @@ def _geometry(parent: etree._Element, shape: Shape) -> None:
         _sub(geometry, "mesh", filename=shape.filename, scale=vec(shape.scale))
 
 
-def _inertial(
-    parent: etree._Element,
-    xx: float,
-    xy: float,
-    xz: float,
-    yy: float,
-    yz: float,
-    zz: float,
-    mass: float,
-    xyz: str,
-    rpy: str,
-) -> None:
+TENSOR = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")  # an <inertia>'s attributes, in the order they are written
+
+
+def _inertial(parent: etree._Element, inertia: Inertia, xyz: str, rpy: str) -> None:
+    """``<inertial>`` of ``inertia``'s mass and tensor, its origin written as given (``xyz``, ``rpy``: as the macro
+    that makes the same element writes them)."""
+    i = inertia
     inertial = _sub(parent, "inertial")
     _sub(inertial, "origin", xyz=xyz, rpy=rpy)
-    _sub(inertial, "mass", value=num(mass))
-    _sub(inertial, "inertia", ixx=num(xx), ixy=num(xy), ixz=num(xz), iyy=num(yy), iyz=num(yz), izz=num(zz))
+    _sub(inertial, "mass", value=num(i.mass))
+    _sub(inertial, "inertia", **{name: num(getattr(i, name)) for name in TENSOR})
 
 
 def _stored_inertial(parent: etree._Element, inertia: Inertia) -> None:
     """The model's tensor: resolve computed a shape's with the formulas the library's *_inertial macros use."""
-    xyz, rpy = vec(inertia.origin.xyz), vec(inertia.origin.rpy)
-    i = inertia
-    _inertial(parent, i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz, i.mass, xyz, rpy)
+    _inertial(parent, inertia, vec(inertia.origin.xyz), vec(inertia.origin.rpy))
 
 
 def link_element(robot: Robot, prefix: str, link: Link) -> etree._Element:
@@ -143,12 +137,11 @@ def joint_element(prefix: str, joint: Joint) -> etree._Element:
     return element
 
 
-def screw_origin(
-    a: float, alpha: float, x: float, y: float, z: float, roll: float, pitch: float, yaw: float
-) -> tuple[str, str]:
-    """(xyz, rpy) text of :func:`screw_pose`, as its twin _xacrokit_origin_after_x_screw writes it."""
-    xyz, rpy = screw_pose(a, alpha, x, y, z, roll, pitch, yaw)
-    return " ".join(map(repr, xyz)), " ".join(map(repr, rpy))
+def screw_origin(a: float, alpha: float, xyz: Vec3, rpy: Vec3) -> tuple[str, str]:
+    """(xyz, rpy) text of :func:`screw_pose` (the pose ``xyz``, ``rpy`` after the x screw ``a``, ``alpha``), as its
+    twin _xacrokit_origin_after_x_screw writes it."""
+    moved, turned = screw_pose(a, alpha, *xyz, *rpy)
+    return " ".join(map(repr, moved)), " ".join(map(repr, turned))
 
 
 def _dh_body(robot: Robot, link: etree._Element, row: DHRow) -> None:
@@ -166,7 +159,7 @@ def _dh_body(robot: Robot, link: etree._Element, row: DHRow) -> None:
             _sub(part, "material", name=material_name(robot, row.material))
     i = body.inertia
     turned = vec(i.origin.rpy) if isinstance(body.shape, Cylinder) or i.kind == "explicit" else "0 0 0"
-    _inertial(link, i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz, i.mass, vec(i.origin.xyz), turned)
+    _inertial(link, i, vec(i.origin.xyz), turned)
 
 
 def _arm(robot: Robot, prefix: str, arm: Arm) -> Iterator[etree._Element]:
@@ -184,7 +177,7 @@ def _arm(robot: Robot, prefix: str, arm: Arm) -> Iterator[etree._Element]:
         _sub(joint, "parent", link=parent)
         _sub(joint, "child", link=prefix + row.link)
         xyz, rpy = screw_origin(
-            screw.a if screw else 0.0, screw.alpha if screw else 0.0, 0.0, 0.0, row.d, 0.0, 0.0, row.theta
+            screw.a if screw else 0.0, screw.alpha if screw else 0.0, (0.0, 0.0, row.d), (0.0, 0.0, row.theta)
         )
         _sub(joint, "origin", xyz=xyz, rpy=rpy)
         if row.type != "fixed":
@@ -207,7 +200,7 @@ def _arm(robot: Robot, prefix: str, arm: Arm) -> Iterator[etree._Element]:
     _sub(tool_joint, "child", link=prefix + arm.tool)
     standard = arm.convention == "standard"
     xyz, rpy = screw_origin(
-        last.a if standard else 0.0, last.alpha if standard else 0.0, *arm.tool_origin.xyz, *arm.tool_origin.rpy
+        last.a if standard else 0.0, last.alpha if standard else 0.0, arm.tool_origin.xyz, arm.tool_origin.rpy
     )
     _sub(tool_joint, "origin", xyz=xyz, rpy=rpy)
     yield tool_joint
@@ -232,7 +225,7 @@ def _wheel(robot: Robot, prefix: str, wheel: Wheel) -> Iterator[etree._Element]:
             _sub(part, "material", name=material_name(robot, wheel.material))
     i = wheel.inertia
     assert i is not None  # (resolve gives every wheel its inertia)
-    _inertial(link, i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz, i.mass, "0 0 0", "0 0 0")
+    _inertial(link, i, "0 0 0", "0 0 0")
     yield link
     gazebo = etree.Element("gazebo", reference=prefix + wheel.name)
     _sub(gazebo, "mu1").text = num(wheel.mu1)

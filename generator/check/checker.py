@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -81,42 +82,73 @@ def check(
         notes = spec_findings(source.warnings)
     with staged_packages(source.carried) as staged:  # (a spec's meshes, where its package will carry them)
         packages = {**staged, **(source.packages or {})} if staged else source.packages
-        return _judge(path, kind, source.text, source.robot, source.lines, notes, names, packages, prefix, say)
+        judging = Judging(
+            path=path,
+            kind=kind,
+            text=source.text,
+            robot=source.robot,
+            lines=source.lines,
+            notes=notes,
+            consumers=names,
+            packages=packages,
+            prefix=prefix,
+            say=say,
+        )
+        return _judge(judging)
 
 
-def _judge(
-    path: Path,
-    kind: InputKind,
-    text: str,
-    robot: Robot | None,
-    lines: dict[tuple[str, str], tuple[int, int]] | None,
-    notes: tuple[Finding, ...],
-    names: list[str],
-    packages: Mapping[str, str | os.PathLike[str]] | None,
-    prefix: str | None,
-    say: Callable[[str], None],
-) -> CheckReport:
+@dataclass(frozen=True)
+class Judging:
+    """An input read, and what :func:`check` judges it with.
+
+    Attributes:
+        path: the file checked; ``kind``: what it is (urdf, xacro or spec).
+        text: its URDF text (a xacro document's expanded, a spec's generated).
+        robot: a robot spec's model (its DH arms for K001); None for other input.
+        lines: a spec's line and column of each link and joint, ``(kind, name) -> (line, column)``.
+        notes: a spec's warnings, as findings (V001, V003).
+        consumers: the independent consumers to run.
+        packages: the folders its ``package://`` URIs may name (a spec's meshes staged where its package carries them).
+        prefix: when given, the prefix every name must start with.
+        say: called with a short message as each step starts.
+    """
+
+    path: Path
+    kind: InputKind
+    text: str
+    robot: Robot | None
+    lines: dict[tuple[str, str], tuple[int, int]] | None
+    notes: tuple[Finding, ...]
+    consumers: list[str]
+    packages: Mapping[str, str | os.PathLike[str]] | None
+    prefix: str | None
+    say: Callable[[str], None]
+
+
+def _judge(judging: Judging) -> CheckReport:
     """The rest of :func:`check`, once the URDF text is read: our rules, and the consumers while they run."""
-    root, read = parse_robot(text, str(path))
+    j = judging
+    where = str(j.path)
+    root, read = parse_robot(j.text, where)
     if root is None:  # U001: not a URDF, nothing more to read
-        return CheckReport(str(path), kind, None, tuple(read))
-    say("running our rules")
-    doc = Doc(root, str(path), lines, source=text if kind == "urdf" else None)
-    findings = [*notes, *read, *first_rules(doc)]
+        return CheckReport(where, j.kind, None, tuple(read))
+    j.say("running our rules")
+    doc = Doc(root, where, j.lines, source=j.text if j.kind == "urdf" else None)
+    findings = [*j.notes, *read, *first_rules(doc)]
     structural = any(f.rule.startswith("S") for f in findings)
     # the consumers run while our other rules do (each in its own process): check takes about as long as the slowest
-    if names and not structural:
-        say(f"running {', '.join(names)} (and our other rules meanwhile)")
+    if j.consumers and not structural:
+        j.say(f"running {', '.join(j.consumers)} (and our other rules meanwhile)")
         preload_mesh_readers(doc)  # (before the consumers fork: they inherit it, and yourdfpy needs it too)
     pending = start_verdicts(
-        names, text, structural=structural, package_paths=packages, base_dir=path.parent, shown_as=str(path)
+        j.consumers, j.text, structural=structural, package_paths=j.packages, base_dir=j.path.parent, shown_as=where
     )
-    findings += other_rules(doc, packages, path.parent, prefix)
-    if robot is not None and not structural and robot.arms:
+    findings += other_rules(doc, j.packages, j.path.parent, j.prefix)
+    if j.robot is not None and not structural and j.robot.arms:
         from .spec_rules import kinematics_rules
 
-        findings += kinematics_rules(doc, robot, text)
+        findings += kinematics_rules(doc, j.robot, j.text)
     results = pending()
-    findings += consumer_findings(results, str(path))
+    findings += consumer_findings(results, where)
     unique = tuple(dict.fromkeys(findings))  # (a spec's visual and collision share a mesh: one finding, not two)
-    return CheckReport(str(path), kind, root.get("name"), unique, tuple(results))
+    return CheckReport(where, j.kind, root.get("name"), unique, tuple(results))

@@ -43,6 +43,7 @@ RULES = rule_table(
 )
 
 CONSUMERS = ("check_urdf", "pinocchio", "yourdfpy", "mujoco")
+LIBRARIES = {"pinocchio": "pinocchio", "yourdfpy": "yourdfpy", "mujoco": "mujoco"}  # consumer -> its Python module
 TIMEOUT_S = 30.0
 OUTPUT_CAP = 64 * 1024  # bytes of a consumer's output kept at its start, and at its end
 HARD_CAP = 64 * 1024 * 1024  # bytes: a consumer printing more is stopped (check_urdf loops printing on a rooted cycle)
@@ -69,8 +70,7 @@ def chosen(names: Sequence[str] | None) -> list[str]:
 def available(name: str) -> bool:
     if name == "check_urdf":
         return _check_urdf_binary() is not None
-    module = {"pinocchio": "pinocchio", "yourdfpy": "yourdfpy", "mujoco": "mujoco"}[name]
-    return importlib.util.find_spec(module) is not None
+    return importlib.util.find_spec(LIBRARIES[name]) is not None
 
 
 def _check_urdf_binary() -> str | None:
@@ -204,16 +204,6 @@ def run_consumer(
     except (ValueError, IndexError):
         return ConsumerResult(name, "crashed", _tail(output) or f"exit code {code}")
     return ConsumerResult(name, verdict["status"], verdict.get("message", ""))
-
-
-def run_consumers(
-    names: list[str],
-    urdf_path: Path,
-    timeout: float = TIMEOUT_S,
-    package_paths: Mapping[str, str | os.PathLike[str]] | None = None,
-) -> list[ConsumerResult]:
-    """Run the named consumers side by side; results in the order asked."""
-    return _started(names, urdf_path, timeout, package_paths)()
 
 
 def _started(

@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import XacrokitError
-from .consumers import hosted_consumers
+from .consumers import LIBRARIES, hosted_consumers
 from .findings import CheckReport
 
 
@@ -225,6 +225,3 @@ def _import_for(names: Sequence[str], files: Sequence[Path]) -> None:
         modules.append("xacrokit.pipeline")
     for module in modules:
         importlib.import_module(module)
-
-
-LIBRARIES = {"pinocchio": "pinocchio", "yourdfpy": "yourdfpy", "mujoco": "mujoco"}  # consumer -> its module
