@@ -1,12 +1,14 @@
 """The layout of the xacrokit package stays as issue 27 left it: the pipeline's stages at the top and every feature
 in a folder; no import cycle among its modules (imports inside functions included; the names the package __init__
-files load by string with import_module are not seen), no private name imported from another module, no stage module
-importing a later stage, no two modules of one file name; no function over 60 lines (its docstring aside: ruff keeps
-complexity under 15) and, as a backstop, no module over 800 lines."""
+files load by string with import_module are not seen), nor among its folders (issue 40: layers point one way), no
+private name imported from another module, no stage module importing a later stage, no two modules of one file name;
+no function over 60 lines (its docstring aside: ruff keeps complexity under 15), none taking more than 6 parameters
+(issue 40: more means a missing record) and, as a backstop, no module over 800 lines."""
 
 from __future__ import annotations
 
 import ast
+from collections.abc import Iterable, Mapping
 from pathlib import Path
 
 import pytest
@@ -98,25 +100,30 @@ def test_no_two_modules_share_a_file_name():
     assert sorted({n for n in names if names.count(n) > 1}) == []
 
 
-def test_no_import_cycle():
+def a_cycle(graph: Mapping[str, Iterable[str]]) -> list[str]:
+    """A cycle of ``graph`` (node -> the nodes it points at), its first node again at its end; [] when it has none."""
     state: dict[str, str] = {}
     path: list[str] = []
 
-    def visit(name: str) -> None:
+    def visit(name: str) -> list[str]:
         state[name] = "open"
         path.append(name)
-        for target in GRAPH[name]:
+        for target in graph.get(name, ()):
             if state.get(target) == "open":
-                cycle = path[path.index(target) :] + [target]
-                pytest.fail("import cycle: " + " -> ".join(cycle))
-            if target not in state:
-                visit(target)
+                return path[path.index(target) :] + [target]
+            if target not in state and (cycle := visit(target)):
+                return cycle
         path.pop()
         state[name] = "done"
+        return []
 
-    for name in MODULES:
-        if name not in state:
-            visit(name)
+    return next((cycle for name in graph if name not in state and (cycle := visit(name))), [])
+
+
+def test_no_import_cycle():
+    cycle = a_cycle(GRAPH)
+    if cycle:
+        pytest.fail("import cycle: " + " -> ".join(cycle))
 
 
 def test_the_checker_finds_a_cycle_when_there_is_one(monkeypatch):
@@ -124,6 +131,39 @@ def test_the_checker_finds_a_cycle_when_there_is_one(monkeypatch):
     monkeypatch.setitem(GRAPH, "xacrokit.model", [*GRAPH["xacrokit.model"], "xacrokit.emit"])
     with pytest.raises(pytest.fail.Exception, match="import cycle"):
         test_no_import_cycle()
+
+
+def folder(name: str) -> str:
+    """The folder a module belongs to: ``check`` for ``xacrokit.check.checker`` (and for the folder's
+    ``__init__``, ``xacrokit.check``); a top-level module is its own (``pipeline``), the package's ``__init__`` too
+    (``xacrokit``)."""
+    parts = name.split(".")
+    return parts[1] if len(parts) > 1 else parts[0]
+
+
+def folder_graph(graph: Mapping[str, Iterable[str]]) -> dict[str, list[str]]:
+    """Folder -> the other folders its modules import (at any depth: an import inside a function counts)."""
+    edges: dict[str, set[str]] = {}
+    for name, targets in graph.items():
+        edges.setdefault(folder(name), set()).update(folder(t) for t in targets if folder(t) != folder(name))
+    return {name: sorted(targets) for name, targets in sorted(edges.items())}
+
+
+def test_no_import_cycle_between_folders():
+    """Layers point one way (STYLE.md, issue 40): no folder imports one that imports it back, through any others,
+    even where no two modules make a cycle (generation ran check, whose reader ran the generator)."""
+    cycle = a_cycle(folder_graph(GRAPH))
+    if cycle:
+        pytest.fail("folder import cycle: " + " -> ".join(cycle))
+
+
+def test_the_folder_check_finds_a_cycle_when_there_is_one(monkeypatch):
+    """The folder test above can fail: shared.units importing the model (which imports shared.joint_types) is no
+    cycle of modules, but a cycle of the folders shared and model."""
+    monkeypatch.setitem(GRAPH, "xacrokit.shared.units", [*GRAPH["xacrokit.shared.units"], "xacrokit.model"])
+    test_no_import_cycle()  # (no cycle of modules)
+    with pytest.raises(pytest.fail.Exception, match="folder import cycle: .*(model -> shared|shared -> model)"):
+        test_no_import_cycle_between_folders()
 
 
 def private_imports(modules: dict[str, list[tuple[str, list[str], int]]]) -> list[str]:
@@ -206,6 +246,75 @@ def test_the_function_gate_can_fail():
     body = "\n".join(f"    x{i} = {i}" for i in range(61))
     source = f'def f():\n    """A docstring\n\n    of three lines."""\n{body}\n\n\ndef g():\n    return 1\n'
     assert long_functions(source, "m") == ["m:1 f (62 lines)"]
+
+
+MAX_PARAMETERS = 6  # more means a missing record (STYLE.md): pass the record whole
+# functions allowed more than MAX_PARAMETERS (module:function), each with its reason (at most three)
+MANY_PARAMETERS: dict[str, str] = {
+    "xacrokit.pipeline:generate": "the public API's main job: keyword-only options, gen-robot SPEC's flags, that "
+    "every caller and docs/python-api.md spell out; a record of them would break every call",
+    "xacrokit.pipeline:generate_scene": "generate's options for a scene built in memory (gen-robot fleet, the "
+    "benchmarks): the same keyword-only options, kept alike",
+    "xacrokit.check.checker:check": "the public API's check: keyword-only options, gen-robot check's flags, that "
+    "every caller and docs/python-api.md spell out (CheckOptions holds them for many files)",
+}
+# being reworked for issue 40 by the read-robot change: functions over MAX_PARAMETERS in files the change that added
+# this gate did not own (module:function), a temporary set to empty as each is fixed (the test below fails for one
+# listed here that is no longer over the limit)
+PARAMETER_GATE_PENDING: set[str] = {
+    "xacrokit.shared.transforms:screw_pose",  # (a, alpha, x, y, z, roll, pitch, yaw): the pose as xyz and rpy
+}
+
+
+def many_parameters(source: str, where: str) -> list[str]:
+    """``where:name (N parameters)`` for each function of ``source`` taking more than MAX_PARAMETERS: positional,
+    keyword-only, ``*args`` and ``**kwargs`` all count; a method's ``self`` or ``cls`` does not (a static method's
+    first parameter does). A method is named ``Class.method``, a nested function ``outer.inner``."""
+    found = []
+
+    def visit(node: ast.AST, prefix: str, in_class: bool) -> None:
+        for child in ast.iter_child_nodes(node):
+            if isinstance(child, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                a = child.args
+                count = len([*a.posonlyargs, *a.args, *a.kwonlyargs, *filter(None, (a.vararg, a.kwarg))])
+                static = any(isinstance(d, ast.Name) and d.id == "staticmethod" for d in child.decorator_list)
+                if in_class and not static and (a.posonlyargs or a.args):
+                    count -= 1  # (self, or cls)
+                if count > MAX_PARAMETERS:
+                    found.append(f"{where}:{prefix}{child.name} ({count} parameters)")
+                visit(child, f"{prefix}{child.name}.", False)
+            elif isinstance(child, ast.ClassDef):
+                visit(child, f"{prefix}{child.name}.", True)
+            else:
+                visit(child, prefix, in_class)
+
+    visit(ast.parse(source), "", False)
+    return found
+
+
+def test_no_function_takes_more_than_6_parameters():
+    over = [item for name, path in MODULES.items() for item in many_parameters(path.read_text(encoding="utf-8"), name)]
+    named = {item.split(" ")[0] for item in over}
+    unlisted = [item for item in over if item.split(" ")[0] not in {*MANY_PARAMETERS, *PARAMETER_GATE_PENDING}]
+    assert not unlisted, unlisted
+    assert len(MANY_PARAMETERS) <= 3
+    assert not {*MANY_PARAMETERS, *PARAMETER_GATE_PENDING} - named, "listed, but no longer over the limit: unlist it"
+
+
+def test_the_parameter_gate_can_fail():
+    source = (
+        "def f(a, b, c, d, e, f, g):\n    pass\n\n\n"
+        "def g(a, b, *args, c, d, e, **kwargs):\n    pass\n\n\n"
+        "def h(a, b, c, d, e, f):\n    def inner(a, b, c, d, e, f, g):\n        pass\n\n\n"
+        "class C:\n    def m(self, a, b, c, d, e, f):\n        pass\n\n"
+        "    @staticmethod\n    def s(a, b, c, d, e, f, g):\n        pass\n"
+    )
+    assert many_parameters(source, "m") == [
+        "m:f (7 parameters)",
+        "m:g (7 parameters)",
+        "m:h.inner (7 parameters)",
+        "m:C.s (7 parameters)",
+    ]
 
 
 # the stages in pipeline order: a module of a stage imports no module of a later stage (STYLE.md's one-way data flow)

@@ -20,7 +20,7 @@ from ..resolve import origin as resolve_origin
 from ..resolve import resolve
 from ..shared.package_data import XACRO_KEYWORDS, schemas_dir
 from ..validate import Quantities, SchemaValidator, inline_refs, schema_errors, validate
-from .plan import Planned, resolve_plan
+from .plan import Planned, ScenePlan, resolve_plan
 
 Source = tuple[Robot, Path] | ThirdPartyMacro  # what an instance is: a robot of ours (and its spec file), or a macro
 
@@ -67,9 +67,9 @@ def build_scene(raw: RawSpec) -> Scene:
         else:
             robot, spec_file = source
             planned.append(Planned(name, entry.get("prefix", ""), entry["parent"], origin, robot, spec_file))
-    return resolve_plan(
-        raw, data["scene"], data.get("world", "world"), planned, warnings=warnings, failed=failed, errors=errors
-    )
+    world = data.get("world", "world")
+    plan = ScenePlan(data["scene"], world, tuple(planned), tuple(warnings), failed=tuple(failed), errors=tuple(errors))
+    return resolve_plan(raw, plan)
 
 
 def _source(

@@ -14,7 +14,7 @@ from ..errors import SpecErrors, XacrokitError
 from ..load import RawSpec, load_file
 from ..model import Origin, Scene
 from .build import RobotSpecs, is_scene
-from .plan import Planned, resolve_plan
+from .plan import Planned, ScenePlan, resolve_plan
 
 WORLD = "world"
 MAX_FLEET = 1000  # robots: --count beyond this is refused (gen-robot fleet --help); 300 take seconds (benchmarks)
@@ -55,4 +55,5 @@ def fleet_scene(spec_path: str | Path, count: int, *, columns: int | None = None
         command += f" --grid {math.ceil(count / given_columns)}x{given_columns}"
     if spacing != 2.0:
         command += f" --spacing {spacing!r}"
-    return resolve_plan(fleet, f"{robot.name}_fleet", WORLD, planned, warnings=warnings, command=command)
+    plan = ScenePlan(f"{robot.name}_fleet", WORLD, tuple(planned), tuple(warnings), command=command)
+    return resolve_plan(fleet, plan)

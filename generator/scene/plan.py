@@ -1,9 +1,9 @@
 """The typed plan of a scene between reading its instances and resolving it, and the checks every scene passes.
 
-A scene spec (:mod:`.build`) and a fleet (:mod:`.fleet`) both come down to a list of :class:`Planned` instances;
-:func:`resolve_plan` then resolves their parents, learns the names of third-party macros (:mod:`.probe`), checks that
-every parent link exists and that no two instances share a name, and makes the :class:`~xacrokit.model.Scene`. Each
-helper returns the errors it finds; the caller decides when to stop.
+A scene spec (:mod:`.build`) and a fleet (:mod:`.fleet`) both come down to a :class:`ScenePlan` of :class:`Planned`
+instances; :func:`resolve_plan` then resolves their parents, learns the names of third-party macros (:mod:`.probe`),
+checks that every parent link exists and that no two instances share a name, and makes the
+:class:`~xacrokit.model.Scene`. Each helper returns the errors it finds; the caller decides when to stop.
 """
 
 from __future__ import annotations
@@ -53,23 +53,37 @@ class Mount:
 Names = dict[str, tuple[tuple[str, ...], tuple[str, ...]]]  # instance -> (links, joints)
 
 
-def resolve_plan(
-    raw: RawSpec,
-    name: str,
-    world: str,
-    planned: Sequence[Planned],
-    *,
-    warnings: Sequence[SpecError] = (),
-    command: str = "",
-    failed: Sequence[str] = (),
-    errors: Sequence[SpecError] = (),
-) -> Scene:
-    """The scene ``name`` of ``planned`` (``raw`` locates its errors). Raises SpecErrors with every problem found,
-    ``errors`` (found before) included. ``failed``: instances of the scene that could not be planned (their errors
-    are in ``errors``): they exist, so naming one as a parent is no mistake, but nothing can be checked against them."""
+@dataclass(frozen=True)
+class ScenePlan:
+    """A scene as read, before its parents and names are resolved.
+
+    Attributes:
+        name: the scene's name (it names the package).
+        world: the name of its world link.
+        planned: its instances, in the spec's order.
+        warnings: its robots' and its own (Spec.warnings).
+        command: what makes it again, when not ``gen-robot SPEC`` (a fleet).
+        failed: instances that could not be planned (their errors are in ``errors``): they exist, so naming one as a
+            parent is no mistake, but nothing can be checked against them.
+        errors: the problems found before.
+    """
+
+    name: str
+    world: str
+    planned: tuple[Planned, ...]
+    warnings: tuple[SpecError, ...] = ()
+    command: str = ""
+    failed: tuple[str, ...] = ()
+    errors: tuple[SpecError, ...] = ()
+
+
+def resolve_plan(raw: RawSpec, scene: ScenePlan) -> Scene:
+    """The scene of ``scene`` (``raw`` locates its errors). Raises SpecErrors with every problem found, the plan's
+    ``errors`` (found before) included."""
+    name, world, planned = scene.name, scene.world, scene.planned
     by_name = {p.name: p for p in planned}
-    mounts, found_errors = resolve_parents(raw, world, by_name, failed)
-    errors = [*errors, *found_errors]
+    mounts, found_errors = resolve_parents(raw, world, by_name, scene.failed)
+    errors = [*scene.errors, *found_errors]
     names: Names = {p.name: found for p in planned if (found := p.names()) is not None}
     for plan in planned:  # third-party names: expand each such instance alone, on its real parent
         if plan.macro is not None and plan.name in mounts:
@@ -101,8 +115,8 @@ def resolve_plan(
         world=world,
         instances=instances,
         source=raw.file,
-        warnings=tuple(warnings),
-        command=command,
+        warnings=scene.warnings,
+        command=scene.command,
     )
 
 
