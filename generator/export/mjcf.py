@@ -295,7 +295,7 @@ def _adjacent(tree: _Tree) -> list[tuple[str, str]]:
     parent_of = {child: joint.parent or "" for child, joint in joint_of.items()}
     pairs = [(joint.parent or "", joint.child or "") for joint in tree.joints]
     colliding = {name for name, link in tree.links.items() if link.collisions}
-    for name in colliding:
+    for name in (name for name in tree.links if name in colliding):  # (the links' order: a set's varies by run)
         above = parent_of.get(name)
         if above is None or above in colliding:
             continue  # (the root, or already its joint's pair)
