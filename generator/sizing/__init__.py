@@ -80,7 +80,7 @@ def size(
         if isinstance(found, str):
             raise SpecErrors([asked.raw.error(("mobile",), found, key=True)])
         base = found
-    report = SizeReport.of(str(read.path), sized, static_peaks(sized), payloads, loads, moved, asked.drives)
+    report = SizeReport.of(sized, static_peaks(sized), moved, asked.drives)
     return dataclasses.replace(
         report, base=base, base_motion=asked.mobile, samples=samples, safety_factor=asked.safety_factor, timing=timing
     )

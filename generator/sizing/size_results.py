@@ -69,22 +69,20 @@ class SizeReport:
 
     @staticmethod
     def of(
-        path: str,
         robot: LoadedRobot,
         peaks: list[StaticPeak],
-        payloads: tuple[Payload, ...],
-        loads: tuple[Load, ...],
         motions: list[JointMotion] | None = None,
         drives: dict[str, Drive] | None = None,
     ) -> SizeReport:
+        """The report of ``robot`` sized (its payloads and loads as given), before the motion's and base's parts."""
         return SizeReport(
-            path=path,
+            path=str(robot.robot.path),
             robot=robot.name,
             peaks=tuple(peaks),
             efforts={j.name: j.effort for j in robot.joints},
             velocities={j.name: j.velocity for j in robot.joints},
-            payloads=payloads,
-            loads=loads,
+            payloads=robot.payloads,
+            loads=robot.applied,
             massless=tuple(robot.massless),
             motions=None if motions is None else tuple(motions),
             drives=dict(drives or {}),

@@ -60,6 +60,8 @@ class LoadedRobot:
     joint_friction: bool = True  # the motion's torques include the joints' <dynamics> damping and friction
     massless: tuple[str, ...] = ()  # moving links with a shape but no <inertial>
     moved_links: tuple[str, ...] = ()  # the child links of its moving joints, in the URDF's order
+    payloads: tuple[Payload, ...] = ()  # as given (the model holds them attached)
+    applied: tuple[Load, ...] = ()  # the loads as given (``loads`` holds them as pinocchio forces)
 
     @property
     def name(self) -> str:
@@ -132,6 +134,8 @@ def loaded_robot(
         joint_friction,
         tuple(_massless_moving_links(model, robot.view)),
         moved,
+        tuple(payloads),
+        tuple(loads),
     )
 
 
