@@ -45,22 +45,24 @@ def main(runs: int) -> None:
     import pinocchio as pin
     from scipy.optimize import minimize  # noqa: F401  (the search's import, timed here)
 
+    from xacrokit.reader.read_robot import read_robot
     from xacrokit.sizing import Payload
     from xacrokit.sizing.motion import Motion, inverse_dynamics, joint_motions, trajectory
-    from xacrokit.sizing.sized_robot import load_robot
+    from xacrokit.sizing.sized_robot import loaded_robot
     from xacrokit.sizing.static import static_peaks
 
     print(f"imports (pinocchio, scipy.optimize, xacrokit.sizing): {time.perf_counter() - started:.2f} s, once")
 
-    ur5 = load_robot(REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml", payloads=[Payload("tool0", 5.0)])
+    spec = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
+    ur5 = loaded_robot(read_robot(spec), payloads=[Payload("tool0", 5.0)])
     search = median_time(lambda: static_peaks(ur5), runs)
     print(f"static worst-case search, 6-axis UR5 with 5 kg: {search:.3f} s (target < 1 s)")
 
     path = seven_axis()
-    arm = load_robot(path)
+    arm = loaded_robot(read_robot(path))
     n = len(arm.joints)
     rng = np.random.default_rng(0)
-    lows, highs = np.array([j.lower for j in arm.joints]), np.array([j.upper for j in arm.joints])
+    lows, highs = np.array([j.span for j in arm.joints]).T
     points = tuple(tuple(lows + (highs - lows) * rng.random(n)) for _ in range(4))
     motion = Motion(waypoints=points, velocity=(1.0,) * n, acceleration=(2.0,) * n, scaling="quintic", step=1e-3)
     samples = trajectory(motion)

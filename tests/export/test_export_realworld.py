@@ -14,7 +14,8 @@ from realworld import VERDICTS, corpus_or_skip
 from test_mjcf import compare_dynamics
 from xacrokit.errors import XacrokitError
 from xacrokit.export.mjcf import export_mjcf, write_export
-from xacrokit.reader.robot_source import robot_text
+from xacrokit.reader.read_robot import read_robot
+from xacrokit.reader.robot_input import RobotInput
 
 mujoco = pytest.importorskip("mujoco")
 FILES = yaml.safe_load(VERDICTS.read_text(encoding="utf-8"))["files"]
@@ -26,7 +27,8 @@ def test_every_real_robot_exports_with_pinocchios_dynamics_or_is_refused_for_a_j
     exported, refused, repaired = 0, [], 0
     for index, robot in enumerate(robots):
         try:
-            model = export_mjcf(robot.path, package_paths=robot.packages, base="fixed")
+            read = read_robot(RobotInput(robot.path, packages=robot.packages))
+            model = export_mjcf(read, base="fixed")
         except XacrokitError as exc:
             kinds = {line.rsplit(": ", 1)[1] for line in FILES[robot.key].get("findings", []) if " error " in line}
             assert kinds & REFUSED_FOR, (robot.key, str(exc))
@@ -35,9 +37,7 @@ def test_every_real_robot_exports_with_pinocchios_dynamics_or_is_refused_for_a_j
         target = tmp_path / str(index) / "robot.xml"
         write_export(model, target)
         m = mujoco.MjModel.from_xml_path(str(target))
-        with robot_text(robot.path, {}, robot.packages, meshes=False) as (text, _):
-            pass
-        compare_dynamics(m, text, False, np.random.default_rng(index), model)
+        compare_dynamics(m, read.text, False, np.random.default_rng(index), model)
         exported += 1
         repaired += bool(model.repairs)
     assert (exported, len(refused)) == (120, 9), refused

@@ -15,14 +15,16 @@ from lxml import etree
 from conftest import REPO, ROBOT_EXAMPLES, SCENE_EXAMPLES, gen_robot
 from xacrokit.errors import XacrokitError
 from xacrokit.export.mjcf import MASSLESS, export_mjcf, mjcf, write_export
+from xacrokit.reader.read_robot import read_text
 
 mujoco = pytest.importorskip("mujoco")
 
 
 def urdf_of(path) -> str:
+    from xacrokit.reader.robot_input import RobotInput
     from xacrokit.reader.robot_source import read_source
 
-    return read_source(path).text
+    return read_source(RobotInput(path)).text
 
 
 def load(path, tmp_path, **options):
@@ -207,7 +209,7 @@ def test_massless_moving_links_get_the_documented_speck_of_mass(tmp_path):
         '<joint name="j2" type="revolute"><parent link="a"/><child link="b"/><origin xyz="0 0 0.5"/>'
         '<axis xyz="0 1 0"/><limit lower="-1" upper="1" effort="3" velocity="1"/></joint></robot>'
     )
-    export = mjcf(urdf, str)
+    export = mjcf(read_text(urdf), str)
     assert "given 1e-12 kg, 1e-14 kg m^2: a." in export.xml
     m = mujoco.MjModel.from_xml_string(export.xml)
     assert m.body_mass[mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, "a")] == MASSLESS[0]
@@ -318,11 +320,11 @@ def test_a_tree_deeper_than_mujocos_reader_takes_is_refused_and_the_deepest_it_t
     exit 70 (RecursionError), one of 491 in a model MuJoCo refuses; 490 loads (issue 28)."""
     from xacrokit.export.mjcf import MAX_DEPTH
 
-    model = mujoco.MjModel.from_xml_string(mjcf(_chain(MAX_DEPTH), str).xml)
+    model = mujoco.MjModel.from_xml_string(mjcf(read_text(_chain(MAX_DEPTH)), str).xml)
     assert model.nbody == MAX_DEPTH + 1
     for links in (MAX_DEPTH + 1, 20_000):
         with pytest.raises(XacrokitError, match=f"the robot's tree is {links} links deep"):
-            mjcf(_chain(links), str)
+            mjcf(read_text(_chain(links)), str)
 
 
 def test_links_in_a_loop_off_the_root_are_refused_not_dropped():
@@ -332,4 +334,4 @@ def test_links_in_a_loop_off_the_root_are_refused_not_dropped():
         '<joint name="ba" type="fixed"><parent link="b"/><child link="a"/></joint></robot>'
     )
     with pytest.raises(XacrokitError, match="links 'a', 'b' hang in a loop of joints"):
-        mjcf(urdf, str)
+        mjcf(read_text(urdf), str)

@@ -153,6 +153,7 @@ def test_a_specs_armature_adds_to_the_mass_matrix_diagonal_only(tmp_path):
     pinocchio's (of the URDF, without it) plus the armature on its joint's diagonal entry."""
     import pinocchio as pin
 
+    from xacrokit.reader.robot_input import RobotInput
     from xacrokit.reader.robot_source import read_source
 
     text = (REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml").read_text(encoding="utf-8")
@@ -169,7 +170,7 @@ def test_a_specs_armature_adds_to_the_mass_matrix_diagonal_only(tmp_path):
     assert dict(zip(names, m.dof_armature, strict=True)) == {
         n: (0.1 if n in ("shoulder_pan_joint", "shoulder_lift_joint") else 0.0) for n in names
     }
-    model = pin.buildModelFromXML(read_source(spec).text)
+    model = pin.buildModelFromXML(read_source(RobotInput(spec)).text)
     q = np.array([0.3, -1.2, 0.8, -0.5, 0.4, 0.2])
     d = mujoco.MjData(m)
     d.qpos[:] = q

@@ -23,9 +23,10 @@ from xacrokit.testing import valid_specs
 
 
 def urdf_of(path) -> str:
+    from xacrokit.reader.robot_input import RobotInput
     from xacrokit.reader.robot_source import read_source
 
-    return read_source(path).text
+    return read_source(RobotInput(path)).text
 
 
 def floats(text, count, default):

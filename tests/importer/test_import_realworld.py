@@ -12,7 +12,8 @@ from realworld import corpus_or_skip
 from test_import import compare
 from xacrokit.errors import SpecErrors
 from xacrokit.importer.urdf_to_spec import import_robot, spec_yaml
-from xacrokit.reader.robot_source import robot_text
+from xacrokit.reader.read_robot import read_robot
+from xacrokit.reader.robot_input import RobotInput
 from xacrokit.shared.input_files import copied_pieces
 
 
@@ -21,9 +22,8 @@ def test_the_importable_real_robots_come_back_as_the_same_robots(tmp_path):
     done = []
     refused: dict[str, list[str]] = {}
     for index, robot in enumerate(corpus_or_skip()):
-        with robot_text(robot.path, {}, robot.packages, meshes=False) as (text, _):
-            pass
-        imported = import_robot(robot.path, package_paths=robot.packages)
+        read = read_robot(RobotInput(robot.path, packages=robot.packages))
+        imported = import_robot(read)
         if imported.unsupported:
             reasons["importer"] += 1
             refused[robot.key] = imported.unsupported
@@ -42,7 +42,7 @@ def test_the_importable_real_robots_come_back_as_the_same_robots(tmp_path):
             reasons["spec"] += 1
             continue
         (again,) = (tmp_path / f"pkg{index}" / "urdf").glob("*.urdf")
-        compare(text, again.read_text(encoding="utf-8"))
+        compare(read.text, again.read_text(encoding="utf-8"))
         done.append(robot.key)
     assert (
         "airo-models/arms/ur5e/ur5e.urdf" in done

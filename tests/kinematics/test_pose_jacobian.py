@@ -18,7 +18,8 @@ from hypothesis import strategies as st
 from conftest import REPO, ROBOT_EXAMPLES, gen_robot
 from xacrokit.errors import XacrokitError
 from xacrokit.kinematics import jacobian, joint_torques, pose
-from xacrokit.reader.robot_source import robot_text
+from xacrokit.reader.read_robot import read_robot
+from xacrokit.reader.robot_input import RobotInput
 
 PLANAR = REPO / "examples" / "robots" / "planar_2dof.yaml"
 L1, L2 = 0.6, 0.4  # (the spec's links; the tool frame at the second's tip)
@@ -45,8 +46,8 @@ def test_the_two_link_arm_is_its_closed_form(q1, q2):
 
 
 def _yourdfpy(path):
-    with robot_text(path, meshes=False) as (text, _):
-        return yourdfpy.URDF.load(io.BytesIO(text.encode("utf-8")), load_meshes=False, build_scene_graph=True)
+    text = read_robot(path).text
+    return yourdfpy.URDF.load(io.BytesIO(text.encode("utf-8")), load_meshes=False, build_scene_graph=True)
 
 
 def _random_values(robot, rng):
@@ -191,26 +192,26 @@ def test_real_robots_links_and_jacobians_are_yourdfpys():
     checked = 0
     for robot in list(corpus_or_skip())[::4]:
         try:
-            with robot_text(robot.path, {}, robot.packages, meshes=False) as (text, _):
-                reference = yourdfpy.URDF.load(
-                    io.BytesIO(text.encode("utf-8")), load_meshes=False, build_scene_graph=True
-                )
+            read = read_robot(RobotInput(robot.path, packages=robot.packages))
+            reference = yourdfpy.URDF.load(
+                io.BytesIO(read.text.encode("utf-8")), load_meshes=False, build_scene_graph=True
+            )
             values = _random_values(reference, np.random.default_rng(3))
             reference.update_cfg(values)
         except Exception:  # noqa: BLE001  (yourdfpy cannot read or pose some files (no robot name, mimic chains))
             continue
         at = {k: repr(v) for k, v in values.items()}
         try:
-            first = pose(robot.path, reference.robot.links[0].name, at=at, package_paths=robot.packages)
+            first = pose(read, reference.robot.links[0].name, at=at)
         except XacrokitError:
             continue  # (a file pinocchio or the reader refuses: check says why)
         assert first.warnings == []
         for link in [link.name for link in reference.robot.links]:
-            mine = pose(robot.path, link, at=at, package_paths=robot.packages).matrix
+            mine = pose(read, link, at=at).matrix
             assert np.abs(mine - reference.get_transform(link)).max() < 1e-12, (robot.key, link)
         deepest = reference.robot.links[-1].name
         leaders = [j.name for j in reference.robot.joints if j.name in values]
-        jac = jacobian(robot.path, deepest, at=at, package_paths=robot.packages)
+        jac = jacobian(read, deepest, at=at)
         expected = _geometric_jacobian(reference, deepest, leaders).reshape(6, len(leaders))
         assert np.abs(jac.matrix - expected).max(initial=0.0) < 1e-12, robot.key
         checked += 1

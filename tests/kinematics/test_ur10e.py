@@ -23,7 +23,7 @@ from scipy.spatial.transform import Rotation
 
 from conftest import REPO
 from xacrokit.kinematics import pose
-from xacrokit.reader.robot_source import robot_text
+from xacrokit.reader.read_robot import read_robot
 
 UR10E = REPO / "examples" / "robots" / "ur10e.yaml"
 JOINTS = ["shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint", "wrist_1_joint", "wrist_2_joint", "wrist_3_joint"]
@@ -115,8 +115,8 @@ def _ur_description_frames(q):
 
 @pytest.fixture(scope="module")
 def ours():
-    with robot_text(UR10E, meshes=False) as (text, _):
-        return yourdfpy.URDF.load(io.BytesIO(text.encode("utf-8")), load_meshes=False, build_scene_graph=True)
+    text = read_robot(UR10E).text
+    return yourdfpy.URDF.load(io.BytesIO(text.encode("utf-8")), load_meshes=False, build_scene_graph=True)
 
 
 joint_values = st.lists(st.floats(-2 * math.pi, 2 * math.pi, allow_nan=False), min_size=6, max_size=6)

@@ -18,9 +18,10 @@ from test_size_static import GRAVITY, L1, L2, M1, M2, planar_arm
 
 from conftest import REPO, gen_robot
 from xacrokit.errors import SpecErrors
+from xacrokit.reader.read_robot import read_robot
 from xacrokit.sizing import Payload, format_text, size
 from xacrokit.sizing.motion import Motion, Trajectory, inverse_dynamics, trajectory
-from xacrokit.sizing.sized_robot import load_robot
+from xacrokit.sizing.sized_robot import loaded_robot
 
 I1, I2 = M1 * L1**2 / 12, M2 * L2**2 / 12  # (the bars' tensors about y, as planar_arm writes them)
 
@@ -67,7 +68,7 @@ values = st.floats(-3.0, 3.0)
 @settings(max_examples=40, deadline=None)
 @given(state=st.lists(values, min_size=6, max_size=6), payload=st.floats(0.0, 5.0))
 def test_inverse_dynamics_equal_the_closed_form_arm(arm_path, state, payload):
-    robot = load_robot(arm_path, payloads=[Payload("tool", payload)] if payload else [])
+    robot = loaded_robot(read_robot(arm_path), payloads=[Payload("tool", payload)] if payload else [])
     q, v, a = np.array(state[:2]), np.array(state[2:4]), np.array(state[4:])
     tau = inverse_dynamics(robot, Trajectory(np.zeros(1), q[None], v[None], a[None]))[0]
     want = closed_form_dynamics(q, v, a, payload)
@@ -79,7 +80,7 @@ def test_inverse_dynamics_equal_mujocos(arm_path):
     model = mujoco.MjModel.from_xml_string(arm_path.read_text(encoding="utf-8"))
     model.opt.gravity[:] = [0.0, 0.0, -GRAVITY]
     data = mujoco.MjData(model)
-    robot = load_robot(arm_path)
+    robot = loaded_robot(read_robot(arm_path))
     for q, v, a in np.random.default_rng(7).uniform(-3, 3, (50, 3, 2)):
         data.qpos[:], data.qvel[:], data.qacc[:] = q, v, a
         mujoco.mj_inverse(model, data)
@@ -98,7 +99,7 @@ def test_energy_balance_of_a_rest_to_rest_segment(arm_path, start, end, payload)
     the kinetic energy is 0 at both ends), Simpson's rule on the quintic's uniform samples."""
     if max(abs(s - e) for s, e in zip(start, end, strict=True)) < 1e-3:
         return
-    robot = load_robot(arm_path, payloads=[Payload("tool", payload)] if payload else [])
+    robot = loaded_robot(read_robot(arm_path), payloads=[Payload("tool", payload)] if payload else [])
     motion = Motion(waypoints=(tuple(start), tuple(end)), velocity=(2.0, 3.0), acceleration=(4.0, 6.0), step=2e-4)
     path = trajectory(motion)
     tau = inverse_dynamics(robot, path)
@@ -285,7 +286,7 @@ def test_pose_waypoints_are_reached_by_inverse_kinematics(tmp_path_factory, seed
     from xacrokit.sizing.motion import reach
 
     ur5 = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
-    robot = load_robot(ur5)
+    robot = loaded_robot(read_robot(ur5))
     rng = np.random.default_rng(seed)
     values = rng.uniform(-2.5, 2.5, len(robot.joints))
     model = robot.model

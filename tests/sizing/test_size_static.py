@@ -16,9 +16,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from conftest import REPO, gen_robot
+from xacrokit.cli.size_commands import parse_load, parse_payload
 from xacrokit.errors import SpecErrors, XacrokitError
-from xacrokit.sizing import GRAVITY, Load, Payload, format_text, parse_load, parse_payload, size
-from xacrokit.sizing.sized_robot import load_robot
+from xacrokit.reader.read_robot import read_robot
+from xacrokit.sizing import GRAVITY, Load, Payload, format_text, size
+from xacrokit.sizing.sized_robot import loaded_robot
 from xacrokit.sizing.static import torques
 
 # the course's two-link arm: links of 0.6 m and 0.4 m, each a uniform bar (its centre of mass at its middle)
@@ -86,7 +88,7 @@ angles = st.floats(-math.pi, math.pi)
 def test_torques_equal_the_closed_form_two_link_arm(tmp_path_factory, q1, q2, payload):
     path = tmp_path_factory.mktemp("arm") / "planar.urdf"
     path.write_text(planar_arm(), encoding="utf-8")
-    robot = load_robot(path, payloads=[Payload("tool", payload)] if payload else [])
+    robot = loaded_robot(read_robot(path), payloads=[Payload("tool", payload)] if payload else [])
     gravity, loads = torques(robot, np.array([q1, q2]))
     want = closed_form(q1, q2, payload)
     scale = GRAVITY * (M1 * L1 + (M2 + payload) * (L1 + L2))
@@ -136,7 +138,7 @@ def test_loads_are_pinocchios_inverse_dynamics_with_external_forces(tmp_path_fac
     """-J^T w (the frame Jacobian in world axes) against rnea(q, 0, 0, fext): w moved to the parent joint's frame
     as a spatial force (the moment of the force about the joint's origin added)."""
     spec = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
-    robot = load_robot(spec, payloads=[Payload("tool0", 2.0)], loads=[Load("tool0", tuple(force))])
+    robot = loaded_robot(read_robot(spec), payloads=[Payload("tool0", 2.0)], loads=[Load("tool0", tuple(force))])
     values = np.array(q)
     gravity, loads = torques(robot, values)
     model, data = robot.model, robot.model.createData()
@@ -178,11 +180,11 @@ def test_the_command_line_reports_json_by_its_schema_and_fails_on_a_margin(arm_f
         (["--payload", "5 parsecs@tool"], "--payload '5 parsecs@tool'"),
         (["--payload", "5 kg"], "expected MASS@FRAME"),
         (["--payload", "-1 kg@tool"], "must be > 0"),
-        (["--force", "0,0@tool"], "three components"),
-        (["--force", "0,0,-5 kg@tool"], "--force '0,0,-5 kg@tool'"),
+        (["--load", "0,0@tool"], "three components"),
+        (["--load", "0,0,-5 kg@tool"], "--load '0,0,-5 kg@tool'"),
         (["x:=1"], "only apply to xacro input"),
         (["--payload", "1e308 kg@tool"], "1e+308 kg is beyond what xacrokit takes (at most 1e+06 kg"),
-        (["--force", "0,0,-1e300@tool"], "-1e+300 N is beyond what xacrokit takes (at most 1e+09 N"),
+        (["--load", "0,0,-1e300@tool"], "-1e+300 N is beyond what xacrokit takes (at most 1e+09 N"),
     ],
 )
 def test_bad_sizing_input_is_a_clear_error_with_exit_2(arm_file, args, words):
@@ -218,7 +220,7 @@ def test_the_docs_starter_arm_example_says_what_size_finds(tmp_path):
     """docs/size.md: the arm starter with 1 kg and 20 N pressing down fails joints 2 and 3 (margins 0.76, 0.99)."""
     assert gen_robot("new", "my_arm", "--kind", "arm", cwd=tmp_path).returncode == 0
     result = gen_robot(
-        "size", "my_arm.yaml", "--payload", "1 kg@tool0", "--force", "0,0,-20@tool0", "--json", cwd=tmp_path
+        "size", "my_arm.yaml", "--payload", "1 kg@tool0", "--load", "0,0,-20@tool0", "--json", cwd=tmp_path
     )
     assert result.returncode == 1
     report = json.loads(result.stdout)
@@ -227,6 +229,25 @@ def test_the_docs_starter_arm_example_says_what_size_finds(tmp_path):
     assert margins == [0.76, 0.99]
     docs = (REPO / "docs" / "size.md").read_text(encoding="utf-8")
     assert "margins 0.76 and 0.99" in docs
+
+
+def test_force_is_a_deprecated_alias_of_load(arm_file):
+    """size's loads were --force until 0.2: --force still applies a load, the same as --load (its torque J^T w: 50 N
+    down at the tool of the stretched-out arm adds 50 (L1 + L2) N*m at the shoulder), and says it is deprecated."""
+    path = arm_file()
+    given = gen_robot("size", path, "--load", "0,0,-50@tool", "--json")
+    old = gen_robot("size", path, "--force", "0,0,-50@tool", "--json")
+    assert given.returncode == old.returncode == 0, old.stderr
+    assert "deprecated" not in given.stderr
+    warning = "gen-robot size: warning: --force is deprecated for a load: use --load"
+    assert warning in old.stderr.splitlines(), old.stderr
+    said = json.loads(old.stdout)
+    assert said == json.loads(given.stdout)
+    assert said["loads"] == [{"frame": "tool", "force": [0.0, 0.0, -50.0], "moment": [0.0, 0.0, 0.0]}]
+    bare = json.loads(gen_robot("size", path, "--json").stdout)
+    shoulder, bare_shoulder = said["joints"][0]["static"], bare["joints"][0]["static"]
+    added = abs(shoulder["peak_torque"]) - abs(bare_shoulder["peak_torque"])
+    assert added == pytest.approx(50.0 * (L1 + L2), rel=1e-9)
 
 
 def test_a_safety_factor_divides_every_margin(arm_file, tmp_path):

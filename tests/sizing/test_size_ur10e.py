@@ -12,7 +12,7 @@ import pytest
 import yourdfpy
 
 from conftest import REPO, gen_robot
-from xacrokit.reader.robot_source import robot_text
+from xacrokit.reader.read_robot import read_robot
 
 
 def _gravity_torques(urdf, q, payload_frame, payload_mass, payload_com, g):
@@ -50,8 +50,8 @@ def test_the_ur10e_static_worst_case_is_gravity_at_the_reported_pose():
         "size", "examples/robots/ur10e.yaml", "--sizing", "examples/sizing/ur10e_palletizing.yaml", "--json", cwd=REPO
     )
     report = json.loads(result.stdout)
-    with robot_text(REPO / "examples" / "robots" / "ur10e.yaml", meshes=False) as (text, _):
-        urdf = yourdfpy.URDF.load(io.BytesIO(text.encode("utf-8")), load_meshes=False, build_scene_graph=True)
+    text = read_robot(REPO / "examples" / "robots" / "ur10e.yaml").text
+    urdf = yourdfpy.URDF.load(io.BytesIO(text.encode("utf-8")), load_meshes=False, build_scene_graph=True)
     (payload,) = report["payloads"]
     assert payload["mass"] == 12.5 and payload["frame"] == "tool0"  # (the UR10e's rated payload)
     checked = 0

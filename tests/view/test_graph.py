@@ -11,6 +11,7 @@ import pytest
 from lxml import etree
 
 from conftest import REPO, gen_robot
+from xacrokit.shared.urdf_view import UrdfView, read_view
 from xacrokit.view.tree_graph import tree_dot
 
 ODD = (
@@ -32,7 +33,7 @@ def unquote(text: str) -> str:
 
 
 def test_links_and_joints_of_the_same_name_stay_two_nodes_and_odd_names_survive():
-    graph = parsed(tree_dot(ODD))
+    graph = parsed(tree_dot(read_view(ODD)))
     names = {unquote(n.get_name()) for n in graph.get_nodes()} - {"node"}
     assert names == {"link:a", 'link:q"uo\\te', "link:line\\nbreak", "joint:a", "joint:j2"}
     edges = {(unquote(e.get_source()), unquote(e.get_destination())) for e in graph.get_edges()}
@@ -79,13 +80,12 @@ def test_a_layout_that_takes_too_long_is_stopped_and_said(monkeypatch):
     from xacrokit.errors import XacrokitError
 
     monkeypatch.setattr(tree_graph, "DOT_SECONDS", 1e-6)
-    dot = tree_dot(_rover_urdf())
+    dot = tree_dot(_rover_view())
     with pytest.raises(XacrokitError, match="did not lay the tree out in 1e-06 s"):
         tree_graph.svg(dot)
 
 
-def _rover_urdf() -> str:
-    from xacrokit.reader.robot_source import robot_text
+def _rover_view() -> UrdfView:
+    from xacrokit.reader.read_robot import read_robot
 
-    with robot_text(REPO / "examples" / "robots" / "rover.yaml", meshes=False) as (text, _):
-        return text
+    return read_robot(REPO / "examples" / "robots" / "rover.yaml").view

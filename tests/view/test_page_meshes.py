@@ -15,6 +15,7 @@ import pytest
 import trimesh
 
 from browser import open_page
+from xacrokit.reader.robot_input import RobotInput
 from xacrokit.view.page import page
 from xacrokit.view.page_meshes import drawn, mesh_arrays
 
@@ -60,7 +61,7 @@ def triangles(vertices: np.ndarray, faces: np.ndarray) -> list[tuple]:
 
 def test_a_mesh_named_by_several_links_is_in_the_page_once(tmp_path):
     urdf = shared_robot(tmp_path)
-    robot = embedded_robot(page(urdf, package_paths={"kit": str(tmp_path)}))
+    robot = embedded_robot(page(RobotInput(urdf, packages={"kit": str(tmp_path)})))
     assert [mesh["uri"] for mesh in robot["meshes"]] == ["meshes/part.stl", "meshes/other.stl"]
     visuals = {link["name"]: link["visuals"] for link in robot["links"]}
     assert {name: [v["mesh"] for v in found] for name, found in visuals.items()} == {
@@ -109,7 +110,7 @@ def test_indices_are_uint16_while_they_stay_below_webgl_restart_index(largest, k
 def test_a_mesh_that_cannot_be_read_is_said_for_every_visual_that_names_it(tmp_path):
     urdf = shared_robot(tmp_path)
     (tmp_path / "meshes" / "part.stl").write_bytes(b"not a mesh")
-    robot = embedded_robot(page(urdf, package_paths={"kit": str(tmp_path)}))
+    robot = embedded_robot(page(RobotInput(urdf, packages={"kit": str(tmp_path)})))
     assert [line.split(":")[0] for line in robot["missing"]] == ["link a", "link b", "link c"]
     assert [mesh["uri"] for mesh in robot["meshes"]] == ["meshes/other.stl"]
     assert [v["mesh"] for link in robot["links"] for v in link["visuals"]] == [0]
@@ -118,7 +119,7 @@ def test_a_mesh_that_cannot_be_read_is_said_for_every_visual_that_names_it(tmp_p
 def test_visuals_of_one_file_share_one_geometry_each_at_its_scale(browser, tmp_path):
     urdf = shared_robot(tmp_path)
     html = tmp_path / "shared.html"
-    html.write_text(page(urdf, package_paths={"kit": str(tmp_path)}), encoding="utf-8")
+    html.write_text(page(RobotInput(urdf, packages={"kit": str(tmp_path)})), encoding="utf-8")
     open_page(browser, html)
     assert [e for e in browser.get_log("browser") if e["level"] == "SEVERE"] == []
     drawn = {link: browser.execute_script("return window.xacrokit.visuals(arguments[0])", link) for link in "abcd"}

@@ -74,14 +74,15 @@ def test_the_placements_are_trimeshs_composed_once(example):
     at a joint configuration that is not zero; it replaced graph.get, cubic in a chain's length (issue 28)."""
     import yourdfpy
 
-    from xacrokit.reader.robot_source import robot_text
+    from xacrokit.reader.read_robot import read_robot
     from xacrokit.view.picture import world_transforms
 
-    with robot_text(REPO / "examples" / "robots" / f"{example}.yaml") as (text, packages):
+    read = read_robot(REPO / "examples" / "robots" / f"{example}.yaml")
+    with read.mesh_packages() as packages:
         from xacrokit.shared.ros_packages import mesh_file
 
         robot = yourdfpy.URDF.load(
-            io.StringIO(text),
+            io.StringIO(read.text),
             filename_handler=lambda fname: str(mesh_file(fname, REPO, packages)),
             build_scene_graph=True,
         )

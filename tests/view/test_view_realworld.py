@@ -17,7 +17,8 @@ from lxml import etree
 from browser import open_page, pinocchio_poses, requests_made
 from realworld import VERDICTS, RobotFile, corpus_or_skip
 from xacrokit.reader.mesh_copies import mesh_reader
-from xacrokit.reader.robot_source import robot_text
+from xacrokit.reader.read_robot import read_robot
+from xacrokit.reader.robot_input import RobotInput
 from xacrokit.view.page import page, robot_json
 
 FILES = yaml.safe_load(VERDICTS.read_text(encoding="utf-8"))["files"]
@@ -40,9 +41,10 @@ def test_every_real_robot_makes_a_page_missing_only_what_the_verdicts_say_is_mis
     besides those, the meshes trimesh reads no triangle from are said too."""
     said, empty = set(), set()
     for key, robot in robots().items():
-        with robot_text(robot.path, {}, robot.packages) as (text, packages):
-            found = robot_json(text, mesh_reader(robot.path, packages))
-        root = etree.fromstring(text.encode("utf-8"))
+        read = read_robot(RobotInput(robot.path, packages=robot.packages))
+        with read.mesh_packages() as packages:
+            found = robot_json(read.view, mesh_reader(robot.path, packages))
+        root = etree.fromstring(read.text.encode("utf-8"))
         assert [link["name"] for link in found["links"]] == [link.get("name") for link in root.findall("link")], key
         assert len(found["joints"]) == len(root.findall("joint")), key
         meshes = len(root.findall("link/visual/geometry/mesh"))
@@ -73,7 +75,7 @@ def test_real_robot_pages_are_compact(key, most):
     """Issue 33: the Panda's page under 3 MB, the Go1's under 8 MB (they were 9.1 and 37.4 MB with every visual's
     mesh embedded as the COLLADA reader's vertices), with every mesh drawn."""
     robot = robots()[key]
-    html = page(robot.path, package_paths=robot.packages)
+    html = page(RobotInput(robot.path, packages=robot.packages))
     assert len(html.encode("utf-8")) < most
     found = json.loads(lxml.html.fromstring(html).get_element_by_id("robot").text)
     assert found["missing"] == []
@@ -95,12 +97,11 @@ PICKED = (  # (STL, DAE and OBJ meshes; a mobile base; 7 to 130 links; uint32 in
 def test_real_robots_open_offline_and_pose_as_pinocchio_does(key, tmp_path, browser):
     robot = robots()[key]
     html = tmp_path / "robot.html"
-    html.write_text(page(robot.path, package_paths=robot.packages), encoding="utf-8")
+    html.write_text(page(RobotInput(robot.path, packages=robot.packages)), encoding="utf-8")
     open_page(browser, html)
     assert [e for e in browser.get_log("browser") if e["level"] == "SEVERE"] == []
     assert [u for u in requests_made(browser) if not u.startswith(("file://", "data:"))] == []
-    with robot_text(robot.path, {}, robot.packages, meshes=False) as (text, _):
-        pass
+    text = read_robot(RobotInput(robot.path, packages=robot.packages)).text
     joints = browser.execute_script("return window.xacrokit.joints()")
     rng = np.random.default_rng(3)
     for _ in range(2):

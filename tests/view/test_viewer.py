@@ -11,18 +11,19 @@ import pytest
 
 from browser import browser_only, open_page, pinocchio_poses, requests_made
 from conftest import REPO, ROBOT_EXAMPLES, SCENE_EXAMPLES, gen_robot
-from xacrokit.reader.robot_source import declared
+from xacrokit.reader.read_robot import read_text
+from xacrokit.reader.robot_input import RobotInput
+from xacrokit.reader.robot_source import read_source
+from xacrokit.shared.urdf_view import read_view
 from xacrokit.view.page import page, robot_json
 
 
 @browser_only
 @pytest.mark.parametrize("example", [*ROBOT_EXAMPLES, *SCENE_EXAMPLES], ids=lambda p: p.stem)
 def test_every_example_opens_offline_and_its_kinematics_are_pinocchios(browser, example, tmp_path):
-    from xacrokit.reader.robot_source import read_source
-
     html = tmp_path / f"{example.stem}.html"
     html.write_text(page(example), encoding="utf-8")
-    urdf = read_source(example).text
+    urdf = read_source(RobotInput(example)).text
     open_page(browser, html)
     assert [e for e in browser.get_log("browser") if e["level"] == "SEVERE"] == []
     assert [u for u in requests_made(browser) if not u.startswith(("file://", "data:"))] == []
@@ -56,9 +57,7 @@ def test_the_page_opens_at_home(browser, tmp_path):
     assert shown() == expected
     label = browser.find_element("xpath", "//input[@data-joint='wrist_1_joint']/preceding-sibling::label")
     assert label.text == "wrist_1_joint = -1.570"
-    from xacrokit.reader.robot_source import read_source
-
-    want = pinocchio_poses(read_source(spec).text, expected)["tool0"]
+    want = pinocchio_poses(read_source(RobotInput(spec)).text, expected)["tool0"]
     got = np.array(browser.execute_script("return window.xacrokit.linkPose('tool0')")).reshape(4, 4)
     assert np.abs(got - want).max() < 1e-9
 
@@ -103,7 +102,7 @@ def test_names_cannot_break_out_of_the_page(tmp_path):
     )
     text = page(urdf)
     assert "</script><script>alert" not in text and text.count("</script>") == 3  # (import map, robot, module)
-    assert robot_json(urdf.read_text(encoding="utf-8"), str)["links"][0]["name"] == "a</script>"
+    assert robot_json(read_view(urdf.read_text(encoding="utf-8")), str)["links"][0]["name"] == "a</script>"
 
 
 @browser_only
@@ -149,7 +148,7 @@ def test_undeclared_namespace_prefixes_are_read_past_as_consumers_do(tmp_path):
         '<child link="b"/><limit lower="-1" upper="1" effort="1" velocity="1" drake:acceleration="3"/></joint></robot>',
         encoding="utf-8",
     )
-    robot = robot_json(declared(urdf.read_text(encoding="utf-8")), str)
+    robot = robot_json(read_text(urdf.read_text(encoding="utf-8")).view, str)
     assert [j["name"] for j in robot["joints"]] == ["j"] and robot["joints"][0]["upper"] == 1.0
     for command, output in (("view", "d.html"), ("graph", "d.dot"), ("render", "d.png")):
         result = gen_robot(command, urdf, "-o", tmp_path / output)
@@ -231,9 +230,7 @@ def test_a_sizing_motion_plays_with_its_torque_plot(browser, tmp_path):
     html = tmp_path / "motion.html"
     result = gen_robot("view", robot, "--sizing", REPO / "examples" / "sizing" / "planar_2dof_payload.yaml", "-o", html)
     assert result.returncode == 0, result.stderr
-    from xacrokit.reader.robot_source import read_source
-
-    urdf = read_source(robot).text
+    urdf = read_source(RobotInput(robot)).text
     open_page(browser, html)
     assert [e for e in browser.get_log("browser") if e["level"] == "SEVERE"] == []
     assert browser.execute_script("return document.getElementById('plot-image').naturalWidth") == 290
