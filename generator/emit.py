@@ -140,7 +140,7 @@ def joint_element(prefix: str, joint: Joint) -> etree._Element:
 def screw_origin(a: float, alpha: float, xyz: Vec3, rpy: Vec3) -> tuple[str, str]:
     """(xyz, rpy) text of :func:`screw_pose` (the pose ``xyz``, ``rpy`` after the x screw ``a``, ``alpha``), as its
     twin _xacrokit_origin_after_x_screw writes it."""
-    moved, turned = screw_pose(a, alpha, *xyz, *rpy)
+    moved, turned = screw_pose(a, alpha, xyz, rpy)
     return " ".join(map(repr, moved)), " ".join(map(repr, turned))
 
 

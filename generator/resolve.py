@@ -360,7 +360,7 @@ def _with_bodies(rows: list[DHRow], convention: str) -> tuple[DHRow, ...]:
         body = dh_body(row, end) if row.mass is not None else None
         if body is not None and row.inertia is not None:  # (the table's own tensor, given in DH frame i)
             screw = (row.a, row.alpha) if convention == "standard" else (0.0, 0.0)
-            xyz, rpy = screw_pose(*screw, *row.inertia.origin.xyz, *row.inertia.origin.rpy)
+            xyz, rpy = screw_pose(*screw, row.inertia.origin.xyz, row.inertia.origin.rpy)
             body = dataclasses.replace(body, inertia=dataclasses.replace(row.inertia, origin=Origin(xyz, rpy)))
         bodied.append(dataclasses.replace(row, body=body))
     return tuple(bodied)

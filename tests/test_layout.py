@@ -261,9 +261,7 @@ MANY_PARAMETERS: dict[str, str] = {
 # being reworked for issue 40 by the read-robot change: functions over MAX_PARAMETERS in files the change that added
 # this gate did not own (module:function), a temporary set to empty as each is fixed (the test below fails for one
 # listed here that is no longer over the limit)
-PARAMETER_GATE_PENDING: set[str] = {
-    "xacrokit.shared.transforms:screw_pose",  # (a, alpha, x, y, z, roll, pitch, yaw): the pose as xyz and rpy
-}
+PARAMETER_GATE_PENDING: set[str] = set()
 
 
 def many_parameters(source: str, where: str) -> list[str]:

@@ -68,12 +68,13 @@ def dh_body_pose(
 
 
 def screw_pose(
-    a: float, alpha: float, x: float, y: float, z: float, roll: float, pitch: float, yaw: float
+    a: float, alpha: float, xyz: Sequence[float], rpy: Sequence[float]
 ) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
-    """(xyz, rpy) of Tx(a) Rx(alpha) T(x y z, roll pitch yaw): a pose given in DH frame i, written in the link frame
-    of a standard-DH row (DH frame i is the link frame moved by Tx(a) Rx(alpha)). Its twin
-    _xacrokit_origin_after_x_screw (macros/_inc/frames.xacro) computes the same: same operations, same order, each
-    number + 0.0 (no -0.0)."""
+    """(xyz, rpy) of Tx(a) Rx(alpha) T(xyz, rpy): a pose given in DH frame i, written in the link frame of a
+    standard-DH row (DH frame i is the link frame moved by Tx(a) Rx(alpha)). Its twin _xacrokit_origin_after_x_screw
+    (macros/_inc/frames.xacro) computes the same: same operations, same order, each number + 0.0 (no -0.0)."""
+    x, y, z = xyz
+    roll, pitch, yaw = rpy
     ca, sa = math.cos(alpha), math.sin(alpha)
     cr, sr, cp, sp, cy, sy = (
         math.cos(roll),

@@ -176,7 +176,7 @@ def test_the_command_line_reports_json_by_its_schema_and_fails_on_a_margin(arm_f
 @pytest.mark.parametrize(
     ("args", "words"),
     [
-        (["--payload", "5 kg@toool"], "no frame 'toool' (did you mean 'tool'?)"),
+        (["--payload", "5 kg@toool"], "no link or frame 'toool' (did you mean 'tool'?)"),
         (["--payload", "5 parsecs@tool"], "--payload '5 parsecs@tool'"),
         (["--payload", "5 kg"], "expected MASS@FRAME"),
         (["--payload", "-1 kg@tool"], "must be > 0"),
