@@ -117,12 +117,14 @@ def expand_package(model: Robot | Scene, files: list[RenderedFile]) -> RenderedF
 class SpecURDF:
     """A spec's URDF made in memory (nothing written), for ``gen-robot check``: what the spec describes (a robot, or a
     scene), where each link and joint of a robot is written in its spec (``(kind, name) -> (line, column)``; a
-    scene's come from several files: none), and the spec's warnings (see Spec.warnings)."""
+    scene's come from several files: none), the spec's warnings (see Spec.warnings), and a robot spec's validated
+    form (its data with every value's place: what ``gen-robot report`` reads volumes from; a scene's: None)."""
 
     urdf: str
     model: Robot | Scene
     lines: dict[tuple[str, str], tuple[int, int]]
     warnings: tuple[SpecError, ...]
+    spec: Spec | None = None
 
 
 def spec_urdf(spec_path: str | Path) -> SpecURDF:
@@ -140,7 +142,7 @@ def spec_urdf(spec_path: str | Path) -> SpecURDF:
     spec = validate(raw)
     robot = resolve(spec)
     urdf = expand_package(robot, render_package(robot, spec_name=path.name)).text
-    return SpecURDF(urdf, robot, _spec_lines(spec, robot), spec.warnings)
+    return SpecURDF(urdf, robot, _spec_lines(spec, robot), spec.warnings, spec)
 
 
 def _spec_lines(spec: Spec, robot: Robot) -> dict[tuple[str, str], tuple[int, int]]:

@@ -124,6 +124,6 @@ def robot_input(args: argparse.Namespace, path: str, *, mappings: list[str] | No
     from ..expansion.expression_guard import trusted_by_default
     from ..reader.robot_input import RobotInput
 
-    words = args.mappings if mappings is None else mappings
+    words = getattr(args, "mappings", []) if mappings is None else mappings
     trust = True if getattr(args, "trust", False) else trusted_by_default()
     return RobotInput(Path(path), parse_mappings(words), parse_packages(getattr(args, "package", [])), trust)

@@ -182,10 +182,11 @@ def add_report_command(commands: Any) -> None:
 def _cmd_report(args: argparse.Namespace) -> int:
     from pathlib import Path
 
+    from ..reader.read_robot import read_robot
     from ..sizing.design_report import design_report, to_markdown
     from ..write.outputs import output_file
 
-    text = to_markdown(design_report(args.spec))
+    text = to_markdown(design_report(read_robot(robot_input(args, args.spec))))
     if args.output:
         output_file(Path(args.output), text, force=args.force)
     else:

@@ -24,6 +24,7 @@ from .robot_source import declared, read_source
 
 if TYPE_CHECKING:
     from ..model import Robot
+    from ..validate import Spec
     from .kinematic_model import KinematicModel
 
 
@@ -41,6 +42,7 @@ class ReadRobot:
         lines: a spec's line and column of each link and joint, ``(kind, name) -> (line, column)``.
         warnings: a spec's warnings (valid values that look like a units mistake).
         carried: the files a spec's package will carry (its meshes), by package; staged by :meth:`mesh_packages`.
+        validated: a robot spec's validated form (its data with every value's place; None otherwise).
     """
 
     input: RobotInput
@@ -52,6 +54,7 @@ class ReadRobot:
     lines: Mapping[tuple[str, str], tuple[int, int]] | None = None
     warnings: tuple[SpecError, ...] = ()
     carried: Mapping[str, Any] = field(default_factory=dict, repr=False)
+    validated: Spec | None = field(default=None, repr=False)
 
     @property
     def path(self) -> Path:
@@ -137,6 +140,7 @@ def read_robot(robot: ReadRobot | RobotInput | str | os.PathLike[str]) -> ReadRo
         source.lines,
         source.warnings,
         source.carried,
+        source.validated,
     )
 
 

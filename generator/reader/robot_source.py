@@ -24,6 +24,7 @@ from .robot_input import RobotInput
 
 if TYPE_CHECKING:
     from ..model import Robot
+    from ..validate import Spec
 
 MAX_URDF_BYTES = 256 * 1024 * 1024  # a URDF with meshes inlined runs to megabytes; 256 MiB is far beyond any robot
 
@@ -64,6 +65,7 @@ class RobotSource:
     lines: dict[tuple[str, str], tuple[int, int]] | None = None  # (kind, name) -> (line, column) in the spec
     warnings: tuple[SpecError, ...] = ()
     carried: dict[str, Any] = field(default_factory=dict)
+    validated: Spec | None = None  # a robot spec's validated form (its data, with every value's place)
 
 
 def read_source(robot: RobotInput) -> RobotSource:
@@ -108,7 +110,8 @@ def _spec_source(robot: RobotInput) -> RobotSource:
         described = spec_urdf(robot.path)
     model = described.model if isinstance(described.model, Robot) else None  # (only a robot has DH arms)
     carried = dict(described.model.carried_files)
-    return RobotSource(described.urdf, "spec", robot.packages, model, described.lines, described.warnings, carried)
+    lines, warnings = described.lines, described.warnings
+    return RobotSource(described.urdf, "spec", robot.packages, model, lines, warnings, carried, described.spec)
 
 
 UNDECLARED = "urn:xacrokit:undeclared:"

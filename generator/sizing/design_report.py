@@ -3,24 +3,25 @@ shapes and dimensions, volume, density, mass, centre of mass and inertia tensor 
 formula it comes from (a primitive's closed form, the sum of a composite's parts, a mesh's surface, or given); the
 whole robot's mass and centre of mass (all joints at 0).
 
-Everything comes from the validated spec and its resolved model (the numbers the URDF holds), the volumes from the
-same solids validation uses; the robot's centre of mass from pinocchio on the emitted URDF (a free-flyer root, so that
-the root link counts).
+Everything comes from the read robot: its validated spec and resolved model (the numbers the URDF holds), the volumes
+from the same solids validation uses; the robot's centre of mass from pinocchio on its URDF (its free-flyer model, so
+that the root link counts).
 """
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
-from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..load import load_file
+from ..errors import XacrokitError
 from ..model import Box, Cylinder, Inertia, Link, Mesh, Robot, Shape, Sphere, Visual
-from ..resolve import origin, resolve
+from ..reader.read_robot import ReadRobot
+from ..reader.robot_input import RobotInput
+from ..resolve import origin
 from ..shared.solid_inertia import tensor
-from ..validate import validate
 from ..validate.bodies import bodies, parts
 from ..validate.solids import body_solids
 
@@ -61,37 +62,40 @@ class DesignReport:
     center: tuple[float, float, float]  # the robot's centre of mass in the root link's frame, joints at 0
 
 
-def design_report(spec_path: str | Path) -> DesignReport:
-    """The design report of a spec. Raises SpecErrors (located) for an invalid spec."""
-    import pinocchio as pin
+def design_report(robot: ReadRobot | RobotInput | str | os.PathLike[str]) -> DesignReport:
+    """The design report of a read robot spec (or what to read: a robot spec).
 
-    from ..emit import emit_urdf
+    Raises:
+        XacrokitError: not a robot spec (a URDF, a xacro document or a scene has no spec to report).
+        SpecErrors: an invalid spec (located).
+    """
+    import pinocchio as pin  # (heavy: the robot's centre of mass)
 
-    raw = load_file(spec_path)
-    spec = validate(raw)
-    robot = resolve(spec)
+    from ..reader.read_robot import read_robot
+
+    read = read_robot(robot)
+    spec, model = read.validated, read.spec
+    if spec is None or model is None:
+        what = "a scene" if read.kind == "spec" else f"a {read.kind} file"
+        raise XacrokitError(f"{read.path}: the design report is of a robot spec (.yaml), not of {what}")
     items = list(bodies(spec.data)) + list(parts(spec.data))
-    solids, _, _ = body_solids(raw, spec.data, items)
+    solids, _, _ = body_solids(spec.raw, spec.data, items)
     volumes: dict[str, float] = {}
     for kind, name, path, _ in items:
         if path in solids and kind != "tool":
             volumes[name] = volumes.get(name, 0.0) + solids[path].volume  # (a composite's parts add up)
     described = _spec_shapes(spec.data)
-    urdf = emit_urdf(robot)
-    links = [_link_report(link, volumes.get(link.name), described.get(link.name)) for link in _links(robot, urdf)]
-    model = pin.buildModelFromXML(urdf, pin.JointModelFreeFlyer())
-    data = model.createData()
-    center = pin.centerOfMass(model, data, pin.neutral(model))
+    links = [_link_report(link, volumes.get(link.name), described.get(link.name)) for link in _links(model, read)]
+    free = read.free_floating
+    center = pin.centerOfMass(free, free.createData(), pin.neutral(free))
     mass = float(sum(link.inertial.mass for link in links if link.inertial is not None))
-    return DesignReport(robot.name, tuple(links), mass, (float(center[0]), float(center[1]), float(center[2])))
+    return DesignReport(model.name, tuple(links), mass, (float(center[0]), float(center[1]), float(center[2])))
 
 
-def _links(robot: Robot, urdf: str) -> list[Link]:
-    """The robot's links as the model holds them (arms and wheels through their emitted form, ``urdf``)."""
-    from ..shared.urdf_view import read_view
-
+def _links(robot: Robot, read: ReadRobot) -> list[Link]:
+    """The robot's links as the model holds them (arms and wheels through their URDF form, the read robot's view)."""
     by_name = {link.name: link for link in robot.links}
-    return [by_name.get(link.name) or _from_urdf(link) for link in read_view(urdf, f"{robot.name} (generated)").links]
+    return [by_name.get(link.name) or _from_urdf(link) for link in read.view.links]
 
 
 def _from_urdf(link: ViewLink) -> Link:
