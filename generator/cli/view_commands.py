@@ -125,7 +125,12 @@ def _cmd_render(args: argparse.Namespace) -> int:
         raise XacrokitError(f"--size {args.size!r}: expected WIDTHxHEIGHT in pixels, e.g. 800x600") from None
     if not (16 <= width <= 8000 and 16 <= height <= 8000):
         raise XacrokitError(f"--size {args.size!r}: each side must be 16 to 8000 pixels")
-    picture = render(_read(args), joints=joints, size=(width, height))
+    from ..reader.kinematic_model import UnknownName
+
+    try:
+        picture = render(_read(args), joints=joints, size=(width, height))
+    except UnknownName as exc:
+        raise XacrokitError(f"--joint: {exc.detail}") from None
     output_file(Path(args.output), picture, force=args.force)
     return 0
 

@@ -544,7 +544,7 @@ def export_mjcf(
     from ..write.atomic import is_staged
 
     if base not in ("auto", "fixed", "free"):
-        raise XacrokitError(f"--base {base!r}: auto, fixed or free")
+        raise XacrokitError(f"base {base!r}: the root's joint is one of auto, fixed or free")
     read_in = read_robot(robot)
     with read_in.mesh_packages() as packages:
         read = mesh_reader(read_in.path, packages)

@@ -149,7 +149,7 @@ def require_load(robot: LoadedRobot, where: str) -> None:
     raise XacrokitError(
         f"{where}: no link a joint moves has a mass and nothing loads the robot, so every torque would be 0: give "
         f"those links a mass ({named}: `mass:` in a spec, <inertial> in a URDF), or size it with a payload "
-        "(--payload, payloads:) or a force (--force, loads:)"
+        "or a load (a sizing file's payloads: and loads:, or the command's --payload and --load)"
     )
 
 

@@ -62,7 +62,7 @@ def _placed_meshes(
         except (LookupError, ValueError) as exc:
             raise XacrokitError(f"mesh {fname!r}: {exc}") from None
 
-    from ..reader.kinematic_model import require_placeable
+    from ..reader.kinematic_model import UnknownName, require_placeable
 
     urdf, view = robot.path, robot.view
     if len(view.links) > MAX_LINKS:
@@ -92,7 +92,8 @@ def _placed_meshes(
         raise XacrokitError(f"cannot draw the robot: {type(exc).__name__}: {exc}") from None
     unknown = sorted(set(joints) - set(placed_robot.actuated_joint_names))
     if unknown:
-        raise XacrokitError(f"--joint: no moving joint {', '.join(map(repr, unknown))} in the robot")
+        said = f"no moving joint {', '.join(map(repr, unknown))} in the robot"
+        raise UnknownName(said, role="joint", name=unknown[0])
     if joints:
         placed_robot.update_cfg({name: float(value) for name, value in joints.items()})
     found = []
