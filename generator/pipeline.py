@@ -23,8 +23,10 @@ from .expansion.xacro_expand import expand_file
 from .load import load_file
 from .model import Robot, Scene, attach_joint_name
 from .render import MacroMode, RenderedFile, render_package, render_scene
+from .render.control import axle_offset
 from .resolve import resolve
 from .scene import build_scene, is_scene
+from .shared.input_files import InputError, read_input
 from .validate import Spec, validate
 from .write.atomic import write_text_atomic
 from .write.package_writer import FileAction, write
@@ -248,7 +250,6 @@ def _with_extensions(files: list[RenderedFile], root: Path) -> bool:
     Raises:
         XacrokitError: an extension file that cannot be read (too large, not UTF-8, not a regular file).
     """
-    from .shared.input_files import InputError, read_input
 
     changed = False
     for index, file in enumerate(files):
@@ -275,7 +276,6 @@ AXLE_TOLERANCE = 1e-3  # m: a base frame this close to the axle midpoint tracks 
 
 def _drive_warnings(spec: Spec, robot: Robot, lines: dict[tuple[str, str], tuple[int, int]]) -> tuple[SpecError, ...]:
     """A differential drive whose base frame is not above its axle midpoint, said at the first wheel."""
-    from .render.control import axle_offset
 
     offset = axle_offset(robot)
     if offset is None or max(abs(v) for v in offset) <= AXLE_TOLERANCE:

@@ -8,6 +8,7 @@ no function over 60 lines (its docstring aside: ruff keeps complexity under 15),
 from __future__ import annotations
 
 import ast
+import re
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 
@@ -347,3 +348,146 @@ def test_the_stage_check_can_fail():
     assert backwards_imports({"xacrokit.validate.names": ["xacrokit.render.package", "xacrokit.load"]}) == [
         "xacrokit.validate.names imports xacrokit.render.package"
     ]
+
+
+# What a function may import late (inside itself), each heavy to import or optional, so that a command loads it only
+# when it runs (STYLE.md; issue 40): the CLI starts without them, and a feature that does not need one never pays for it
+HEAVY = {
+    "mujoco": "optional (check's consumer, the MJCF tests)",
+    "matplotlib": "plots: size --report, render, view --sizing",
+    "mpl_toolkits": "matplotlib's 3-D axes (render)",
+    "trimesh": "meshes: 0.3 s to import",
+    "yourdfpy": "render's scene (trimesh with it)",
+    "pinocchio": "0.25 s to import; only the commands that pose or size a robot",
+    "scipy": "Euler angles, the searches of size and ik",
+    "numpy": "0.14 s; generation's start-up goes without it where it can",
+    "stl": "numpy-stl, check's STL reader",
+    "xacro": "xacro input and --via-xacro only",
+    "lxml": "the XML commands; gen-robot --help goes without it",
+    "jinja2": "the renderers",
+    "jsonschema": "its validators word a failed spec's errors",
+    "jsonschema_rs": "the schema's fast validator",
+    "yaml": "the YAML readers",
+    "collada": "COLLADA meshes",
+    "cmeel": "pin's check_urdf program, found when check runs it",
+    "ament_index_python": "a sourced ROS workspace, when there is one",
+    # the standard library's costly ones for a command that does not use them (gen-robot --help: 0.1 s in all)
+    "multiprocessing": "check's workers: 12 ms",
+    "concurrent": "check's workers' pool",
+    "http": "view --watch's server: 25 ms",
+}
+# the command line loads a command's work when the command runs (gen-robot --help in 0.1 s: loading every feature's
+# modules at start doubled it): there, any module of ours but the errors may come late, saying so
+START_UP = "xacrokit.cli"
+REASON = re.compile(r"#.*\(\w")  # a comment saying why, in a word or more, in parentheses: # (heavy: pinocchio)
+
+
+def _top_level_imports(name: str) -> set[str]:
+    """Every module ``name`` imports when it is imported (its own and third-party, outside functions and outside
+    ``if TYPE_CHECKING:``), and its parent packages."""
+    path = MODULES[name]
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    found = {".".join(name.split(".")[:k]) for k in range(2, len(name.split(".")))}
+    pending = list(ast.parse(path.read_text(encoding="utf-8")).body)
+    while pending:
+        node = pending.pop()
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)):
+            continue
+        if isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test):
+            pending += node.orelse
+            continue
+        if isinstance(node, (ast.Import, ast.ImportFrom)):
+            found |= set(_imported(node, package))
+            continue
+        pending += [child for child in ast.iter_child_nodes(node) if isinstance(child, ast.stmt)]
+    return found
+
+
+def _imported(node: ast.Import | ast.ImportFrom, package: str) -> list[str]:
+    """The modules an import statement imports (``from . import x``: the module x where there is one)."""
+    if isinstance(node, ast.Import):
+        return [alias.name for alias in node.names]
+    base = package
+    for _ in range(node.level - 1):
+        base = base.rpartition(".")[0]
+    target = (f"{base}.{node.module}" if node.module else base) if node.level else node.module or ""
+    submodules = [f"{target}.{alias.name}" for alias in node.names if f"{target}.{alias.name}" in MODULES]
+    return submodules or [target]
+
+
+def heavy_brought(target: str) -> frozenset[str]:
+    """The heavy libraries importing ``target`` brings: itself, or those the modules of ours it imports when imported
+    bring, at any depth (a package and its modules import each other: each module is walked once)."""
+    top = target.split(".")[0]
+    if top in HEAVY:
+        return frozenset({top})
+    if target not in MODULES:
+        return frozenset()
+    if target not in _BROUGHT:
+        seen, pending, found = {target}, [target], set()
+        while pending:
+            for imported in _top_level_imports(pending.pop()):
+                if imported.split(".")[0] in HEAVY:
+                    found.add(imported.split(".")[0])
+                elif imported in MODULES and imported not in seen:
+                    seen.add(imported)
+                    pending.append(imported)
+        _BROUGHT[target] = frozenset(found)
+    return _BROUGHT[target]
+
+
+_BROUGHT: dict[str, frozenset[str]] = {}
+
+
+def late_imports(source: str, name: str) -> list[str]:
+    """What is wrong with each import inside a function of ``source`` (module ``name``): one that brings no heavy
+    library the module does not already bring when imported belongs at the top; one that does must say why, in a
+    comment on its line or the line above."""
+    lines = source.splitlines()
+    path = MODULES.get(name)
+    package = name if path is None or path.name == "__init__.py" else name.rpartition(".")[0]
+    own = heavy_brought(name)
+    problems = []
+    for function in ast.walk(ast.parse(source)):
+        if not isinstance(function, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            continue
+        for node in ast.walk(function):
+            if not isinstance(node, (ast.Import, ast.ImportFrom)):
+                continue
+            targets = _imported(node, package)
+            heavy = [sorted(heavy_brought(t) - own) or _start_up(name, t) for t in targets]
+            said = "\n".join(lines[max(node.lineno - 2, 0) : node.end_lineno])
+            where = f"{name}:{node.lineno} imports {', '.join(targets)} late"
+            if not all(heavy):
+                problems.append(f"{where}: it brings nothing heavy, import it at the top")
+            elif not REASON.search(said):
+                problems.append(f"{where}: say why, # ({heavy[0][0]})")
+    return problems
+
+
+def _start_up(name: str, target: str) -> list[str]:
+    """["start-up"] for a module of ours (not the errors) that the command line imports late; else []."""
+    ours = target.startswith("xacrokit.") and target != "xacrokit.errors"
+    return ["start-up"] if name.startswith(START_UP) and ours else []
+
+
+def test_imports_inside_functions_are_heavy_and_say_why():
+    found = [p for name, path in MODULES.items() for p in late_imports(path.read_text(encoding="utf-8"), name)]
+    assert not found, "\n".join(found)
+
+
+def test_the_import_gate_can_fail():
+    source = (
+        "def f():\n    import json\n\n\n"
+        "def g():\n    import pinocchio\n\n\n"
+        "def h():\n    import pinocchio  # (heavy: poses)\n\n\n"
+        "def k():\n    # (heavy: a plot)\n    import matplotlib\n"
+    )
+    assert late_imports(source, "xacrokit.made_up") == [
+        "xacrokit.made_up:2 imports json late: it brings nothing heavy, import it at the top",
+        "xacrokit.made_up:6 imports pinocchio late: say why, # (pinocchio)",
+    ]
+    assert "numpy" in heavy_brought("xacrokit.kinematics")  # (a module of ours that imports numpy when imported)
+    assert late_imports("def f():\n    import numpy  # (heavy)\n", "xacrokit.kinematics") == [
+        "xacrokit.kinematics:2 imports numpy late: it brings nothing heavy, import it at the top"
+    ]  # (the module brings numpy already: importing it late saves nothing)

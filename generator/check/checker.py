@@ -24,6 +24,7 @@ from .consumers import chosen, consumer_findings, start_verdicts
 from .document_rules import first_rules, other_rules
 from .findings import CheckReport, Finding
 from .inertia_geometry import preload_mesh_readers
+from .spec_rules import kinematics_rules, spec_findings
 from .urdf_document import Doc, parse_robot
 
 if TYPE_CHECKING:
@@ -72,13 +73,10 @@ def check(
     except SpecErrors as exc:
         if all(e.line is None for e in exc.errors):  # the file itself cannot be read: no report to give
             raise
-        from .spec_rules import spec_findings
 
         return CheckReport(str(path), kind, None, spec_findings(exc.errors, "V002"))
     notes: tuple[Finding, ...] = ()
     if source.warnings:
-        from .spec_rules import spec_findings
-
         notes = spec_findings(source.warnings)
     with staged_packages(source.carried) as staged:  # (a spec's meshes, where its package will carry them)
         packages = {**staged, **(source.packages or {})} if staged else source.packages
@@ -145,8 +143,6 @@ def _judge(judging: Judging) -> CheckReport:
     )
     findings += other_rules(doc, j.packages, j.path.parent, j.prefix)
     if j.robot is not None and not structural and j.robot.arms:
-        from .spec_rules import kinematics_rules
-
         findings += kinematics_rules(doc, j.robot, j.text)
     results = pending()
     findings += consumer_findings(results, where)

@@ -25,7 +25,8 @@ from typing import TYPE_CHECKING, Any
 
 from ..errors import XacrokitError
 from ..expansion.bounded_child import Bounds, ChildFailed, OutOfBounds, start_bounded
-from .consumer_host import one_line
+from ..shared.ros_packages import find_package
+from .consumer_host import ConsumerHost, one_line
 from .findings import ConsumerResult, Finding, rule_table, severity
 
 if TYPE_CHECKING:
@@ -85,7 +86,10 @@ def check_urdf_command(program: str) -> tuple[list[str], dict[str, str] | None]:
     try:
         with open(program, "rb") as head:
             launcher = b"cmeel_run" in head.read(512)
+        # (heavy: cmeel)
         from cmeel.consts import CMEEL_PREFIX  # type: ignore[import-untyped]
+
+        # (heavy: cmeel)
         from cmeel.run import __file__ as cmeel_run  # type: ignore[import-untyped]
     except (OSError, ImportError):
         return [program], None
@@ -307,7 +311,6 @@ def hosted_consumers() -> Iterator[None]:
     """While it lasts, every check in this process runs its Python consumers in one long-lived child
     (:mod:`xacrokit.check.consumer_host`: what MuJoCo has compiled is kept for the next robot) instead of a child per
     consumer and file."""
-    from .consumer_host import ConsumerHost
 
     host = ConsumerHost(load_with, CONSUMER_BOUNDS)
     _HOST[:] = [host]
@@ -356,9 +359,9 @@ def _forked(
 def _read(data: bytes) -> Any:
     """The root element of a URDF our rules have read: leniently, as those rules do, for undeclared namespace prefixes
     (U003), which consumers read past; the elements stay as written."""
-    from lxml import etree
+    from lxml import etree  # (heavy: lxml)
 
-    from ..shared.xml_parse import parser
+    from ..shared.xml_parse import parser  # (heavy: lxml)
 
     return etree.fromstring(data, parser(recover=True))
 
@@ -375,16 +378,16 @@ def consumer_findings(results: Sequence[ConsumerResult], file: str) -> list[Find
 def load_with(name: str, path: str, packages: Mapping[str, str] | None = None) -> str:
     """Load the URDF with one library; return a one-line description of what it saw."""
     if name == "pinocchio":
-        import pinocchio
+        import pinocchio  # (heavy: pinocchio)
 
         model = pinocchio.buildModelFromUrdf(path)
         return f"{model.njoints - 1} joints, {model.nframes} frames"
     if name == "yourdfpy":
-        import yourdfpy
+        import yourdfpy  # (heavy: yourdfpy)
 
         robot = yourdfpy.URDF.load(path, build_scene_graph=True, load_meshes=False, load_collision_meshes=False)
         return f"{len(robot.link_map)} links, {len(robot.joint_map)} joints"
-    import mujoco
+    import mujoco  # (heavy: mujoco)
 
     # MuJoCo opens mesh files by plain path: hand it the files that package:// and file:// URIs name. It cannot read
     # some formats (.dae, .glb, ASCII STL): a limit of MuJoCo, not a defect of the file, so the visuals and collisions
@@ -400,7 +403,7 @@ MUJOCO_MESH_FORMATS = (".stl", ".obj", ".msh")  # MuJoCo 3-4's mesh readers (bin
 def _without_meshes_mujoco_cannot_read(urdf: str) -> tuple[str, str]:
     """``urdf`` without the visuals and collisions whose mesh file MuJoCo cannot read, and what was left out
     ('3 .dae and 1 ASCII STL meshes'; '' when nothing was)."""
-    from lxml import etree
+    from lxml import etree  # (heavy: lxml)
 
     root = _read(urdf.encode("utf-8"))
     formats: dict[str, int] = {}
@@ -435,9 +438,7 @@ def _ascii_stl(path: Path) -> bool:
 
 
 def _with_mesh_paths(path: str, packages: Mapping[str, str]) -> str:
-    from lxml import etree
-
-    from ..shared.ros_packages import find_package
+    from lxml import etree  # (heavy: lxml)
 
     root = _read(Path(path).read_bytes())
     for mesh in root.iter("mesh"):

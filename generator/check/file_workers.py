@@ -14,16 +14,23 @@ checked here, one by one.
 from __future__ import annotations
 
 import contextlib
+import importlib
 import math
+import multiprocessing
 import os
 import re
+import time
 from collections.abc import Callable, Iterator, Mapping, Sequence
+from concurrent.futures import Future, ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
+from multiprocessing import util
 from pathlib import Path
 from typing import Any
 
 from ..errors import XacrokitError
-from .consumers import LIBRARIES, hosted_consumers
+from ..reader.robot_source import input_kind
+from .consumers import LIBRARIES, chosen, hosted_consumers
 from .findings import CheckReport
 
 
@@ -74,7 +81,7 @@ class CheckOptions:
 
     def check(self, path: Path, progress: Callable[[str], None] | None = None) -> CheckReport:
         """:func:`~xacrokit.check.checker.check` of ``path`` with these options."""
-        from .checker import check
+        from .checker import check  # (heavy: lxml)
 
         return check(
             path,
@@ -96,7 +103,6 @@ def check_files(
 ) -> Iterator[FileCheck]:
     """Check ``files`` in ``jobs`` worker processes (default: the CPU count), yielding each file's outcome in the
     order given, as soon as it and those before it are done."""
-    from .consumers import chosen
 
     names = chosen(options.consumers)  # (an unknown or missing consumer is refused before any file is read)
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(files)))
@@ -113,7 +119,6 @@ def check_files(
 
 def check_one(path: Path, options: CheckOptions) -> FileCheck:
     """One file's outcome (what ``gen-robot check PATH`` says of it alone)."""
-    import time
 
     start = time.perf_counter()
     try:
@@ -126,8 +131,6 @@ def check_one(path: Path, options: CheckOptions) -> FileCheck:
 def _in_workers(
     files: Sequence[Path], options: CheckOptions, jobs: int, say: Callable[[str], None]
 ) -> Iterator[FileCheck]:
-    import multiprocessing
-    from concurrent.futures import Future, ProcessPoolExecutor
 
     # (fork: the workers start from this process with its imports; all of them before any thread of the pool runs)
     pool = ProcessPoolExecutor(
@@ -183,7 +186,6 @@ _WORKER = contextlib.ExitStack()  # (what a worker holds for its life: its consu
 def _worker_starts() -> None:
     """A worker's start: its Python consumers run in one host for all its files, stopped (and waited for) when the
     worker ends."""
-    from multiprocessing import util
 
     _WORKER.enter_context(hosted_consumers())
     util.Finalize(None, _WORKER.close, exitpriority=10)  # (a worker ends through multiprocessing's finalizers)
@@ -192,7 +194,6 @@ def _worker_starts() -> None:
 def _outcome(path: Path, future: Any, place: int) -> FileCheck:
     """The worker's result for ``path`` (at ``place`` in its share); a worker that ended without one (killed, out of
     memory) is said as the file's error."""
-    from concurrent.futures.process import BrokenProcessPool
 
     try:
         result: FileCheck = future.result()[place]
@@ -212,9 +213,6 @@ def _size(path: Path) -> int:
 
 def _import_for(names: Sequence[str], files: Sequence[Path]) -> None:
     """Import what the workers will need, here, before they fork (each then has it without importing it again)."""
-    import importlib
-
-    from ..reader.robot_source import input_kind
 
     modules = ["xacrokit.check.rule_table", "xacrokit.check.checker", "stl", "scipy.spatial", "trimesh"]
     modules += [LIBRARIES[name] for name in names if name in LIBRARIES]

@@ -33,6 +33,9 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import XacrokitError
+from ..reader.mesh_copies import MeshCopyRefused, mesh_reader, mesh_root, require_mesh
+from ..shared.ros_packages import mesh_file
 from ..shared.solid_inertia import box_moments, combine, cylinder_moments, sphere_moment, tensor
 from ..shared.transforms import rpy_matrix
 from ..shared.urdf_view import Geometry, Link, Origin, Shape
@@ -279,8 +282,6 @@ class RobotMeshes:
     vertices (:func:`_hull_vertices`)."""
 
     def __init__(self, urdf: Path, packages: Mapping[str, str | os.PathLike[str]] | None) -> None:
-        from ..reader.mesh_copies import mesh_reader
-
         self.urdf, self.packages = urdf, packages or {}
         self.read = mesh_reader(urdf, self.packages, parse=_mesh_points)
         self.read_solid = mesh_reader(urdf, self.packages, process=False)
@@ -295,7 +296,6 @@ class RobotMeshes:
 
     def _solid(self, filename: str, scale: tuple[float, float, float]) -> Solid | None:
         """The solid for a finding's message (None when trimesh cannot read the file numpy-stl read, or make it)."""
-        from ..errors import XacrokitError
 
         try:
             return _enclosed(self.read_solid(filename).mesh, scale)
@@ -308,10 +308,6 @@ class RobotMeshes:
         return None if facts is None else facts[1]
 
     def _facts(self, filename: str) -> tuple[np.ndarray, int] | None:
-        from ..errors import XacrokitError
-        from ..reader.mesh_copies import mesh_root
-        from ..shared.ros_packages import mesh_file
-
         try:
             path = mesh_file(filename, self.urdf.parent, self.packages)
             status = path.stat()
@@ -339,6 +335,7 @@ def preload_mesh_readers(doc: Doc) -> None:
         if g.shape is not None and g.shape.kind == "mesh"
     )
     if any(not name.lower().endswith(".stl") for name in names):
+        # (heavy: trimesh)
         import trimesh  # noqa: F401
 
 
@@ -349,12 +346,11 @@ _MESHES: dict[tuple[str, str, int, int], tuple[np.ndarray, int] | None] = {}
 def _mesh_points(data: bytes, suffix: str, said: str) -> tuple[np.ndarray, int]:
     """A mesh file's vertices (float32, N x 3) and triangle count: an STL's with numpy-stl, another kind's with
     trimesh. Raises MeshCopyRefused when it holds no triangle."""
-    from ..reader.mesh_copies import MeshCopyRefused, require_mesh
 
     if suffix != ".stl":
         mesh = require_mesh(data, suffix, said, process=False)
         return _hull_vertices(np.asarray(mesh.vertices, dtype=np.float32)), len(mesh.faces)
-    from stl import mesh as stl_mesh
+    from stl import mesh as stl_mesh  # (heavy: stl)
 
     try:
         vectors = stl_mesh.Mesh.from_file(said, fh=io.BytesIO(data), calculate_normals=False).vectors
@@ -372,7 +368,7 @@ def _hull_vertices(points: np.ndarray) -> np.ndarray:
     the rules take is a maximum of a convex function of the points, reached at a hull vertex, so the hull's vertices
     give the same bounds from a fraction of the points (327,225 of the corpus' 11.2 million vertex copies), and a
     kept mesh costs that much less memory and time in every robot that uses it."""
-    from scipy.spatial import ConvexHull, QhullError
+    from scipy.spatial import ConvexHull, QhullError  # (heavy: scipy)
 
     if len(points) < 5:
         return points

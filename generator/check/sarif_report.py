@@ -14,6 +14,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from .. import __version__
 from .file_workers import FileCheck
 from .findings import Finding
 from .rule_table import RULES
@@ -25,7 +26,6 @@ DOCS = "docs/check.md"  # (the rules table, and what each rule checks)
 
 def sarif_log(checks: Sequence[FileCheck]) -> dict[str, Any]:
     """The SARIF log of a run over ``checks``."""
-    from .. import __version__
 
     order = {rule: index for index, rule in enumerate(RULES)}
     results = [

@@ -12,6 +12,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..errors import SpecError, XacrokitError
+from ..reader.read_robot import ReadRobot
+from ..reader.robot_input import RobotInput
 from ..shared.transforms import dh_chain
 from .findings import Finding, rule_table, severity
 from .urdf_document import Doc
@@ -49,7 +51,7 @@ FK_TOLERANCE = 1e-9  # K001: largest difference allowed between URDF and DH tran
 def spec_findings(problems: Iterable[SpecError], rule: str = "V001") -> tuple[Finding, ...]:
     """A spec's warnings (values that look like a units mistake, V001; or, under strict: false, values no real body
     has, V003) or errors (V002) as findings."""
-    from ..validate.physics import Implausible
+    from ..validate.physics import Implausible  # (heavy: jsonschema)
 
     found = []
     for e in problems:
@@ -61,8 +63,6 @@ def spec_findings(problems: Iterable[SpecError], rule: str = "V001") -> tuple[Fi
 def kinematics_rules(doc: Doc, robot: Robot, urdf_text: str) -> Iterator[Finding]:
     """K001: for each DH arm, FK from its parent to its tool frame equals the DH product at sample joint values (the
     URDF's kinematic model as every command builds it, on the view check already read)."""
-    from ..reader.read_robot import ReadRobot
-    from ..reader.robot_input import RobotInput
 
     try:
         model = ReadRobot(RobotInput(Path(doc.file or "robot.urdf")), "spec", urdf_text, doc.view).kinematics

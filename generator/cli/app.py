@@ -13,9 +13,11 @@ from __future__ import annotations
 import argparse
 import contextlib
 import difflib
+import json
 import os
 import re
 import sys
+import traceback
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NoReturn
@@ -40,12 +42,12 @@ if TYPE_CHECKING:
 
 
 def _cmd_expand(args: argparse.Namespace) -> int:
-    from ..expansion.xacro_expand import expand_file
+    from ..expansion.xacro_expand import expand_file  # (heavy: xacro)
 
     given = robot_input(args, args.file)
     urdf = expand_file(given.path, given.mappings, package_paths=given.packages, trust=given.trust)
     if args.output is not None:
-        from ..write.outputs import output_file
+        from ..write.outputs import output_file  # (start-up: a command's work loads when it runs)
 
         output_file(Path(args.output), urdf, force=args.force)
     else:
@@ -64,8 +66,8 @@ def _progress() -> Iterator[Progress]:
 
 
 def _cmd_generate(args: argparse.Namespace) -> int:
-    from ..check.document_rules import generation_warnings
-    from ..pipeline import generate
+    from ..check.document_rules import generation_warnings  # (heavy: lxml)
+    from ..pipeline import generate  # (heavy: jinja2)
 
     if args.output is not None:
         require_plain_output(args.output, folder=True)
@@ -108,7 +110,7 @@ def _say_warnings(warnings: Sequence[XacrokitError]) -> None:
 
 def _conflicts_exit(result: GenerateResult) -> int:
     """A dry run plans conflicts instead of stopping at them: say what the real run would refuse (exit code 1)."""
-    from ..write.package_writer import ConflictError
+    from ..write.package_writer import ConflictError  # (start-up: a command's work loads when it runs)
 
     conflicts = [a for a in result.actions if a.action == "conflict"]
     if not conflicts:
@@ -133,8 +135,8 @@ def _written(result: GenerateResult, dry_run: bool) -> str:
 
 
 def _cmd_fleet(args: argparse.Namespace) -> int:
-    from ..pipeline import generate_scene
-    from ..scene import fleet_scene
+    from ..pipeline import generate_scene  # (heavy: jinja2)
+    from ..scene import fleet_scene  # (heavy: jinja2)
 
     if args.output is not None:
         require_plain_output(args.output, folder=True)
@@ -171,7 +173,7 @@ def _cmd_fleet(args: argparse.Namespace) -> int:
 
 
 def _cmd_new(args: argparse.Namespace) -> int:
-    from .starter import write_starter
+    from .starter import write_starter  # (heavy: jinja2)
 
     path = write_starter(args.name, kind=args.kind, output=args.output)
     print(f"wrote {path}; generate its package with: gen-robot {path}")
@@ -179,10 +181,8 @@ def _cmd_new(args: argparse.Namespace) -> int:
 
 
 def _cmd_check(args: argparse.Namespace) -> int:
-    import json
-
-    from ..check.file_workers import CheckOptions, check_files, run_dict
-    from ..check.robot_files import robot_files
+    from ..check.file_workers import CheckOptions, check_files, run_dict  # (heavy: concurrent)
+    from ..check.robot_files import robot_files  # (heavy: lxml)
 
     form = "json" if args.json else args.format
     if args.jobs is not None and args.jobs < 1:
@@ -212,15 +212,15 @@ def _cmd_check(args: argparse.Namespace) -> int:
     if form == "json":
         sys.stdout.write(json.dumps(run_dict(checks, strict=args.strict), indent=2) + "\n")
     elif form == "sarif":
-        from ..check.sarif_report import sarif_log
+        from ..check.sarif_report import sarif_log  # (heavy: concurrent)
 
         sys.stdout.write(json.dumps(sarif_log(checks), indent=2) + "\n")
     elif form == "junit":
-        from ..check.junit_report import junit_xml
+        from ..check.junit_report import junit_xml  # (heavy: concurrent)
 
         sys.stdout.write(junit_xml(checks, strict=args.strict))
     else:
-        from ..check.text_report import format_files
+        from ..check.text_report import format_files  # (heavy: lxml)
 
         sys.stdout.write(format_files(checks, colour=_colour(), strict=args.strict))
     return max((check.exit_code(args.strict) for check in checks), default=0)
@@ -229,9 +229,8 @@ def _cmd_check(args: argparse.Namespace) -> int:
 def _check_single(path: Path, options: CheckOptions, form: str, strict: bool) -> int:
     """``gen-robot check FILE`` (text or JSON): the file's whole report; a file that cannot be read is the command's
     error (exit 2), as it always was."""
-    import json
 
-    from ..check.text_report import format_text
+    from ..check.text_report import format_text  # (heavy: lxml)
 
     with _progress() as progress:
         report = options.check(path, progress)
@@ -247,14 +246,14 @@ def _colour() -> bool:
 
 
 def _cmd_schema(args: argparse.Namespace) -> int:
-    from ..shared.package_data import schemas_dir
+    from ..shared.package_data import schemas_dir  # (start-up: a command's work loads when it runs)
 
     sys.stdout.write((schemas_dir() / f"{args.kind}.schema.json").read_text(encoding="utf-8"))
     return 0
 
 
 def _cmd_materials(args: argparse.Namespace) -> int:
-    from ..shared.materials import ALIASES, MATERIALS
+    from ..shared.materials import ALIASES, MATERIALS  # (start-up: a command's work loads when it runs)
 
     width = max(len(name) for name in MATERIALS)
     for name, material in MATERIALS.items():
@@ -265,10 +264,10 @@ def _cmd_materials(args: argparse.Namespace) -> int:
 
 
 def _cmd_macros(args: argparse.Namespace) -> int:
-    from ..shared.package_data import PUBLIC_MACRO_FILES, macros_dir
+    from ..shared.package_data import PUBLIC_MACRO_FILES, macros_dir  # (start-up: a command's work loads when it runs)
 
     if args.reference:
-        from ..shared.macro_banners import render_reference
+        from ..shared.macro_banners import render_reference  # (heavy: lxml)
 
         sys.stdout.write(render_reference())
         return 0
@@ -567,8 +566,6 @@ INTERNAL_ERROR = 70  # EX_SOFTWARE (sysexits.h): no input may lead here; the tes
 
 
 def _internal_error(exc: Exception) -> int:
-    import traceback
-
     where = traceback.extract_tb(exc.__traceback__)[-1] if exc.__traceback__ else None
     place = f" at {Path(where.filename).name}:{where.lineno}" if where else ""
     print(

@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 import os
 import re
+import stat
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -18,7 +19,6 @@ if TYPE_CHECKING:
 def require_plain_output(output: str, *, folder: bool) -> None:
     """-o must name a file (or a package folder) that is one, or nothing yet: never '' (the working folder), a device
     (-o /dev/null replaced the device with a file), a FIFO or a socket."""
-    import stat
 
     if not output.strip():
         raise XacrokitError("-o needs a path; an empty one would mean the working folder itself")
@@ -56,7 +56,7 @@ FLEET_LIMIT_WHY = "every copy is written out in the URDF; a scene that large is 
 
 
 def fleet_count(text: str) -> int:
-    from ..scene.fleet import MAX_FLEET
+    from ..scene.fleet import MAX_FLEET  # (heavy: jinja2)
 
     if not re.fullmatch(r"[0-9]{1,9}", text.strip()):
         raise argparse.ArgumentTypeError(f"expected a whole number (digits 0-9), got {text!r}")
@@ -68,7 +68,7 @@ def fleet_count(text: str) -> int:
 
 
 def spacing(text: str) -> float:
-    from ..shared.units import UnitError, parse_quantity
+    from ..shared.units import UnitError, parse_quantity  # (start-up: a command's work loads when it runs)
 
     try:
         spacing = parse_quantity(text, "length")
@@ -121,8 +121,8 @@ def add_robot_options(parser: argparse.ArgumentParser) -> None:
 def robot_input(args: argparse.Namespace, path: str, *, mappings: list[str] | None = None) -> RobotInput:
     """The robot input of a command's arguments: ``path`` with the name:=value words (``mappings`` when the command
     parsed them itself), --package and --trust. The one place the command line makes one."""
-    from ..expansion.expression_guard import trusted_by_default
-    from ..reader.robot_input import RobotInput
+    from ..expansion.expression_guard import trusted_by_default  # (start-up: a command's work loads when it runs)
+    from ..reader.robot_input import RobotInput  # (start-up: a command's work loads when it runs)
 
     words = getattr(args, "mappings", []) if mappings is None else mappings
     trust = True if getattr(args, "trust", False) else trusted_by_default()

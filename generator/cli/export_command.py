@@ -37,8 +37,8 @@ def add_export_command(commands: Any) -> None:
 
 
 def _cmd_export(args: argparse.Namespace) -> int:
-    from ..export.mjcf import export_mjcf, write_export
-    from ..reader.read_robot import read_robot
+    from ..export.mjcf import export_mjcf, write_export  # (heavy: lxml)
+    from ..reader.read_robot import read_robot  # (heavy: lxml)
 
     model = export_mjcf(read_robot(robot_input(args, args.path)), base=args.base, floor=args.floor)
     for note in model.notes:

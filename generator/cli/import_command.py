@@ -31,9 +31,9 @@ def add_import_command(commands: Any) -> None:
 
 
 def _cmd_import(args: argparse.Namespace) -> int:
-    from ..importer.urdf_to_spec import import_robot, spec_yaml
-    from ..reader.read_robot import read_robot
-    from ..write.outputs import OutputFile, write_outputs
+    from ..importer.urdf_to_spec import import_robot, spec_yaml  # (heavy: lxml)
+    from ..reader.read_robot import read_robot  # (heavy: lxml)
+    from ..write.outputs import OutputFile, write_outputs  # (start-up: a command's work loads when it runs)
 
     result = import_robot(read_robot(robot_input(args, args.path)))
     if result.refused:  # (the spec written would not generate: nothing is written, exit 2; every reason said)

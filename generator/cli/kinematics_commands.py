@@ -10,6 +10,7 @@ import sys
 from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any
 
+from ..errors import XacrokitError
 from .arguments import add_robot_options, robot_input
 
 if TYPE_CHECKING:
@@ -78,7 +79,7 @@ def add_ik_command(commands: Any) -> None:
 
 
 def _target(text: str) -> list[float]:
-    from ..errors import XacrokitError
+    # (start-up: a command's work loads when it runs)
     from ..shared.units import UnitError, bound_problem, parse_quantity
 
     parts = [p.strip() for p in text.split(",")]
@@ -95,7 +96,7 @@ def _target(text: str) -> list[float]:
 
 
 def _read(args: argparse.Namespace) -> ReadRobot:
-    from ..reader.read_robot import read_robot
+    from ..reader.read_robot import read_robot  # (heavy: lxml)
 
     return read_robot(robot_input(args, args.robot))
 
@@ -103,9 +104,8 @@ def _read(args: argparse.Namespace) -> ReadRobot:
 @contextlib.contextmanager
 def _flags(args: argparse.Namespace) -> Iterator[None]:
     """The kinematics' errors said with the option or argument that named what was wrong."""
-    from ..errors import XacrokitError
-    from ..kinematics import MovingFrame
-    from ..reader.kinematic_model import JointValueError, UnknownName
+    from ..kinematics import MovingFrame  # (heavy: lxml)
+    from ..reader.kinematic_model import JointValueError, UnknownName  # (heavy: lxml)
 
     try:
         yield
@@ -121,7 +121,7 @@ def _flags(args: argparse.Namespace) -> Iterator[None]:
 
 
 def _cmd_ik(args: argparse.Namespace) -> int:
-    from ..kinematics import inverse_kinematics
+    from ..kinematics import inverse_kinematics  # (heavy: lxml)
 
     target = _target(args.to)
     robot = _read(args)
@@ -164,8 +164,6 @@ def _common(parser: argparse.ArgumentParser) -> None:
 
 
 def _values(args: argparse.Namespace) -> dict[str, str]:
-    from ..errors import XacrokitError
-
     given = {}
     for item in args.at:
         name, sign, value = item.partition("=")
@@ -186,7 +184,6 @@ def _warn(warnings: list[LimitWarning]) -> None:
 
 def _numbers(text: str, counts: tuple[int, ...], said: str) -> list[float]:
     """Comma-separated finite numbers, as many as one of ``counts``; XacrokitError ``said`` otherwise."""
-    from ..errors import XacrokitError
 
     try:
         values = [float(v) for v in text.split(",")]
@@ -198,7 +195,7 @@ def _numbers(text: str, counts: tuple[int, ...], said: str) -> list[float]:
 
 
 def _cmd_pose(args: argparse.Namespace) -> int:
-    from ..kinematics import pose
+    from ..kinematics import pose  # (heavy: lxml)
 
     at = _values(args)
     robot = _read(args)
@@ -224,7 +221,7 @@ def _cmd_pose(args: argparse.Namespace) -> int:
 
 
 def _cmd_jacobian(args: argparse.Namespace) -> int:
-    from ..kinematics import jacobian, joint_torques
+    from ..kinematics import jacobian, joint_torques  # (heavy: lxml)
 
     at = _values(args)
     robot = _read(args)
@@ -258,9 +255,9 @@ def _cmd_jacobian(args: argparse.Namespace) -> int:
 def pose_dict(matrix: Any, rotation: str = "rpy") -> dict[str, Any]:
     """A 4x4 pose as the commands print it: xyz, rpy (URDF), quat_xyzw (w >= 0), the matrix, and ``rotation`` in the
     form named (:func:`xacrokit.shared.transforms.rotation_forms`)."""
-    import numpy as np
+    import numpy as np  # (heavy: numpy)
 
-    from ..shared.transforms import rotation_forms
+    from ..shared.transforms import rotation_forms  # (heavy: numpy)
 
     forms = rotation_forms(np.asarray(matrix)[:3, :3])
     return {
@@ -274,7 +271,7 @@ def pose_dict(matrix: Any, rotation: str = "rpy") -> dict[str, Any]:
 
 def _point(text: str, matrix: Any) -> list[float]:
     """T p for a point ``X,Y,Z`` (m) given as text."""
-    import numpy as np
+    import numpy as np  # (heavy: numpy)
 
     given = _numbers(text, (3,), f"--point {text!r}: give X,Y,Z in metres")
     return [float(v) for v in (np.asarray(matrix) @ np.array([*given, 1.0]))[:3]]

@@ -7,6 +7,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..errors import XacrokitError
@@ -73,8 +74,8 @@ def add_size_command(commands: Any) -> None:
 
 
 def _cmd_size(args: argparse.Namespace) -> int:
-    from ..reader.kinematic_model import UnknownName
-    from ..reader.read_robot import read_robot
+    from ..reader.kinematic_model import UnknownName  # (heavy: lxml)
+    from ..reader.read_robot import read_robot  # (heavy: lxml)
     from ..sizing import format_text, size  # (heavy: numpy, pinocchio)
 
     if args.force:
@@ -96,7 +97,7 @@ def _cmd_size(args: argparse.Namespace) -> int:
         flag = "--payload" if any(p.frame == exc.name for p in payloads) else "--load"
         raise XacrokitError(f"{flag}: {exc.detail}") from None
     if args.report:
-        from ..sizing.report_document import write_report
+        from ..sizing.report_document import write_report  # (heavy: jsonschema)
 
         write_report(report, args.report, force=args.overwrite)
     if args.json:
@@ -180,11 +181,9 @@ def add_report_command(commands: Any) -> None:
 
 
 def _cmd_report(args: argparse.Namespace) -> int:
-    from pathlib import Path
-
-    from ..reader.read_robot import read_robot
-    from ..sizing.design_report import design_report, to_markdown
-    from ..write.outputs import output_file
+    from ..reader.read_robot import read_robot  # (heavy: lxml)
+    from ..sizing.design_report import design_report, to_markdown  # (heavy: jsonschema)
+    from ..write.outputs import output_file  # (start-up: a command's work loads when it runs)
 
     text = to_markdown(design_report(read_robot(robot_input(args, args.spec))))
     if args.output:

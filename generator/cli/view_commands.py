@@ -10,6 +10,7 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from ..errors import XacrokitError
 from .arguments import add_force_option, add_robot_options, robot_input
 
 if TYPE_CHECKING:
@@ -17,7 +18,7 @@ if TYPE_CHECKING:
 
 
 def _read(args: argparse.Namespace) -> ReadRobot:
-    from ..reader.read_robot import read_robot
+    from ..reader.read_robot import read_robot  # (heavy: lxml)
 
     return read_robot(robot_input(args, args.path))
 
@@ -83,9 +84,8 @@ def add_view_commands(commands: Any) -> None:
 
 
 def _cmd_graph(args: argparse.Namespace) -> int:
-    from ..errors import XacrokitError
-    from ..view.tree_graph import graph, svg
-    from ..write.outputs import output_file
+    from ..view.tree_graph import graph, svg  # (start-up: a command's work loads when it runs)
+    from ..write.outputs import output_file  # (start-up: a command's work loads when it runs)
 
     dot = graph(_read(args))
     if not args.output:
@@ -102,10 +102,9 @@ def _cmd_graph(args: argparse.Namespace) -> int:
 
 
 def _cmd_render(args: argparse.Namespace) -> int:
-    from ..errors import XacrokitError
-    from ..shared.units import UnitError, parse_quantity
-    from ..view.picture import render
-    from ..write.outputs import output_file
+    from ..shared.units import UnitError, parse_quantity  # (start-up: a command's work loads when it runs)
+    from ..view.picture import render  # (heavy: numpy)
+    from ..write.outputs import output_file  # (start-up: a command's work loads when it runs)
 
     joints = {}
     for text in args.joint:
@@ -125,7 +124,7 @@ def _cmd_render(args: argparse.Namespace) -> int:
         raise XacrokitError(f"--size {args.size!r}: expected WIDTHxHEIGHT in pixels, e.g. 800x600") from None
     if not (16 <= width <= 8000 and 16 <= height <= 8000):
         raise XacrokitError(f"--size {args.size!r}: each side must be 16 to 8000 pixels")
-    from ..reader.kinematic_model import UnknownName
+    from ..reader.kinematic_model import UnknownName  # (heavy: lxml)
 
     try:
         picture = render(_read(args), joints=joints, size=(width, height))
@@ -136,14 +135,13 @@ def _cmd_render(args: argparse.Namespace) -> int:
 
 
 def _cmd_view(args: argparse.Namespace) -> int:
-    from ..errors import XacrokitError
-    from ..view.page import page
-    from ..write.outputs import output_file
+    from ..view.page import page  # (heavy: lxml)
+    from ..write.outputs import output_file  # (start-up: a command's work loads when it runs)
 
     given = robot_input(args, args.path)
     if args.watch:
-        from ..reader.read_robot import read_robot
-        from ..view.watch_server import POLL, POLLER, Watcher
+        from ..reader.read_robot import read_robot  # (heavy: lxml)
+        from ..view.watch_server import POLL, POLLER, Watcher  # (heavy: http)
 
         def build(version: int) -> str:  # (the robot read anew each time a file changes)
             poller = POLLER.format(version=version, poll=int(POLL * 1000))

@@ -34,21 +34,24 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from lxml import etree
 
 from ..errors import XacrokitError
 from ..model import Robot
-from ..reader.kinematic_model import unit_axis
-from ..reader.mesh_copies import MeshRead
-from ..reader.named_poses import named_poses
-from ..reader.read_robot import ReadRobot
+from ..reader.kinematic_model import require_placeable, unit_axis
+from ..reader.mesh_copies import MeshRead, mesh_reader
+from ..reader.named_poses import named_poses, spec_poses
+from ..reader.read_robot import ReadRobot, read_robot
 from ..reader.robot_input import RobotInput
 from ..reader.robot_source import urdf_floats as _floats
 from ..shared.input_files import CopiedFile, copied_pieces
 from ..shared.kinematic_tree import Tree
-from ..shared.transforms import matrix_quaternion, rpy_quaternion
+from ..shared.transforms import matrix_quaternion, rpy_matrix, rpy_quaternion
 from ..shared.units import MAX_MOMENT, STANDARD_GRAVITY, bound_problem
 from ..shared.urdf_view import Joint, Link, Origin, UrdfView
-from .mjcf_actuators import num
+from ..write.atomic import is_staged
+from ..write.outputs import OutputFile, output_file, write_outputs
+from .mjcf_actuators import actuators, commanded, gains, mimics, num
 from .mjcf_keyframes import keyframes
 from .mjcf_meshes import FlatMesh, Meshes
 
@@ -156,7 +159,6 @@ def _require_depth(tree: _Tree) -> None:
 def _skeleton(name: str, floor: bool) -> tuple[Any, Any, Any]:
     """The ``<mujoco>`` element with every compiler and option setting explicit, the visual and collision classes,
     and its (empty) asset and worldbody: (model, asset, world)."""
-    from lxml import etree
 
     model = etree.Element("mujoco", model=name)
     etree.SubElement(
@@ -198,8 +200,6 @@ class _Bodies:
     export: Export
 
     def body(self, name: str, parent: Any, joint: Joint | None) -> None:
-        from lxml import etree
-
         link = self.tree.links[name]
         if joint is None and name == "world":
             body = parent  # (a root link called world is MuJoCo's world body)
@@ -236,7 +236,6 @@ def mjcf(
     Raises:
         XacrokitError: a URDF MuJoCo cannot take (not a tree, a mesh that cannot be found or read, bad numbers).
     """
-    from ..reader.kinematic_model import require_placeable
 
     view = robot.view
     try:
@@ -266,9 +265,6 @@ def mjcf(
 
 def _constraints(model: Any, robot: ReadRobot, tree: _Tree, free: bool, export: Export) -> None:
     """Contact exclusions (every joint's parent and child), mimic equalities and actuators."""
-    from lxml import etree
-
-    from .mjcf_actuators import actuators, commanded, gains, mimics
 
     contact = etree.SubElement(model, "contact")
     for parent, child in _adjacent(tree):
@@ -324,7 +320,6 @@ def spec_armature(robot: Robot | None) -> dict[str, float]:
 
 def _header(model: Any, export: Export) -> None:
     """The notes on repaired inertias, the model's header comment, and the XML text."""
-    from lxml import etree
 
     for name, change in export.repairs.items():
         export.notes.append(
@@ -362,7 +357,6 @@ def _frictions(view: UrdfView) -> dict[str, float]:
 
 def _add_joint(body: Any, joint: Joint) -> bool:
     """The MJCF joint(s) of a URDF joint inside its child's body; False for a fixed joint (the body is welded)."""
-    from lxml import etree
 
     kind, name = joint.type, joint.name
     if kind == "fixed":
@@ -401,8 +395,6 @@ def _add_joint(body: Any, joint: Joint) -> bool:
 
 
 def _inertial(body: Any, link: Link, moving: bool, massless: list[str], repairs: dict[str, float]) -> None:
-    from lxml import etree
-
     inertial = link.inertial
     where = f"link {link.name!r}: inertial"
     mass = _floats(inertial.mass or "0", 1, where=where)[0] if inertial is not None else 0.0
@@ -424,8 +416,6 @@ def _inertial(body: Any, link: Link, moving: bool, massless: list[str], repairs:
     xyz, rpy = _origin(inertial.origin if inertial is not None else None, where)
     element.set("pos", nums(xyz))
     if any(rpy):  # (MJCF takes fullinertia in the body's axes only: R I R^T, R the inertial origin's rotation)
-        from ..shared.transforms import rpy_matrix
-
         rotation = rpy_matrix(*rpy)
         matrix = rotation @ matrix @ rotation.T
     fixed = physical(matrix)
@@ -467,8 +457,6 @@ def physical(matrix: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
 
 
 def _geoms(body: Any, link: Link, colours: Mapping[str, str], mu: float | None, meshes: Meshes) -> None:
-    from lxml import etree
-
     for kind, parts in (("visual", link.visuals), ("collision", link.collisions)):
         said = f"link {link.name!r} {kind}"
         for part in parts:
@@ -517,7 +505,6 @@ def write_export(export: Export, output: str | os.PathLike[str], *, force: bool 
     """Write the model and its meshes (meshes/ next to it) through the write stage
     (:func:`~xacrokit.write.outputs.write_outputs`: atomic; never through a link or onto a device; a file there that
     gen-robot did not write is kept and nothing is written, unless ``force``); the paths written."""
-    from ..write.outputs import OutputFile, output_file, write_outputs
 
     target = Path(output)
     if not export.meshes:
@@ -538,10 +525,6 @@ def export_mjcf(
         XacrokitError: unreadable input, a mesh that cannot be found or read, a robot MuJoCo cannot take.
         SpecErrors: an invalid spec (located).
     """
-    from ..reader.mesh_copies import mesh_reader
-    from ..reader.named_poses import spec_poses
-    from ..reader.read_robot import read_robot
-    from ..write.atomic import is_staged
 
     if base not in ("auto", "fixed", "free"):
         raise XacrokitError(f"base {base!r}: the root's joint is one of auto, fixed or free")

@@ -26,6 +26,7 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
+from lxml import etree
 
 from ..errors import XacrokitError
 from ..shared.urdf_view import Joint, UrdfView
@@ -68,7 +69,7 @@ def commanded(view: UrdfView) -> dict[str, str]:
 def gains(model: Any, joints: Sequence[str]) -> dict[str, float]:
     """M_ii at q = 0 of each named joint (kg m^2 or kg), from pinocchio's crba on the robot's ``model`` (fixed, or on
     a free-flyer root as the MJCF's base)."""
-    import pinocchio as pin
+    import pinocchio as pin  # (heavy: pinocchio)
 
     data = model.createData()
     mass = pin.crba(model, data, pin.neutral(model))
@@ -84,7 +85,6 @@ def gains(model: Any, joints: Sequence[str]) -> dict[str, float]:
 
 def actuators(view: UrdfView, joints: Mapping[str, Joint], inertia: Mapping[str, float], notes: list[str]) -> Any:
     """The ``<actuator>`` element (empty when nothing is commanded)."""
-    from lxml import etree
 
     element = etree.Element("actuator")
     omega = 2.0 * math.pi * BANDWIDTH
@@ -124,7 +124,6 @@ def actuators(view: UrdfView, joints: Mapping[str, Joint], inertia: Mapping[str,
 def mimics(joints: Sequence[Joint], notes: list[str]) -> Any:
     """The ``<equality>`` element of the mimic joints (empty without one); a mimic of a joint that is not there (or
     does not move) is said in ``notes`` and left unconstrained."""
-    from lxml import etree
 
     element = etree.Element("equality")
     names = {j.name for j in joints if j.type in ("revolute", "continuous", "prismatic")}

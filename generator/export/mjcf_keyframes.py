@@ -11,6 +11,8 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+from lxml import etree
+
 from ..shared.joint_types import rest_position
 from ..shared.urdf_view import Joint
 from .mjcf_actuators import num
@@ -18,7 +20,6 @@ from .mjcf_actuators import num
 
 def keyframes(model: Any, poses: Mapping[str, Mapping[str, float]], joints: Sequence[Joint]) -> Any:
     """The ``<keyframe>`` element of ``model`` (an MJCF tree with its joints and actuators) for ``poses``."""
-    from lxml import etree
 
     mimics = {j.name: j.mimic for j in joints if j.mimic is not None}
     order = list(model.find("worldbody").iter("joint", "freejoint"))  # (MuJoCo's qpos order)

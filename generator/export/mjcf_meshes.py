@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from lxml import etree
 
 from ..errors import XacrokitError
 from ..reader.mesh_copies import MeshRead
@@ -49,8 +50,6 @@ class Meshes:
         self.refused: dict[str, XacrokitError] = {}  # the URI as written -> why it is not read (said once per use)
 
     def name(self, filename: str, scale: str | None) -> str:
-        from lxml import etree
-
         if filename in self.refused:  # (a mesh named by many visuals is read, and refused, once)
             raise self.refused[filename]
         path = self.found.get(filename)

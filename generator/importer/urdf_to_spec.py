@@ -26,13 +26,19 @@ import os
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from pathlib import Path, PurePosixPath
 from typing import Any
 
-from ..reader.read_robot import ReadRobot
+from lxml import etree
+
+from ..errors import SpecErrors
+from ..model import Origin as SpecOrigin
+from ..reader.read_robot import ReadRobot, read_robot
 from ..reader.robot_input import RobotInput
 from ..reader.robot_source import urdf_floats
 from ..shared.input_files import CopiedFile
-from ..shared.urdf_view import Inertial, Joint, Link, Material, MaterialRef, Origin, Shape, UrdfView
+from ..shared.ros_packages import mesh_file
+from ..shared.urdf_view import Inertial, Joint, Link, Material, MaterialRef, Origin, Shape, UrdfView, read_view
 from .wheel_match import wheels
 
 IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -112,7 +118,6 @@ def _shape(shape: Shape | None, where: str, problems: list[str]) -> dict[str, An
 
 def import_text(text: str, name_hint: str = "robot", source: str = "") -> Imported:
     """The spec of a URDF text (:func:`import_view` of its view, parsed here)."""
-    from ..shared.urdf_view import read_view
 
     return import_view(read_view(text, source or "<robot>"), name_hint, source)
 
@@ -153,7 +158,7 @@ def import_view(view: UrdfView, name_hint: str = "robot", source: str = "") -> I
 def _robot_name(robot: str, result: Imported) -> str:
     """The robot's name as the spec can take it: it names the package, the macro and the files (a name that is not
     an identifier, too long, or a xacro keyword's is made one, and that is said in ``result.renamed``)."""
-    from ..validate.names import robot_name_problem
+    from ..validate.names import robot_name_problem  # (heavy: jsonschema)
 
     if not IDENTIFIER.fullmatch(robot) or len(robot) > 200:
         renamed = re.sub(r"[^A-Za-z0-9_]", "_", robot)[:200]
@@ -291,7 +296,6 @@ def _import_joints(view: UrdfView, located: _Locator, result: Imported) -> dict[
 def _extension(root: Any, absorbed: Any, leftovers: list[str]) -> str:
     """The ``<robot>`` children the spec does not model (and no wheel absorbed), verbatim, as the extension file's
     text ('' when there are none); each is named in ``leftovers``."""
-    from lxml import etree
 
     kept = etree.Element("robot")
     for child in root.iterchildren(etree.Element):
@@ -316,10 +320,9 @@ def _strictness(result: Imported, located: Any) -> None:
     is not physical, a moving link without mass, a continuous joint without limit): they are kept as the file says
     them, and listed (:attr:`Imported.as_given`)."""
 
-    from ..errors import SpecErrors
-    from ..load import load_text
-    from ..validate import validate
-    from ..validate.physics import Implausible
+    from ..load import load_text  # (heavy: yaml)
+    from ..validate import validate  # (heavy: jsonschema)
+    from ..validate.physics import Implausible  # (heavy: jsonschema)
 
     # (its relative meshes are not beside this text, which is read as in a folder that is not there: those errors are
     # not the ones asked about, and nothing of the working folder is read)
@@ -343,10 +346,10 @@ def _strictness(result: Imported, located: Any) -> None:
 def _is_the_shapes(entry: dict[str, Any]) -> bool:
     """Whether a link's inertia is the one the spec computes from its shape and mass (a solid of uniform density
     centred on the shape's origin), to 1e-12 of its largest moment: then the spec says only the mass."""
-    import numpy as np
+    import numpy as np  # (heavy: numpy)
 
-    from ..resolve import shape_inertia
-    from ..shared.transforms import rpy_matrix
+    from ..resolve import shape_inertia  # (heavy: jsonschema)
+    from ..shared.transforms import rpy_matrix  # (heavy: numpy)
 
     if "mesh" in entry["shape"]:
         return False  # (a mesh's tensor comes from its surface: kept as the file says it)
@@ -370,14 +373,11 @@ def _is_the_shapes(entry: dict[str, Any]) -> bool:
 
 
 def _zero_origin() -> Any:
-    from ..model import Origin
-
-    return Origin()
+    return SpecOrigin()
 
 
 def _holds_xacro(element: Any) -> bool:
     """Whether an element holds a xacro element or attribute (an extension file is copied verbatim: no xacro)."""
-    from lxml import etree
 
     xacro = "{http://www.ros.org/wiki/xacro}"
     return any(
@@ -472,7 +472,6 @@ def import_robot(robot: ReadRobot | RobotInput | str | os.PathLike[str]) -> Impo
     Raises:
         XacrokitError: unreadable input, or a robot with nothing the spec can hold.
     """
-    from ..reader.read_robot import read_robot
 
     read = read_robot(robot)
     imported = import_view(read.view, read.path.stem.split(".")[0], read.where)
@@ -488,12 +487,10 @@ def _relative_meshes(imported: Imported, urdf: Any, packages: Mapping[str, Any],
     written: the package it names is the user's.) What is copied is read here, once, safely
     (:func:`~xacrokit.reader.mesh_copies.mesh_to_copy`: no link, nothing outside the robot's folder, a mesh of its
     kind) and streamed when the spec is written; a mesh that is not is a located error, and nothing is imported."""
-    from pathlib import Path, PurePosixPath
 
-    from ..reader.mesh_copies import mesh_to_copy, robot_folder
-    from ..shared.mesh_solids import MESH_SUFFIXES, is_relative
-    from ..shared.ros_packages import mesh_file
-    from ..validate.bodies import geometries
+    from ..reader.mesh_copies import mesh_to_copy, robot_folder  # (heavy: numpy)
+    from ..shared.mesh_solids import MESH_SUFFIXES, is_relative  # (heavy: numpy)
+    from ..validate.bodies import geometries  # (heavy: jsonschema)
 
     found: list[tuple[dict[str, Any], str, str]] = []  # (the spec's mesh, the file, where the URDF names it)
     for link_name, link in imported.spec.get("links", {}).items():
@@ -523,7 +520,7 @@ def _relative_meshes(imported: Imported, urdf: Any, packages: Mapping[str, Any],
 def yaml_text(data: Any, **options: Any) -> str:
     """``data`` as YAML in its keys' order, by libyaml's emitter when PyYAML has it: the pure-Python one took 85 s of
     a 20,000-link import's 114 (the text is the same: all 129 real robots' specs compared)."""
-    import yaml
+    import yaml  # (heavy: yaml)
 
     text: str = yaml.dump(data, Dumper=getattr(yaml, "CSafeDumper", yaml.SafeDumper), sort_keys=False, **options)
     return text

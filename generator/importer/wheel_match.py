@@ -82,7 +82,7 @@ def _axle(joint: dict[str, Any], link: dict[str, Any]) -> str | None:
 def _cylinders(link: dict[str, Any], axle: str) -> bool:
     """Whether a link's explicit inertia is the wheel's: a uniform cylinder's about its centre, in the link's axes
     (the wheel macro's), to 1e-12 of its largest moment."""
-    from ..shared.solid_inertia import wheel_moments
+    from ..shared.solid_inertia import wheel_moments  # (heavy: numpy)
 
     inertia = link["inertia"]
     if inertia.get("origin", {}) not in ({}, {"xyz": [0.0, 0.0, 0.0]}) or any(

@@ -27,6 +27,7 @@ from ..errors import XacrokitError
 from ..reader.kinematic_model import KinematicModel, LimitWarning, joint_values
 from ..reader.read_robot import ReadRobot, read_robot
 from ..reader.robot_input import RobotInput
+from ..shared.transforms import rpy_matrix
 from .inverse import Chain, distinct, solve, starts
 
 Robot = ReadRobot | RobotInput | str | os.PathLike[str]  # what the functions take: a read robot (or what to read)
@@ -55,7 +56,7 @@ class Jacobian:
 
 
 def _placed(robot: KinematicModel, q: np.ndarray) -> None:
-    import pinocchio as pin
+    import pinocchio as pin  # (heavy: pinocchio)
 
     pin.framesForwardKinematics(robot.model, robot.data, q)
 
@@ -88,7 +89,7 @@ def jacobian(robot: Robot, frame: str, *, in_frame: str | None = None, at: Mappi
     Raises:
         as :func:`pose`.
     """
-    import pinocchio as pin
+    import pinocchio as pin  # (heavy: pinocchio)
 
     model = read_robot(robot).kinematics
     values, warnings = joint_values(model, at or {})
@@ -164,9 +165,7 @@ def inverse_kinematics(
         XacrokitError: as :func:`pose`, an ``in_frame`` that moves with a joint (:class:`MovingFrame`), or a robot
             without a joint to move.
     """
-    import pinocchio as pin
-
-    from ..shared.transforms import rpy_matrix
+    import pinocchio as pin  # (heavy: pinocchio)
 
     read = read_robot(robot)
     model = read.kinematics

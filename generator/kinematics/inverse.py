@@ -43,7 +43,7 @@ def solve(
 ) -> tuple[np.ndarray, float]:
     """Joint values from ``start`` that put the frame at ``target`` (a pinocchio SE3 in the root's frame; its rotation
     ignored when ``position_only``), kept within the limits; and the pose error left."""
-    import pinocchio as pin
+    import pinocchio as pin  # (heavy: pinocchio)
 
     model: Any = chain.model
     data = chain.data if chain.data is not None else model.createData()
@@ -79,7 +79,7 @@ def starts(chain: Chain, first: Sequence[float] | np.ndarray, count: int = START
     """``first``, then ``count - 1`` starts spread over the limits' box: a scrambled Sobol sequence (scipy; a fixed
     seed, so the same search every run), which fills the box's corners evenly where uniform draws leave some empty
     (16 uniform starts once missed one of the two-link arm's elbow branches)."""
-    from scipy.stats import qmc
+    from scipy.stats import qmc  # (heavy: scipy)
 
     spread = qmc.Sobol(d=len(chain.lower), scramble=True, seed=seed).random(count)[1:]
     return [np.array(first, dtype=float)] + [chain.lower + u * (chain.upper - chain.lower) for u in spread]

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from lxml import etree
 
 from ..errors import XacrokitError
 from ..shared.joint_types import MOVING
@@ -89,7 +90,7 @@ class KinematicModel:
 
     def placed(self, q: np.ndarray) -> Any:
         """Every frame placed in the root's at pinocchio's ``q`` (pinocchio's ``oMf``, in the model's data)."""
-        import pinocchio as pin
+        import pinocchio as pin  # (heavy: pinocchio)
 
         pin.framesForwardKinematics(self.model, self.data, q)
         return self.data.oMf
@@ -100,7 +101,7 @@ class KinematicModel:
         Raises:
             UnknownName: the robot has no link or joint of that name (the closest names said).
         """
-        import pinocchio as pin
+        import pinocchio as pin  # (heavy: pinocchio)
 
         if name not in self.frames:
             said = f"the robot has no link or frame {name!r}{did_you_mean(name, list(self.frames))}"
@@ -145,7 +146,7 @@ class LimitWarning:
 def configurations(model: Any, joints: Sequence[KinematicJoint], values: np.ndarray) -> np.ndarray:
     """pinocchio's q for each row of ``values`` (one column per joint of ``joints``; the other joints neutral): the
     one place a continuous joint's angle becomes (cos, sin)."""
-    import pinocchio as pin
+    import pinocchio as pin  # (heavy: pinocchio)
 
     result = np.tile(pin.neutral(model), (len(values), 1))
     for column, joint in enumerate(joints):
@@ -165,7 +166,7 @@ def build_kinematics(text: str, view: UrdfView, name: str) -> KinematicModel:
             or axis that is not finite numbers or beyond 1e4 m, a zero axis, mimic joints in a loop, or a robot
             pinocchio cannot read.
     """
-    import pinocchio as pin
+    import pinocchio as pin  # (heavy: pinocchio)
 
     root, deepest = _root_and_depth(view)
     if deepest > MAX_DEPTH:
@@ -229,7 +230,6 @@ def unit_axis(joint: Joint) -> np.ndarray:
 def _with_unit_axes(text: str, view: UrdfView) -> str:
     """``text``, or, when a moving joint's axis would not survive pinocchio's own normalisation (its norm overflows
     or underflows), a copy with those axes written as unit vectors (the view stays as read)."""
-    from lxml import etree
 
     rewritten: dict[str, np.ndarray] = {}
     for joint in view.joints:

@@ -34,6 +34,7 @@ from typing import Any
 from ..errors import XacrokitError
 from ..shared.input_files import CopiedFile, InputError, Linked, open_below, read_below
 from ..shared.mesh_solids import MAX_MESH_BYTES, MESH_SUFFIXES, is_relative
+from ..shared.ros_packages import find_package, mesh_file
 
 
 def robot_folder(urdf: Path) -> Path:
@@ -161,7 +162,7 @@ def require_mesh_file(root: Path, source: Path, *, where: str = "") -> None:
 def require_mesh(data: bytes, suffix: str, said: str, process: bool) -> Any:
     """The mesh trimesh reads from ``data`` as the kind ``suffix`` says; refused (MeshCopyRefused) when it reads none
     with a triangle."""
-    import trimesh
+    import trimesh  # (heavy: trimesh)
 
     _unswept[0] += len(data)  # (what trimesh reads makes the cycles a later sweep frees; numpy-stl's arrays make none)
     try:
@@ -185,7 +186,6 @@ def mesh_root(urdf: Path, filename: str, packages: Mapping[str, str | os.PathLik
     Raises:
         LookupError: the package is not known here. ValueError: another URI scheme.
     """
-    from ..shared.ros_packages import find_package, mesh_file
 
     if filename.startswith("package://"):
         return Path(find_package(filename[len("package://") :].partition("/")[0], packages))
@@ -214,7 +214,6 @@ def mesh_reader(
     :func:`~xacrokit.shared.ros_packages.mesh_file` finds it and read by :func:`read_mesh_below` below its
     :func:`mesh_root` (``process``, ``parse``: as there). The reader raises XacrokitError naming the mesh: not there,
     its package not known, or refused."""
-    from ..shared.ros_packages import mesh_file
 
     def read(filename: str) -> MeshRead:
         try:

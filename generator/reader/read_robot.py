@@ -16,8 +16,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from ..errors import SpecError
+from ..errors import SpecError, XacrokitError
 from ..shared.urdf_view import UrdfView, view_of
+from ..write.atomic import staged_packages
 from . import InputKind
 from .robot_input import Packages, RobotInput, as_input
 from .robot_source import declared, read_source
@@ -79,8 +80,7 @@ class ReadRobot:
             XacrokitError: a robot the kinematics cannot take (:func:`.kinematic_model.build_kinematics`), said with
                 the file.
         """
-        from ..errors import XacrokitError
-        from .kinematic_model import UnknownName, build_kinematics
+        from .kinematic_model import UnknownName, build_kinematics  # (heavy: numpy)
 
         try:
             return build_kinematics(self.text, self.view, self.name)
@@ -99,8 +99,6 @@ class ReadRobot:
         """
         import pinocchio as pin  # (heavy: only the features that need dynamics load it)
 
-        from ..errors import XacrokitError
-
         try:
             return pin.buildModelFromXML(self.text, pin.JointModelFreeFlyer())
         except (RuntimeError, ValueError) as exc:
@@ -110,7 +108,6 @@ class ReadRobot:
     def mesh_packages(self) -> Iterator[Mapping[str, str | os.PathLike[str]]]:
         """The packages its meshes are found in, for the ``with`` block: a spec's own meshes staged where its
         package will carry them (they last as long as the block), then the others."""
-        from ..write.atomic import staged_packages
 
         with staged_packages(dict(self.carried)) as staged:
             yield {**staged, **self.packages}

@@ -17,6 +17,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..errors import SpecError, XacrokitError
+from ..expansion.expression_guard import trusting
 from ..shared.input_files import read_input, require_regular_file
 from ..shared.ros_packages import with_nearby_packages
 from . import InputKind
@@ -102,8 +103,7 @@ def read_source(robot: RobotInput) -> RobotSource:
 
 def _spec_source(robot: RobotInput) -> RobotSource:
     """A robot or scene spec's URDF, generated in memory (a scene's third-party macros trusted as ``robot`` says)."""
-    from ..expansion.expression_guard import trusting
-    from ..model import Robot
+    from ..model import Robot  # (heavy: lxml)
     from ..pipeline import spec_urdf  # (the whole generator: loaded for spec input only)
 
     with trusting(bool(robot.trust)):
@@ -125,9 +125,9 @@ def declared(text: str, where: str = "<robot>") -> tuple[str, Any]:
     Raises:
         XacrokitError: not well-formed XML (located: ``where:line``), or a root that is not ``<robot>``.
     """
-    from lxml import etree
+    from lxml import etree  # (heavy: lxml)
 
-    from ..shared.xml_parse import parse_urdf
+    from ..shared.xml_parse import parse_urdf  # (heavy: lxml)
 
     parsed = parse_urdf(text)
     if parsed.root is None:

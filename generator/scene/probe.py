@@ -25,7 +25,7 @@ def probe_names(
     """The links (all but ``parent``) and joints instance ``name`` makes on the link ``parent``, or None and the error
     (located at the instance's ``xacro`` entry) that says why the scene cannot use it."""
 
-    from ..expansion.xacro_expand import expand_file
+    from ..expansion.xacro_expand import expand_file  # (heavy: xacro)
 
     where: PathKey = ("instances", name, "xacro")
     instance = Instance(name=name, prefix=prefix, parent=parent, origin=Origin(), links=(), joints=(), macro=macro)

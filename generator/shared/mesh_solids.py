@@ -9,6 +9,7 @@ and scale in a run (the validate and resolve stages both ask).
 from __future__ import annotations
 
 import functools
+import hashlib
 import os
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
@@ -83,7 +84,7 @@ def mesh_solid(path: Path, scale: tuple[float, float, float]) -> MeshSolid:
 @functools.lru_cache(maxsize=256)
 def _solid(path: str, size: int, mtime: int, scale: tuple[float, float, float]) -> MeshSolid:
     """(size and mtime: a file changed on disk is read again)"""
-    import trimesh
+    import trimesh  # (heavy: trimesh)
 
     if size > MAX_MESH_BYTES:
         raise MeshError(f"{path} is {size / 2**20:.0f} MiB; a part's mesh is expected below {MAX_MESH_BYTES >> 20} MiB")
@@ -150,9 +151,8 @@ def mesh_hull(path: Path) -> tuple[str, bytes]:
 @functools.lru_cache(maxsize=64)
 def _hull(path: str, size: int, mtime: int) -> tuple[str, bytes]:
     """(size and mtime: a file changed on disk is read again)"""
-    import hashlib
 
-    import trimesh
+    import trimesh  # (heavy: trimesh)
 
     if size > MAX_MESH_BYTES:
         raise MeshError(f"{path} is {size / 2**20:.0f} MiB; a part's mesh is expected below {MAX_MESH_BYTES >> 20} MiB")
@@ -173,7 +173,7 @@ TUBE_SIDES = 64  # a tube's mesh: its circles as 64-gons (the radius' error at m
 def tube_obj(inner: float, outer: float, length: float) -> str:
     """A hollow cylinder along z, centred on the origin, as Wavefront OBJ text (trimesh's annulus and OBJ writer): the
     geometry URDF has no element for. OBJ because it is text every consumer reads (MuJoCo reads no ASCII STL)."""
-    import trimesh
+    import trimesh  # (heavy: trimesh)
 
     mesh = trimesh.creation.annulus(r_min=inner, r_max=outer, height=length, sections=TUBE_SIDES)
     text: str = trimesh.exchange.obj.export_obj(mesh, include_normals=False, include_texture=False, digits=12)

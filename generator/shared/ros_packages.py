@@ -10,6 +10,7 @@ import os
 import sys
 from collections.abc import Callable, Mapping
 from pathlib import Path
+from urllib.parse import unquote, urlparse
 
 from .package_data import package_share_dir
 
@@ -18,9 +19,9 @@ PACKAGE_NAME = "xacrokit"
 
 def _package_name(folder: Path) -> str | None:
     """The <name> in ``folder``/package.xml, or None when there is none (or it is unreadable)."""
-    from lxml import etree
+    from lxml import etree  # (heavy: lxml)
 
-    from .xml_parse import parser
+    from .xml_parse import parser  # (heavy: lxml)
 
     try:  # (a file of someone else's: the hardened parse)
         name = etree.parse(str(folder / "package.xml"), parser()).getroot().findtext("name")
@@ -103,6 +104,7 @@ def _ament_index() -> tuple[Callable[[str], str], type[Exception]] | None:
     """ROS's package index when a ROS workspace is sourced (imported once: a failed import costs a millisecond, and
     check asks for every mesh's package)."""
     try:
+        # (heavy: ament_index_python)
         from ament_index_python.packages import (  # type: ignore[import-not-found]
             PackageNotFoundError,
             get_package_share_directory,
@@ -120,7 +122,6 @@ def mesh_file(filename: str, base: Path, package_paths: Mapping[str, str | os.Pa
         LookupError: the package is not known here (the message says how to make it known).
         ValueError: another URI scheme.
     """
-    from urllib.parse import unquote, urlparse
 
     if filename.startswith("package://"):
         package, _, rest = filename[len("package://") :].partition("/")

@@ -121,7 +121,7 @@ def rotation_rpy(
     elif rotvec is not None:
         matrix = pinocchio.exp3(np.array(rotvec, dtype=float))
     elif euler is not None:
-        from scipy.spatial.transform import Rotation
+        from scipy.spatial.transform import Rotation  # (heavy: scipy)
 
         matrix = Rotation.from_euler(euler[0], euler[1]).as_matrix()
     elif matrix is None:

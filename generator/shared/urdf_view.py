@@ -20,6 +20,7 @@ from typing import Any
 
 from lxml import etree
 
+from ..shared.units import INPUT_BOUNDS
 from .kinematic_tree import Tree
 from .xml_parse import read_urdf_root
 
@@ -331,7 +332,6 @@ def length_problems(view: UrdfView) -> list[str]:
     """The lengths a command that draws or exports the robot cannot take, one line each, named by element and
     attribute: a primitive's size that is not a positive number within INPUT_BOUNDS' length (1e4 m), an origin's
     or a joint's xyz beyond it (a size of 1e308 m overflows the meshes and axes drawn for it)."""
-    from ..shared.units import INPUT_BOUNDS
 
     bound = INPUT_BOUNDS["length"]
     problems: list[str] = []

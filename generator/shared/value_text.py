@@ -6,6 +6,7 @@ are written with ``repr`` (round-trip exact) and never as ``-0.0``.
 
 from __future__ import annotations
 
+import difflib
 import re
 from collections.abc import Iterable
 
@@ -87,7 +88,6 @@ def markdown_text(value: object) -> str:
 
 def did_you_mean(name: str, known: Iterable[str]) -> str:
     """`` (did you mean 'base_link'?)`` when one of ``known`` is close to the mistyped ``name`` (difflib), else ''."""
-    import difflib  # (only when a name is wrong)
 
     match = difflib.get_close_matches(name, sorted(known), n=1)
     return f" (did you mean {match[0]!r}?)" if match else ""

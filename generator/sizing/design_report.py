@@ -18,7 +18,7 @@ import numpy as np
 
 from ..errors import XacrokitError
 from ..model import Box, Cylinder, Inertia, Link, Mesh, Robot, Shape, Sphere, Visual
-from ..reader.read_robot import ReadRobot
+from ..reader.read_robot import ReadRobot, read_robot
 from ..reader.robot_input import RobotInput
 from ..resolve import origin
 from ..shared.solid_inertia import tensor
@@ -70,8 +70,6 @@ def design_report(robot: ReadRobot | RobotInput | str | os.PathLike[str]) -> Des
         SpecErrors: an invalid spec (located).
     """
     import pinocchio as pin  # (heavy: the robot's centre of mass)
-
-    from ..reader.read_robot import read_robot
 
     read = read_robot(robot)
     spec, model = read.validated, read.spec

@@ -27,6 +27,7 @@ from typing import Any
 
 import numpy as np
 
+from ..reader.kinematic_model import unit_axis
 from .sized_robot import GRAVITY, LoadedRobot
 
 
@@ -71,7 +72,6 @@ class BaseSizing:
 def find_wheels(robot: LoadedRobot, named: Sequence[str] = ()) -> list[Wheel]:
     """The wheels: continuous joints whose child link has a cylinder (or those ``named``), with radius, inertia about
     the axle (pinocchio's body inertia, moved to the joint's axis) and limits."""
-    from ..reader.kinematic_model import unit_axis
 
     view = robot.robot.view
     radii = {}
@@ -98,7 +98,7 @@ def find_wheels(robot: LoadedRobot, named: Sequence[str] = ()) -> list[Wheel]:
 def whole_mass(free_floating: Any, extra: float) -> float:
     """The robot's mass: every link's (its model on a free-flyer root, so that the root link counts) plus
     ``extra``."""
-    import pinocchio as pin
+    import pinocchio as pin  # (heavy: pinocchio)
 
     return float(pin.computeTotalMass(free_floating)) + extra
 
@@ -120,7 +120,7 @@ def dynamics_force(free_floating: Any, drive: BaseMotion, extra: float, gravity:
     free-flyer root to accelerate the whole robot (joints still, ``extra`` kg of payload on the root) at ``a`` up
     the slope, gravity turned by it: m a + m g sin(theta) when the closed form is right (rolling resistance is not a
     body force: it is added after)."""
-    import pinocchio as pin
+    import pinocchio as pin  # (heavy: pinocchio)
 
     model = free_floating.copy()  # (the read robot's model stays as it is)
     if extra:

@@ -22,6 +22,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..kinematics import REACHED
+from ..kinematics.inverse import Chain, solve, starts
+from ..shared.transforms import rpy_matrix
 from .sized_robot import LoadedRobot, joint_configurations
 
 QUINTIC_SPEED = 15.0 / 8.0  # peak ds/du of 10u^3 - 15u^4 + 6u^5
@@ -243,7 +246,7 @@ def inverse_dynamics(robot: LoadedRobot, path: Trajectory) -> np.ndarray:
     force and moment moved to its frame's parent joint), one row per sample; with ``robot.joint_friction``, plus each
     joint's viscous damping and Coulomb friction as the URDF's <dynamics> gives them (pinocchio reads them):
     d qdot + f sign(qdot), what the motor must also overcome."""
-    import pinocchio as pin
+    import pinocchio as pin  # (heavy: pinocchio)
 
     model, data = robot.model, robot.data
     rows = [j.v_index for j in robot.joints]
@@ -272,7 +275,7 @@ def inverse_dynamics(robot: LoadedRobot, path: Trajectory) -> np.ndarray:
 def joint_motions(robot: LoadedRobot, path: Trajectory, torque: np.ndarray) -> list[JointMotion]:
     """Per joint: the peaks, the RMS torque over the whole cycle and the energies (trapezoidal rule in time), and the
     largest inertia the joint moves (the mass matrix's diagonal, pinocchio's crba)."""
-    import pinocchio as pin
+    import pinocchio as pin  # (heavy: pinocchio)
 
     rows = [j.v_index for j in robot.joints]
     qs = joint_configurations(robot, path.q)
@@ -327,11 +330,7 @@ def reach(
     left (m, and rad for the orientation). When the solver stops short from ``start`` (a joint limit between it and
     the pose), it tries the starts ``gen-robot ik`` spreads over the ranges and keeps, of those that reach the pose,
     the one nearest ``start``."""
-    import pinocchio as pin
-
-    from ..kinematics import REACHED
-    from ..kinematics.inverse import Chain, solve, starts
-    from ..shared.transforms import rpy_matrix
+    import pinocchio as pin  # (heavy: pinocchio)
 
     target = pin.SE3(rpy_matrix(*rpy) if rpy is not None else np.eye(3), np.array(xyz, dtype=float))
     lower = np.array([j.span[0] for j in robot.joints])

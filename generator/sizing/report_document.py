@@ -101,10 +101,10 @@ def _num(value: float | None) -> str:
 
 
 def _figure() -> Any:
-    import matplotlib
+    import matplotlib  # (heavy: matplotlib)
 
     matplotlib.use("Agg")
-    from matplotlib.figure import Figure
+    from matplotlib.figure import Figure  # (heavy: matplotlib)
 
     return Figure
 

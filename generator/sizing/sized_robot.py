@@ -103,7 +103,7 @@ def loaded_robot(
         XacrokitError: a chain too long to search, a robot the kinematics cannot take, no joint to size, or a frame
             the robot lacks (:class:`~xacrokit.reader.kinematic_model.UnknownName`).
     """
-    import pinocchio as pin
+    import pinocchio as pin  # (heavy: pinocchio)
 
     longest = moving_chain(robot.view)
     if longest > MAX_MOVING_CHAIN:  # (before pinocchio, which crashes on a chain of thousands)
@@ -167,7 +167,7 @@ def _massless_moving_links(model: Any, view: UrdfView) -> list[str]:
 
 def _moved_links(model: Any, view: UrdfView) -> list[str]:
     """The links below a joint (pinocchio's body frames with a parent joint), in the URDF's order."""
-    import pinocchio as pin
+    import pinocchio as pin  # (heavy: pinocchio)
 
     moving = {f.name for f in model.frames if f.type == pin.FrameType.BODY and f.parentJoint > 0}
     return [link.name for link in view.links if link.name in moving]
@@ -175,7 +175,7 @@ def _moved_links(model: Any, view: UrdfView) -> list[str]:
 
 def _attach(model: Any, kinematics: KinematicModel, payload: Payload) -> None:
     """Add the payload's inertia to the body of the joint that carries ``payload.frame`` (in ``model``, a copy)."""
-    import pinocchio as pin
+    import pinocchio as pin  # (heavy: pinocchio)
 
     frame = model.frames[kinematics.frame_id(payload.frame)]
     xx, xy, xz, yy, yz, zz = payload.inertia

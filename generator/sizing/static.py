@@ -44,7 +44,7 @@ class StaticPeak:
 
 def torques(robot: LoadedRobot, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(gravity, loads) joint torques of the moving joints at ``values``: g(q) and -J(q)^T w."""
-    import pinocchio as pin
+    import pinocchio as pin  # (heavy: pinocchio)
 
     model, data = robot.model, robot.data
     q = robot.configuration(values)
@@ -63,7 +63,7 @@ def torques(robot: LoadedRobot, values: np.ndarray) -> tuple[np.ndarray, np.ndar
 def gravity_gradient(robot: LoadedRobot, values: np.ndarray) -> np.ndarray:
     """d g / d q of the moving joints at ``values`` (row: the torque, column: the joint), pinocchio's
     computeGeneralizedGravityDerivatives (for a continuous joint, along its angle)."""
-    import pinocchio as pin
+    import pinocchio as pin  # (heavy: pinocchio)
 
     rows = [j.v_index for j in robot.joints]
     derivative = pin.computeGeneralizedGravityDerivatives(robot.model, robot.data, robot.configuration(values))
@@ -72,7 +72,7 @@ def gravity_gradient(robot: LoadedRobot, values: np.ndarray) -> np.ndarray:
 
 def static_peaks(robot: LoadedRobot, *, seed: int = 0) -> list[StaticPeak]:
     """The worst static torque of every moving joint over the joints' ranges (see the module's notes)."""
-    from scipy.optimize import minimize
+    from scipy.optimize import minimize  # (heavy: scipy)
 
     joints = robot.joints
     lower = np.array([j.span[0] for j in joints])

@@ -23,6 +23,7 @@ import math
 from typing import Any
 
 from hypothesis import strategies as st
+from lxml import etree
 
 from ..model import AXIAL, JOINT_TYPES, LIMITED, MOVING
 from ..shared.transforms import rpy_matrix
@@ -555,7 +556,6 @@ _FAULT_JOINT = (
 
 def inject_urdf_fault(urdf: str, fault: str, root_link: str) -> str:
     """``urdf`` (a valid robot whose root is ``root_link``) with exactly one fault of kind ``fault``."""
-    from lxml import etree
 
     robot = etree.fromstring(urdf.encode("utf-8"))
     link = {"mass": 1.0, "ixx": 1.0, "ixy": 0.0, "izz": 1.2}  # (not 1 * identity: I005 would call it a placeholder)

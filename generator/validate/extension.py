@@ -10,9 +10,12 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from lxml import etree
+
 from ..errors import SpecError
 from ..load import RawSpec
 from ..shared.input_files import InputError, read_input
+from ..shared.value_text import xacro_text
 from ..shared.xml_parse import parser
 
 LIMIT = 4 * 1024 * 1024  # bytes: an extension of hand-added content, not a robot of its own
@@ -22,9 +25,6 @@ SUFFIXES = (".xacro", ".xml", ".urdf")
 def extension_body(raw: RawSpec, data: dict[str, Any]) -> tuple[str, list[SpecError]]:
     """The extension's ``<robot>`` children as xacro text copied verbatim (every text and attribute escaped so that
     xacro evaluates nothing), and the errors of reading it."""
-    from lxml import etree
-
-    from ..shared.value_text import xacro_text
 
     name = data.get("extension")
     if name is None:

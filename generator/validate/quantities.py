@@ -8,6 +8,8 @@ import math
 import re
 from typing import Any
 
+import numpy as np
+
 from ..errors import SpecError
 from ..load import PathKey, RawSpec
 from ..shared.materials import MATERIALS, find_material, material_key
@@ -166,7 +168,6 @@ class Quantities:
 
     def _matrix(self, rows: list[list[float]], path: PathKey) -> None:
         """``matrix:`` (3 rows) to rpy, when it is a rotation: R^T R = I to ORTHONORMAL and det R = +1."""
-        import numpy as np  # (only for an origin given this way)
 
         matrix = np.array(rows, dtype=float)
         off = float(np.abs(matrix.T @ matrix - np.eye(3)).max())

@@ -94,7 +94,7 @@ class SchemaValidator:
     @cached_property
     def fast(self) -> Any:
         try:
-            import jsonschema_rs
+            import jsonschema_rs  # (heavy: jsonschema_rs)
         except ImportError:  # (a platform without its wheels: jsonschema alone gives the same verdicts, slower)
             return None
         return jsonschema_rs.validator_for(self.schema)

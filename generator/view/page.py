@@ -27,9 +27,15 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..errors import XacrokitError
+from ..model import HOME_POSE
+from ..reader.mesh_copies import mesh_reader
+from ..reader.named_poses import named_poses, spec_poses
+from ..reader.read_robot import read_robot
 from ..shared.joint_types import rest_position
+from ..shared.transforms import rpy_matrix
 from ..shared.urdf_view import Geometry, Inertial, Joint, Link, Origin, Shape, UrdfView, number, numbers
 from .page_meshes import PageMeshes
+from .page_motion import motion_json
 
 if TYPE_CHECKING:
     from ..reader.read_robot import ReadRobot
@@ -83,8 +89,6 @@ def robot_json(view: UrdfView, read: Any, poses: Mapping[str, Mapping[str, float
     (:class:`~xacrokit.view.page_meshes.PageMeshes`; a visual names its entry) and ``missing``: a line for each mesh
     that cannot be found or read (``read``, a :func:`~xacrokit.reader.mesh_copies.mesh_reader`, raising
     XacrokitError for it), whose visual the page goes without and lists."""
-    from ..model import HOME_POSE
-    from ..reader.named_poses import named_poses
 
     missing: list[str] = []  # (a mesh the page cannot show: said in the page and by the command)
     colours = view.colours()
@@ -191,7 +195,6 @@ def _primitive(shape: Shape) -> dict[str, Any]:
 def _inertia_box(inertial: Inertial | None) -> dict[str, Any] | None:
     """The box of uniform density with the link's mass and principal moments (sides sqrt(6 (I_j + I_k - I_i) / m)),
     at the centre of mass, along the principal axes: what the inertia toggle draws. None without a mass."""
-    from ..shared.transforms import rpy_matrix
 
     if inertial is None or inertial.mass is None or inertial.inertia is None:
         return None
@@ -232,10 +235,7 @@ def page(
         XacrokitError: unreadable input, a sizing file without a motion, or three.js unavailable.
         SpecErrors: an invalid sizing file (located).
     """
-    from ..reader.mesh_copies import mesh_reader
-    from ..reader.named_poses import spec_poses
-    from ..reader.read_robot import read_robot
-    from ..render import environment
+    from ..render import environment  # (heavy: jinja2)
 
     read_in = read_robot(robot)
     with read_in.mesh_packages() as packages:
@@ -244,8 +244,6 @@ def page(
     if missing is not None:
         missing.extend(shown["missing"])
     if sizing is not None:
-        from .page_motion import motion_json
-
         shown["motion"] = motion_json(read_in, sizing)
     sources = three_sources()
     imports = {

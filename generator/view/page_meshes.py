@@ -64,7 +64,7 @@ def drawn(mesh: Any) -> tuple[np.ndarray, np.ndarray]:
     faces meet at more than CREASE, so that each smooth patch has vertices of its own. (trimesh.graph.smooth_shade
     does much the same, large flat facets apart, but makes a submesh per patch: the page took three times as long
     on robots of many small patches.)"""
-    import trimesh
+    import trimesh  # (heavy: trimesh)
 
     plain = trimesh.Trimesh(np.asarray(mesh.vertices), np.asarray(mesh.faces), process=True)
     vertices, faces = np.asarray(plain.vertices, dtype=float), np.asarray(plain.faces, dtype=np.int64)

@@ -33,7 +33,7 @@ def motion_json(robot: ReadRobot, sizing: str | os.PathLike[str]) -> dict[str, A
         XacrokitError: a sizing file without a motion (or any error ``gen-robot size`` gives for these inputs).
         SpecErrors: an invalid sizing file (located).
     """
-    from ..sizing import size
+    from ..sizing import size  # (heavy: jsonschema)
 
     report = size(robot, sizing=sizing)
     if report.samples is None:
@@ -68,12 +68,12 @@ def thin(times: np.ndarray) -> np.ndarray:
 def _plot(times: np.ndarray, torque: np.ndarray, names: list[str]) -> tuple[str, dict[str, float], float, float]:
     """The torque plot as a PNG data: URL, the axes' box in fractions of the figure (left, right, bottom, top, y
     upwards) and the times at its left and right edges."""
-    import matplotlib
+    import matplotlib  # (heavy: matplotlib)
 
     matplotlib.use("Agg")
-    from matplotlib.figure import Figure
+    from matplotlib.figure import Figure  # (heavy: matplotlib)
 
-    from ..sizing.report_document import plot_label
+    from ..sizing.report_document import plot_label  # (heavy: jsonschema)
 
     figure = Figure(figsize=(2.9, 2.6), dpi=100)
     axes = figure.subplots()

@@ -8,6 +8,7 @@ A mesh file that cannot be found or read is an error that names it (never a pict
 
 from __future__ import annotations
 
+import copy
 import io
 import os
 from collections.abc import Mapping
@@ -17,6 +18,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..errors import XacrokitError
+from ..reader.mesh_copies import mesh_root, require_mesh_file
+from ..shared.ros_packages import mesh_file
 
 if TYPE_CHECKING:
     from ..reader.read_robot import ReadRobot
@@ -39,7 +42,7 @@ def render(
     Raises:
         XacrokitError: unreadable input, a mesh that cannot be found or read, or an unknown joint.
     """
-    from ..reader.read_robot import read_robot
+    from ..reader.read_robot import read_robot  # (heavy: lxml)
 
     read = read_robot(robot)
     with read.mesh_packages() as packages:
@@ -51,10 +54,7 @@ def _placed_meshes(
     robot: ReadRobot, packages: Mapping[str, str | os.PathLike[str]], joints: Mapping[str, float]
 ) -> list[tuple[np.ndarray, np.ndarray, tuple[float, float, float]]]:
     """(vertices, faces, colour) of every visual of the read robot, placed in the root link's frame."""
-    import yourdfpy
-
-    from ..reader.mesh_copies import mesh_root, require_mesh_file
-    from ..shared.ros_packages import mesh_file
+    import yourdfpy  # (heavy: yourdfpy)
 
     def resolve(fname: str) -> str:  # (yourdfpy passes it by this name)
         try:
@@ -62,7 +62,7 @@ def _placed_meshes(
         except (LookupError, ValueError) as exc:
             raise XacrokitError(f"mesh {fname!r}: {exc}") from None
 
-    from ..reader.kinematic_model import UnknownName, require_placeable
+    from ..reader.kinematic_model import UnknownName, require_placeable  # (heavy: lxml)
 
     urdf, view = robot.path, robot.view
     if len(view.links) > MAX_LINKS:
@@ -130,9 +130,8 @@ def world_transforms(graph: Any) -> dict[str, np.ndarray]:
 def _for_yourdfpy(root: Any) -> Any:
     """A copy of the robot's root as yourdfpy's ``URDF.load`` makes it before reading it: comments stripped and
     namespaces cleaned (the view's own root is left as it is)."""
-    import copy
 
-    from lxml import etree
+    from lxml import etree  # (heavy: lxml)
 
     element = copy.deepcopy(root)
     etree.strip_tags(element, etree.Comment)
@@ -164,15 +163,17 @@ def _colour(geometry: Any) -> tuple[float, float, float]:
 
 
 def _draw(meshes: list[tuple[np.ndarray, np.ndarray, tuple[float, float, float]]], size: tuple[int, int]) -> bytes:
-    import matplotlib
+    import matplotlib  # (heavy: matplotlib)
 
     matplotlib.use("Agg")
-    from matplotlib.figure import Figure
+    from matplotlib.figure import Figure  # (heavy: matplotlib)
+
+    # (heavy: mpl_toolkits)
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # type: ignore[import-untyped]
 
     figure = Figure(figsize=(size[0] / 100, size[1] / 100), dpi=100)
     ax = figure.add_subplot(projection="3d")
-    from trimesh.remesh import subdivide_to_size
+    from trimesh.remesh import subdivide_to_size  # (heavy: trimesh)
 
     points = np.concatenate([vertices for vertices, _, _ in meshes])
     longest = float((points.max(axis=0) - points.min(axis=0)).max()) / 12  # (small faces: matplotlib sorts by face)

@@ -85,7 +85,7 @@ def graph(robot: ReadRobot | RobotInput | str | os.PathLike[str]) -> str:
     Raises:
         XacrokitError: unreadable input (SpecErrors for an invalid spec, located).
     """
-    from ..reader.read_robot import read_robot
+    from ..reader.read_robot import read_robot  # (heavy: lxml)
 
     return tree_dot(read_robot(robot).view)
 
