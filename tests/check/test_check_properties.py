@@ -18,7 +18,7 @@ from xacrokit.testing import URDF_FAULTS, inject_urdf_fault, valid_specs
 # a dangling parent leaves the injected link without a parent: a second root is a true finding too
 # a fault may bring a second rule with it: a dangling parent leaves two roots (S001); a Gazebo block naming no link
 # makes the file one written for Gazebo, where a wheel or foot without friction of its own is a warning (G006), not
-# the note it is in a file without any <gazebo> (a random robot with a continuous joint's child lowest, seen in CI)
+# the note it is in a file without any <gazebo> (drawn in a local run: a continuous joint's child was the lowest)
 ALSO_EXPECTED = {"dangling_parent": {"S001"}, "missing_gazebo_reference": {"G006"}}
 
 
