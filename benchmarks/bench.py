@@ -148,11 +148,13 @@ def bench_check(folder: Path) -> None:
 
 
 def full_job(spec: Path, out: Path) -> None:
-    """What gen-robot SPEC does, plus the check without consumers."""
-    from xacrokit.check import check
+    """What gen-robot SPEC does (the package, then check's rules on its URDF for the warnings it says), plus the check
+    without consumers."""
+    from xacrokit.check import check, generation_warnings
     from xacrokit.pipeline import generate
 
     result = generate(spec, out, force=True)
+    generation_warnings(result)
     check(out / "urdf" / f"{result.name}.urdf", consumers=[])
 
 
