@@ -5,8 +5,10 @@ Public API:
              progress=...) -> GenerateResult
                                                                 the main job: spec -> ROS 2 description package;
                                                                 .model is the Robot (or the Scene of a scene spec)
-    check(path, mappings=None, *, prefix=None, consumers=None, package_paths=None, trust=False) -> CheckReport
-                                                                verify a URDF, xacro document or spec
+    check(robot, *, prefix=None, consumers=None, progress=None) -> CheckReport
+                                                                verify a URDF, xacro document or spec (robot: a
+                                                                path, or a RobotInput with xacro arguments,
+                                                                package folders and trust)
     expand(path, mappings=None, *, package_paths=None, trust=None) -> str
                                                                 expand a xacro document to URDF text
     macros_dir() -> Path                                        where the shipped macro library is

@@ -162,8 +162,9 @@ def findings_of(robot: RobotFile) -> list[str]:
     """Every warning and error of our rules (``--consumers none``) as 'RULE severity kind element' lines, sorted.
     Notes (info) are not judged: they never fail a check."""
     from xacrokit.check import check
+    from xacrokit.reader.robot_input import RobotInput
 
-    report = check(robot.path, consumers=[], package_paths=robot.packages)
+    report = check(RobotInput(robot.path, packages=robot.packages), consumers=[])
     return sorted(
         f"{f.rule} {f.severity} {f.element_kind} {f.element}" for f in report.findings if f.severity != "info"
     )

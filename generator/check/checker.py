@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 
 from ..errors import SpecErrors
 from ..reader import InputKind
-from ..reader.robot_input import RobotInput
+from ..reader.robot_input import RobotInput, as_input
 from ..reader.robot_source import input_kind, read_source
 from ..shared.gc_pause import collector_paused
 from ..write.atomic import staged_packages
@@ -33,43 +33,40 @@ if TYPE_CHECKING:
 
 @collector_paused()
 def check(
-    path: str | Path,
-    mappings: Mapping[str, str] | None = None,
+    robot: RobotInput | str | os.PathLike[str],
     *,
     prefix: str | None = None,
     consumers: Sequence[str] | None = None,
-    package_paths: Mapping[str, str | Path] | None = None,
     progress: Callable[[str], None] | None = None,
-    trust: bool = False,
 ) -> CheckReport:
-    """Check a URDF, a xacro document (expanded with ``mappings``) or a spec (generated in memory, never written).
+    """Check a URDF, a xacro document (expanded with its input's mappings) or a spec (generated in memory, never
+    written).
 
     Args:
-        path: the file; ``.yaml``/``.yml`` is a spec, ``.xacro`` a xacro document, ``.urdf``/``.xml`` URDF; any
-            other name is told by its content (XML is URDF, or xacro when it declares the xacro namespace; else a
-            spec). A URDF or xacro file inside a ROS package finds that package and its siblings for ``package://``
-            and ``$(find)`` without ``package_paths``.
-        mappings: ``xacro:arg`` values for a xacro document.
+        robot: the robot input (:class:`~xacrokit.reader.robot_input.RobotInput`: the file, a xacro document's
+            ``xacro:arg`` values, folders for ``$(find PKG)`` and ``package://PKG`` of packages not otherwise found,
+            and whether its expressions are trusted: by default those that could reach Python's internals are
+            refused, :mod:`xacrokit.expansion.expression_guard`), or the file alone. ``.yaml``/``.yml`` is a spec,
+            ``.xacro`` a xacro document, ``.urdf``/``.xml`` URDF; any other name is told by its content (XML is URDF,
+            or xacro when it declares the xacro namespace; else a spec). A URDF or xacro file inside a ROS package
+            finds that package and its siblings for ``package://`` and ``$(find)`` by itself.
         prefix: when given, every link, joint, gazebo reference and ros2_control joint must start with it.
         consumers: which independent consumers to run (default: every installed one of check_urdf, pinocchio,
             yourdfpy, mujoco); ``[]`` for none.
-        package_paths: folders for ``$(find PKG)`` and ``package://PKG`` of packages not otherwise found.
         progress: called with a short message as each step starts (the CLI shows it on a terminal).
-        trust: evaluate every expression of a xacro document (and of a scene's third-party macros); by default those
-            that could reach Python's internals are refused (:mod:`xacrokit.expansion.expression_guard`).
 
     Raises:
         XacrokitError: the input cannot be read (a spec file that cannot be read raises SpecErrors, a xacro
             ExpandError). A spec with located errors gives a report of V002 findings instead.
     """
-    path = Path(path)
+    given = as_input(robot)
+    path = given.path
     say = progress or (lambda message: None)
     kind = input_kind(path)
     names = chosen(consumers)
     say(f"reading {path.name}")
     try:
-        # (untrusted unless told, or unless the environment says so: None)
-        source = read_source(RobotInput(path, mappings or {}, package_paths or {}, True if trust else None))
+        source = read_source(given)
     except SpecErrors as exc:
         if all(e.line is None for e in exc.errors):  # the file itself cannot be read: no report to give
             raise

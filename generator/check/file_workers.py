@@ -29,6 +29,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import XacrokitError
+from ..reader.robot_input import RobotInput
 from ..reader.robot_source import input_kind
 from .consumers import LIBRARIES, chosen, hosted_consumers
 from .findings import CheckReport
@@ -83,15 +84,9 @@ class CheckOptions:
         """:func:`~xacrokit.check.checker.check` of ``path`` with these options."""
         from .checker import check  # (heavy: lxml)
 
-        return check(
-            path,
-            self.mappings,
-            prefix=self.prefix,
-            consumers=self.consumers,
-            package_paths=self.package_paths,
-            progress=progress,
-            trust=self.trust,
-        )
+        # (untrusted unless told, or unless the environment says so: None)
+        given = RobotInput(path, self.mappings, self.package_paths or {}, True if self.trust else None)
+        return check(given, prefix=self.prefix, consumers=self.consumers, progress=progress)
 
 
 def check_files(

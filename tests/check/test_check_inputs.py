@@ -9,6 +9,7 @@ from check_helpers import CORPUS, rules_of
 import xacrokit
 from conftest import MACRO_DEMO, REPO, ROBOT_EXAMPLES, gen_robot
 from xacrokit.check import check
+from xacrokit.reader.robot_input import RobotInput
 
 
 @pytest.mark.parametrize("spec", [*ROBOT_EXAMPLES, MACRO_DEMO], ids=lambda p: p.stem)
@@ -78,9 +79,9 @@ def test_xacro_input_takes_arguments_and_prefix_rule(tmp_path):
     xacrokit.generate(REPO / "examples" / "robots" / "diff_drive.yaml", out)
     entry = out / "urdf" / "diff_drive.urdf.xacro"
     packages = {"diff_drive_description": out}
-    report = check(entry, {"prefix": "r7_"}, prefix="r7_", consumers=[], package_paths=packages)
+    report = check(RobotInput(entry, {"prefix": "r7_"}, packages), prefix="r7_", consumers=[])
     assert not report.findings
-    unprefixed = check(entry, prefix="r7_", consumers=[], package_paths=packages)
+    unprefixed = check(RobotInput(entry, packages=packages), prefix="r7_", consumers=[])
     assert rules_of(unprefixed) == {"P001"}
     kinds = {f.element_kind for f in unprefixed.findings}
     assert kinds == {"link", "joint", "gazebo", "ros2_control"}

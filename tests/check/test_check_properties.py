@@ -12,6 +12,7 @@ import xacrokit
 from conftest import REPO, gen_robot, mesh_package_at
 from xacrokit.check import RULES, check, generation_warnings
 from xacrokit.pipeline import build_robot, expand_package
+from xacrokit.reader.robot_input import RobotInput
 from xacrokit.render import render_package
 from xacrokit.testing import URDF_FAULTS, inject_urdf_fault, valid_specs
 
@@ -41,11 +42,11 @@ def test_valid_specs_check_clean_by_our_rules(tmp_path_factory, mesh_package, sp
     folder = tmp_path_factory.mktemp("clean")
     path = folder / "spec.yaml"
     path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
-    report = check(path, consumers=[], package_paths={"some_pkg": mesh_package})  # the default (inline) package
+    report = check(RobotInput(path, packages={"some_pkg": mesh_package}), consumers=[])  # the default (inline) package
     assert not report.errors, [str(f) for f in report.errors]
     _, library_urdf, _ = urdf_of(spec, folder, macros="copy")  # and what the library macros give
     (folder / "library.urdf").write_text(library_urdf, encoding="utf-8")
-    library = check(folder / "library.urdf", consumers=[], package_paths={"some_pkg": mesh_package})
+    library = check(RobotInput(folder / "library.urdf", packages={"some_pkg": mesh_package}), consumers=[])
     assert not library.errors, [str(f) for f in library.errors]
 
 
@@ -81,7 +82,7 @@ def test_valid_specs_are_accepted_by_every_consumer(tmp_path_factory, mesh_packa
     folder = tmp_path_factory.mktemp("consumers")
     path = folder / "spec.yaml"
     path.write_text(yaml.safe_dump(spec, sort_keys=False), encoding="utf-8")
-    report = check(path, package_paths={"some_pkg": mesh_package})
+    report = check(RobotInput(path, packages={"some_pkg": mesh_package}))
     assert not report.errors, [str(f) for f in report.errors]
     assert {c.name for c in report.consumers} >= {"check_urdf", "pinocchio", "yourdfpy"}
     assert all(c.status == "accepted" for c in report.consumers), report.consumers

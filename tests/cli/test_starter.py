@@ -17,6 +17,7 @@ from conftest import REPO, gen_robot
 from xacrokit.check import check
 from xacrokit.cli.starter import KINDS as STARTER_KINDS
 from xacrokit.cli.starter import starter_text, write_starter
+from xacrokit.reader.robot_input import RobotInput
 
 
 @pytest.mark.parametrize("kind", STARTER_KINDS)
@@ -61,11 +62,9 @@ def test_every_starter_package_checks_clean_with_strict(tmp_path, kind):
         check(spec, consumers=[]),
         # the entry xacro with a prefix, as a second instance would use it: still clean, every name prefixed
         check(
-            out / "urdf" / f"my_{kind}.urdf.xacro",
-            {"prefix": "left_"},
+            RobotInput(out / "urdf" / f"my_{kind}.urdf.xacro", {"prefix": "left_"}, {f"my_{kind}_description": out}),
             prefix="left_",
             consumers=[],
-            package_paths={f"my_{kind}_description": out},
         ),
     ]
     for report in reports:

@@ -15,6 +15,7 @@ import xacrokit
 from conftest import mesh_package_at
 from xacrokit.check import check
 from xacrokit.pipeline import expand_package
+from xacrokit.reader.robot_input import RobotInput
 from xacrokit.render import render_package
 from xacrokit.shared.transforms import origin_transform
 from xacrokit.testing import valid_specs
@@ -90,6 +91,8 @@ def test_random_scenes_prefix_disjoint_fk_and_check(tmp_path_factory, case, seed
             got = data.oMf[model.getFrameId(instance.prefix + link)].homogeneous
             np.testing.assert_allclose(got, want, rtol=0, atol=1e-9)
 
-    report = check(path, consumers=["check_urdf", "pinocchio"], package_paths={"some_pkg": mesh_package_at(folder)})
+    report = check(
+        RobotInput(path, packages={"some_pkg": mesh_package_at(folder)}), consumers=["check_urdf", "pinocchio"]
+    )
     assert not report.errors, [str(f) for f in report.errors]
     assert all(c.status == "accepted" for c in report.consumers)
