@@ -8,13 +8,14 @@ import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from types import MappingProxyType
 
 Packages = Mapping[str, "str | os.PathLike[str]"]
 
 
-def _frozen(mapping: Mapping[str, object] | None) -> Mapping[str, object]:
-    return MappingProxyType(dict(mapping or {}))
+def _copied(mapping: Mapping[str, object] | None) -> dict[str, object]:
+    """A copy (a caller's dict changed later does not change what is read); a plain dict, so that the input pickles
+    for a worker process (a read-only mapping proxy does not)."""
+    return dict(mapping or {})
 
 
 @dataclass(frozen=True)
@@ -37,10 +38,9 @@ class RobotInput:
     trust: bool | None = None
 
     def __post_init__(self) -> None:
-        # (read-only copies: a caller's dict changed later does not change what was read)
         object.__setattr__(self, "path", Path(self.path))
-        object.__setattr__(self, "mappings", _frozen(self.mappings))
-        object.__setattr__(self, "packages", _frozen(self.packages))
+        object.__setattr__(self, "mappings", _copied(self.mappings))
+        object.__setattr__(self, "packages", _copied(self.packages))
 
 
 def as_input(robot: RobotInput | str | os.PathLike[str]) -> RobotInput:
