@@ -1,6 +1,7 @@
-"""Reading any robot: a URDF, xacro document, spec or scene to URDF text and where it came from (``robot_source``),
-walked through one typed, located view (``urdf_view``); meshes copied out of a robot's folder safely
-(``mesh_copies``). Every command that takes a robot reads it here."""
+"""Reading any robot, once: what to read (``robot_input``), a URDF, xacro document, spec or scene to URDF text
+(``robot_source``), the read robot every feature takes, its text and typed view parsed once (``read_robot``), its
+one kinematic model (``kinematic_model``); meshes copied out of a robot's folder safely (``mesh_copies``) and named
+poses (``named_poses``). Every command that takes a robot reads it here."""
 
 from typing import Literal
 
