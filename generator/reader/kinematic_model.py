@@ -229,17 +229,16 @@ def unit_axis(joint: Joint) -> np.ndarray:
 
 def _with_unit_axes(text: str, view: UrdfView) -> str:
     """``text``, or, when a moving joint's axis would not survive pinocchio's own normalisation (its norm overflows
-    or underflows), a copy with those axes written as unit vectors (the view stays as read)."""
-
+    or underflows), a copy with those axes written as unit vectors (the view stays as read; :func:`require_placeable`
+    has refused the axes that are not finite numbers or zero)."""
     rewritten: dict[str, np.ndarray] = {}
     for joint in view.joints:
-        if joint.type in MOVING or joint.type == "planar":
-            axis = unit_axis(joint)
-            given = np.array(urdf_floats(joint.axis, 3)) if joint.axis is not None else axis
+        if joint.axis is not None and (joint.type in MOVING or joint.type == "planar"):
+            given = np.array(urdf_floats(joint.axis, 3))
             with np.errstate(over="ignore", under="ignore"):  # (as pinocchio's own norm: its square overflows)
                 norm = float(np.sqrt(np.sum(given * given)))
             if not (math.isfinite(norm) and norm > 1e-150):
-                rewritten[joint.name] = axis
+                rewritten[joint.name] = unit_axis(joint)
     if not rewritten:
         return text
     root = etree.fromstring(etree.tostring(view.root))

@@ -80,12 +80,10 @@ class ReadRobot:
             XacrokitError: a robot the kinematics cannot take (:func:`.kinematic_model.build_kinematics`), said with
                 the file.
         """
-        from .kinematic_model import UnknownName, build_kinematics  # (heavy: numpy)
+        from .kinematic_model import build_kinematics  # (heavy: numpy)
 
         try:
             return build_kinematics(self.text, self.view, self.name)
-        except UnknownName:
-            raise
         except XacrokitError as exc:
             raise XacrokitError(f"{self.path}: {exc}") from None
 

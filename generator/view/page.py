@@ -30,7 +30,7 @@ from ..errors import XacrokitError
 from ..model import HOME_POSE
 from ..reader.mesh_copies import mesh_reader
 from ..reader.named_poses import named_poses, spec_poses
-from ..reader.read_robot import read_robot
+from ..reader.read_robot import ReadRobot, read_robot
 from ..shared.joint_types import rest_position
 from ..shared.transforms import rpy_matrix
 from ..shared.urdf_view import Geometry, Inertial, Joint, Link, Origin, Shape, UrdfView, number, numbers
@@ -38,7 +38,6 @@ from .page_meshes import PageMeshes
 from .page_motion import motion_json
 
 if TYPE_CHECKING:
-    from ..reader.read_robot import ReadRobot
     from ..reader.robot_input import RobotInput
 
 THREE_VERSION = "0.170.0"
