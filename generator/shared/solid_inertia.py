@@ -15,6 +15,8 @@ from typing import Literal
 
 import numpy as np
 
+from .transforms import exact_product
+
 TOLERANCE = 1e-9  # relative: a principal moment <= this * the largest is zero; the triangle inequality's slack
 
 TensorProblem = Literal["not-positive-definite", "triangle-inequality"]
@@ -87,7 +89,10 @@ def combine(parts: Sequence[tuple[float, np.ndarray, np.ndarray, np.ndarray]]) -
     result = np.zeros((3, 3))
     for mass, com, rotation, inertia in parts:
         offset = np.asarray(com, dtype=float) - center
-        result += rotation @ inertia @ rotation.T + mass * (offset @ offset * np.eye(3) - np.outer(offset, offset))
+        # (exact_product, not @: the same bits on every machine, as the generated file must be)
+        turned = exact_product(exact_product(rotation, inertia), np.asarray(rotation, dtype=float).T)
+        squared = math.fsum(v * v for v in offset)
+        result += turned + mass * (squared * np.eye(3) - np.outer(offset, offset))
     return total, center, (result + result.T) / 2.0
 
 

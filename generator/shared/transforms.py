@@ -181,8 +181,40 @@ def rot_z(angle: float) -> np.ndarray:
 
 
 def rpy_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
-    """URDF's fixed-axis roll-pitch-yaw: R = Rz(yaw) Ry(pitch) Rx(roll)."""
-    return rot_z(yaw) @ rot_y(pitch) @ rot_x(roll)
+    """URDF's fixed-axis roll-pitch-yaw: R = Rz(yaw) Ry(pitch) Rx(roll), multiplied out (as :func:`screw_pose`
+    writes it): each entry one product of sines and cosines, the same bits on every machine, where numpy's ``@``
+    calls the BLAS, whose kernels (chosen by the processor) round differently in the last digit."""
+    cr, sr, cp, sp, cy, sy = (
+        math.cos(roll),
+        math.sin(roll),
+        math.cos(pitch),
+        math.sin(pitch),
+        math.cos(yaw),
+        math.sin(yaw),
+    )
+    return np.array(
+        [
+            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+            [-sp, cp * sr, cp * cr],
+        ]
+    )
+
+
+def exact_product(left: np.ndarray, right: np.ndarray) -> np.ndarray:
+    """``left @ right`` (matrices or a matrix and a vector), each entry the correctly rounded sum of its products
+    (``math.fsum``), so a number written into a generated file is the same on every machine: numpy's ``@`` calls the
+    BLAS, whose kernel is chosen by the processor and rounds otherwise in the last digit (a composite link's inertia
+    differed between two CI machines). For the small matrices of generation only: it is Python, not BLAS."""
+    a, b = np.asarray(left, dtype=float), np.asarray(right, dtype=float)
+    columns = b.reshape(len(b), -1)
+    result = np.array(
+        [
+            [math.fsum(x * y for x, y in zip(row, column, strict=True)) for column in columns.T]
+            for row in a.reshape(-1, len(b))
+        ]
+    )
+    return result.reshape(*a.shape[:-1], *b.shape[1:])
 
 
 def transform(rotation: np.ndarray, translation: Sequence[float]) -> np.ndarray:

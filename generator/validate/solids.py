@@ -34,7 +34,7 @@ from ..shared.mesh_solids import (
     package_mesh_path,
 )
 from ..shared.solid_inertia import capsule_volume, tube_volume
-from ..shared.transforms import dh_body_end, rpy_matrix
+from ..shared.transforms import dh_body_end, exact_product, rpy_matrix
 from .bodies import Body, geometries
 
 DENSEST = 22_590.0  # kg/m^3: osmium, the densest element
@@ -276,7 +276,7 @@ def mesh_inertias(items: Sequence[Body], solids: dict[PathKey, Solid]) -> dict[P
         (xx, xy, xz), (_, yy, yz), (_, _, zz) = (tuple(scale * v for v in row) for row in mesh.unit_inertia)
         origin = item.get("origin") or {}
         xyz, rpy = origin.get("xyz", (0.0, 0.0, 0.0)), origin.get("rpy", (0.0, 0.0, 0.0))
-        center = np.asarray(xyz, dtype=float) + rpy_matrix(*rpy) @ np.asarray(mesh.center, dtype=float)
+        center = np.asarray(xyz, dtype=float) + exact_product(rpy_matrix(*rpy), np.asarray(mesh.center, dtype=float))
         found[path] = {
             "inertia": {
                 "ixx": xx,
