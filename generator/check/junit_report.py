@@ -2,9 +2,12 @@
 ``artifacts:reports:junit``, Jenkins' junit step, the JUnit-report actions of GitHub).
 
 One ``<testsuite>`` (inside ``<testsuites>``) with a ``<testcase>`` per file: its ``name`` and ``file`` are the path,
-``classname`` says ``gen-robot check``, ``time`` how long the file took (seconds). Each error finding is a
-``<failure>`` of the case (``type``: the rule id; ``message``: where and what; the text: the whole finding), and with
-``strict`` each warning too; a file that cannot be read is an ``<error>``. A case without either passed.
+``classname`` says ``gen-robot check``, ``time`` how long the file took (seconds). A file whose check fails has one
+``<failure>`` (many readers show only a case's first, and GitLab makes several an array): ``type`` the rule ids it
+holds, ``message`` how many findings of which rules, and its text every failing finding, a line each (its errors, and
+with ``strict`` its warnings too). The warnings that do not fail it are the lines of its ``<system-out>``. A file that
+cannot be read is an ``<error>``; a case with neither passed. The counts of the suite and of the suites are those of
+the cases written (``failures``, ``errors``: cases; ``skipped``: none).
 """
 
 from __future__ import annotations
@@ -15,6 +18,7 @@ from collections.abc import Sequence
 from lxml import etree
 
 from .file_workers import FileCheck
+from .rule_table import RULES
 
 SUITE = "gen-robot check"
 
@@ -42,11 +46,16 @@ def _case(check: FileCheck, strict: bool) -> etree._Element:
         error = etree.SubElement(case, "error", type="unreadable", message=_one_line(said))
         error.text = said
         return case
-    failing = check.report.errors + (check.report.warnings if strict else [])
-    for finding in failing:
-        said = _xml_text(finding.said(check.source))
-        failure = etree.SubElement(case, "failure", type=finding.rule, message=_one_line(said))
-        failure.text = said
+    errors, warnings = check.report.errors, check.report.warnings
+    failing = errors + (warnings if strict else [])
+    if failing:
+        rules = list(dict.fromkeys(finding.rule for finding in failing))  # (each once, in the findings' order)
+        counts = f"{len(errors)} error(s)" + (f", {len(warnings)} warning(s)" if strict else "")
+        named = ", ".join(f"{rule} {RULES[rule][0]}" for rule in rules)
+        failure = etree.SubElement(case, "failure", type=",".join(rules), message=_one_line(f"{counts}: {named}"))
+        failure.text = "\n".join(_xml_text(finding.said(check.source)) for finding in failing)
+    if warnings and not strict:  # (visible, and failing nothing)
+        etree.SubElement(case, "system-out").text = "\n".join(_xml_text(f.said(check.source)) for f in warnings)
     return case
 
 
