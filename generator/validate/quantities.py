@@ -4,8 +4,8 @@ beyond 10 m (millimetres written without ``mm``) noted."""
 
 from __future__ import annotations
 
+import itertools
 import math
-import re
 from typing import Any
 
 import numpy as np
@@ -19,15 +19,29 @@ from ..shared.value_text import did_you_mean
 from .bodies import bodies, geometries, joint_types, parts
 from .physics import AXIS_LENGTHS, implausible
 
-# A plain-number angle beyond this many turns is most likely degrees: one turn for an orientation, two for a joint's
-# range (multi-turn joints exist; a range beyond two turns written in radians is rarer than degrees left unmarked).
-_TURNS: dict[str | int, int] = {"lower": 2, "upper": 2, "soft_lower_limit": 2, "soft_upper_limit": 2}
+# A plain-number angle beyond this many turns is most likely degrees: one turn for an orientation or a position, two
+# for a joint's range (multi-turn joints exist; a range beyond two turns written in radians is rarer than degrees left
+# unmarked).
+_TURNS = {"position": 1, "range": 2}
 
 # the ways an origin may give its orientation (one at a time; docs/spec.md's table has one rotation in each)
 ORIENTATIONS = ("rpy", "quat", "quat_wxyz", "rotvec", "axis_angle", "matrix", "euler")
-ROTVEC_TURNS = 1000  # the most turns a rotation vector's angle may make (more: its digits no longer say the turn)
+# The most turns an orientation's angle, a pose's position or a mimic's offset may make: beyond, a double's digits no
+# longer say where it points (the next double after 1e300 rad is 1e284 rad further) and a value in the wrong unit is
+# the likelier story. A joint's range is not bounded so (a limit of 1e16 stands for none in some URDFs).
+ANGLE_TURNS = 1000
 ORTHONORMAL = 1e-6  # how far a rotation matrix's R^T R may be from the identity (a calibration's 7 digits pass)
 QUATERNION_LENGTHS = (1e-6, 1e6)  # a quaternion's length that can be normalised without losing its direction
+# The Euler sequences an origin takes: scipy's Rotation.from_euler with three angles, three of x, y, z with no two
+# consecutive alike (two turns in a row about one axis are one turn), all upper case (intrinsic, about the turning
+# frame's axes) or all lower case (extrinsic, about the fixed axes). The schemas' `sequence` patterns list the same
+# (tests/validate/test_validate_euler.py holds them equal).
+EULER_SEQUENCES = tuple(
+    "".join(axes).lower() if lower else "".join(axes)
+    for lower in (False, True)
+    for axes in itertools.product("XYZ", repeat=3)
+    if axes[0] != axes[1] != axes[2]
+)
 
 # A plain-number length beyond this is most likely millimetres: no link, offset or DH length of a robot is 10 m (a
 # length written with a unit, '12 m', is taken as meant).
@@ -50,6 +64,51 @@ _SHAPE_LENGTHS = (
     ("capsule", ("radius", "length")),
     ("tube", ("inner_radius", "outer_radius", "length")),
 )
+
+
+def _is_range(path: PathKey) -> bool:
+    """Whether ``path`` (to a value) is a joint's limit or soft limit: a range, not a position or an orientation."""
+    return path[0] != "poses" and len(path) >= 2 and path[-2] in ("limit", "safety_controller")
+
+
+# a kind's SI unit and a value of it with a unit, for a value that does not parse as one
+_EXAMPLES = {
+    "angle": ("rad", "an angle", "90 deg"),
+    "length": ("m", "a length", "150 mm"),
+    "mass": ("kg", "a mass", "500 g"),
+}
+
+
+def unit_problem(said: str, kind: Kind) -> str:
+    """The units' message for a value that does not parse, with what would (when it does not say so already)."""
+    if " expected " in f" {said} " or "units:" in said or kind not in _EXAMPLES:
+        return said
+    unit, what, example = _EXAMPLES[kind]
+    return f"{said}; expected a number ({unit}) or {what} with its unit, such as {example!r}"
+
+
+def euler_sequence_problem(sequence: object) -> str:
+    """Why ``sequence`` is not one of :data:`EULER_SEQUENCES`, and what is: the schemas' pattern and type errors at an
+    ``euler.sequence`` are said in these words."""
+    shown = repr(sequence) if not isinstance(sequence, str) or len(sequence) <= 24 else f"{sequence[:16]!r}..."
+    if isinstance(sequence, list):
+        why = "a list: write its axes together as one word, such as XYZ"
+    elif not isinstance(sequence, str):
+        kind = "a number" if isinstance(sequence, (int, float)) and not isinstance(sequence, bool) else "not text"
+        why = f"{kind}: a sequence is one word of three axes, such as XYZ"
+    elif len(sequence) != 3:
+        why = f"{len(sequence)} characters: a sequence names three axes, one per angle, written together"
+    elif not set(sequence) <= set("xyzXYZ"):
+        why = f"{next(c for c in sequence if c not in 'xyzXYZ')!r} is no axis"
+    elif not (sequence.isupper() or sequence.islower()):
+        why = "it mixes upper and lower case: a sequence is all intrinsic or all extrinsic"
+    else:  # (three axes of one case: two alike in a row)
+        why = "two turns in a row about one axis are one turn: consecutive axes must differ"
+    return (
+        f"{shown} is not an Euler sequence ({why}); give three of the axes x, y, z, no two consecutive alike, all "
+        "upper case (intrinsic, about the turning frame's axes: XYZ is Rx Ry Rz) or all lower case (extrinsic, about "
+        "the fixed axes: xyz is URDF's rpy), e.g. XYZ, ZYX, ZXZ, xyz"
+    )
 
 
 class Quantities:
@@ -77,48 +136,62 @@ class Quantities:
 
     def convert(self, container: Any, key: str | int, path: PathKey, kind: Kind, *, scale: bool = True) -> None:
         """Convert ``container[key]`` to SI (``scale=False``: no warning for a length beyond a robot's parts, such as a
-        sensor's range)."""
+        sensor's range, and no bound on an angle, such as a sensor's)."""
         if isinstance(container, dict) and key not in container:
             return
         value = container[key]
-        if kind in ("angle", "length") and scale:
-            plain = value if type(value) in (int, float) else plain_number(value) if isinstance(value, str) else None
-            if plain is not None and kind == "angle" and abs(plain) > _TURNS.get(key, 1) * math.tau:
-                self._turns(plain, key, (*path, key))
-            elif plain is not None and kind == "length" and abs(plain) > LONGEST:
-                self.warnings.append(
-                    self.raw.error(
-                        (*path, key),
-                        f"length {plain:g} m is longer than any part of a robot ({LONGEST:g} m); if you meant "
-                        f"millimetres, write '{plain:g} mm'",
-                    )
-                )
-        if type(value) is float and math.isfinite(value) and (value != 0.0 or math.copysign(1.0, value) > 0):
-            self._bound(value, kind, (*path, key))
-            return  # already SI: what parse_quantity would return
-        try:
-            converted = parse_quantity(value, kind) + 0.0  # (+ 0.0: a -0.0 in the spec is written 0.0)
-        except UnitError as exc:
-            self.errors.append(self.raw.error((*path, key), str(exc)))
-            return
-        self._bound(converted, kind, (*path, key))
-        self._changes.setdefault(path, {})[key] = converted
-        self._count += 1
+        given = type(value) is float and math.isfinite(value) and (value != 0.0 or math.copysign(1.0, value) > 0)
+        if given:
+            converted = value  # already SI: what parse_quantity would return
+        else:
+            try:
+                converted = parse_quantity(value, kind) + 0.0  # (+ 0.0: a -0.0 in the spec is written 0.0)
+            except UnitError as exc:
+                self.errors.append(self.raw.error((*path, key), unit_problem(str(exc), kind)))
+                return
+        if self._bound(value, converted, kind, (*path, key), scale=scale) and scale:
+            self._scale_note(value, kind, (*path, key))
+        if not given:
+            self._changes.setdefault(path, {})[key] = converted
+            self._count += 1
 
-    def _bound(self, value: float, kind: Kind, path: PathKey) -> None:
+    def _bound(self, written: Any, value: float, kind: Kind, path: PathKey, *, scale: bool) -> bool:
+        """Whether ``value`` (SI; ``written`` as the spec gave it) is within what xacrokit takes; if not, the error is
+        said."""
         beyond = bound_problem(kind, value)
+        if beyond is None and kind == "angle" and scale and not _is_range(path) and abs(value) > ANGLE_TURNS * math.tau:
+            shown = f"{written.strip()!r} is {value!r} rad, " if isinstance(written, str) else f"{value!r} rad is "
+            beyond = (
+                f"{shown}{abs(value) / math.tau:.3g} turns, beyond the {ANGLE_TURNS} turns an angle may make here: a "
+                "double's digits no longer say where it points (a value in the wrong unit?)"
+            )
         if beyond is not None:
             self.errors.append(self.raw.error(path, beyond))
+        return beyond is None
 
-    def _turns(self, value: float, key: str | int, path: PathKey) -> None:
-        what = "limit" if key in _TURNS else "angle"
-        self.warnings.append(
-            self.raw.error(
-                path,
-                f"{what} {value:g} rad is {abs(value) / math.tau:.3g} turns; "
-                f"if you meant degrees, write '{value:g} deg'",
+    def _scale_note(self, value: Any, kind: Kind, path: PathKey) -> None:
+        """A warning for a plain number that looks written in the wrong unit: an angle of many turns (degrees?), a
+        length beyond a robot's parts (millimetres?)."""
+        plain = value if type(value) in (int, float) else plain_number(value) if isinstance(value, str) else None
+        if plain is None:
+            return
+        if kind == "angle" and abs(plain) > _TURNS["range" if _is_range(path) else "position"] * math.tau:
+            what = "limit" if _is_range(path) else "angle"
+            self.warnings.append(
+                self.raw.error(
+                    path,
+                    f"{what} {plain:g} rad is {abs(plain) / math.tau:.3g} turns; "
+                    f"if you meant degrees, write '{plain:g} deg'",
+                )
             )
-        )
+        elif kind == "length" and abs(plain) > LONGEST:
+            self.warnings.append(
+                self.raw.error(
+                    path,
+                    f"length {plain:g} m is longer than any part of a robot ({LONGEST:g} m); if you meant "
+                    f"millimetres, write '{plain:g} mm'",
+                )
+            )
 
     def origin(self, holder: dict[str, Any], key: str, path: PathKey) -> None:
         origin = holder.get(key)
@@ -152,15 +225,16 @@ class Quantities:
             self._euler(origin["euler"], (*path, key))
 
     def _rotvec(self, rotvec: list[float], path: PathKey) -> None:
-        """``rotvec: [rx, ry, rz]`` (axis x angle, rad) to rpy; an angle beyond ROTVEC_TURNS turns is refused (1e300
+        """``rotvec: [rx, ry, rz]`` (axis x angle, rad) to rpy; an angle beyond ANGLE_TURNS turns is refused (1e300
         rad has no digits left for the turn it makes)."""
         angle = math.sqrt(math.fsum(v * v for v in rotvec))
-        if not angle <= ROTVEC_TURNS * math.tau:
+        if not angle <= ANGLE_TURNS * math.tau:
+            length = math.hypot(*rotvec)  # (its length said without overflow: fsum's squares of 1e200 are inf)
             self.errors.append(
                 self.raw.error(
                     (*path, "rotvec"),
-                    f"rotvec {rotvec}: an angle of {angle:.3g} rad is {angle / math.tau:.3g} turns; a rotation vector "
-                    f"is the axis times an angle in radians, of at most {ROTVEC_TURNS} turns",
+                    f"rotvec {rotvec}: an angle of {length:.3g} rad is {length / math.tau:.3g} turns; a rotation "
+                    f"vector is the axis times an angle in radians, of at most {ANGLE_TURNS} turns",
                 )
             )
             return
@@ -170,9 +244,19 @@ class Quantities:
         """``matrix:`` (3 rows) to rpy, when it is a rotation: R^T R = I to ORTHONORMAL and det R = +1."""
 
         matrix = np.array(rows, dtype=float)
-        off = float(np.abs(matrix.T @ matrix - np.eye(3)).max())
-        if not off <= ORTHONORMAL or not np.linalg.det(matrix) > 0:
-            problem = f"R^T R is {off:.3g} from the identity" if not off <= ORTHONORMAL else "its determinant is -1"
+        largest = float(np.abs(matrix).max())
+        if largest > 1.0 + ORTHONORMAL:  # (said before R^T R, which a value of 1e200 overflows)
+            problem = f"it holds {largest!r}, and a rotation's entries are within [-1, 1]"
+        else:
+            off = float(np.abs(matrix.T @ matrix - np.eye(3)).max())
+            problem = (
+                f"R^T R is {off:.3g} from the identity"
+                if not off <= ORTHONORMAL
+                else "its determinant is -1"
+                if not np.linalg.det(matrix) > 0
+                else ""
+            )
+        if problem:
             self.errors.append(
                 self.raw.error(
                     (*path, "matrix"),
@@ -185,18 +269,8 @@ class Quantities:
 
     def _euler(self, given: dict[str, Any], path: PathKey) -> None:
         """``euler: {sequence, angles}`` (scipy's names: upper case intrinsic, lower case extrinsic) to rpy."""
-        sequence = given["sequence"]
-        if not re.fullmatch(r"[XYZ]{3}|[xyz]{3}", sequence):
-            return  # (the schema says what a sequence is; the passes after it still run)
-        if sequence[0] == sequence[1] or sequence[1] == sequence[2]:
-            self.errors.append(
-                self.raw.error(
-                    (*path, "euler", "sequence"),
-                    f"{sequence!r}: two turns in a row about one axis are one turn; consecutive axes must differ "
-                    "(XYZ, ZYX, ZXZ ...)",
-                )
-            )
-            return
+        if given["sequence"] not in EULER_SEQUENCES:
+            return  # (the schema's pattern refused it, in the words of euler_sequence_problem; the passes after run)
         for index in range(3):
             self.convert(given["angles"], index, (*path, "euler", "angles"), "angle")
         angles = self._changes.get((*path, "euler", "angles"), {})
@@ -214,8 +288,8 @@ class Quantities:
             self.errors.append(
                 self.raw.error(
                     (*path, field),
-                    f"{field} {written or quat} has length {norm:.3g}: a rotation's quaternion has length 1 (the "
-                    f"identity is {'[0, 0, 0, 1]' if field == 'quat' else '[1, 0, 0, 0]'})",
+                    f"{field} {written or quat} has length {math.hypot(*quat):.3g}: a rotation's quaternion has "
+                    f"length 1 (the identity is {'[0, 0, 0, 1]' if field == 'quat' else '[1, 0, 0, 0]'})",
                 )
             )
             return
@@ -243,8 +317,8 @@ class Quantities:
             self.errors.append(
                 self.raw.error(
                     (*path, "axis_angle", "axis"),
-                    f"axis {axis} has length {norm:.3g}; give a direction of length {AXIS_LENGTHS[0]:g} to "
-                    f"{AXIS_LENGTHS[1]:g} (e.g. [0, 0, 1])",
+                    f"axis {axis} has length {math.hypot(*axis):.3g}; give a direction of length "
+                    f"{AXIS_LENGTHS[0]:g} to {AXIS_LENGTHS[1]:g} (e.g. [0, 0, 1])",
                 )
             )
             return

@@ -18,6 +18,7 @@ import jsonschema
 from ..errors import SpecError
 from ..load import PathKey, RawSpec
 from ..shared.package_data import schemas_dir
+from .quantities import euler_sequence_problem
 
 
 @cache
@@ -168,14 +169,22 @@ Message = tuple[PathKey, str, bool]  # (path, message, point-at-key)
 
 def _schema_message(error: jsonschema.ValidationError) -> Message:
     """(path, message, point-at-key) for one schema error, in words a spec author understands: the first of the
-    wordings below that knows the error (in this order: names, quantities, scenes and shapes, bounds, types,
-    counts), else jsonschema's own message."""
+    wordings below that knows the error (in this order: Euler sequences, names, quantities, scenes and shapes, bounds,
+    types, counts), else jsonschema's own message."""
     path: PathKey = tuple(error.absolute_path)
-    for wording in (_name_message, _quantity_message, _structure_message, _bound_message, _type_message):
+    wordings = (_sequence_message, _name_message, _quantity_message, _structure_message, _bound_message, _type_message)
+    for wording in wordings:
         said = wording(error, path)
         if said is not None:
             return said
     return _count_message(error, path)
+
+
+def _sequence_message(error: jsonschema.ValidationError, path: PathKey) -> Message | None:
+    """An Euler sequence that is none of scipy's (its pattern, or not a string): which are, not a name's rule."""
+    if path[-2:] == ("euler", "sequence") and error.validator in ("pattern", "type"):
+        return path, euler_sequence_problem(error.instance), False
+    return None
 
 
 def _name_message(error: jsonschema.ValidationError, path: PathKey) -> Message | None:
