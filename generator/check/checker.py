@@ -142,6 +142,6 @@ def _judge(judging: Judging) -> CheckReport:
     if j.robot is not None and not structural and j.robot.arms:
         findings += kinematics_rules(doc, j.robot, j.text)
     results = pending()
-    findings += consumer_findings(results, where)
+    findings += consumer_findings(results, where, doc)  # (placed at the link or joint a message names)
     unique = tuple(dict.fromkeys(findings))  # (a spec's visual and collision share a mesh: one finding, not two)
     return CheckReport(where, j.kind, root.get("name"), unique, tuple(results))

@@ -12,6 +12,7 @@ import contextlib
 import importlib.util
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -31,6 +32,7 @@ from .findings import ConsumerResult, Finding, rule_table, severity
 
 if TYPE_CHECKING:
     from .consumer_host import ConsumerHost
+    from .urdf_document import Doc
 
 RULES = rule_table(
     {
@@ -164,15 +166,49 @@ def _run_capped(
 
 
 def _tail(text: str, lines: int = 3) -> str:
-    kept = [line.strip() for line in text.strip().splitlines() if line.strip()]
-    return " | ".join(kept[-lines:])
+    kept = [_without_sources(line) for line in text.strip().splitlines() if not _AT_SOURCE.match(line)]
+    return " | ".join([line for line in kept if line][-lines:])
+
+
+# urdfdom reports through console_bridge: "Error:   MESSAGE" and, on the next line, "at line N in FILE", FILE the path
+# of urdfdom's own C++ source where it was built (/project/urdfdom/urdf_parser/src/joint.cpp, /home/...): the place in
+# urdfdom's code, which says nothing of the robot and much of the machine that built it. A build may say its place as
+# FILE:LINE in the message instead (an exception's text).
+_AT_SOURCE = re.compile(r"^\s*at line \d+ in \S+\s*$")
+_SOURCE_PLACE = re.compile(
+    r"(?:[ \t]*\bat line \d+ in )?(?:[A-Za-z]:)?(?:[^\s:'\"\[\]()]*[/\\])+[^\s:'\"\[\]()/\\]+"
+    r"\.(?:c|cc|cpp|cxx|h|hh|hpp|hxx)\b(?::\d+)*:?"
+)
+
+
+_NAMED = re.compile(r"(\[[^\]]*\]|'[^']*')")  # (a name as urdfdom quotes it: [shoulder], 'arm')
+
+
+def _without_sources(text: str) -> str:
+    """``text`` without the places in urdfdom's (or any C++) source code it names (outside the names it quotes, which
+    stay as written), runs of spaces made one."""
+    parts = _NAMED.split(text)
+    parts[::2] = [re.sub(r"[ \t]{2,}", " ", _SOURCE_PLACE.sub("", part)) for part in parts[::2]]
+    return "".join(parts).strip()
 
 
 def _urdfdom_errors(text: str, most: int = 3) -> str:
-    """urdfdom's own error lines, first first (the first says what is wrong; the rest say where it gave up), without
-    the source locations of urdfdom's code that follow each."""
-    errors = [line.strip()[len("Error:") :].strip() for line in text.splitlines() if line.strip().startswith("Error:")]
-    return " | ".join(errors[:most])
+    """urdfdom's own error messages, first first (the first says what is wrong; the rest say where it gave up),
+    without the places in urdfdom's code that follow each. A message goes on to that place: a name with a line break
+    in it (``Joint [a\\nb]``) is kept whole."""
+    errors: list[list[str]] = []
+    going_on: list[str] = []  # (lines after an Error: line, its message's until a place in urdfdom's code ends it)
+    for line in text.split("\n"):
+        if line.lstrip().startswith("Error:"):
+            errors.append([line.lstrip()[len("Error:") :].strip()])
+            going_on = []
+        elif _AT_SOURCE.match(line) and errors:
+            errors[-1] += going_on
+            going_on = []
+        elif errors:
+            going_on.append(line)
+    said = [_without_sources("\n".join(parts)) for parts in errors]
+    return " | ".join([message for message in said if message][:most])
 
 
 def run_consumer(
@@ -366,13 +402,41 @@ def _read(data: bytes) -> Any:
     return etree.fromstring(data, parser(recover=True))
 
 
-def consumer_findings(results: Sequence[ConsumerResult], file: str) -> list[Finding]:
-    """C001: a finding for each consumer that refused the URDF, crashed on it or gave no verdict in time."""
-    return [
-        Finding("C001", severity("C001"), "consumer", r.name, f"{r.name} {r.status}: {r.message}".rstrip(": "), file)
-        for r in results
-        if r.failed
-    ]
+def consumer_findings(results: Sequence[ConsumerResult], file: str, doc: Doc | None = None) -> list[Finding]:
+    """C001: a finding for each consumer that refused the URDF, crashed on it or gave no verdict in time; placed (given
+    the ``doc`` checked) at the link or joint its message names, where the document has one of that name."""
+    found = []
+    for r in results:
+        if not r.failed:
+            continue
+        message = f"{r.name} {r.status}: {r.message}".rstrip(": ")
+        element = _named_element(r.message, doc) if doc is not None else None
+        if doc is not None and element is not None:
+            found.append(doc.finding("C001", "consumer", r.name, message, element))
+        else:
+            found.append(Finding("C001", severity("C001"), "consumer", r.name, message, file))
+    return found
+
+
+# How consumers name the element they stopped at: urdfdom "Joint [elbow] is of type ...", "Could not parse visual
+# element for Link [arm]", "link 'arm' is not unique.", "child link [ghost] of joint [elbow] not found"; MuJoCo
+# "Element name 'arm', id 2" (a body is named after its link, a joint after its joint).
+_NAMES = re.compile(r"\b(link|joint)\s*(?:\[([^\]]*)\]|'([^']*)')|\bElement name '([^']*)'", re.IGNORECASE)
+
+
+def _named_element(message: str, doc: Doc) -> Any:
+    """The first link or joint of ``doc`` that ``message`` names (for a name given twice, 'not unique', the second
+    element of that name: the one that repeats it); None when it names none the document has."""
+    for match in _NAMES.finditer(message):
+        kind, name = (match.group(1) or "").lower(), match.group(2) or match.group(3) or match.group(4) or ""
+        kinds = [kind] if kind else ["link", "joint"]
+        for each in kinds:
+            parts = doc.view.links if each == "link" else doc.view.joints
+            elements = [part.element for part in parts if part.name == name]
+            if elements:
+                repeated = "not unique" in message[match.end() : match.end() + 20]
+                return elements[-1] if repeated else elements[0]
+    return None
 
 
 def load_with(name: str, path: str, packages: Mapping[str, str] | None = None) -> str:
