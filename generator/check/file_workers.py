@@ -33,6 +33,7 @@ from ..reader.robot_input import RobotInput
 from ..reader.robot_source import input_kind
 from .consumers import LIBRARIES, chosen, hosted_consumers
 from .findings import CheckReport
+from .terminal_text import printable
 
 
 @dataclass(frozen=True)
@@ -86,7 +87,13 @@ class CheckOptions:
 
         # (untrusted unless told, or unless the environment says so: None)
         given = RobotInput(path, self.mappings, self.package_paths or {}, True if self.trust else None)
-        return check(given, prefix=self.prefix, consumers=self.consumers, progress=progress)
+        said = _printable(progress) if progress is not None else None
+        return check(given, prefix=self.prefix, consumers=self.consumers, progress=said)
+
+
+def _printable(progress: Callable[[str], None]) -> Callable[[str], None]:
+    """``progress`` told each message :func:`printable` (the progress line says a file's name, a terminal shows it)."""
+    return lambda message: progress(printable(message))
 
 
 def check_files(
@@ -101,7 +108,7 @@ def check_files(
 
     names = chosen(options.consumers)  # (an unknown or missing consumer is refused before any file is read)
     jobs = max(1, min(jobs or os.cpu_count() or 1, len(files)))
-    say = progress or (lambda message: None)
+    say = _printable(progress) if progress is not None else (lambda message: None)
     if jobs == 1 or not hasattr(os, "fork"):
         with hosted_consumers():
             for index, path in enumerate(files):

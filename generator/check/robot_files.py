@@ -12,6 +12,12 @@ starts with a dot) a robot file is
 - a spec: ``*.yaml``/``*.yml`` whose top level has ``robot`` and ``links`` (a robot spec) or ``scene`` and
   ``instances`` (a scene spec); other YAML (controllers, launch parameters, sizing files) is not a robot.
 
+The search reads no file through a symbolic link: a link to a file (``vendor.urdf -> ~/secret.urdf``), to a link,
+or to nothing is passed over, and so is a FIFO, a socket or a device with a robot's file name (reading one could
+block). Each passed over file with a robot's suffix is said (``skipped``: the file and why; by default a warning of
+the ``xacrokit.check`` logger, which Python prints on stderr when the program sets up no logging), never its content.
+A link named on the command line is read (the user named it).
+
 A file named on the command line is checked whatever it is, unless ``robots_only`` (what the pre-commit hook passes:
 it names every changed ``.urdf``, ``.xacro`` and YAML file). ``exclude`` globs leave out the files found in folders
 whose path below the folder, or one of its folders' names or its own name, matches one (``build``, ``*_macro.xacro``,
@@ -21,9 +27,11 @@ whose path below the folder, or one of its folders' names or its own name, match
 from __future__ import annotations
 
 import fnmatch
+import logging
 import os
 import re
-from collections.abc import Iterable, Sequence
+import stat
+from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path, PurePosixPath
 from typing import Any
 
@@ -31,17 +39,29 @@ from lxml import etree
 
 from ..errors import XacrokitError
 from ..shared.xml_parse import parser
+from .terminal_text import printable
 
 HEAD_BYTES = 1 << 20  # bytes of a YAML or xacro file read to tell whether it is a robot (its top level comes first)
 _LIBRARY = {"macro", "property", "arg", "include"}  # xacro's top-level elements that make nothing by themselves
 # (xacro knows its elements by the prefix xacro:, whichever namespace URI it is bound to: both ros.org forms are used)
 _SPEC_KEYS = re.compile(r"^(robot|links|scene|instances)\s*:", re.MULTILINE)
+_ROBOT_SUFFIXES = (".urdf", ".xacro", ".yaml", ".yml")  # (a file the search would read to tell whether it is a robot)
+Skipped = Callable[[Path, str], None]  # told a file the search passes over, and why
+
+
+def _log_skipped(path: Path, why: str) -> None:
+    logging.getLogger("xacrokit.check").warning("note: %s: skipped: %s", printable(path), why)
 
 
 def robot_files(
-    paths: Sequence[str | os.PathLike[str]], *, exclude: Sequence[str] = (), robots_only: bool = False
+    paths: Sequence[str | os.PathLike[str]],
+    *,
+    exclude: Sequence[str] = (),
+    robots_only: bool = False,
+    skipped: Skipped | None = None,
 ) -> list[Path]:
-    """The files to check, each once, in the order given (a folder's in name order).
+    """The files to check, each once, in the order given (a folder's in name order); ``skipped`` is told each file
+    with a robot's suffix that a folder's search passes over (a symbolic link, a FIFO), and why.
 
     Raises:
         XacrokitError: a path that does not exist (a FIFO or a device named is taken: check says it cannot read it).
@@ -50,33 +70,71 @@ def robot_files(
     for given in paths:
         path = Path(given)
         if path.is_dir():
-            found.update(dict.fromkeys(_search(path, exclude)))
+            found.update(dict.fromkeys(_search(path, exclude, skipped or _log_skipped)))
         elif os.path.lexists(path):  # (a file; or a FIFO, a device, a broken link: check says why it cannot read it)
             if not robots_only or is_robot_file(path):
                 found[path] = None
         else:
-            hint = " (a xacro argument is written name:=value)" if "=" in str(given) else ""
             raise XacrokitError(
-                f"{path}: no such file or folder; give a URDF, xacro document, spec or a folder of them{hint}"
+                f"{printable(path)}: no such file or folder; give a URDF, xacro document, spec or a folder of them"
+                + _hint(str(given))
             )
     return list(found)
 
 
-def _search(folder: Path, exclude: Sequence[str]) -> Iterable[Path]:
+def _hint(given: str) -> str:
+    if given.startswith("-"):  # (after --, as the pre-commit hook's entry ends, every word is a path)
+        return (
+            "; after -- every word is a path: give options before it (the pre-commit hook's entry ends with --: "
+            "put options in the hook's entry, before the --, not in its args)"
+        )
+    return " (a xacro argument is written name:=value)" if "=" in given else ""
+
+
+def _search(folder: Path, exclude: Sequence[str], skipped: Skipped) -> Iterable[Path]:
     found: list[Path] = []
     included: set[str] = set()  # (the file names xacro documents of the folder include: parts, not entries)
-    for top, folders, files in os.walk(folder):  # (symbolic links to folders are not followed: no loop, no escape)
+
+    def unread(exc: OSError) -> None:  # (a folder below that cannot be listed: said, and the search goes on)
+        skipped(Path(exc.filename or folder), f"a folder that cannot be searched ({exc.strerror or exc})")
+
+    # (symbolic links to folders are not followed: no loop, no escape)
+    for top, folders, files in os.walk(folder, onerror=unread):
         below = PurePosixPath(Path(top).relative_to(folder).as_posix())
         folders[:] = sorted(f for f in folders if not f.startswith(".") and not _excluded(below / f, exclude))
         for name in sorted(files):
             path = Path(top, name)
+            if _excluded(below / name, exclude) or not _plain(path, skipped):
+                continue
             root = _xacro_root(path) if name.lower().endswith(".xacro") else None  # (each xacro file read once)
             if root is not None:
                 included.update(_included_names(root))
-            if not _excluded(below / name, exclude) and path.is_file() and _is_robot(path, root):
+            if _is_robot(path, root):
                 found.append(path)
     kept = [path for path in found if not path.name.lower().endswith(".xacro") or path.name not in included]
     return sorted(kept, key=lambda path: path.relative_to(folder).parts)  # (name order, folders among files)
+
+
+def _plain(path: Path, skipped: Skipped) -> bool:
+    """Whether the search may read a file it found: a plain file, not a symbolic link (whatever it points at: a file
+    outside the folder, another link, nothing) nor a FIFO, socket or device, nor YAML it cannot read. A file with a
+    robot's suffix that it may not read is said to ``skipped``."""
+    try:
+        mode = path.lstat().st_mode  # (lstat: the link itself, never what it points at)
+    except OSError as exc:
+        why = f"cannot be looked at ({exc.strerror or exc})"
+    else:
+        if stat.S_ISREG(mode) and (os.access(path, os.R_OK) or not path.name.lower().endswith((".yaml", ".yml"))):
+            return True  # (a URDF or xacro file that cannot be read is checked: check says why, exit 2)
+        if stat.S_ISREG(mode):  # (YAML that cannot be read may be a robot spec or not: said, not failed)
+            why = "it cannot be read (permission denied), so whether it is a robot spec is unknown"
+        elif stat.S_ISLNK(mode):
+            why = "a symbolic link: a folder's search follows none (name the file it points at to check it)"
+        else:
+            why = "not a plain file (a FIFO, a socket or a device): never read"
+    if path.name.lower().endswith(_ROBOT_SUFFIXES):
+        skipped(path, why)
+    return False
 
 
 def _excluded(relative: PurePosixPath, exclude: Sequence[str]) -> bool:
