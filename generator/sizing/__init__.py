@@ -73,7 +73,11 @@ def size(
         path_samples = trajectory(motion)
         torque = inverse_dynamics(sized, path_samples)
         moved, samples = joint_motions(sized, path_samples, torque), (path_samples, torque)
-        timing = MotionTiming(tuple(planned_durations(motion)), motion.dwell, float(path_samples.t[-1]))
+        checked = tuple(
+            (kind, tuple(j.name for j, limit in zip(sized.joints, limits, strict=True) if math.isfinite(limit)))
+            for kind, limits in (("velocity", motion.velocity), ("acceleration", motion.acceleration))
+        )
+        timing = MotionTiming(tuple(planned_durations(motion)), motion.dwell, float(path_samples.t[-1]), checked)
     base = None
     if asked.mobile is not None and asked.raw is not None:
         found = base_of(sized, asked.mobile, math.fsum(p.mass for p in payloads))

@@ -38,11 +38,14 @@ def ratio(limit: float | None, needed: float) -> float | None:
 
 @dataclass(frozen=True)
 class MotionTiming:
-    """How long the motion's segments last (s, in order), the dwell held at each waypoint (s) and the whole cycle."""
+    """How long the motion's segments last (s, in order), the dwell held at each waypoint (s) and the whole cycle;
+    and the joints whose speed and acceleration limits the segments were checked against, by kind (a joint left out
+    had no such limit: the durations asked set its motion)."""
 
     segments: tuple[float, ...]
     dwell: float
     cycle: float
+    checked: tuple[tuple[str, tuple[str, ...]], ...] = ()  # (("velocity", joints), ("acceleration", joints))
 
 
 @dataclass(frozen=True)
@@ -206,7 +209,12 @@ class SizeReport:
     def _timing(self) -> dict[str, Any]:
         timing = self.timing
         assert timing is not None  # (to_dict asks only then)
-        return {"segments": list(timing.segments), "dwell": timing.dwell, "cycle": timing.cycle}
+        return {
+            "segments": list(timing.segments),
+            "dwell": timing.dwell,
+            "cycle": timing.cycle,
+            "limits_checked": {kind: list(joints) for kind, joints in timing.checked},
+        }
 
     def _base(self) -> dict[str, Any]:
         base, asked = self.base, self.base_motion
@@ -323,6 +331,7 @@ def _motion_lines(report: SizeReport) -> list[str]:
             )
         )
         lines.append(f"  along the motion:{said}")
+        lines += _unchecked_lines(report)
         lines.append(
             "  (the joints' damping and friction included: tau += d qdot + f sign(qdot))"
             if report.joint_friction
@@ -348,6 +357,26 @@ def _motion_lines(report: SizeReport) -> list[str]:
                     f"{side['motor_peak_speed']:>9.4g} {_num(side['inertia_ratio'], '.3g'):>14}"
                 )
     return lines
+
+
+def _unchecked_lines(report: SizeReport) -> list[str]:
+    """The limits the motion was not checked against (none given: the durations asked set it), said under its
+    header; nothing when every joint's speed and acceleration limits were checked."""
+    timing = report.timing
+    if timing is None:
+        return []
+    joints = list(report.efforts)
+    missing = {kind: [j for j in joints if j not in checked] for kind, checked in timing.checked}
+    kinds = [kind for kind, names in missing.items() if names]
+    if not kinds:
+        return []
+    names = {tuple(missing[kind]) for kind in kinds}
+    partly = len(names) > 1 or len(next(iter(names))) < len(joints)
+    whose = "; ".join(f"{kind}: {', '.join(missing[kind])}" for kind in kinds)
+    said = " or ".join(kinds)
+    if partly:
+        return [f"  no {said} limit was given for some joints ({whose}): none checked there; the durations set it"]
+    return [f"  no {said} limit was given, so none was checked: the durations set the motion"]
 
 
 def _base_lines(report: SizeReport) -> list[str]:

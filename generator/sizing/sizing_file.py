@@ -211,8 +211,13 @@ def motion_of(sizing: Sizing, robot: LoadedRobot) -> Motion | None:
             joint = robot.joints[names.index(name)]
             current[names.index(name)] = read.quantity(value, "length" if joint.kind == "prismatic" else "angle", where)
         waypoints.append(tuple(current))
-    velocity = _per_joint(read, data.get("velocity"), robot, "velocity", ("motion", "velocity"))
-    acceleration = _per_joint(read, data.get("acceleration"), robot, "acceleration", ("motion", "acceleration"))
+    # (every segment given a duration: a quintic needs no limit, the duration fixes it; a trapezoid's ramps still
+    # take the acceleration limit)
+    timed = all(d is not None for d in asked)
+    scaling = data.get("scaling", "quintic")
+    velocity = _per_joint(read, data.get("velocity"), robot, ("motion", "velocity"), missing=_missing(timed, ""))
+    missing = _missing(timed, scaling)
+    acceleration = _per_joint(read, data.get("acceleration"), robot, ("motion", "acceleration"), missing=missing)
     if not read.errors:
         read.errors += [raw.error(("motion", "waypoints"), problem) for problem in waypoint_errors(robot, waypoints)]
     if read.errors:
@@ -221,7 +226,7 @@ def motion_of(sizing: Sizing, robot: LoadedRobot) -> Motion | None:
         waypoints=tuple(waypoints),
         velocity=tuple(velocity),
         acceleration=tuple(acceleration),
-        scaling=data.get("scaling", "quintic"),
+        scaling=scaling,
         dwell=float(data.get("dwell", 0.0)),
         step=float(data.get("step", DEFAULT_STEP)),
         durations=tuple(asked),
@@ -359,9 +364,12 @@ def _reached(
     return values
 
 
-def _per_joint(read: _Reader, given: Any, robot: LoadedRobot, what: str, where: PathKey) -> list[float]:
-    """A limit for every moving joint: one value for all, a mapping by name, or (speeds) the URDF's velocity limit."""
-    raw = read.raw
+def _per_joint(read: _Reader, given: Any, robot: LoadedRobot, where: PathKey, *, missing: str | None) -> list[float]:
+    """A limit for every moving joint (``where``: the motion's velocity or acceleration): one value for all, a
+    mapping by name, or (speeds) the URDF's velocity limit. A joint without one is an error ending in ``missing``
+    (why the limit is needed), or with ``missing`` None unlimited: inf, nothing to check against (every segment's
+    duration given)."""
+    raw, what = read.raw, str(where[-1])
     values = []
     names = [j.name for j in robot.joints]
     said = len(read.errors)
@@ -379,9 +387,12 @@ def _per_joint(read: _Reader, given: Any, robot: LoadedRobot, what: str, where: 
             kind = "acceleration" if joint.kind == "prismatic" else "angular_acceleration"
         if value is None and what == "velocity" and joint.velocity is not None:
             values.append(joint.velocity)
+        elif value is None and missing is None:
+            values.append(math.inf)
         elif value is None:
-            source = " and the URDF gives no velocity limit" if what == "velocity" else ""
-            read.errors.append(raw.error(where[:-1], f"joint {joint.name!r} needs a {what} limit{source}", key=True))
+            source = " and the URDF gives none" if what == "velocity" else ""
+            message = f"joint {joint.name!r} needs {'an' if what[0] in 'aeiou' else 'a'} {what} limit{source}: give "
+            read.errors.append(raw.error(where[:-1], f"{message}`{what}:`{missing}", key=True))
             values.append(math.nan)
         else:
             path = (*where, joint.name) if isinstance(given, dict) else where
@@ -389,6 +400,19 @@ def _per_joint(read: _Reader, given: Any, robot: LoadedRobot, what: str, where: 
     # one value for all joints is read once per joint: its problem is said once
     read.errors[said:] = list({str(e): e for e in read.errors[said:]}.values())
     return values
+
+
+def _missing(timed: bool, scaling: str) -> str | None:
+    """How a missing limit can be made up for (the end of its error), or None when the motion needs no such limit:
+    every segment has a duration, which fixes a quintic (a trapezoid's ramps still take the acceleration limit)."""
+    if not timed:
+        return ", or a `duration:` for every segment (a quintic with a duration needs no limit)"
+    if scaling == "trapezoid":
+        return (
+            ": a trapezoid's ramps take it even when the duration is given (or `scaling: quintic`, which the "
+            "duration fixes)"
+        )
+    return None
 
 
 def name_errors(sizing: Sizing, robot: LoadedRobot) -> list[SpecError]:

@@ -225,7 +225,11 @@ def _moving(**motion):
             "$.motion.waypoints",
             "outside its range",
         ),
-        ({"motion": {"waypoints": [{"elbow_joint": 0}, {"elbow_joint": 1}]}}, "$.motion", "needs a acceleration limit"),
+        (
+            {"motion": {"waypoints": [{"elbow_joint": 0}, {"elbow_joint": 1}]}},
+            "$.motion",
+            "needs an acceleration limit",
+        ),
         ({"payloads": [{"frame": "tool9", "mass": 1}]}, "$.payloads[0].frame", "did you mean 'tool0'"),
         ({"drives": {"elbow_joint": {"gear_ratio": -5}}}, "$.drives.elbow_joint.gear_ratio", "> 0"),
         ({"drives": {"elbo_joint": {"gear_ratio": 5}}}, "$.drives.elbo_joint", "did you mean 'elbow_joint'"),
@@ -435,7 +439,13 @@ def test_a_motion_lasts_the_duration_asked(tmp_path):
     for moved in report.motions:
         assert moved.peak_speed == pytest.approx(15 / 8 * 1.5 / 3, rel=1e-6)
         assert moved.peak_acceleration == pytest.approx(10 / math.sqrt(3) * 1.5 / 9, rel=1e-4)  # (sampled at 1 ms)
-    assert report.to_dict()["motion_timing"] == {"segments": [3.0], "dwell": 0.0, "cycle": 3.0}
+    checked = {"velocity": ["joint_1", "joint_2"], "acceleration": ["joint_1", "joint_2"]}
+    assert report.to_dict()["motion_timing"] == {
+        "segments": [3.0],
+        "dwell": 0.0,
+        "cycle": 3.0,
+        "limits_checked": checked,
+    }
     assert "segments of 3 s; the cycle takes 3 s" in format_text(report)
     trapezoid = {"scaling": "trapezoid", "velocity": 10, "acceleration": 2, "dwell": 0.5, "duration": 3}
     trapezoid["waypoints"] = [{"joint_1": 0}, {"joint_1": 1, "duration": "4000 ms"}, {"joint_1": 0}]  # (4 s wins)
@@ -443,7 +453,8 @@ def test_a_motion_lasts_the_duration_asked(tmp_path):
     cruise = {t: (2 * t - math.sqrt(4 * t * t - 8)) / 2 for t in (3, 4)}  # (the shortest, a triangle, is 1.41 s)
     assert report.motions[0].peak_speed == pytest.approx(max(cruise.values()), rel=1e-9)
     assert report.motions[0].peak_acceleration == pytest.approx(2.0, rel=1e-9)
-    assert report.to_dict()["motion_timing"] == {"segments": [4.0, 3.0], "dwell": 0.5, "cycle": 8.5}
+    timing = {"segments": [4.0, 3.0], "dwell": 0.5, "cycle": 8.5, "limits_checked": checked}
+    assert report.to_dict()["motion_timing"] == timing
 
 
 @pytest.mark.parametrize(
