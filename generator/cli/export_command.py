@@ -17,8 +17,9 @@ def add_export_command(commands: Any) -> None:
         help="write the robot as a MuJoCo model (--mjcf): bodies named as links, actuators from ros2_control",
         description="Write PATH (a URDF, xacro document, spec or scene) as a MuJoCo MJCF model, from its URDF: every "
         "link a body of its name (massless links also sites), inertials exact, meshes copied into meshes/ next to "
-        "the model (converted to STL when MuJoCo cannot read them), mimic joints as equality constraints, actuators "
-        "from the ros2_control block, parent-child contacts excluded, every compiler setting explicit.",
+        "the model (converted to OBJ when MuJoCo cannot read them), mimic joints as equality constraints, actuators "
+        "from the ros2_control block (position servos carrying the weight they hold), parent-child contacts "
+        "excluded, every compiler setting explicit.",
     )
     export.add_argument("path", help="a .urdf, .xacro or .yaml spec")
     export.add_argument("--mjcf", action="store_true", required=True, help="write MJCF (the one format so far)")
@@ -27,10 +28,12 @@ def add_export_command(commands: Any) -> None:
         "--base",
         choices=["auto", "fixed", "free"],
         default="auto",
-        help="the root link fixed to the world or on a free joint (auto: free for a robot with wheels whose root "
-        "is not 'world')",
+        help="each robot welded to the world (fixed) or on a free joint of its own (free: the root link, or each "
+        "robot a scene hangs from world); auto (the default): free for a robot with wheels, so that it can drive",
     )
-    export.add_argument("--floor", action="store_true", help="add a ground plane at z = 0")
+    export.add_argument(
+        "--floor", action="store_true", help="add a ground plane at z = 0; every free robot stands on it in each pose"
+    )
     add_force_option(export)
     add_robot_options(export)
     export.set_defaults(handler=_cmd_export)

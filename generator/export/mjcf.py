@@ -16,8 +16,11 @@ What it keeps that MuJoCo's URDF import loses (docs/export.md has the whole mapp
   geometry joined through bodies without any (a tool or mounting frame between them), and a body and its
   grandparent where a zero-length link joins them at one point (a spherical wrist);
 - Gazebo's ``mu1`` of a link as its collision geoms' sliding friction, with priority over what they touch;
-- a free joint on the root link of a mobile robot (``--base free``, or ``auto``: a robot with a wheel, a continuous
-  joint whose child has a cylinder collision, and a root not called ``world``), a floor with ``--floor``;
+- a free joint on each robot's root (:func:`free_bodies`: the root link, or each robot a root called ``world`` holds
+  by a fixed joint; ``base="free"``, or ``auto`` for a robot with a wheel, a continuous joint whose child has a
+  cylinder collision), a floor with ``floor=True``, on which every free robot stands (:mod:`.mjcf_floor`);
+- position servos that carry the weight of what they alone hold (MuJoCo's ``gravcomp`` through the actuators,
+  :func:`~xacrokit.export.mjcf_actuators.compensate_gravity`);
 - every compiler and option setting explicit: radians, 9.80665 m/s^2, a 2 ms step, the implicitfast integrator.
 
 A moving link without mass (MuJoCo refuses "moving bodies" without mass and inertia) gets ``MASSLESS`` (1e-12 kg,
@@ -51,7 +54,8 @@ from ..shared.units import MAX_MOMENT, STANDARD_GRAVITY, bound_problem
 from ..shared.urdf_view import Joint, Link, Origin, UrdfView
 from ..write.atomic import is_staged
 from ..write.outputs import OutputFile, output_file, write_outputs
-from .mjcf_actuators import actuators, commanded, gains, mimics, num
+from .mjcf_actuators import actuators, commanded, compensate_gravity, gains, mimics, num
+from .mjcf_floor import Floor
 from .mjcf_keyframes import keyframes
 from .mjcf_meshes import FlatMesh, Meshes
 
@@ -193,7 +197,8 @@ class _Bodies:
     """Writes the bodies of the tree, each inside its parent's (see :func:`mjcf`)."""
 
     tree: _Tree
-    free: bool
+    free: Mapping[str, str]  # a body on a free joint -> the joint's name
+    taken: set[str]  # the joint names given so far (the URDF's and the free joints')
     colours: dict[str, str]
     friction: dict[str, float]
     meshes: Meshes
@@ -207,9 +212,9 @@ class _Bodies:
             body = etree.SubElement(parent, "body", name=name)
             if joint is not None:
                 _place(body, joint.origin, f"joint {joint.name!r}")
-        moving = (joint is not None and _add_joint(body, joint)) or (joint is None and self.free)
-        if joint is None and self.free:
-            etree.SubElement(body, "freejoint", name=f"{name}_free")
+        if name in self.free:  # (a root, or a robot hung from world by a fixed joint: placed where that puts it)
+            etree.SubElement(body, "freejoint", name=self.free[name])
+        moving = name in self.free or (joint is not None and _add_joint(body, joint, self.taken))
         if body is not parent:
             _inertial(body, link, moving, self.export.massless, self.export.repairs)
         _geoms(body, link, self.colours, self.friction.get(name), self.meshes)
@@ -243,19 +248,24 @@ def mjcf(
     except XacrokitError as exc:
         raise XacrokitError(f"MuJoCo cannot take the robot: {exc}") from None
     tree = _tree(view)
-    free = base == "free" or (base == "auto" and tree.root != "world" and _has_wheel(tree.joints, tree.links))
+    free = free_bodies(tree, base)
     export = Export(xml="")
     meshes = Meshes(read, export.meshes, export.notes)
+    meshes.keep_points = floor and (bool(free) or any(j.type == "floating" for j in tree.joints))
     model, asset, world = _skeleton(view.name if view.name is not None else "robot", floor)
-    _Bodies(tree, free, view.colours(), _frictions(view), meshes, export).body(tree.root, world, None)
+    taken = {j.name for j in tree.joints} | set(free.values())
+    _Bodies(tree, free, taken, view.colours(), _frictions(view), meshes, export).body(tree.root, world, None)
     for mesh in meshes.assets:
         asset.append(mesh)
-    _constraints(model, robot, tree, free, export)
+    _constraints(model, robot, tree, tree.root in free, export)
     reflected = armature or {}
     for joint in model.find("worldbody").iter("joint"):
         if reflected.get(joint.get("name"), 0.0) > 0:
             joint.set("armature", num(reflected[joint.get("name")]))
-    model.append(keyframes(model, named_poses(poses or {}, view), tree.joints))
+    standing = Floor(meshes.points, frozenset(free) & {tree.root}) if floor else None
+    model.append(keyframes(model, named_poses(poses or {}, view), tree.joints, standing))
+    if standing is not None:
+        standing.stand(world)
     for element in (asset, model.find("contact")):
         if element is not None and len(element) == 0:
             model.remove(element)
@@ -279,6 +289,42 @@ def _constraints(model: Any, robot: ReadRobot, tree: _Tree, free: bool, export: 
     acts = actuators(view, {j.name: j for j in tree.joints}, inertia, export.notes)
     if len(acts):
         model.append(acts)
+        compensate_gravity(model.find("worldbody"), acts, model.find("equality"))
+
+
+def free_bodies(tree: _Tree, base: str) -> dict[str, str]:
+    """The bodies on a free joint, each with its joint's name (``base``: auto, fixed or free; see :func:`mjcf`): the
+    root link, or when the root is ``world`` (a scene's, or a URDF's that fixes its robot to the world) each robot
+    hung from it by a fixed joint, placed where that joint puts it; under ``auto`` only those with a wheel."""
+    if base == "fixed":
+        return {}
+    if tree.root != "world":
+        tops = [tree.root]
+    else:
+        tops = [j.child or "" for j in tree.children.get("world", []) if j.type == "fixed"]
+    if base == "auto":
+        tops = [name for name in tops if _has_wheel(_below(tree, name), tree.links)]
+    taken = {j.name for j in tree.joints}
+    return {name: fresh(f"{name}_free", taken) for name in tops}
+
+
+def fresh(name: str, taken: set[str]) -> str:
+    """``name``, or with underscores added until no joint has it (MuJoCo needs each joint's name once: a URDF joint
+    may already be called what the export calls the one it adds); then taken."""
+    while name in taken:
+        name += "_"
+    taken.add(name)
+    return name
+
+
+def _below(tree: _Tree, name: str) -> list[Joint]:
+    """The joints of the subtree below link ``name``."""
+    found, stack = [], [name]
+    while stack:
+        for joint in tree.children.get(stack.pop(), []):
+            found.append(joint)
+            stack.append(joint.child or "")
+    return found
 
 
 def _adjacent(tree: _Tree) -> list[tuple[str, str]]:
@@ -355,8 +401,9 @@ def _frictions(view: UrdfView) -> dict[str, float]:
     return found
 
 
-def _add_joint(body: Any, joint: Joint) -> bool:
-    """The MJCF joint(s) of a URDF joint inside its child's body; False for a fixed joint (the body is welded)."""
+def _add_joint(body: Any, joint: Joint, taken: set[str]) -> bool:
+    """The MJCF joint(s) of a URDF joint inside its child's body; False for a fixed joint (the body is welded).
+    ``taken``: the joint names given (a planar or floating joint's parts are named apart from them)."""
 
     kind, name = joint.type, joint.name
     if kind == "fixed":
@@ -369,16 +416,16 @@ def _add_joint(body: Any, joint: Joint) -> bool:
         if given:
             extra[mjcf_key] = num(_floats(given, 1, where=f"{said} dynamics {urdf_key}")[0])
     if kind == "floating":
-        etree.SubElement(body, "joint", name=name, type="free")
+        _floating(body, name, taken)
         return True
     if kind == "planar":  # (x along u, y along v, theta about the normal: as gen-robot view and pinocchio for z)
         u = np.array([0.0, 1.0, 0.0]) if abs(axis[0]) > 0.9 else np.array([1.0, 0.0, 0.0])
         u = u - (u @ axis) * axis
         u /= np.linalg.norm(u)
         v = np.cross(axis, u)
-        etree.SubElement(body, "joint", name=f"{name}_x", type="slide", axis=nums(u), **extra)
-        etree.SubElement(body, "joint", name=f"{name}_y", type="slide", axis=nums(v), **extra)
-        etree.SubElement(body, "joint", name=f"{name}_theta", type="hinge", axis=nums(axis), **extra)
+        etree.SubElement(body, "joint", name=fresh(f"{name}_x", taken), type="slide", axis=nums(u), **extra)
+        etree.SubElement(body, "joint", name=fresh(f"{name}_y", taken), type="slide", axis=nums(v), **extra)
+        etree.SubElement(body, "joint", name=fresh(f"{name}_theta", taken), type="hinge", axis=nums(axis), **extra)
         return True
     if kind not in ("revolute", "continuous", "prismatic"):
         raise XacrokitError(f"joint {name!r}: type {kind!r} is not a URDF joint type")
@@ -392,6 +439,17 @@ def _add_joint(body: Any, joint: Joint) -> bool:
         if lower < upper:
             element.set("range", f"{num(lower)} {num(upper)}")
     return True
+
+
+def _floating(body: Any, name: str, taken: set[str]) -> None:
+    """A floating joint: a free joint on a body of the world; deeper, where MuJoCo takes no free joint, the same six
+    degrees of freedom as three slides along the parent's axes and a ball joint."""
+    if body.getparent().tag == "worldbody":
+        etree.SubElement(body, "joint", name=name, type="free")
+        return
+    for letter, direction in zip("xyz", ("1 0 0", "0 1 0", "0 0 1"), strict=True):
+        etree.SubElement(body, "joint", name=fresh(f"{name}_{letter}", taken), type="slide", axis=direction)
+    etree.SubElement(body, "joint", name=fresh(f"{name}_ball", taken), type="ball")
 
 
 def _inertial(body: Any, link: Link, moving: bool, massless: list[str], repairs: dict[str, float]) -> None:

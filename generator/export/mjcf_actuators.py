@@ -149,3 +149,33 @@ def mimics(joints: Sequence[Joint], notes: list[str]) -> Any:
             polycoef=f"{num(offset)} {num(multiplier)} 0 0 0",
         )
     return element
+
+
+def compensate_gravity(world: Any, acts: Any, equality: Any) -> None:
+    """Make the position servos carry the weight of what they alone hold, as an arm's controller does: each body
+    whose every joint up to the world is a position servo's, or a mimic joint (``equality``) of one (its leader's
+    motor drives it through the linkage the mimic stands for), gets ``gravcomp="1"``, and those joints
+    ``actuatorgravcomp="true"``: MuJoCo adds the torque that cancels that weight, -J^T m g summed over those bodies,
+    to the joints' actuator force, and clamps the sum into ``actuatorfrcrange`` (the servo's forcerange, the URDF's
+    effort limit). A body below anything else (a free base, a wheel, a joint without a servo) keeps its weight."""
+    servos = {a.get("joint"): a for a in acts if a.tag == "position"}
+    follows = {e.get("joint1"): e.get("joint2") for e in (equality if equality is not None else [])}
+    driven = set(servos) | {joint for joint, leader in follows.items() if leader in servos}
+    held: set[str] = set()
+    stack = [(body, False) for body in world.findall("body")]
+    while stack:
+        body, moved = stack.pop()
+        own = [j for j in body if j.tag in ("joint", "freejoint")]
+        if any(j.tag == "freejoint" or j.get("name") not in driven for j in own):
+            continue  # (neither it nor a body below it is held by servos alone)
+        held.update(j.get("name") for j in own)
+        moved = moved or bool(own)
+        if moved:  # (a body welded to the world has no joint to carry it)
+            body.set("gravcomp", "1")
+        stack.extend((child, moved) for child in body.findall("body"))
+    for joint in world.iter("joint"):
+        if joint.get("name") in held:
+            joint.set("actuatorgravcomp", "true")
+            limit = servos[joint.get("name")].get("forcerange") if joint.get("name") in servos else None
+            if limit is not None:
+                joint.set("actuatorfrcrange", limit)

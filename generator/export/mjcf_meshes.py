@@ -48,6 +48,9 @@ class Meshes:
         self.files: dict[str, str] = {}  # the file read -> its file name in meshes/
         self.found: dict[str, str] = {}  # the URI as written -> the file read
         self.refused: dict[str, XacrokitError] = {}  # the URI as written -> why it is not read (said once per use)
+        self.keep_points = False  # keep each mesh's vertices (a free robot standing on a floor needs its lowest)
+        self.vertices: dict[str, np.ndarray] = {}  # the file read -> its distinct vertices, when kept
+        self.points: dict[str, np.ndarray] = {}  # an asset's name -> its vertices scaled, when kept
 
     def name(self, filename: str, scale: str | None) -> str:
         if filename in self.refused:  # (a mesh named by many visuals is read, and refused, once)
@@ -70,6 +73,9 @@ class Meshes:
         element = etree.Element("mesh", name=name, file=self.files[path], inertia="shell")
         if scale:
             element.set("scale", _scale(scale))
+        if path in self.vertices:
+            factors = [float(v) for v in element.get("scale", "1 1 1").split()]
+            self.points[name] = self.vertices[path] * np.array(factors)  # (elementwise: the same bits anywhere)
         self.assets.append(element)
         self.names[key] = name
         return name
@@ -79,6 +85,8 @@ class Meshes:
         spread = np.linalg.svd(mesh.vertices - mesh.vertices.mean(axis=0), compute_uv=False)
         if len(mesh.vertices) < 4 or spread[-1] <= 1e-9 * spread[0]:
             raise FlatMesh(f"mesh {filename!r} is flat (all its vertices in one plane): MuJoCo cannot take it")
+        if self.keep_points:
+            self.vertices[str(read.copy.root / read.copy.relative)] = np.unique(np.asarray(mesh.vertices), axis=0)
         source = Path(read.copy.relative)
         stem = "".join(c if c.isalnum() or c in "_-" else "_" for c in source.stem)[:60] or "mesh"
         suffix = source.suffix.lower()
