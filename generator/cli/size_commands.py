@@ -26,7 +26,8 @@ def add_size_command(commands: Any) -> None:
         description="Size PATH (a URDF, xacro document or spec) with pinocchio: for every moving joint, the largest "
         "torque its motor must produce to hold the robot still anywhere in the joints' ranges (a search; the pose "
         "is shown), with payloads on named frames and forces the environment applies at named frames; margins "
-        "against the URDF's effort limits. Gravity is 9.80665 m/s^2 along -z of the root link unless --gravity or the "
+        "against the URDF's effort limits (a peak torque is printed by magnitude, the need; --json keeps its sign "
+        "about the joint's axis). Gravity is 9.80665 m/s^2 along -z of the root link unless --gravity or the "
         "sizing file's gravity says otherwise. Exit code 0 when "
         "every margin holds, 1 when a joint needs more than its effort limit, 2 bad input.",
     )
@@ -75,7 +76,6 @@ def add_size_command(commands: Any) -> None:
 
 def _cmd_size(args: argparse.Namespace) -> int:
     from ..reader.kinematic_model import UnknownName  # (heavy: lxml)
-    from ..reader.read_robot import read_robot  # (heavy: lxml)
     from ..sizing import format_text, size  # (heavy: numpy, pinocchio)
 
     if args.force:
@@ -83,10 +83,9 @@ def _cmd_size(args: argparse.Namespace) -> int:
     payloads = [parse_payload(text) for text in args.payload]
     loads = [parse_load(text) for text in [*args.load, *args.force]]
     gravity = parse_gravity(args.gravity) if args.gravity is not None else None
-    robot = read_robot(robot_input(args, args.path))
     try:
         report = size(
-            robot,
+            robot_input(args, args.path),
             payloads=payloads,
             loads=loads,
             sizing=args.sizing,

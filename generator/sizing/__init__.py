@@ -15,12 +15,12 @@ import os
 from collections.abc import Sequence
 
 from ..errors import SpecErrors
-from ..reader.read_robot import ReadRobot, read_robot
+from ..reader.read_robot import ReadRobot
 from ..reader.robot_input import RobotInput
 from .mobile import base_of
 from .motion import inverse_dynamics, joint_motions, planned_durations, trajectory
 from .size_results import MotionTiming, SizeReport, format_text
-from .sized_robot import GRAVITY, Load, Payload, loaded_robot, require_load
+from .sized_robot import GRAVITY, Load, Payload, loaded_robot, read_sized, require_load
 from .sizing_file import Drive, Sizing, motion_of, name_errors, read_sizing
 from .static import StaticPeak, static_peaks
 
@@ -55,9 +55,10 @@ def size(
     Raises:
         XacrokitError: a robot with nothing to size (and, given a path, unreadable input); UnknownName: a payload's
             or load's frame the robot lacks.
-        SpecErrors: an invalid spec or sizing file (located).
+        SpecErrors: an invalid spec or sizing file (located); a spec's moving link without mass names `strict:
+            false`, which sizes the robot as written.
     """
-    read = read_robot(robot)
+    read = read_sized(robot)
     asked = read_sizing(sizing) if sizing is not None else Sizing()
     # (gravity: the argument, else the sizing file's, else standard gravity)
     pulled = gravity if gravity is not None else asked.gravity if asked.gravity is not None else GRAVITY

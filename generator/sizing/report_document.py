@@ -45,7 +45,8 @@ def markdown(report: SizeReport, pictures: dict[str, str]) -> str:
     lines = [
         f"# Sizing report: {markdown_text(report.robot)}",
         "",
-        f"Input `{markdown_text(report.path)}`. Torques are what the motors produce (N·m; N for prismatic joints); "
+        f"Input `{markdown_text(report.path)}`. A peak torque is what the motor must produce, by magnitude (N·m; N "
+        "for prismatic joints; the JSON keeps its sign); "
         f"gravity {report.gravity:g} m/s² along −z; the motion's torques "
         + ("include" if report.joint_friction else "leave out")
         + " the joints' damping and friction; margin = limit / need (below 1 fails).",
@@ -61,7 +62,7 @@ def markdown(report: SizeReport, pictures: dict[str, str]) -> str:
     lines.append("|---|---|---|---|---|")
     for peak in report.peaks:
         lines.append(
-            f"| {markdown_text(peak.joint)} | {peak.torque:.4g} | {peak.load_torque:.4g} | "
+            f"| {markdown_text(peak.joint)} | {peak.need:.4g} | {peak.loads_need:.4g} | "
             f"{_num(report.efforts.get(peak.joint))} | {_num(report.margin(peak))} |"
         )
     if report.motions is not None:
@@ -72,7 +73,7 @@ def markdown(report: SizeReport, pictures: dict[str, str]) -> str:
         lines.append("|---|---|---|---|---|---|---|")
         for m in report.motions:
             lines.append(
-                f"| {markdown_text(m.joint)} | {m.peak_torque:.4g} | {m.rms_torque:.4g} | {m.peak_speed:.4g} | "
+                f"| {markdown_text(m.joint)} | {abs(m.peak_torque):.4g} | {m.rms_torque:.4g} | {m.peak_speed:.4g} | "
                 f"{m.peak_power:.4g} | {m.peak_regenerative_power:.4g} | {m.energy:.4g} |"
             )
     if report.drives:

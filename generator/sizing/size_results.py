@@ -299,13 +299,14 @@ def format_text(report: SizeReport) -> str:
         flag = "" if margin is None or margin >= 1.0 else "  FAIL"
         pose = ", ".join(f"{k}={p.pose[k]:.3f}" for k in p.moving_it)  # (the JSON has every joint's value)
         lines.append(
-            f"  {p.joint:<24} {p.torque:>12.4g} {p.load_torque:>12.4g} "
+            f"  {p.joint:<24} {p.need:>12.4g} {p.loads_need:>12.4g} "
             f"{_num(effort):>13} {_num(margin, '.3g'):>8}{flag}  {pose}".rstrip()
         )
     lines += _motion_lines(report)
     lines += _base_lines(report)
     lines.append(
-        "  N*m (N for prismatic joints), rad/s, rad/s^2, W, J; the motors produce these torques; margin = limit / need"
+        "  N*m (N for prismatic joints), rad/s, rad/s^2, W, J; peak torque: what the motor must produce, |tau| "
+        "(signed in --json); margin = limit / need"
     )
     if report.massless:
         massless = ", ".join(report.massless)
@@ -343,7 +344,7 @@ def _motion_lines(report: SizeReport) -> list[str]:
         )
         for m in report.motions:
             lines.append(
-                f"  {m.joint:<24} {m.peak_torque:>12.4g} {m.rms_torque:>11.4g} {m.peak_speed:>11.4g} "
+                f"  {m.joint:<24} {abs(m.peak_torque):>12.4g} {m.rms_torque:>11.4g} {m.peak_speed:>11.4g} "
                 f"{m.peak_acceleration:>11.4g} {m.peak_power:>11.4g} {m.peak_regenerative_power:>9.4g} {m.energy:>9.4g}"
             )
     if report.drives:

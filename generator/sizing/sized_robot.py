@@ -10,18 +10,21 @@ the robot still against gravity and the loads, tau = g(q) - J(q)^T w.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from ..errors import XacrokitError
+from ..errors import SpecErrors, XacrokitError
 from ..reader.kinematic_model import KinematicJoint, KinematicModel, configurations
-from ..reader.read_robot import ReadRobot
+from ..reader.read_robot import ReadRobot, read_robot
+from ..reader.robot_input import RobotInput
 from ..shared.joint_types import MOVING
 from ..shared.units import STANDARD_GRAVITY
 from ..shared.urdf_view import UrdfView, joint_tree
+from ..validate.physics import Implausible
 
 GRAVITY = STANDARD_GRAVITY  # m/s^2, along -z of the root frame
 
@@ -151,6 +154,32 @@ def require_load(robot: LoadedRobot, where: str) -> None:
         f"those links a mass ({named}: `mass:` in a spec, <inertial> in a URDF), or size it with a payload "
         "or a load (a sizing file's payloads: and loads:, or the command's --payload and --load)"
     )
+
+
+AS_WRITTEN = (
+    "; to size the robot as written (links without mass, a payload or load carrying the weight: the lecture's "
+    "tau = J^T F model), write `strict: false` at the top of the spec"
+)
+
+
+def read_sized(robot: ReadRobot | RobotInput | str | os.PathLike[str]) -> ReadRobot:
+    """The robot ``size`` analyses, read (:func:`~xacrokit.reader.read_robot.read_robot`). A spec's values that no
+    real body has (a moving link without mass, above all) are errors, as for every command; for sizing the first
+    such error names the way to size the robot as written: ``strict: false``, which makes them warnings.
+
+    Raises:
+        SpecErrors: an invalid spec (located), as read_robot's, with that way out.
+    """
+    try:
+        return read_robot(robot)
+    except SpecErrors as exc:
+        first = next((e for e in exc.errors if isinstance(e, Implausible)), None)
+        if first is None:
+            raise
+        said = Implausible(
+            first.message + AS_WRITTEN, file=first.file, path=first.path, line=first.line, column=first.column
+        )
+        raise SpecErrors([said if e is first else e for e in exc.errors]) from None
 
 
 def frame_names(robot: LoadedRobot) -> list[str]:

@@ -41,6 +41,19 @@ class StaticPeak:
     # the joints whose value changes this torque (the others may be anything): what the table shows of the pose
     moving_it: tuple[str, ...] = ()
 
+    @property
+    def need(self) -> float:
+        """What the joint's motor must be able to produce: the peak's magnitude. (``torque`` keeps its sign, the
+        direction about the joint's own axis at ``pose``: where both directions need as much, either may be the
+        one found, as for the two joints of a mirrored pair.)"""
+        return abs(self.torque)
+
+    @property
+    def loads_need(self) -> float:
+        """The loads' part of :attr:`need`: ``load_torque`` taken in the peak's direction (negative where the loads
+        relieve the motor)."""
+        return math.copysign(1.0, self.torque) * self.load_torque + 0.0  # (+ 0.0: no -0)
+
 
 def torques(robot: LoadedRobot, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(gravity, loads) joint torques of the moving joints at ``values``: g(q) and -J(q)^T w."""
