@@ -3,8 +3,9 @@
 ``validate(raw) -> Spec`` where ``Spec.data`` is the spec with every length, angle and mass converted to an SI float.
 Nothing here writes or prints; failure is one :class:`SpecErrors` holding the list. One module per pass, in the order
 they run: :mod:`.schema` (the JSON Schema and the wording of its errors), :mod:`.quantities` (units to SI),
-:mod:`.names` (names, references, the tree) and :mod:`.physics` (sizes, masses, inertia, limits, axes, densities);
-:mod:`.bodies` walks a spec's links, arm rows, wheels and frames for all of them.
+:mod:`.names` (names, references, the tree), :mod:`.physics` (sizes, masses, inertia, limits, axes, densities) and
+:mod:`.poses` (named poses within the limits, their mimic joints too); :mod:`.bodies` walks a spec's links, arm rows,
+wheels and frames for all of them.
 
 Units are converted here rather than in resolve (where the stage list of the style notes puts them) because a value
 that does not parse must be reported at its line and column, and the physics checks compare SI numbers while they
@@ -35,6 +36,7 @@ from .names import (
     tree_errors,
 )
 from .physics import Implausible, physics_errors
+from .poses import pose_errors
 from .quantities import Quantities, with_values
 from .schema import (
     SchemaValidator,
@@ -96,6 +98,7 @@ def semantic_errors(
     errors += tree_errors(raw, kept, link_names)
     if physics:
         errors += physics_errors(raw, data, every, {child for _, child, _ in relations})
+        errors += pose_errors(raw, data, every)
         errors += sensor_errors(raw, data)
     return errors
 

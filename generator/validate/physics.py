@@ -13,7 +13,7 @@ from ..errors import SpecError
 from ..load import PathKey, RawSpec
 from ..model import AXIAL, LIMITED
 from ..shared.solid_inertia import tensor, tensor_problem
-from .bodies import Body, geometries, joint_types
+from .bodies import Body, geometries
 
 AXIS_LENGTHS = (1e-9, 1e9)  # what an axis may measure before it is normalised (resolve divides by its length)
 
@@ -49,34 +49,6 @@ def physics_errors(
             yield from _frame_errors(raw, item, path)
     for name, joint in data.get("joints", {}).items():
         yield from _joint_errors(raw, data, ("joints", name), joint, children)
-    yield from _pose_errors(raw, data, bodies)
-
-
-def _pose_errors(raw: RawSpec, data: dict[str, Any], bodies: Sequence[Body]) -> Iterator[SpecError]:
-    """A named pose's position outside its joint's limits (rad or m, as converted)."""
-    limits = {n: j.get("limit") for n, j in data.get("joints", {}).items() if j["type"] in LIMITED}
-    limits.update(
-        (item["name"], item.get("limit"))
-        for kind, _, _, item in bodies
-        if kind == "row" and item.get("type", "revolute") in LIMITED
-    )
-    types = joint_types(data, bodies)
-    for pose, values in data.get("poses", {}).items():
-        for name, value in values.items():
-            limit = limits.get(name)
-            if not isinstance(limit, dict) or not isinstance(value, (int, float)):
-                continue
-            low, high = limit.get("lower"), limit.get("upper")
-            if isinstance(low, (int, float)) and isinstance(high, (int, float)) and not low <= value <= high:
-                if types.get(name) == "prismatic":
-                    said = f"{value:.6g} m is outside its limits [{low:.6g}, {high:.6g}] m"
-                else:
-                    degrees = ", ".join(f"{math.degrees(v):.6g}" for v in (low, high))
-                    said = (
-                        f"{value:.6g} rad ({math.degrees(value):.6g} deg) is outside its limits "
-                        f"[{low:.6g}, {high:.6g}] rad ([{degrees}] deg)"
-                    )
-                yield raw.error(("poses", pose, name), f"{name} = {said}")
 
 
 def _link_errors(raw: RawSpec, link: dict[str, Any], path: PathKey) -> Iterator[SpecError]:

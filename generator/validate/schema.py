@@ -145,7 +145,7 @@ _COLLECTIONS = {"links": "link", "joints": "joint", "arms": "arm", "wheels": "wh
 
 def _not_a_mapping(path: PathKey, error: jsonschema.ValidationError) -> str:
     """A scalar or a list where a mapping belongs: in a spec, nearly always a line indented too little."""
-    fields = ", ".join(f"{k}:" for k in list(error.schema.get("properties", {}))[:4])
+    fields = ", ".join(f"{k}:" for k in list(error.schema.get("properties", {}))[:4]) or "NAME: value"
     got = f"{error.instance!r}" if not isinstance(error.instance, list) else "a list"
     if path and path[-1] == "axis_angle" and isinstance(error.instance, list):
         return (
@@ -200,9 +200,11 @@ def _name_message(error: jsonschema.ValidationError, path: PathKey) -> Message |
     in_key = "propertyNames" in error.absolute_schema_path
     if keyword == "maxLength" and isinstance(error.instance, str):
         return path + ((error.instance,) if in_key else ()), _long_name(error), in_key
-    if keyword != "pattern":
+    # (an empty name breaks its pattern and its minLength: the pattern's words say it, once)
+    pattern = error.schema.get("pattern") if keyword in ("pattern", "minLength") else None
+    if pattern is None:
         return None
-    separated = "[./-]" in str(error.validator_value)  # (link and joint names' pattern)
+    separated = "[./-]" in str(pattern)  # (link and joint names' pattern)
     if in_key:  # a mapping key that is not a valid name: point at the key itself
         return (*path, error.instance), _bad_name(error.instance, link_or_joint=separated), True
     return path, _bad_name(error.instance, link_or_joint=separated), False
@@ -286,7 +288,23 @@ def _type_message(error: jsonschema.ValidationError, path: PathKey) -> Message |
         return path, _not_a_mapping(path, error), False
     if keyword == "type" and not path:
         return path, f"a spec is a mapping (robot:, links:, ...), got {type(error.instance).__name__}", False
+    if keyword == "type" and error.validator_value in _PLAIN_TYPES:
+        return path, f"expected {_PLAIN_TYPES[error.validator_value](error.schema)}, got {error.instance!r}", False
     return None
+
+
+def _list_of(schema: dict[str, Any]) -> str:
+    low, high = schema.get("minItems"), schema.get("maxItems")
+    return f"a list of {low} values" if low is not None and low == high else "a list"
+
+
+# what a value of a JSON type is called where the spec wants one (a string: YAML reads 1, yes or null as no text)
+_PLAIN_TYPES = {
+    "string": lambda schema: "text (write it in quotes where YAML reads a number, yes/no or null)",
+    "array": _list_of,
+    "boolean": lambda schema: "true or false",
+    "integer": lambda schema: "a whole number",
+}
 
 
 def _count_message(error: jsonschema.ValidationError, path: PathKey) -> Message:
@@ -303,6 +321,8 @@ def _count_message(error: jsonschema.ValidationError, path: PathKey) -> Message:
         return path, "must not be empty", False
     if keyword == "required":
         return path, error.message.replace("is a required property", "is required here"), False
+    if keyword == "minLength" and error.instance == "":
+        return path, "must not be empty", False
     return path, error.message, False
 
 

@@ -88,12 +88,16 @@ def test_bad_poses_are_located_errors():
         }
     )
     text = "\n".join(said)
-    assert "$.poses.home.left_shoulder: left_shoulder = 1.74533 rad (100 deg) is outside its limits" in text
-    assert "$.poses.home.left_slide: left_slide = 0.3 m is outside its limits [0, 0.2] m" in text
+    assert (
+        "$.poses.home.left_shoulder: left_shoulder = 100 deg (1.7453292519943295 rad) is outside its limits "
+        "[-90 deg, 90 deg] ([-1.5707963267948966, 1.5707963267948966] rad)"
+    ) in text  # (the spec's own text beside the exact value: issue 41)
+    assert "$.poses.home.left_slide: left_slide = 0.3 m is outside its limits [0.0, 0.2] m" in text
+    assert "$.poses.home.left_slide: left_slide = 0.3 m puts mimic joint left_finger_joint at 0.6 m, outside" in text
     assert "'left_sholder' is not a joint (did you mean 'left_shoulder'?)" in text
     assert "'tool_joint' is a fixed joint; a pose gives the positions of moving joints" in text
     assert "'left_finger_joint' follows 'left_slide' (mimic): give 'left_slide''s position" in text
-    assert len(said) == 5
+    assert len(said) == 6
     lines = _spec({}).count("\n")
     assert all(e.startswith("posebot.yaml:") and int(e.split(":")[1]) > lines for e in said)
 
