@@ -13,7 +13,6 @@ from __future__ import annotations
 import argparse
 import contextlib
 import difflib
-import json
 import os
 import re
 import sys
@@ -34,6 +33,7 @@ from .arguments import (
     robot_input,
     spacing,
 )
+from .json_output import print_json
 from .subcommands import add_commands
 
 if TYPE_CHECKING:
@@ -210,11 +210,11 @@ def _cmd_check(args: argparse.Namespace) -> int:
     with _progress() as progress:
         checks = list(check_files(files, options, jobs=args.jobs, progress=progress))
     if form == "json":
-        sys.stdout.write(json.dumps(run_dict(checks, strict=args.strict), indent=2) + "\n")
+        print_json(run_dict(checks, strict=args.strict))
     elif form == "sarif":
         from ..check.sarif_report import sarif_log  # (heavy: concurrent)
 
-        sys.stdout.write(json.dumps(sarif_log(checks), indent=2) + "\n")
+        print_json(sarif_log(checks))
     elif form == "junit":
         from ..check.junit_report import junit_xml  # (heavy: concurrent)
 
@@ -235,7 +235,7 @@ def _check_single(path: Path, options: CheckOptions, form: str, strict: bool) ->
     with _progress() as progress:
         report = options.check(path, progress)
     if form == "json":
-        sys.stdout.write(json.dumps(report.to_dict(), indent=2) + "\n")
+        print_json(report.to_dict())
     else:
         sys.stdout.write(format_text(report, colour=_colour(), strict=strict))
     return report.exit_code(strict=strict)

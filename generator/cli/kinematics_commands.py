@@ -5,13 +5,14 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import json
 import sys
 from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any
 
 from ..errors import XacrokitError
+from ..shared.value_text import comment_text
 from .arguments import add_robot_options, robot_input
+from .json_output import print_json, require_finite
 
 if TYPE_CHECKING:
     from ..reader.kinematic_model import LimitWarning
@@ -34,7 +35,8 @@ def add_kinematics_commands(commands: Any) -> None:
     pose.add_argument(
         "--point",
         metavar="X,Y,Z",
-        help="also a point given in FRAME's axes (m), expressed in --in: T_IN_FRAME p (an object a camera sees)",
+        help="also a point given in FRAME's axes (m, each within 1e4), expressed in --in: T_IN_FRAME p (an object "
+        "a camera sees)",
     )
     add_robot_options(pose)
     pose.set_defaults(handler=_cmd_pose)
@@ -50,7 +52,8 @@ def add_kinematics_commands(commands: Any) -> None:
     jac.add_argument(
         "--wrench",
         metavar="FX,FY,FZ[,MX,MY,MZ]",
-        help="a force (N) and moment (N*m) the tool exerts on the environment, in --in's axes: prints tau = J^T w",
+        help="a force (N) and moment (N*m, each within 1e9) the tool exerts on the environment, in --in's axes: prints "
+        "tau = J^T w",
     )
     add_robot_options(jac)
     jac.set_defaults(handler=_cmd_jacobian)
@@ -110,10 +113,11 @@ def _flags(args: argparse.Namespace) -> Iterator[None]:
     try:
         yield
     except UnknownName as exc:
-        flag = f"--at {exc.name}" if exc.role == "joint" else "FRAME" if exc.name == args.frame else "--in"
+        flag = "FRAME" if exc.name == args.frame else "--in"
+        flag = f"--at {comment_text(exc.name)}" if exc.role == "joint" else flag
         raise XacrokitError(f"{flag}: {exc.detail}") from None
     except JointValueError as exc:
-        raise XacrokitError(f"--at {exc.joint}={exc.text}: {exc.reason}") from None
+        raise XacrokitError(f"--at {comment_text(exc.joint)}={comment_text(exc.text)}: {exc.reason}") from None
     except MovingFrame as exc:
         raise XacrokitError(
             f"--in {args.in_frame}: it moves with joint {exc.joint!r}; give a frame fixed to the root"
@@ -129,12 +133,13 @@ def _cmd_ik(args: argparse.Namespace) -> int:
         found = inverse_kinematics(
             robot, args.frame, target, in_frame=args.in_frame, position_only=args.position_only, every=args.every
         )
+    out: dict[str, Any] = {"frame": found.frame, "in": found.in_frame}
+    out["solutions"] = [{"joints": values, "error": error} for values, error in found.solutions]
+    if found.closest is not None:
+        out["closest"] = {"joints": found.closest[0], "error": found.closest[1]}
+    require_finite(out, "the search")  # (in text too: never inf or NaN as an answer)
     if args.json:
-        out: dict[str, Any] = {"frame": found.frame, "in": found.in_frame}
-        out["solutions"] = [{"joints": values, "error": error} for values, error in found.solutions]
-        if found.closest is not None:
-            out["closest"] = {"joints": found.closest[0], "error": found.closest[1]}
-        sys.stdout.write(json.dumps(out, indent=2) + "\n")
+        print_json(out)
         return 0 if found.solutions else 1
     if not found.solutions and found.closest is not None:
         values, error = found.closest
@@ -158,32 +163,40 @@ def _common(parser: argparse.ArgumentParser) -> None:
         action="append",
         default=[],
         metavar="NAME=VALUE",
-        help="a joint's value, e.g. joint_1=30deg or slider=0.1m (rad or m without a unit); repeatable",
+        help="a joint's value, e.g. joint_1=30deg or slider=0.1m (rad or m without a unit); repeatable, each joint "
+        "once",
     )
     parser.add_argument("--json", action="store_true", help="print JSON")
 
 
 def _values(args: argparse.Namespace) -> dict[str, str]:
-    given = {}
+    """The --at values by joint name; a joint given twice is refused (which one was meant is not for us to guess)."""
+    given: dict[str, str] = {}
     for item in args.at:
         name, sign, value = item.partition("=")
         if not sign or not name.strip() or not value.strip():
-            raise XacrokitError(f"--at {item!r}: give NAME=VALUE, e.g. joint_1=30deg")
-        given[name.strip()] = value.strip()
+            raise XacrokitError(f"--at {comment_text(item)!r}: give NAME=VALUE, e.g. joint_1=30deg")
+        name = name.strip()
+        if name in given:
+            raise XacrokitError(
+                f"--at {comment_text(name)}: the joint is given twice ({comment_text(given[name])} and "
+                f"{comment_text(value.strip())}): give each joint once"
+            )
+        given[name] = value.strip()
     return given
 
 
 def _warn(warnings: list[LimitWarning]) -> None:
     for warning in warnings:
-        lower, upper = warning.limits
         sys.stderr.write(
-            f"gen-robot: warning: --at {warning.joint}={warning.text}: {warning.value:g} is outside the joint's "
-            f"limits [{lower:g}, {upper:g}]\n"
+            f"gen-robot: warning: --at {comment_text(warning.joint)}={comment_text(warning.text)}: {warning.outside}\n"
         )
 
 
-def _numbers(text: str, counts: tuple[int, ...], said: str) -> list[float]:
-    """Comma-separated finite numbers, as many as one of ``counts``; XacrokitError ``said`` otherwise."""
+def _numbers(text: str, kinds: tuple[str, ...], counts: tuple[int, ...], said: str) -> list[float]:
+    """Comma-separated finite numbers, as many as one of ``counts``, the k-th a quantity of ``kinds[k]`` (SI, no
+    unit) within what xacrokit takes of it; XacrokitError ``said`` otherwise (with the bound, for a number beyond)."""
+    from ..shared.units import bound_problem  # (start-up: a command's work loads when it runs)
 
     try:
         values = [float(v) for v in text.split(",")]
@@ -191,6 +204,9 @@ def _numbers(text: str, counts: tuple[int, ...], said: str) -> list[float]:
         values = []
     if len(values) not in counts or not all(abs(v) < float("inf") for v in values):
         raise XacrokitError(said)
+    beyond = next((b for b in map(bound_problem, kinds, values) if b is not None), None)
+    if beyond is not None:
+        raise XacrokitError(f"{said.partition(': ')[0]}: {beyond}")
     return values
 
 
@@ -205,8 +221,9 @@ def _cmd_pose(args: argparse.Namespace) -> int:
     described = pose_dict(found.matrix, args.rotation)
     if args.point is not None:
         described["point"] = _point(args.point, found.matrix)
+    require_finite(described, "the pose")  # (in text too: never inf or NaN as an answer)
     if args.json:
-        sys.stdout.write(json.dumps({"frame": found.frame, "in": found.in_frame, **described}, indent=2) + "\n")
+        print_json({"frame": found.frame, "in": found.in_frame, **described})
         return 0
     lines = [f"pose of {found.frame} in {found.in_frame}{_at(found.values)}:"]
     lines.append("  xyz        " + _row(described["xyz"]) + "  m")
@@ -231,14 +248,19 @@ def _cmd_jacobian(args: argparse.Namespace) -> int:
     torques = None
     if args.wrench is not None:
         said = f"--wrench {args.wrench!r}: give FX,FY,FZ or FX,FY,FZ,MX,MY,MZ (N, N*m)"
-        torques = joint_torques(found, _numbers(args.wrench, (3, 6), said))
+        kinds = ("force",) * 3 + ("torque",) * 3
+        torques = joint_torques(found, _numbers(args.wrench, kinds, (3, 6), said))
     rows = [[float(v) for v in row] for row in found.matrix]
+    out: dict[str, Any] = {"frame": found.pose.frame, "in": found.pose.in_frame, "joints": found.joints}
+    out["jacobian"] = rows
+    if torques is not None:
+        out["torques"] = dict(zip(found.joints, map(float, torques), strict=True))
+    require_finite(out, "the Jacobian")  # (in text too: never inf or NaN as an answer)
     if args.json:
-        out: dict[str, Any] = {"frame": found.pose.frame, "in": found.pose.in_frame, "joints": found.joints}
-        out["jacobian"] = rows
-        if torques is not None:
-            out["torques"] = dict(zip(found.joints, map(float, torques), strict=True))
-        sys.stdout.write(json.dumps(out, indent=2) + "\n")
+        print_json(out)
+        return 0
+    if not found.joints:
+        sys.stdout.write(f"{found.pose.frame}: the robot has no joint to move: its Jacobian has no column\n")
         return 0
     width = max([len(n) for n in found.joints] + [12])
     lines = [f"jacobian of {found.pose.frame}'s origin in {found.pose.in_frame}'s axes{_at(found.pose.values)}:"]
@@ -270,11 +292,19 @@ def pose_dict(matrix: Any, rotation: str = "rpy") -> dict[str, Any]:
 
 
 def _point(text: str, matrix: Any) -> list[float]:
-    """T p for a point ``X,Y,Z`` (m) given as text."""
+    """T p for a point ``X,Y,Z`` (m, each within 1e4 m as every length xacrokit takes) given as text."""
     import numpy as np  # (heavy: numpy)
 
-    given = _numbers(text, (3,), f"--point {text!r}: give X,Y,Z in metres")
-    return [float(v) for v in (np.asarray(matrix) @ np.array([*given, 1.0]))[:3]]
+    given = _numbers(text, ("length",) * 3, (3,), f"--point {text!r}: give X,Y,Z in metres")
+    with np.errstate(over="ignore", invalid="ignore"):  # (judged below)
+        point = [float(v) for v in (np.asarray(matrix) @ np.array([*given, 1.0]))[:3]]
+    if not all(np.isfinite(point)):  # (a backstop: a pose and a point within their bounds stay finite)
+        largest = max(given, key=abs)
+        raise XacrokitError(
+            f"--point {text!r}: the result overflows (the point {largest:g} m is beyond what a float holds after "
+            "the transform)"
+        )
+    return point
 
 
 def _at(values: dict[str, float]) -> str:

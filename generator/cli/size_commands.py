@@ -5,7 +5,6 @@ runs: the CLI starts without numpy)."""
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -13,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 from ..errors import XacrokitError
 from ..shared.units import UnitError, bound_problem, parse_quantity
 from .arguments import add_force_option, add_robot_options, robot_input
+from .json_output import print_json
 
 if TYPE_CHECKING:
     from ..sizing import Load, Payload
@@ -100,7 +100,7 @@ def _cmd_size(args: argparse.Namespace) -> int:
 
         write_report(report, args.report, force=args.overwrite)
     if args.json:
-        sys.stdout.write(json.dumps(report.to_dict(), indent=2) + "\n")
+        print_json(report.to_dict())
     else:
         sys.stdout.write(format_text(report))
     return report.exit_code

@@ -13,18 +13,29 @@ Conventions, stated once (docs/kinematics.md says them to users):
 * ``tau = J^T w``, w the wrench (force N, moment N*m, in IN's axes, at FRAME's origin) the tool exerts on the
   environment: tau is the torque each joint's motor must add to exert it (held still, gravity aside); the reaction
   the environment applies is -w, which is what ``size --load`` takes.
+
+Every answer is finite numbers: a result that overflows a float (a mimic joint's multiplier of 1e308) is refused,
+saying what overflowed, never answered with inf or NaN; a mimic joint of a joint the robot does not have is refused.
 """
 
 from __future__ import annotations
 
+import contextlib
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..errors import XacrokitError
-from ..reader.kinematic_model import KinematicModel, LimitWarning, joint_values
+from ..reader.kinematic_model import (
+    FollowerValueError,
+    KinematicModel,
+    LimitWarning,
+    joint_values,
+    require_leaders,
+    shown,
+)
 from ..reader.read_robot import ReadRobot, read_robot
 from ..reader.robot_input import RobotInput
 from ..shared.transforms import rpy_matrix
@@ -66,8 +77,30 @@ def _pose(
 ) -> Pose:
     target, base = robot.frame_id(frame), robot.frame_id(in_frame)
     _placed(robot, robot.configuration(values))
-    matrix = robot.data.oMf[base].actInv(robot.data.oMf[target]).homogeneous
-    return Pose(frame, in_frame, np.array(matrix), values, warnings)
+    matrix = np.array(robot.data.oMf[base].actInv(robot.data.oMf[target]).homogeneous)
+    if not np.isfinite(matrix).all():  # (a backstop: the values and lengths taken keep every pose finite)
+        raise XacrokitError(f"the pose of {frame!r} in {in_frame!r} overflows: it is not finite numbers")
+    return Pose(frame, in_frame, matrix, values, warnings)
+
+
+def _read(robot: Robot) -> tuple[ReadRobot, KinematicModel]:
+    """The read robot and its kinematic model, a mimic joint of no joint refused (said with the file)."""
+    read = read_robot(robot)
+    model = read.kinematics
+    try:
+        require_leaders(read.view)
+    except XacrokitError as exc:
+        raise XacrokitError(f"{read.where}: {exc}") from None
+    return read, model
+
+
+@contextlib.contextmanager
+def _located(read: ReadRobot) -> Iterator[None]:
+    """A mimic joint's value that overflows, said with the file."""
+    try:
+        yield
+    except FollowerValueError as exc:
+        raise XacrokitError(f"{read.where}: {exc}") from None
 
 
 def pose(robot: Robot, frame: str, *, in_frame: str | None = None, at: Mapping[str, str] | None = None) -> Pose:
@@ -78,9 +111,10 @@ def pose(robot: Robot, frame: str, *, in_frame: str | None = None, at: Mapping[s
         UnknownName: an unknown frame or joint (with the closest names); JointValueError: a value that does not
             parse; XacrokitError: a robot the kinematics cannot take (and, given a path, unreadable input).
     """
-    model = read_robot(robot).kinematics
+    read, model = _read(robot)
     values, warnings = joint_values(model, at or {})
-    return _pose(model, frame, in_frame or model.root, values, warnings)
+    with _located(read):
+        return _pose(model, frame, in_frame or model.root, values, warnings)
 
 
 def jacobian(robot: Robot, frame: str, *, in_frame: str | None = None, at: Mapping[str, str] | None = None) -> Jacobian:
@@ -91,26 +125,54 @@ def jacobian(robot: Robot, frame: str, *, in_frame: str | None = None, at: Mappi
     """
     import pinocchio as pin  # (heavy: pinocchio)
 
-    model = read_robot(robot).kinematics
+    read, model = _read(robot)
     values, warnings = joint_values(model, at or {})
-    placed = _pose(model, frame, in_frame or model.root, values, warnings)
-    q = model.configuration(values)
+    with _located(read):
+        placed = _pose(model, frame, in_frame or model.root, values, warnings)
+        q = model.configuration(values)
     target, base = model.frame_id(frame), model.frame_id(placed.in_frame)
     world = pin.computeFrameJacobian(model.model, model.data, q, target, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
     world = np.asarray(world).reshape(6, model.model.nv)  # (pinocchio gives a 1-DOF robot's as a vector)
     columns = {j.name: world[:, j.v_index].copy() for j in model.joints}
-    for follower in model.followers:
-        columns[follower.leader] = columns[follower.leader] + follower.multiplier * world[:, follower.joint.v_index]
     turn = model.data.oMf[base].rotation.T  # (world axes -> IN's axes)
-    matrix = np.array([np.concatenate([turn @ c[:3], turn @ c[3:]]) for c in columns.values()]).T
-    return Jacobian(placed, [j.name for j in model.joints], matrix.reshape(6, len(model.joints)))
+    with np.errstate(over="ignore", invalid="ignore"):  # (judged below: a mimic's multiplier may overflow it)
+        for follower in model.followers:
+            moved = follower.multiplier * world[:, follower.joint.v_index]
+            columns[follower.leader] = columns[follower.leader] + moved
+        matrix = np.array([np.concatenate([turn @ c[:3], turn @ c[3:]]) for c in columns.values()]).T
+    matrix = matrix.reshape(6, len(model.joints))
+    for name, column in zip(columns, matrix.T, strict=True):
+        if not np.isfinite(column).all():
+            raise XacrokitError(f"{read.where}: the Jacobian of {frame!r} overflows: {_overflowed(model, name)}")
+    return Jacobian(placed, [j.name for j in model.joints], matrix)
+
+
+def _overflowed(model: KinematicModel, leader: str) -> str:
+    """Why joint ``leader``'s column of the Jacobian is not finite numbers: the mimic joints that add to it."""
+    followers = [f for f in model.followers if f.leader == leader]
+    added = [f"{f.joint.name!r} moves {shown(f.multiplier)} times as fast" for f in followers]
+    through = f" (mimic joints that follow it: {', '.join(added)})" if added else ""
+    return f"the column of joint {leader!r} is beyond what a float holds{through}"
 
 
 def joint_torques(jac: Jacobian, wrench: Sequence[float]) -> np.ndarray:
-    """tau = J^T w for a wrench (3 forces, or 3 forces and 3 moments) the tool exerts, in the Jacobian's axes."""
+    """tau = J^T w for a wrench (3 forces, or 3 forces and 3 moments) the tool exerts, in the Jacobian's axes.
+
+    Raises:
+        XacrokitError: a torque beyond what a float holds (the joint and the wrench said).
+    """
     w = np.zeros(6)
     w[: len(wrench)] = wrench
-    return np.asarray(jac.matrix.T @ w)
+    with np.errstate(over="ignore", invalid="ignore"):  # (judged below)
+        torques = np.asarray(jac.matrix.T @ w)
+    for name, torque in zip(jac.joints, torques, strict=True):
+        if not np.isfinite(torque):
+            wrench_text = ", ".join(shown(v) for v in wrench)
+            raise XacrokitError(
+                f"tau = J^T w overflows: joint {name!r}'s torque for the wrench ({wrench_text}) is beyond what a "
+                "float holds"
+            )
+    return torques
 
 
 class MovingFrame(XacrokitError):
@@ -148,6 +210,19 @@ def _chain(robot: KinematicModel, frame: int) -> Chain:
     return Chain(robot.model, frame, list(columns.values()), lower, upper, configuration, robot.data)
 
 
+def _require_ranges(read: ReadRobot, model: KinematicModel) -> None:
+    """What ik searches: a joint to move, each within limits that hold a value."""
+    if not model.joints:
+        raise XacrokitError(f"{read.where}: the robot has no revolute, continuous or prismatic joint to move")
+    for joint in model.joints:
+        if joint.limits is not None and joint.limits[0] > joint.limits[1]:
+            lower, upper = (shown(v) for v in joint.limits)
+            raise XacrokitError(
+                f"{read.where}: joint {joint.name!r}: its lower limit {lower} is above its upper {upper}, so no value "
+                "is within them; ik searches within the limits: swap them in its <limit>"
+            )
+
+
 def inverse_kinematics(
     robot: Robot,
     frame: str,
@@ -162,34 +237,37 @@ def inverse_kinematics(
     it must not move with a joint). ``every``: every distinct solution of the STARTS starts, else the first found.
 
     Raises:
-        XacrokitError: as :func:`pose`, an ``in_frame`` that moves with a joint (:class:`MovingFrame`), or a robot
-            without a joint to move.
+        XacrokitError: as :func:`pose`, an ``in_frame`` that moves with a joint (:class:`MovingFrame`), a robot
+            without a joint to move, a joint whose lower limit is above its upper (no value is within them), or a
+            search whose pose error overflows at every start.
     """
     import pinocchio as pin  # (heavy: pinocchio)
 
-    read = read_robot(robot)
-    model = read.kinematics
+    read, model = _read(robot)
     target_id, base = model.frame_id(frame), model.frame_id(in_frame or model.root)
     if model.model.frames[base].parentJoint != 0:
         moved_by = model.model.names[model.model.frames[base].parentJoint]
         raise MovingFrame(in_frame or model.root, moved_by)
-    if not model.joints:
-        raise XacrokitError(f"{read.path}: the robot has no revolute, continuous or prismatic joint to move")
+    _require_ranges(read, model)
     position_only = position_only or len(to) == 3
-    _placed(model, model.configuration({}))
-    rotation = rpy_matrix(*to[3:6]) if not position_only else np.eye(3)
-    goal = model.data.oMf[base] * pin.SE3(rotation, np.array(to[:3], dtype=float))
-    chain = _chain(model, target_id)
-    found = []
-    for start in starts(chain, np.zeros(len(model.joints))):
-        values, error = solve(chain, goal, position_only=position_only, start=start)
-        found.append((values, error))
-        if error <= REACHED and not every:
-            break
+    with _located(read):
+        _placed(model, model.configuration({}))
+        rotation = rpy_matrix(*to[3:6]) if not position_only else np.eye(3)
+        goal = model.data.oMf[base] * pin.SE3(rotation, np.array(to[:3], dtype=float))
+        chain = _chain(model, target_id)
+        found = []
+        for start in starts(chain, np.zeros(len(model.joints))):
+            values, error = solve(chain, goal, position_only=position_only, start=start)
+            found.append((values, error))
+            if error <= REACHED and not every:
+                break
+    if not any(np.isfinite(error) for _, error in found):
+        said = "ik cannot search: the pose error is beyond what a float holds at every start"
+        raise XacrokitError(f"{read.where}: {said}")
     names = [j.name for j in model.joints]
     named = [(dict(zip(names, map(float, v), strict=True)), e) for v, e in found]
     reached = [
         (dict(zip(names, map(float, v), strict=True)), e) for v, e in distinct([f for f in found if f[1] <= REACHED])
     ]
-    closest = None if reached else min(named, key=lambda item: item[1])
+    closest = None if reached else min(named, key=lambda item: item[1] if np.isfinite(item[1]) else np.inf)
     return Solutions(frame, in_frame or model.root, names, reached, closest)

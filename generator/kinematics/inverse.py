@@ -62,17 +62,27 @@ def solve(
             residual = pin.log6(goal.actInv(current)).vector
             full = pin.computeFrameJacobian(model, data, q, chain.frame, pin.ReferenceFrame.LOCAL)
             full = pin.Jlog6(goal.actInv(current)) @ np.asarray(full).reshape(6, model.nv)
-        error = float(np.linalg.norm(residual))
-        if error < TOLERANCE or not math.isfinite(error):
+        with np.errstate(over="ignore", invalid="ignore"):  # (judged below: a mimic's multiplier of 1e308)
+            error = float(np.linalg.norm(residual))
+            step = _step(chain, full, residual, error) if TOLERANCE <= error < math.inf else None
+        if step is None:  # (reached, or a pose or step that is not finite numbers: the start ends where it is)
             break
-        part = np.array([sum(m * full[:, v] for v, m in drives) for drives in chain.columns]).T
-        damping = 1e-12 + 1e-3 * error  # (less damping as it closes in: quadratic convergence near the solution)
-        step = -part.T @ np.linalg.solve(part @ part.T + damping * np.eye(len(residual)), residual)
         largest = float(np.abs(step).max(initial=0.0))
         if largest > LONGEST_STEP:  # (near a singularity, out of reach: a step that would leap across the range)
             step *= LONGEST_STEP / largest
         values = np.clip(values + step, chain.lower, chain.upper)
     return values, error
+
+
+def _step(chain: Chain, full: np.ndarray, residual: np.ndarray, error: float) -> np.ndarray | None:
+    """The damped least-squares step on the joints one sets; None when it is not finite numbers."""
+    part = np.array([sum(m * full[:, v] for v, m in drives) for drives in chain.columns]).T
+    damping = 1e-12 + 1e-3 * error  # (less damping as it closes in: quadratic convergence near the solution)
+    try:
+        step = -part.T @ np.linalg.solve(part @ part.T + damping * np.eye(len(residual)), residual)
+    except np.linalg.LinAlgError:  # (a matrix of inf or NaN)
+        return None
+    return step if np.isfinite(step).all() else None
 
 
 def starts(chain: Chain, first: Sequence[float] | np.ndarray, count: int = STARTS, seed: int = 0) -> list[np.ndarray]:
@@ -82,7 +92,12 @@ def starts(chain: Chain, first: Sequence[float] | np.ndarray, count: int = START
     from scipy.stats import qmc  # (heavy: scipy)
 
     spread = qmc.Sobol(d=len(chain.lower), scramble=True, seed=seed).random(count)[1:]
-    return [np.array(first, dtype=float)] + [chain.lower + u * (chain.upper - chain.lower) for u in spread]
+    with np.errstate(over="ignore"):
+        width = chain.upper - chain.lower
+    if np.isfinite(width).all():
+        return [np.array(first, dtype=float)] + [chain.lower + u * width for u in spread]
+    # (limits of -1e308 and 1e308: their width overflows; each start a weighted mean of the two instead)
+    return [np.array(first, dtype=float)] + [chain.lower * (1 - u) + chain.upper * u for u in spread]
 
 
 def distinct(found: list[tuple[np.ndarray, float]]) -> list[tuple[np.ndarray, float]]:

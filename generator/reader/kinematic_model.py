@@ -7,10 +7,16 @@ model of its URDF fixed at its root link, built once, with the joint conventions
 * a joint's limits are its ``<limit lower upper>`` (URDF's default 0 for either one absent); a continuous joint, or
   one without ``<limit>``, has none, and a search over it takes one turn either way (:attr:`KinematicJoint.span`);
 * an axis is read as a direction: scaled before its norm (an axis of 1e308 1e308 0 is the diagonal), a zero axis
-  refused; an origin's or axis's number that is not finite, or a length beyond 1e4 m, refused with the element named
-  (export and render refuse the same values in the same words).
+  refused (:mod:`.pinocchio_reading`); an origin's or axis's number that is not finite, or a length beyond 1e4 m,
+  refused with the element named and its line (export and render refuse the same values in the same words); so is a
+  ``<limit>`` or ``<mimic>`` number that is not a finite number (urdfdom would refuse it, in words of its own);
+* a mimic joint's value must come out a finite number (and a prismatic one's within 1e4 m): one whose multiplier and
+  offset overflow at the values asked is refused, named, with the numbers (:class:`FollowerValueError`); a mimic of
+  a joint the robot does not have is refused by the kinematics commands (:func:`require_leaders`; urdfdom takes it,
+  but nothing says what the joint does then).
 
-Joint values are given by name with units (``30deg``, ``0.1 m``; default rad and m); a joint not given is 0.
+Joint values are given by name with units (``30deg``, ``0.1 m``; default rad and m); a joint not given is 0; a
+prismatic joint's value is at most 1e4 m either way, as every length xacrokit takes.
 """
 
 from __future__ import annotations
@@ -21,14 +27,16 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from lxml import etree
 
 from ..errors import XacrokitError
 from ..shared.joint_types import MOVING
-from ..shared.units import UnitError, parse_quantity
+from ..shared.units import INPUT_BOUNDS, UnitError, bound_problem, parse_quantity
 from ..shared.urdf_view import Joint, UrdfView, joint_tree, length_problems, number
-from ..shared.value_text import did_you_mean
+from ..shared.value_text import comment_text, did_you_mean
+from .pinocchio_reading import line_of, pinocchio_model, unit_axis
 from .robot_source import urdf_floats
+
+__all__ = ["unit_axis"]  # (export and sizing read an axis as the kinematics do, from here)
 
 MAX_DEPTH = 1000  # links from the root to a leaf: pinocchio's URDF reader crashes on chains of thousands
 MAX_DOF = 150  # degrees of freedom (TIAGo dual, the largest real robot of the corpus: about 100)
@@ -64,6 +72,38 @@ class Follower:
     leader: str
     multiplier: float
     offset: float
+    line: int | None = None  # (its <mimic>'s, or the joint's, in the text read)
+
+    def value(self, leader: float) -> float:
+        """The follower's value with its leader at ``leader``.
+
+        Raises:
+            FollowerValueError: not a finite number, or a prismatic joint's beyond 1e4 m (the numbers said).
+        """
+        value = self.multiplier * leader + self.offset  # (Python's floats overflow to inf quietly: judged below)
+        if math.isfinite(value) and not (self.joint.kind == "prismatic" and bound_problem("length", value)):
+            return value
+        raise FollowerValueError(self, leader, value)
+
+
+class FollowerValueError(XacrokitError):
+    """A mimic joint's value (multiplier x leader + offset) that no joint can take: not a finite number, or a
+    prismatic joint's beyond 1e4 m (``follower``, the leader's value ``leader``, the ``value`` it came to)."""
+
+    def __init__(self, follower: Follower, leader: float, value: float) -> None:
+        unit = "m" if follower.joint.kind == "prismatic" else "rad"
+        if not math.isfinite(value):
+            why = "not a finite number"
+        else:
+            why = f"beyond what xacrokit takes of a length (at most {shown(INPUT_BOUNDS['length'])} m)"
+        where = f" (<mimic> on line {follower.line})" if follower.line else ""
+        said = (
+            f"mimic joint {follower.joint.name!r}{where}: with {follower.leader!r} at {shown(leader)} it would be at "
+            f"{shown(follower.multiplier)} x {shown(leader)} + {shown(follower.offset)} = {shown(value)} {unit}, "
+            f"{why}: its multiplier and offset take it beyond what a joint can be"
+        )
+        super().__init__(said)
+        self.follower, self.leader, self.value = follower, leader, value
 
 
 @dataclass(frozen=True)
@@ -82,9 +122,13 @@ class KinematicModel:
     frames: tuple[str, ...]
 
     def configuration(self, values: Mapping[str, float]) -> np.ndarray:
-        """pinocchio's q: the joints at ``values`` (by name; 0 where not given), the followers at their leaders'."""
+        """pinocchio's q: the joints at ``values`` (by name; 0 where not given), the followers at their leaders'.
+
+        Raises:
+            FollowerValueError: a follower whose value is not a finite number, or a prismatic one beyond 1e4 m.
+        """
         given = [(j, values.get(j.name, 0.0)) for j in self.joints]
-        given += [(f.joint, f.multiplier * values.get(f.leader, 0.0) + f.offset) for f in self.followers]
+        given += [(f.joint, f.value(values.get(f.leader, 0.0))) for f in self.followers]
         q: np.ndarray = configurations(self.model, [j for j, _ in given], np.array([[v for _, v in given]]))[0]
         return q
 
@@ -131,16 +175,44 @@ class JointValueError(XacrokitError):
 
 @dataclass(frozen=True)
 class LimitWarning:
-    """A joint value outside its joint's limits (allowed: a pose may be asked anywhere)."""
+    """A joint value outside its joint's limits (allowed: a pose may be asked anywhere); ``unit`` rad or m."""
 
     joint: str
     text: str
     value: float
     limits: tuple[float, float]
+    unit: str = "rad"
 
     def __str__(self) -> str:
-        lower, upper = self.limits
-        return f"joint {self.joint!r} = {self.text}: {self.value:g} is outside its limits [{lower:g}, {upper:g}]"
+        return f"joint {self.joint!r} = {comment_text(self.text)}: {self.outside}"
+
+    @property
+    def outside(self) -> str:
+        """``1.0000000001 rad is outside its limits [-1, 1] rad``: the value and limits in as many digits as tell
+        them apart (:func:`outside_text`)."""
+        return outside_text(self.value, self.limits, self.unit)
+
+
+def outside_text(value: float, limits: tuple[float, float], unit: str = "", *, range_name: str = "limits") -> str:
+    """``V unit is outside its limits [L, U] unit``, each number in the fewest significant digits (6 at least, 17 at
+    most: then it is exact) with which the value as printed is outside the limits as printed: never a value that
+    reads as inside its own range ("1 rad is outside [-1, 1]"). Limits whose lower is above the upper hold no value,
+    and say so."""
+    lower, upper = limits
+    for digits in range(6, 18):
+        texts = [f"{v:.{digits}g}" for v in (value, lower, upper)]
+        shown_value, shown_lower, shown_upper = (float(t) for t in texts)
+        if not shown_lower <= shown_value <= shown_upper:
+            break
+    empty = " (its lower limit is above its upper: no value is within them)" if lower > upper else ""
+    unit = f" {unit}" if unit else ""
+    return f"{texts[0]}{unit} is outside its {range_name} [{texts[1]}, {texts[2]}]{unit}{empty}"
+
+
+def shown(value: float) -> str:
+    """A number in a message: exactly (the shortest text that reads back as the same float), ``1`` for ``1.0``."""
+    text = repr(float(value))
+    return text[:-2] if text.endswith(".0") else text
 
 
 def configurations(model: Any, joints: Sequence[KinematicJoint], values: np.ndarray) -> np.ndarray:
@@ -166,16 +238,12 @@ def build_kinematics(text: str, view: UrdfView, name: str) -> KinematicModel:
             or axis that is not finite numbers or beyond 1e4 m, a zero axis, mimic joints in a loop, or a robot
             pinocchio cannot read.
     """
-    import pinocchio as pin  # (heavy: pinocchio)
-
     root, deepest = _root_and_depth(view)
     if deepest > MAX_DEPTH:
         raise XacrokitError(f"the robot's tree is {deepest} links deep; at most {MAX_DEPTH} are queried")
     require_placeable(view)
-    try:
-        model = pin.buildModelFromXML(_with_unit_axes(text, view))
-    except (RuntimeError, ValueError) as exc:
-        raise XacrokitError(f"pinocchio cannot read the robot: {exc}") from None
+    _require_numbers(view)
+    model = pinocchio_model(text, view)
     if model.nv > MAX_DOF:  # (before createData: its memory grows with the cube of a chain's degrees of freedom)
         raise XacrokitError(
             f"{model.nv} degrees of freedom; the kinematics commands take at most {MAX_DOF} (pinocchio's data for a "
@@ -185,7 +253,8 @@ def build_kinematics(text: str, view: UrdfView, name: str) -> KinematicModel:
     leaders = {j.name: _leader(view, j.name) for j in moving}
     order = {j.name: k for k, j in enumerate(view.joints)}  # (the file's order, not pinocchio's depth-first one)
     settable = sorted((j for j in moving if leaders[j.name] is None), key=lambda j: order[j.name])
-    followers = [Follower(j, *leader) for j in moving if (leader := leaders[j.name]) is not None]
+    lines = {j.name: _mimic_line(j) for j in view.joints}
+    followers = [Follower(j, *leader, lines[j.name]) for j in moving if (leader := leaders[j.name]) is not None]
     frames = dict.fromkeys([link.name for link in view.links] + [j.name for j in view.joints if j.name])
     return KinematicModel(
         view.name or name, root, model, model.createData(), tuple(settable), tuple(followers), moving, tuple(frames)
@@ -202,52 +271,16 @@ def require_placeable(view: UrdfView) -> None:
     """
     for joint in view.joints:
         if joint.origin is not None:
-            urdf_floats(joint.origin.xyz, 3, where=f"joint {joint.name!r} origin xyz")
-            urdf_floats(joint.origin.rpy, 3, where=f"joint {joint.name!r} origin rpy")
+            try:
+                urdf_floats(joint.origin.xyz, 3, where=f"joint {joint.name!r} origin xyz")
+                urdf_floats(joint.origin.rpy, 3, where=f"joint {joint.name!r} origin rpy")
+            except XacrokitError as exc:
+                raise XacrokitError(f"{exc}{line_of(joint, 'origin')}") from None
         if joint.type in MOVING or joint.type == "planar":
             unit_axis(joint)
     problems = length_problems(view)
     if problems:
         raise XacrokitError("; ".join(problems))
-
-
-def unit_axis(joint: Joint) -> np.ndarray:
-    """A joint's axis as a unit vector (URDF's default 1 0 0 without ``<axis>``), scaled before its norm so that an
-    axis of 1e308 1e308 0 is the diagonal it names.
-
-    Raises:
-        XacrokitError: not three finite numbers, or all zero.
-    """
-    said = f"joint {joint.name!r} axis"
-    axis = np.array(urdf_floats(joint.axis, 3, where=said)) if joint.axis is not None else np.array([1.0, 0.0, 0.0])
-    largest = float(np.abs(axis).max())
-    if not largest > 0:
-        raise XacrokitError(f"joint {joint.name!r}: its axis is zero: it names no direction to turn or slide along")
-    axis = axis / largest  # (first: the norm of an axis of 1e308 overflows)
-    return np.asarray(axis / np.linalg.norm(axis))
-
-
-def _with_unit_axes(text: str, view: UrdfView) -> str:
-    """``text``, or, when a moving joint's axis would not survive pinocchio's own normalisation (its norm overflows
-    or underflows), a copy with those axes written as unit vectors (the view stays as read; :func:`require_placeable`
-    has refused the axes that are not finite numbers or zero)."""
-    rewritten: dict[str, np.ndarray] = {}
-    for joint in view.joints:
-        if joint.axis is not None and (joint.type in MOVING or joint.type == "planar"):
-            given = np.array(urdf_floats(joint.axis, 3))
-            with np.errstate(over="ignore", under="ignore"):  # (as pinocchio's own norm: its square overflows)
-                norm = float(np.sqrt(np.sum(given * given)))
-            if not (math.isfinite(norm) and norm > 1e-150):
-                rewritten[joint.name] = unit_axis(joint)
-    if not rewritten:
-        return text
-    root = etree.fromstring(etree.tostring(view.root))
-    for element in root.iterchildren("joint"):
-        unit = rewritten.get(element.get("name", ""))
-        found = element.find("axis")
-        if unit is not None and found is not None:
-            found.set("xyz", " ".join(repr(float(v)) for v in unit))
-    return str(etree.tostring(root, encoding="unicode"))
 
 
 def _root_and_depth(view: UrdfView) -> tuple[str, int]:
@@ -264,7 +297,8 @@ def _leader(view: UrdfView, name: str) -> tuple[str, float, float] | None:
     that give its value from that joint's; None when ``name`` is no mimic of a moving joint (it is set itself).
 
     Raises:
-        XacrokitError: mimic joints that follow each other in a loop.
+        XacrokitError: mimic joints that follow each other in a loop, or whose chain's multipliers and offsets
+            together overflow.
     """
     declared = {j.name: j for j in view.joints}
     multiplier, offset, seen, current = 1.0, 0.0, [name], name
@@ -278,6 +312,59 @@ def _leader(view: UrdfView, name: str) -> tuple[str, float, float] | None:
         if current in seen:
             raise XacrokitError(f"mimic joints {' -> '.join(seen + [current])} follow each other in a loop")
         seen.append(current)
+        if not (math.isfinite(multiplier) and math.isfinite(offset)):
+            raise XacrokitError(
+                f"mimic joints {' -> '.join(seen)}: their multipliers and offsets together come to "
+                f"{shown(multiplier)} x {current!r} + {shown(offset)}{line_of(declared[name], 'mimic')}: not finite "
+                "numbers (a float holds at most 1.8e308)"
+            )
+
+
+def _mimic_line(joint: Joint) -> int | None:
+    """The line of a joint's ``<mimic>`` (the joint's when not known)."""
+    mimic = joint.mimic
+    return (mimic.line if mimic is not None else None) or joint.line
+
+
+def _require_numbers(view: UrdfView) -> None:
+    """Refuse a ``<limit>`` or ``<mimic>`` number that is not a finite number (urdfdom refuses it too, without the
+    line): what a joint's limits and a mimic joint's value are read from.
+
+    Raises:
+        XacrokitError: the first such number, named by its joint, element and attribute, with its line.
+    """
+    for joint in view.joints:
+        given = [("limit", key, (joint.limit or {}).get(key)) for key in ("lower", "upper", "effort", "velocity")]
+        if joint.mimic is not None:
+            given += [("mimic", "multiplier", joint.mimic.multiplier), ("mimic", "offset", joint.mimic.offset)]
+        for tag, key, text in given:
+            try:
+                value = float(text) if text is not None else 0.0
+            except ValueError:
+                value = math.nan
+            if not math.isfinite(value):
+                raise XacrokitError(
+                    f"joint {joint.name!r}{line_of(joint, tag)}: <{tag} {key}> '{comment_text(text)}' is not a "
+                    "finite number"
+                )
+
+
+def require_leaders(view: UrdfView) -> None:
+    """Refuse a mimic joint whose ``<mimic joint>`` names no joint of the robot: urdfdom takes it, but it says
+    nothing of how the joint moves (followed by nothing, set by nobody); ``gen-robot check`` says it as J008.
+
+    Raises:
+        XacrokitError: the first such joint, with the name its mimic gives, the closest names and its line.
+    """
+    declared = [j.name for j in view.joints]
+    for joint in view.joints:
+        leader = joint.mimic.joint if joint.mimic is not None else None
+        if joint.mimic is not None and leader not in declared:
+            named = f"'{comment_text(leader)}', which is no joint of the robot" if leader else "no joint"
+            raise XacrokitError(
+                f"joint {joint.name!r}{line_of(joint, 'mimic')}: its <mimic> names {named}"
+                f"{did_you_mean(leader or '', declared)}: give the joint it follows, or remove the <mimic>"
+            )
 
 
 def _moving(model: Any, view: UrdfView) -> tuple[KinematicJoint, ...]:
@@ -321,7 +408,7 @@ def joint_values(robot: KinematicModel, given: Mapping[str, str]) -> tuple[dict[
 
     Raises:
         UnknownName: a name that is no joint one sets (a mimic joint is set through its leader).
-        JointValueError: a value that does not parse or is not finite.
+        JointValueError: a value that does not parse or is not finite, or a prismatic joint's beyond 1e4 m.
     """
     by_name = {j.name: j for j in robot.joints}
     followers = {f.joint.name: f.leader for f in robot.followers}
@@ -340,7 +427,11 @@ def joint_values(robot: KinematicModel, given: Mapping[str, str]) -> tuple[dict[
             raise JointValueError(name, text, str(exc)) from None
         if not math.isfinite(value):
             raise JointValueError(name, text, "not a finite number")
+        beyond = bound_problem("length", value) if joint.kind == "prismatic" else None
+        if beyond is not None:
+            raise JointValueError(name, text, beyond)
         if joint.limits is not None and not joint.limits[0] - 1e-12 <= value <= joint.limits[1] + 1e-12:
-            warnings.append(LimitWarning(name, text, value, joint.limits))
+            unit = "m" if joint.kind == "prismatic" else "rad"
+            warnings.append(LimitWarning(name, text, value, joint.limits, unit))
         values[name] = value
     return values, warnings

@@ -84,8 +84,8 @@ class ReadRobot:
 
         try:
             return build_kinematics(self.text, self.view, self.name)
-        except XacrokitError as exc:
-            raise XacrokitError(f"{self.path}: {exc}") from None
+        except XacrokitError as exc:  # (its lines are the text's: a xacro document's or a spec's as expanded)
+            raise XacrokitError(f"{self.where}: {exc}") from None
 
     @functools.cached_property
     def free_floating(self) -> Any:
@@ -95,12 +95,12 @@ class ReadRobot:
         Raises:
             XacrokitError: pinocchio cannot read the robot.
         """
-        import pinocchio as pin  # (heavy: only the features that need dynamics load it)
+        from .pinocchio_reading import pinocchio_model  # (heavy: numpy; only the features that need dynamics)
 
-        try:
-            return pin.buildModelFromXML(self.text, pin.JointModelFreeFlyer())
-        except (RuntimeError, ValueError) as exc:
-            raise XacrokitError(f"{self.path}: pinocchio cannot read the robot: {exc}") from None
+        try:  # (its axes read as the kinematic model's: an axis of 1e308 1e308 0 is the diagonal, not a still joint)
+            return pinocchio_model(self.text, self.view, free=True)
+        except XacrokitError as exc:
+            raise XacrokitError(f"{self.where}: {exc}") from None
 
     @contextlib.contextmanager
     def mesh_packages(self) -> Iterator[Mapping[str, str | os.PathLike[str]]]:

@@ -24,6 +24,7 @@ import numpy as np
 
 from ..kinematics import REACHED
 from ..kinematics.inverse import Chain, solve, starts
+from ..reader.kinematic_model import outside_text
 from ..shared.transforms import rpy_matrix
 from .sized_robot import LoadedRobot, joint_configurations
 
@@ -311,10 +312,9 @@ def waypoint_errors(robot: LoadedRobot, waypoints: Sequence[Sequence[float]]) ->
     for k, point in enumerate(waypoints):
         for joint, value in zip(robot.joints, point, strict=True):
             if joint.kind != "continuous" and not joint.span[0] - 1e-12 <= value <= joint.span[1] + 1e-12:
-                problems.append(
-                    f"waypoint {k}: {joint.name} = {value:g} is outside its range "
-                    f"[{joint.span[0]:g}, {joint.span[1]:g}]"
-                )
+                unit = "m" if joint.kind == "prismatic" else "rad"  # (digits enough not to read as inside)
+                outside = outside_text(value, joint.span, unit, range_name="range")
+                problems.append(f"waypoint {k}: {joint.name} = {outside}")
     return problems
 
 

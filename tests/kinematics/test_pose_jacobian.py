@@ -161,7 +161,7 @@ def test_a_bad_question_is_a_clear_error(argv, words):
 def test_a_value_outside_the_limits_is_a_warning_and_still_answered():
     result = gen_robot("pose", PLANAR, "tool_link", "--at", "joint_2=170deg")
     assert result.returncode == 0
-    assert "warning: --at joint_2=170deg: 2.96706 is outside the joint's limits [-2.61799, 2.61799]" in result.stderr
+    assert "warning: --at joint_2=170deg: 2.96706 rad is outside its limits [-2.61799, 2.61799] rad" in result.stderr
 
 
 def test_a_mimic_joint_follows_its_leader_and_is_not_set_itself(tmp_path):
