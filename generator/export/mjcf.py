@@ -18,7 +18,7 @@ What it keeps that MuJoCo's URDF import loses (docs/export.md has the whole mapp
 - Gazebo's ``mu1`` of a link as its collision geoms' sliding friction, with priority over what they touch;
 - a free joint on each robot's root (:func:`free_bodies`: the root link, or each robot a root called ``world`` holds
   by a fixed joint; ``base="free"``, or ``auto`` for a robot with a wheel, a continuous joint whose child has a
-  cylinder collision), a floor with ``floor=True``, on which every free robot stands (:mod:`.mjcf_floor`);
+  cylinder collision), standing on the ground, z = 0 (:mod:`.mjcf_ground`), and a floor there with ``floor=True``;
 - position servos that carry the weight of what they alone hold (MuJoCo's ``gravcomp`` through the actuators,
   :func:`~xacrokit.export.mjcf_actuators.compensate_gravity`);
 - every compiler and option setting explicit: radians, 9.80665 m/s^2, a 2 ms step, the implicitfast integrator.
@@ -55,7 +55,7 @@ from ..shared.urdf_view import Joint, Link, Origin, UrdfView
 from ..write.atomic import is_staged
 from ..write.outputs import OutputFile, output_file, write_outputs
 from .mjcf_actuators import actuators, commanded, compensate_gravity, gains, mimics, num
-from .mjcf_floor import Floor
+from .mjcf_ground import Ground
 from .mjcf_keyframes import keyframes
 from .mjcf_meshes import FlatMesh, Meshes
 
@@ -251,7 +251,7 @@ def mjcf(
     free = free_bodies(tree, base)
     export = Export(xml="")
     meshes = Meshes(read, export.meshes, export.notes)
-    meshes.keep_points = floor and (bool(free) or any(j.type == "floating" for j in tree.joints))
+    meshes.keep_points = bool(free) or any(j.type == "floating" for j in tree.joints)
     model, asset, world = _skeleton(view.name if view.name is not None else "robot", floor)
     taken = {j.name for j in tree.joints} | set(free.values())
     _Bodies(tree, free, taken, view.colours(), _frictions(view), meshes, export).body(tree.root, world, None)
@@ -262,10 +262,9 @@ def mjcf(
     for joint in model.find("worldbody").iter("joint"):
         if reflected.get(joint.get("name"), 0.0) > 0:
             joint.set("armature", num(reflected[joint.get("name")]))
-    standing = Floor(meshes.points, frozenset(free) & {tree.root}) if floor else None
+    standing = Ground(meshes.points, frozenset(free) & {tree.root})
     model.append(keyframes(model, named_poses(poses or {}, view), tree.joints, standing))
-    if standing is not None:
-        standing.stand(world)
+    standing.stand(world)
     for element in (asset, model.find("contact")):
         if element is not None and len(element) == 0:
             model.remove(element)

@@ -1,10 +1,12 @@
-"""A free robot standing on the exported model's floor (:mod:`xacrokit.export.mjcf`, ``floor=True``).
+"""A free robot standing on the ground, z = 0: the floor of the exported model (:mod:`xacrokit.export.mjcf`,
+``floor=True``), or the one a model that includes it provides (MuJoCo Menagerie's robots stand on z = 0 the same way,
+their scene.xml adding the floor).
 
 A free body (a robot's root on a free joint) is placed so that, at each keyframe's pose and at the model's own zero
-pose (``qpos0``, where ``mj_resetData`` starts it), its lowest collision point is on the floor (z = 0): a robot's own
-root, which the URDF places nowhere, is raised or lowered onto it; a robot a scene places keeps its place and is only
-raised out of the floor when its shapes reach below it (it may stand on something the scene puts under it). Its x, y
-and orientation stay as placed.
+pose (``qpos0``, where ``mj_resetData`` starts it), its lowest collision point is on the ground: a robot's own root,
+which the URDF places nowhere, is raised or lowered onto it; a robot a scene places keeps its place and is only
+raised out of the ground when its shapes reach below it (it may stand on something the scene puts under it). Its x,
+y and orientation stay as placed.
 
 The lowest point is found in the MJCF tree itself, as MuJoCo's ``mj_kinematics`` places its bodies: each body at its
 ``pos`` and ``quat`` in its parent's frame, then its joints in order (a hinge turns about the body's origin, a slide
@@ -116,12 +118,12 @@ def free_body(joint: Any) -> bool:
 
 
 @dataclass(frozen=True)
-class Floor:
-    """Where the free bodies of a model stand on its floor (see the module's docstring).
+class Ground:
+    """Where the free bodies of a model stand on the ground (see the module's docstring).
 
     Attributes:
         points: each mesh asset's vertices (scaled), by its name.
-        own: the free bodies that are a robot's root (raised or lowered onto the floor); the others, placed by a
+        own: the free bodies that are a robot's root (raised or lowered onto the ground); the others, placed by a
             scene, are only raised.
     """
 
@@ -130,7 +132,7 @@ class Floor:
 
     def qpos(self, joint: Any, values: Mapping[str, float]) -> list[float] | None:
         """A free joint's qpos (position, then MuJoCo's w x y z) at joint ``values``, its body standing on the
-        floor; None when its robot has no collision geometry (it stays where it is placed)."""
+        ground; None when its robot has no collision geometry (it stays where it is placed)."""
         body = joint.getparent()
         pos = _floats(body.get("pos"), (0.0, 0.0, 0.0))
         quat = _floats(body.get("quat"), (1.0, 0.0, 0.0, 0.0))
@@ -141,7 +143,7 @@ class Floor:
         return [pos[0], pos[1], pos[2] + lift, *quat]
 
     def stand(self, world: Any) -> None:
-        """Place every free body of ``world`` (the worldbody) on the floor at the zero pose (its ``pos``: where
+        """Place every free body of ``world`` (the worldbody) on the ground at the zero pose (its ``pos``: where
         ``mj_resetData`` starts it)."""
         for body in world.findall("body"):
             joint = next((j for j in body if j.tag in ("joint", "freejoint") and free_body(j)), None)

@@ -3,7 +3,7 @@
 the whole ``qpos`` in MuJoCo's order (the document order of the joints: a free joint its body's position and
 orientation, a mimic joint its leader's value through the mimic's offset and multiplier) and ``ctrl`` (a position
 servo's target is its joint's value, a velocity servo's and a motor's 0), so that ``mj_resetDataKeyframe`` starts the
-robot holding that pose. With a floor, a free body stands on it in each pose (:class:`~.mjcf_floor.Floor`).
+robot holding that pose; a free body standing on the ground in each (:class:`~.mjcf_ground.Ground`).
 """
 
 from __future__ import annotations
@@ -16,14 +16,14 @@ from lxml import etree
 from ..shared.joint_types import rest_position
 from ..shared.urdf_view import Joint
 from .mjcf_actuators import num
-from .mjcf_floor import Floor
+from .mjcf_ground import Ground
 
 
 def keyframes(
-    model: Any, poses: Mapping[str, Mapping[str, float]], joints: Sequence[Joint], floor: Floor | None = None
+    model: Any, poses: Mapping[str, Mapping[str, float]], joints: Sequence[Joint], ground: Ground | None = None
 ) -> Any:
-    """The ``<keyframe>`` element of ``model`` (an MJCF tree with its joints and actuators) for ``poses``; with a
-    ``floor``, each free body standing on it."""
+    """The ``<keyframe>`` element of ``model`` (an MJCF tree with its joints and actuators) for ``poses``; with the
+    ``ground``, each free body standing on it."""
 
     mimics = {j.name: j.mimic for j in joints if j.mimic is not None}
     order = list(model.find("worldbody").iter("joint", "freejoint"))  # (MuJoCo's qpos order)
@@ -36,7 +36,9 @@ def keyframes(
                 multiplier = float(mimic.multiplier) if mimic.multiplier is not None else 1.0
                 offset = float(mimic.offset) if mimic.offset is not None else 0.0
                 values[follower] = offset + multiplier * values.get(mimic.joint, 0.0)
-        qpos = [_fixed(j, values, floor) if _kind(j) in ("free", "ball") else num(values[j.get("name")]) for j in order]
+        qpos = [
+            _fixed(j, values, ground) if _kind(j) in ("free", "ball") else num(values[j.get("name")]) for j in order
+        ]
         key = etree.SubElement(element, "key", name=name, qpos=" ".join(qpos))
         if servos:  # (a position servo holds its joint's value; a velocity servo and a motor rest at 0)
             ctrl = [num(values.get(a.get("joint"), 0.0)) if a.tag == "position" else "0" for a in servos]
@@ -48,12 +50,12 @@ def _kind(joint: Any) -> str:
     return "free" if joint.tag == "freejoint" else str(joint.get("type", "hinge"))
 
 
-def _fixed(joint: Any, values: Mapping[str, float], floor: Floor | None) -> str:
-    """A free joint's qpos (where its body is placed; with a ``floor``, standing on it at joint ``values``) or a ball
-    joint's (no turn)."""
+def _fixed(joint: Any, values: Mapping[str, float], ground: Ground | None) -> str:
+    """A free joint's qpos (where its body is placed; with the ``ground``, standing on it at joint ``values``) or a
+    ball joint's (no turn)."""
     if _kind(joint) == "ball":
         return "1 0 0 0"
-    standing = floor.qpos(joint, values) if floor is not None else None
+    standing = ground.qpos(joint, values) if ground is not None else None
     if standing is not None:
         return " ".join(num(v) for v in standing)
     body = joint.getparent()

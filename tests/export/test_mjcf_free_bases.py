@@ -105,7 +105,8 @@ def test_by_default_the_robots_of_a_fleet_are_free_to_drive_and_fixed_welds_them
 
 def test_a_free_humanoid_stands_on_the_floor_at_home_and_does_not_sink(tmp_path):
     """The humanoid's home put its torso at z = 0 and its soles 0.62 m under the floor: at home and at the model's
-    zero pose its lowest collision point is at z = 0 (1e-6), and after 1 s it still stands on it."""
+    zero pose its lowest collision point is at z = 0 (1e-6), and after 1 s it still stands on it; without a floor
+    it stands on z = 0 all the same."""
     root, m = export(HUMANOID, tmp_path, "--base", "free", "--floor")
     home = [float(v) for v in root.find("keyframe/key[@name='home']").get("qpos").split()]
     assert home[:3] == pytest.approx([0.0, 0.0, 0.62], abs=1e-12)  # (0.30 thigh + 0.32 shin below the hips)
@@ -116,6 +117,10 @@ def test_a_free_humanoid_stands_on_the_floor_at_home_and_does_not_sink(tmp_path)
     assert abs(lowest(m, d)) < 1e-6
     assert step(m, d, 1.0) > -5e-3  # (MuJoCo's soft contacts give a millimetre or so)
     assert d.qpos[2] > 0.6  # (the torso still 0.62 m up, give or take the contacts' give)
+    root, m = export(HUMANOID, tmp_path / "no_floor", "--base", "free")  # (for a scene that brings its own floor)
+    assert root.find("worldbody/geom[@name='floor']") is None
+    assert root.find("keyframe/key[@name='home']").get("qpos").split()[:3] == ["0", "0", "0.62"]
+    assert root.find("worldbody/body[@name='torso']").get("pos") == "0 0 0.62"
 
 
 def test_every_keyframe_of_a_free_robot_stands_on_the_floor_whatever_its_pose(tmp_path):
