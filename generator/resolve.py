@@ -51,7 +51,7 @@ from .model import (
     attach_joint_name,
 )
 from .shared.gc_pause import collector_paused
-from .shared.joint_types import rest_position
+from .shared.joint_types import mimic_positions, rest_position
 from .shared.mesh_solids import MESH_FOLDER, is_relative, mesh_hull, mesh_path, package_mesh_path, tube_obj
 from .shared.sim_sensors import CAMERAS, OPTICAL_RPY, Sensor, resolve_sensor
 from .shared.solid_inertia import (
@@ -445,10 +445,13 @@ def _controlled(
         rest = rest_position(limit.lower, limit.upper) if limit is not None else 0.0
         start = float(home.get(name, rest))
         result.append(ControlledJoint(name=name, interfaces=chosen, initial_position=start))
-    starts = {c.name: c.initial_position for c in result}
+    starts = mimic_positions(
+        {c.name: c.initial_position for c in result},
+        {name: (mimic.joint, mimic.multiplier, mimic.offset) for name, mimic in mimics},
+    )
     states = tuple(default.get("state", DEFAULT_INTERFACES.state))
-    for name, mimic in mimics:
-        start = mimic.offset + mimic.multiplier * starts.get(mimic.joint, 0.0)
+    for name, _ in mimics:
+        start = starts.get(name, 0.0)  # (0 only in a cycle, which validation refuses)
         result.append(ControlledJoint(name=name, interfaces=Interfaces((), states), initial_position=start))
     return tuple(result)
 

@@ -144,6 +144,8 @@ def test_a_pose_within_every_limit_validates_and_reaches_ros2_control():
     }
     assert written["wrist"] == -0.2 and written["finger_joint"] == pytest.approx(0.9, abs=1e-15)
     assert written["knuckle_joint"] == pytest.approx(-0.4, abs=1e-15)
+    # a mimic of a mimic starts where its leader's start puts it (it was written 0.1: its leader taken as 0)
+    assert written["tip_joint"] == pytest.approx(-0.3, abs=1e-15)
 
 
 def test_a_mimic_joint_without_limits_is_refused_only_beyond_what_a_double_says():
