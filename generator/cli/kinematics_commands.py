@@ -144,13 +144,14 @@ def _cmd_ik(args: argparse.Namespace) -> int:
     if not found.solutions and found.closest is not None:
         values, error = found.closest
         sys.stdout.write(
-            f"out of reach: the closest {found.frame} comes is {error:.6g} away (m, or the pose error), at\n"
+            f"out of reach: the closest {comment_text(found.frame)} comes is {error:.6g} away (m, or the pose error), "
+            "at\n"
         )
-        sys.stdout.write("".join(f"  {name} = {value:.9f}\n" for name, value in values.items()))
+        sys.stdout.write(_listed(values))
         return 1
     for index, (values, error) in enumerate(found.solutions, 1):
         sys.stdout.write(f"solution {index} (error {error:.3g}):\n")
-        sys.stdout.write("".join(f"  {name} = {value:.9f}\n" for name, value in values.items()))
+        sys.stdout.write(_listed(values))
     return 0
 
 
@@ -225,14 +226,16 @@ def _cmd_pose(args: argparse.Namespace) -> int:
     if args.json:
         print_json({"frame": found.frame, "in": found.in_frame, **described})
         return 0
-    lines = [f"pose of {found.frame} in {found.in_frame}{_at(found.values)}:"]
+    frame, in_frame = comment_text(found.frame), comment_text(found.in_frame)  # (names as text: no control codes)
+    lines = [f"pose of {frame} in {in_frame}{_at(found.values)}:"]
     lines.append("  xyz        " + _row(described["xyz"]) + "  m")
     lines.append("  rpy        " + _row(described["rpy"]) + "  rad (URDF: R = Rz(y) Ry(p) Rx(r))")
     lines.append("  quat_xyzw  " + _row(described["quat_xyzw"]))
     lines += ["  matrix     " + _row(row) for row in described["matrix"][:1]]
     lines += ["             " + _row(row) for row in described["matrix"][1:]]
     if "point" in described:
-        lines.append(f"  point      {_row(described['point'])}  m in {found.in_frame} ({args.point} in {found.frame})")
+        point = comment_text(args.point)
+        lines.append(f"  point      {_row(described['point'])}  m in {in_frame} ({point} in {frame})")
     sys.stdout.write("\n".join(lines) + "\n")
     return 0
 
@@ -259,17 +262,19 @@ def _cmd_jacobian(args: argparse.Namespace) -> int:
     if args.json:
         print_json(out)
         return 0
+    frame, in_frame = comment_text(found.pose.frame), comment_text(found.pose.in_frame)  # (no control codes)
     if not found.joints:
-        sys.stdout.write(f"{found.pose.frame}: the robot has no joint to move: its Jacobian has no column\n")
+        sys.stdout.write(f"{frame}: the robot has no joint to move: its Jacobian has no column\n")
         return 0
-    width = max([len(n) for n in found.joints] + [12])
-    lines = [f"jacobian of {found.pose.frame}'s origin in {found.pose.in_frame}'s axes{_at(found.pose.values)}:"]
-    lines.append("  " + " " * 3 + " ".join(f"{n:>{width}}" for n in found.joints))
+    names = [comment_text(n) for n in found.joints]
+    width = max([len(n) for n in names] + [12])
+    lines = [f"jacobian of {frame}'s origin in {in_frame}'s axes{_at(found.pose.values)}:"]
+    lines.append("  " + " " * 3 + " ".join(f"{n:>{width}}" for n in names))
     for label, row in zip(("vx", "vy", "vz", "wx", "wy", "wz"), rows, strict=True):
         lines.append(f"  {label} " + " ".join(f"{v:>{width}.6g}" for v in row))
     if torques is not None:
         lines.append("tau = J^T w (N*m, N for a prismatic joint; the torque each motor adds to exert the wrench):")
-        lines += [f"  {name:<{width}} {float(t):.6g}" for name, t in zip(found.joints, torques, strict=True)]
+        lines += [f"  {name:<{width}} {float(t):.6g}" for name, t in zip(names, torques, strict=True)]
     sys.stdout.write("\n".join(lines) + "\n")
     return 0
 
@@ -308,7 +313,14 @@ def _point(text: str, matrix: Any) -> list[float]:
 
 
 def _at(values: dict[str, float]) -> str:
-    return " at " + ", ".join(f"{k} = {v:.6g}" for k, v in values.items()) if values else " at every joint 0"
+    return (
+        " at " + ", ".join(f"{comment_text(k)} = {v:.6g}" for k, v in values.items()) if values else " at every joint 0"
+    )
+
+
+def _listed(values: dict[str, float]) -> str:
+    """Joint values, one a line, nine decimals; names as text (a name's control codes escaped)."""
+    return "".join(f"  {comment_text(name)} = {value:.9f}\n" for name, value in values.items())
 
 
 def _row(values: Any) -> str:

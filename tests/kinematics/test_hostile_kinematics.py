@@ -356,6 +356,28 @@ def test_a_joint_name_with_control_characters_is_escaped_in_the_error(tmp_path, 
     assert one_error(err).startswith("gen-robot: error: --at j1\\x1b[2J\\x07: no moving joint of that name")
 
 
+def test_names_with_control_characters_are_escaped_in_text_outputs(tmp_path, capsys):
+    """A link and a joint whose names hold a line break and a C1 control (XML allows both): the text outputs cannot
+    forge a line or drive the terminal; JSON keeps the names as they are."""
+    link, joint = "a\nfake\x9b2J", "j\nx"
+    text = arm().replace('"a"', '"a&#10;fake&#x9B;2J"').replace('"j1"', '"j&#10;x"')
+    path = written(tmp_path, text)
+    outputs = {}
+    for command in (["pose", link, "--point", "1,0,0"], ["jacobian", link, "--wrench", "1,1,1,0,0,2"], ["ik", link]):
+        extra = ["--to", "0,0,0"] if command[0] == "ik" else ["--at", f"{joint}=0.5"]
+        code, out, err = run(capsys, command[0], path, *command[1:], *extra)
+        assert code in (0, 1) and err == "", err
+        assert all(ch.isprintable() or ch == "\n" for ch in out)
+        outputs[command[0]] = out.splitlines()
+    assert outputs["pose"][0] == "pose of a\\nfake\\x9b2J in base at j\\nx = 0.5:"
+    assert outputs["pose"][-1].endswith("m in base (1,0,0 in a\\nfake\\x9b2J)")
+    name, tau = outputs["jacobian"][-2].split()  # (tau = J^T w for joint j\nx: a on its axis, the moment about z)
+    assert name == "j\\nx" and float(tau) == 2.0
+    assert outputs["ik"] == ["solution 1 (error 0):", "  j\\nx = 0.000000000", "  j2 = 0.000000000"]
+    code, out, err = run(capsys, "pose", path, link, "--at", f"{joint}=0.5", "--json")
+    assert code == 0 and strict_json(out)["frame"] == link
+
+
 def test_a_robot_without_joints_has_a_jacobian_without_columns(tmp_path, capsys):
     path = written(tmp_path, '<robot name="still"><link name="only"/></robot>')
     code, out, err = run(capsys, "jacobian", path, "only", "--json", "--wrench", "1,2,3")
