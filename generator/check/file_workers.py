@@ -33,7 +33,7 @@ from ..reader.robot_input import RobotInput
 from ..reader.robot_source import input_kind
 from .consumers import LIBRARIES, chosen, hosted_consumers
 from .findings import CheckReport
-from .terminal_text import printable
+from ..shared.terminal_text import printable
 
 
 @dataclass(frozen=True)

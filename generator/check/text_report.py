@@ -1,7 +1,7 @@
 """Human-readable check reports: findings grouped by severity, consumers' verdicts, one summary line.
 
 Every piece of outside text a report prints (file names, names from the robot in messages, a consumer's words, why a
-file cannot be read) goes through :func:`~xacrokit.check.terminal_text.printable`: a name's ESC or newline can neither
+file cannot be read) goes through :func:`~xacrokit.shared.terminal_text.printable`: a name's ESC or newline can neither
 drive the terminal nor forge a report line. (A subject's and the robot's names are quoted with repr, which escapes
 them already.)
 """
@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 from .findings import CheckReport, Finding
 from .rule_table import RULES
-from .terminal_text import printable
+from ..shared.terminal_text import printable
 
 if TYPE_CHECKING:
     from .file_workers import FileCheck

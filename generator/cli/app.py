@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Any, NoReturn
 from .. import __version__
 from ..errors import XacrokitError
 from ..shared.progress_line import Progress
+from ..shared.terminal_text import printable
 from .arguments import (
     add_force_option,
     add_robot_options,
@@ -206,7 +207,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
         return _check_single(Path(paths[0]), options, form, args.strict)  # (one file: its report as before)
     files = robot_files(paths, exclude=args.exclude, robots_only=args.robots_only)
     if not files:
-        print(f"no robot file found in {', '.join(paths)}", file=sys.stderr)
+        print(f"no robot file found in {', '.join(map(printable, paths))}", file=sys.stderr)
     with _progress() as progress:
         checks = list(check_files(files, options, jobs=args.jobs, progress=progress))
     if form == "json":
@@ -315,7 +316,7 @@ class _Parser(argparse.ArgumentParser):
 
     def error(self, message: str) -> NoReturn:
         self.print_usage(sys.stderr)
-        self.exit(2, f"gen-robot: error: {message}\n")
+        self.exit(2, f"gen-robot: error: {_lines(message)}\n")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -547,19 +548,25 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         return int(args.handler(args))
     except XacrokitError as exc:
-        print(f"gen-robot: error: {exc}", file=sys.stderr)
+        print(f"gen-robot: error: {_lines(exc)}", file=sys.stderr)
         return exc.exit_code
     except BrokenPipeError:  # the reader went away (gen-robot schema | head): stop quietly, as other tools do
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 141
     except OSError as exc:  # the file system refused (permissions, a full disk, a missing folder): say what and where
         where = f"{exc.filename}: " if exc.filename else ""
-        print(f"gen-robot: error: {where}{exc.strerror or exc}", file=sys.stderr)
+        print(f"gen-robot: error: {printable(where)}{exc.strerror or exc}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         return 130
     except Exception as exc:  # a bug of ours, whatever the input: a short report to file, never a bare traceback
         return _internal_error(exc)
+
+
+def _lines(exc: Exception) -> str:
+    """An error's text for the terminal: its lines kept (a spec's errors, one a line), everything else outside text may
+    hold escaped (an ESC or a carriage return in a file name cannot rewrite the terminal or forge a line's start)."""
+    return "\n".join(printable(line) for line in str(exc).split("\n"))
 
 
 INTERNAL_ERROR = 70  # EX_SOFTWARE (sysexits.h): no input may lead here; the tests feed every bad input class
