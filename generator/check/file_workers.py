@@ -31,9 +31,9 @@ from typing import Any
 from ..errors import XacrokitError
 from ..reader.robot_input import RobotInput
 from ..reader.robot_source import input_kind
+from ..shared.terminal_text import printable
 from .consumers import LIBRARIES, chosen, hosted_consumers
 from .findings import CheckReport
-from ..shared.terminal_text import printable
 
 
 @dataclass(frozen=True)

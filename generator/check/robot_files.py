@@ -38,8 +38,8 @@ from typing import Any
 from lxml import etree
 
 from ..errors import XacrokitError
-from ..shared.xml_parse import parser
 from ..shared.terminal_text import printable
+from ..shared.xml_parse import parser
 
 HEAD_BYTES = 1 << 20  # bytes of a YAML or xacro file read to tell whether it is a robot (its top level comes first)
 _LIBRARY = {"macro", "property", "arg", "include"}  # xacro's top-level elements that make nothing by themselves

@@ -12,9 +12,9 @@ from collections.abc import Sequence
 from dataclasses import replace
 from typing import TYPE_CHECKING
 
+from ..shared.terminal_text import printable
 from .findings import CheckReport, Finding
 from .rule_table import RULES
-from ..shared.terminal_text import printable
 
 if TYPE_CHECKING:
     from .file_workers import FileCheck

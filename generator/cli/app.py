@@ -563,7 +563,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return _internal_error(exc)
 
 
-def _lines(exc: Exception) -> str:
+def _lines(exc: object) -> str:
     """An error's text for the terminal: its lines kept (a spec's errors, one a line), everything else outside text may
     hold escaped (an ESC or a carriage return in a file name cannot rewrite the terminal or forge a line's start)."""
     return "\n".join(printable(line) for line in str(exc).split("\n"))

@@ -20,8 +20,8 @@ from conftest import gen_robot
 from xacrokit.check import check
 from xacrokit.check.file_workers import CheckOptions, check_files
 from xacrokit.check.robot_files import robot_files
-from xacrokit.shared.terminal_text import printable
 from xacrokit.reader.robot_source import MAX_URDF_BYTES
+from xacrokit.shared.terminal_text import printable
 
 CLEAN = (CORPUS / "J009_pass.urdf").read_text(encoding="utf-8")  # (no finding at all, without consumers)
 SECRET_URDF = """<robot name="SECRET_ROBOT">
