@@ -32,7 +32,9 @@ def add_export_command(commands: Any) -> None:
         "robot a scene hangs from world); auto (the default): free for a robot with wheels, so that it can drive",
     )
     export.add_argument(
-        "--floor", action="store_true", help="add a ground plane at z = 0; every free robot stands on it in each pose"
+        "--floor",
+        action="store_true",
+        help="add a ground plane at z = 0 (every free robot stands on z = 0 in each pose, with or without it)",
     )
     add_force_option(export)
     add_robot_options(export)

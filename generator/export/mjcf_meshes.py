@@ -86,7 +86,7 @@ class Meshes:
         if len(mesh.vertices) < 4 or spread[-1] <= 1e-9 * spread[0]:
             raise FlatMesh(f"mesh {filename!r} is flat (all its vertices in one plane): MuJoCo cannot take it")
         if self.keep_points:
-            self.vertices[str(read.copy.root / read.copy.relative)] = np.unique(np.asarray(mesh.vertices), axis=0)
+            self.vertices[str(read.copy.root / read.copy.relative)] = _hull_points(np.asarray(mesh.vertices, float))
         source = Path(read.copy.relative)
         stem = "".join(c if c.isalnum() or c in "_-" else "_" for c in source.stem)[:60] or "mesh"
         suffix = source.suffix.lower()
@@ -107,6 +107,17 @@ class Meshes:
             count += 1
         self.written[out] = data
         return out
+
+
+def _hull_points(vertices: np.ndarray) -> np.ndarray:
+    """The vertices of a mesh's convex hull (what MuJoCo collides with; a few thousand of a mesh's hundreds of
+    thousands, kept while the model is written), in the mesh's order; all of them when qhull cannot make it."""
+    from scipy.spatial import ConvexHull, QhullError  # (heavy: scipy, for a free robot's meshes only)
+
+    try:
+        return vertices[np.sort(ConvexHull(vertices).vertices)]
+    except (QhullError, ValueError):
+        return vertices
 
 
 def _binary_stl_faces(head: bytes, size: int) -> int:
