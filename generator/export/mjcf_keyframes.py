@@ -13,7 +13,7 @@ from typing import Any
 
 from lxml import etree
 
-from ..shared.joint_types import rest_position
+from ..shared.joint_types import mimic_positions, rest_position
 from ..shared.urdf_view import Joint
 from .mjcf_actuators import num
 from .mjcf_ground import Ground
@@ -31,11 +31,16 @@ def keyframes(
     element = etree.Element("keyframe")
     for name, pose in poses.items():
         values = {j.get("name"): _value(j, pose) for j in order if _kind(j) in ("hinge", "slide")}
-        for follower, mimic in mimics.items():  # (after every leader's value: a leader may come later)
-            if follower in values:
-                multiplier = float(mimic.multiplier) if mimic.multiplier is not None else 1.0
-                offset = float(mimic.offset) if mimic.offset is not None else 0.0
-                values[follower] = offset + multiplier * values.get(mimic.joint, 0.0)
+        rules = {
+            follower: (
+                mimic.joint,
+                float(mimic.multiplier) if mimic.multiplier is not None else 1.0,
+                float(mimic.offset) if mimic.offset is not None else 0.0,
+            )
+            for follower, mimic in mimics.items()
+            if follower in values
+        }
+        values = mimic_positions(values, rules)  # (through chains, in any order)
         qpos = [
             _fixed(j, values, ground) if _kind(j) in ("free", "ball") else num(values[j.get("name")]) for j in order
         ]

@@ -180,3 +180,33 @@ def test_a_specs_armature_adds_to_the_mass_matrix_diagonal_only(tmp_path):
     want = pin.crba(model, model.createData(), q)
     want = np.triu(want) + np.triu(want, 1).T + np.diag(m.dof_armature)
     assert np.abs(dense - want).max() < 1e-9
+
+
+def test_a_mimic_of_a_mimic_listed_before_its_leader_follows_it_in_the_keyframe(tmp_path):
+    """tip = mid + 0.1, mid = 2 x lead, the tip written first: each keyframe runs the chain (the tip was at 0.1)."""
+    urdf = tmp_path / "chain.urdf"
+    box = '<inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>'
+    joint = '<joint name="{0}" type="revolute"><parent link="{1}"/><child link="{2}"/><axis xyz="0 0 1"/>'
+    limit = '<limit lower="-3" upper="3" effort="1" velocity="1"/>'
+    urdf.write_text(
+        '<robot name="chain"><link name="base"/>'
+        + "".join(f'<link name="{n}">{box}</link>' for n in ("a", "b", "c"))
+        + joint.format("tip", "b", "c")
+        + limit
+        + '<mimic joint="mid" multiplier="1" offset="0.1"/></joint>'
+        + joint.format("mid", "a", "b")
+        + limit
+        + '<mimic joint="lead" multiplier="2"/></joint>'
+        + joint.format("lead", "base", "a")
+        + limit
+        + "</joint>"
+        + '<ros2_control name="c" type="system"><joint name="lead"><state_interface name="position">'
+        + '<param name="initial_value">0.4</param></state_interface></joint></ros2_control></robot>',
+        encoding="utf-8",
+    )
+    m = _load(urdf, tmp_path)
+    d = mujoco.MjData(m)
+    mujoco.mj_resetDataKeyframe(m, d, 0)
+    assert _qpos_of(m, d, "lead") == pytest.approx(0.4, abs=1e-15)
+    assert _qpos_of(m, d, "mid") == pytest.approx(0.8, abs=1e-15)
+    assert _qpos_of(m, d, "tip") == pytest.approx(0.9, abs=1e-15)
