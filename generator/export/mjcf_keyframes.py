@@ -38,7 +38,7 @@ def keyframes(
                 float(mimic.offset) if mimic.offset is not None else 0.0,
             )
             for follower, mimic in mimics.items()
-            if follower in values
+            if follower in values and mimic.joint is not None
         }
         values = mimic_positions(values, rules)  # (through chains, in any order)
         qpos = [
