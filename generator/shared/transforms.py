@@ -6,8 +6,9 @@ They take the model's records (:class:`xacrokit.model.Origin`, :class:`xacrokit.
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Sequence
-from typing import Protocol
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -99,35 +100,145 @@ def screw_pose(
     return xyz, (out_roll + 0.0, out_pitch + 0.0, out_yaw + 0.0)
 
 
-def rotation_rpy(
-    *,
-    quaternion: tuple[float, float, float, float] | None = None,
-    axis: tuple[float, float, float] | None = None,
-    angle: float = 0.0,
-    rotvec: tuple[float, ...] | None = None,
-    matrix: np.ndarray | None = None,
-    euler: tuple[str, tuple[float, float, float]] | None = None,
-) -> tuple[float, float, float]:
-    """URDF's roll, pitch, yaw of a rotation given as a unit quaternion (x, y, z, w: ROS's order), a unit axis and an
-    angle (right-handed), a rotation vector (axis x angle), a rotation matrix, or Euler angles (sequence, angles:
-    scipy's names, upper case intrinsic); with pinocchio's conversions (Eigen's quaternion and angle-axis;
-    ``matrixToRpy`` gives pitch in [-pi/2, pi/2], as URDF reads it) and scipy's for Euler angles."""
-    import pinocchio  # (loaded only for an origin given this way: it takes a quarter of a second)
+# A rotation at gimbal lock: cos(pitch), the length of the x, y part of the rotation matrix's first column, at or below
+# this. Pitch is then +-pi/2 and roll and yaw turn about one axis, so that only their difference is fixed; the forms of
+# one such rotation differ in their last bits (up to 2e-15 here), which matrixToRpy turns into any split of roll and
+# yaw (issue 42: (1.671, pi/2, 1.571) from a quaternion, (0.183, pi/2, 0.083) from a matrix). At lock canonical_rpy
+# writes one split, yaw 0; snapping a rotation to the lock moves it by at most this angle (rad).
+GIMBAL_LOCK = 1e-13
+# At lock the roll is rounded to this many decimals (at most 5e-13 rad), so that the forms of one rotation, whose
+# conversions differ in the last bits, write the same digits. With the snap above, the rpy written is within 1e-12 of
+# the rotation given (the tests' bound for every form).
+LOCK_ROLL_DECIMALS = 12
+# A triple of points is degenerate when Q is within this fraction of the points' size (their largest coordinate) of P,
+# or R within it of the line through P and Q: their difference has then lost 9 of a double's 16 digits, and the
+# direction made from it is good to about 1e-16 / POINTS_APART rad at worst.
+POINTS_APART = 1e-9
+_APART = f"{POINTS_APART:g}".replace("e-0", "e-")  # (as the docs write it: 1e-9)
+Points = tuple[Sequence[float], Sequence[float], Sequence[float]]
 
-    if quaternion is not None:
-        matrix = pinocchio.Quaternion(np.array(quaternion, dtype=float)).toRotationMatrix()
-    elif axis is not None:
-        matrix = pinocchio.AngleAxis(angle, np.array(axis, dtype=float)).matrix()
-    elif rotvec is not None:
-        matrix = pinocchio.exp3(np.array(rotvec, dtype=float))
-    elif euler is not None:
+
+def canonical_rpy(matrix: np.ndarray) -> tuple[float, float, float]:
+    """URDF's roll, pitch, yaw (R = Rz(yaw) Ry(pitch) Rx(roll)) of a rotation matrix: pinocchio's ``matrixToRpy``
+    (pitch in [-pi/2, pi/2], as URDF reads it) away from gimbal lock; at it (:data:`GIMBAL_LOCK`), one split of the
+    turn that roll and yaw share: yaw 0, pitch +-pi/2 exactly, the whole turn in roll (rounded to
+    :data:`LOCK_ROLL_DECIMALS` decimals, in (-pi, pi]), so that every form of one rotation writes the same URDF."""
+    rows = np.asarray(matrix, dtype=float)
+    if math.hypot(rows[0, 0], rows[1, 0]) <= GIMBAL_LOCK:
+        # (at yaw 0, R = Ry(+-pi/2) Rx(roll), whose middle row is (0, cos roll, -sin roll): the rpy definition read)
+        roll = round(math.atan2(-rows[1, 2], rows[1, 1]), LOCK_ROLL_DECIMALS)
+        half_turn = round(math.pi, LOCK_ROLL_DECIMALS)
+        return (half_turn if roll <= -half_turn else roll + 0.0, math.copysign(math.pi / 2, -rows[2, 0]), 0.0)
+    import pinocchio  # (heavy: pinocchio, loaded only for an origin given another way than rpy)
+
+    roll, pitch, yaw = (float(v) + 0.0 for v in pinocchio.rpy.matrixToRpy(rows))
+    return (roll, pitch, yaw)
+
+
+def points_problem(points: Points) -> tuple[int, str] | None:
+    """Why the triple of points P, Q, R (:func:`points_matrix`) gives no frame, and which point says it (0, 1, 2), or
+    None: a coordinate that is not a finite number, Q at P, or R on the line through P and Q (within
+    :data:`POINTS_APART` of the points' size, their largest coordinate)."""
+    for index, point in enumerate(points):
+        if not all(math.isfinite(v) for v in point):
+            return index, f"{'PQR'[index]} {list(point)} holds a value that is not a finite number"
+    (p, q, r), exponent = _scaled(points)
+    size = max(abs(v) for point in points for v in point)
+    least = POINTS_APART * math.ldexp(size, -exponent)  # (in the scaled points' units)
+    apart = math.hypot(*_minus(q, p))
+    if apart <= least:
+        said = "at P" if apart == 0.0 else f"{math.ldexp(apart, exponent):.3g} m from P"
+        return 1, (
+            f"Q is {said}: X runs along Q - P, so Q must stand apart from P (by more than {_APART} of the "
+            f"points' largest coordinate, {size:.3g} m)"
+        )
+    off = math.hypot(*_cross(_unit(_minus(q, p)), _minus(r, p)))
+    if off <= least:
+        said = "" if off == 0.0 else f" ({math.ldexp(off, exponent):.3g} m from it)"
+        return 2, (
+            f"R is on the line through P and Q{said}: Z runs along X x (R - P), so R must stand off that line (by "
+            f"more than {_APART} of the points' largest coordinate, {size:.3g} m), on the side the frame's +Y points to"
+        )
+    return None
+
+
+def points_matrix(points: Points) -> np.ndarray:
+    """The rotation of the tf lecture's online converter's triple of points P, Q, R: X along Q - P, Z along
+    X x (R - P), Y = Z x X, each normalised, the matrix's columns (the frame's axes in its parent). The points are
+    first scaled by a power of two (exactly), so that neither a difference nor a cross product overflows or
+    underflows. Raises ValueError with :func:`points_problem`'s reason for a degenerate triple."""
+    problem = points_problem(points)
+    if problem is not None:
+        raise ValueError(problem[1])
+    (p, q, r), _ = _scaled(points)
+    x = _unit(_minus(q, p))
+    z = _unit(_cross(x, _minus(r, p)))
+    y = _unit(_cross(z, x))
+    return np.array([[x[k], y[k], z[k]] for k in range(3)])
+
+
+def _scaled(points: Points) -> tuple[tuple[Vec3, Vec3, Vec3], int]:
+    """The points divided by the power of two just above their largest coordinate (an exact scaling: the digits are
+    kept, and differences and cross products of the scaled points neither overflow nor underflow), and its exponent."""
+    size = max(abs(v) for point in points for v in point)
+    exponent = math.frexp(size)[1] if size > 0.0 else 0
+    p, q, r = (_vec3([math.ldexp(v, -exponent) for v in point]) for point in points)
+    return (p, q, r), exponent
+
+
+def _vec3(values: Sequence[float]) -> Vec3:
+    return (values[0], values[1], values[2])
+
+
+def _minus(a: Sequence[float], b: Sequence[float]) -> Vec3:
+    return (a[0] - b[0], a[1] - b[1], a[2] - b[2])
+
+
+def _cross(a: Sequence[float], b: Sequence[float]) -> Vec3:
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def _unit(a: Vec3) -> Vec3:
+    length = math.hypot(*a)
+    return (a[0] / length, a[1] / length, a[2] / length)
+
+
+def rotation_matrix(form: str, value: Any) -> np.ndarray:
+    """The rotation matrix of a rotation given in ``form``: ``quat`` (x, y, z, w: ROS's order, of unit length),
+    ``axis_angle`` ((unit axis, angle), right-handed), ``rotvec`` (axis x angle), ``matrix``, ``euler`` ((sequence,
+    angles): scipy's sequence, upper case intrinsic) or ``points`` ((P, Q, R): :func:`points_matrix`); with
+    pinocchio's conversions (Eigen's quaternion and angle-axis, the exponential map) and scipy's for Euler angles."""
+    import pinocchio  # (heavy: pinocchio, loaded only for an origin given another way than rpy)
+
+    if form == "quat":
+        return pinocchio.Quaternion(np.array(value, dtype=float)).toRotationMatrix()
+    if form == "axis_angle":
+        return pinocchio.AngleAxis(value[1], np.array(value[0], dtype=float)).matrix()
+    if form == "rotvec":
+        return pinocchio.exp3(np.array(value, dtype=float))
+    if form == "euler":
         from scipy.spatial.transform import Rotation  # (heavy: scipy)
 
-        matrix = Rotation.from_euler(euler[0], euler[1]).as_matrix()
-    elif matrix is None:
-        raise ValueError("a quaternion, an axis and an angle, a rotation vector, a matrix or Euler angles")
-    roll, pitch, yaw = (float(v) + 0.0 for v in pinocchio.rpy.matrixToRpy(matrix))
-    return (roll, pitch, yaw)
+        return Rotation.from_euler(value[0], value[1]).as_matrix()
+    if form == "points":
+        return points_matrix(value)
+    if form == "matrix":
+        return np.array(value, dtype=float)
+    raise ValueError(f"no rotation form {form!r}: quat, axis_angle, rotvec, matrix, euler or points")
+
+
+def rotation_rpy(form: str, value: Any) -> tuple[float, float, float]:
+    """URDF's roll, pitch, yaw of a rotation given in ``form`` (:func:`rotation_matrix`), with one split of roll and
+    yaw at gimbal lock (:func:`canonical_rpy`)."""
+    return canonical_rpy(rotation_matrix(form, value))
+
+
+def euler_sequence(kind: str, axes: str) -> str:
+    """scipy's name of an Euler sequence said explicitly: ``intrinsic`` (about the turning frame's axes) in upper
+    case, ``extrinsic`` (about the fixed axes) in lower case, whatever the case ``axes`` is written in."""
+    if kind not in ("intrinsic", "extrinsic"):
+        raise ValueError(f"an Euler sequence is intrinsic or extrinsic, not {kind!r}")
+    return axes.upper() if kind == "intrinsic" else axes.lower()
 
 
 def matrix_quaternion(matrix: np.ndarray) -> tuple[float, float, float, float]:
@@ -148,20 +259,33 @@ def rpy_quaternion(rpy: Sequence[float]) -> tuple[float, float, float, float]:
     return x, y, z, w
 
 
-def rotation_forms(matrix: np.ndarray) -> dict[str, list[float] | list[list[float]]]:
-    """A rotation matrix in every form the commands print: rpy (URDF's, pitch in [-pi/2, pi/2]), quat_xyzw and
-    quat_wxyz (w >= 0), rotvec (axis x angle) and the matrix."""
-    import pinocchio  # (heavy: loaded by the features that print rotations)
-    from scipy.spatial.transform import Rotation
+def rotation_forms(matrix: np.ndarray, *, euler: str = "XYZ") -> dict[str, Any]:
+    """A rotation matrix in every form an origin takes, each as an origin writes it: rpy (URDF's, pitch in
+    [-pi/2, pi/2], one split at gimbal lock: :func:`canonical_rpy`), quat_xyzw and quat_wxyz (w >= 0), rotvec (axis x
+    angle, by scipy), axis_angle ({axis, angle}; angle in [0, pi], the axis [0, 0, 1] at angle 0), the matrix, euler
+    ({intrinsic: XYZ, angles} or {extrinsic: xyz, angles} for ``euler``, scipy's sequence; scipy's angles, the third
+    0 at gimbal lock) and points ({P, Q, R}: P the origin, Q and R one along the frame's X and Y)."""
+    from scipy.spatial.transform import Rotation  # (heavy: scipy, loaded by the features that print rotations)
 
-    quat = np.array(matrix_quaternion(matrix))
+    rows = np.asarray(matrix, dtype=float)
+    rotation = Rotation.from_matrix(rows)
+    quat = np.array(matrix_quaternion(rows))
     quat = -quat if quat[3] < 0 else quat
+    rotvec = [float(v) for v in rotation.as_rotvec()]
+    angle = math.hypot(*rotvec)
+    axis = [v / angle for v in rotvec] if angle > 0.0 else [0.0, 0.0, 1.0]
+    with warnings.catch_warnings():  # (scipy warns at gimbal lock, where it sets the third angle to 0: said above)
+        warnings.simplefilter("ignore", UserWarning)
+        angles = [float(v) for v in rotation.as_euler(euler)]
     return {
-        "rpy": [float(v) for v in pinocchio.rpy.matrixToRpy(matrix)],
+        "rpy": list(canonical_rpy(rows)),
         "quat_xyzw": [float(v) for v in quat],
         "quat_wxyz": [float(quat[3]), *map(float, quat[:3])],
-        "rotvec": [float(v) for v in Rotation.from_matrix(matrix).as_rotvec()],
-        "matrix": [[float(v) for v in row] for row in matrix],
+        "rotvec": rotvec,
+        "axis_angle": {"axis": axis, "angle": angle},
+        "matrix": [[float(v) for v in row] for row in rows],
+        "euler": {"intrinsic" if euler.isupper() else "extrinsic": euler, "angles": angles},
+        "points": {"P": [0.0, 0.0, 0.0], "Q": [float(v) for v in rows[:, 0]], "R": [float(v) for v in rows[:, 1]]},
     }
 
 

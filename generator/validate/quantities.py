@@ -13,7 +13,7 @@ import numpy as np
 from ..errors import SpecError
 from ..load import PathKey, RawSpec
 from ..shared.materials import MATERIALS, find_material, material_key
-from ..shared.transforms import rotation_rpy
+from ..shared.transforms import euler_sequence, points_problem, rotation_rpy
 from ..shared.units import Kind, UnitError, bound_problem, parse_quantity, plain_number
 from ..shared.value_text import did_you_mean
 from .bodies import bodies, geometries, joint_types, parts
@@ -25,7 +25,7 @@ from .physics import AXIS_LENGTHS, implausible
 _TURNS = {"position": 1, "range": 2}
 
 # the ways an origin may give its orientation (one at a time; docs/spec.md's table has one rotation in each)
-ORIENTATIONS = ("rpy", "quat", "quat_wxyz", "rotvec", "axis_angle", "matrix", "euler")
+ORIENTATIONS = ("rpy", "quat", "quat_wxyz", "rotvec", "axis_angle", "matrix", "euler", "points")
 # The most turns an orientation's angle, a pose's position or a mimic's offset may make: beyond, a double's digits no
 # longer say where it points (the next double after 1e300 rad is 1e284 rad further) and a value in the wrong unit is
 # the likelier story. A joint's range is not bounded so (a limit of 1e16 stands for none in some URDFs).
@@ -42,6 +42,10 @@ EULER_SEQUENCES = tuple(
     for axes in itertools.product("XYZ", repeat=3)
     if axes[0] != axes[1] != axes[2]
 )
+# The twelve sequences of axes (six Tait-Bryan, three axes; six proper Euler, the first axis again last), as
+# `euler: {intrinsic: ZYZ}` and `euler: {extrinsic: xyz}` name them, in either case: the key says the kind.
+EULER_AXES = tuple(sequence for sequence in EULER_SEQUENCES if sequence.isupper())
+EULER_KINDS = ("sequence", "intrinsic", "extrinsic")  # (the keys of an euler mapping that name its sequence: one)
 
 # A plain-number length beyond this is most likely millimetres: no link, offset or DH length of a robot is 10 m (a
 # length written with a unit, '12 m', is taken as meant).
@@ -109,6 +113,39 @@ def euler_sequence_problem(sequence: object) -> str:
         "upper case (intrinsic, about the turning frame's axes: XYZ is Rx Ry Rz) or all lower case (extrinsic, about "
         "the fixed axes: xyz is URDF's rpy), e.g. XYZ, ZYX, ZXZ, xyz"
     )
+
+
+def euler_axes_problem(kind: str, axes: object) -> str:
+    """Why ``axes`` under ``euler.intrinsic`` or ``euler.extrinsic`` names none of :data:`EULER_AXES`, and what
+    would: the schemas' pattern and type errors there are said in these words."""
+    shown = repr(axes) if not isinstance(axes, str) or len(axes) <= 24 else f"{axes[:16]!r}..."
+    if not isinstance(axes, str):
+        why = "a list: write its axes together as one word, such as ZYZ" if isinstance(axes, list) else "not text"
+    elif len(axes) != 3:
+        why = f"{len(axes)} characters: a sequence names three axes, one per angle, written together"
+    elif not set(axes) <= set("xyzXYZ"):
+        why = f"{next(c for c in axes if c not in 'xyzXYZ')!r} is no axis"
+    else:
+        why = "two turns in a row about one axis are one turn: consecutive axes must differ"
+    about = "the turning frame's axes" if kind == "intrinsic" else "the fixed axes"
+    return (
+        f"{shown} is not an Euler sequence ({why}); {kind}: takes three of the axes x, y, z (either case), no two "
+        f"consecutive alike, turned about {about} in order: one of {', '.join(EULER_AXES)}"
+    )
+
+
+def euler_kind_problem(given: dict[str, Any]) -> tuple[str | None, str]:
+    """(the key to point at, None for the mapping itself; the message) for an euler mapping that names its sequence
+    not exactly once (:data:`EULER_KINDS`)."""
+    named = [key for key in given if key in EULER_KINDS]
+    ways = (
+        "intrinsic: XYZ (about the turning frame's axes: the tf lecture's R = Rx Ry Rz), extrinsic: xyz (about the "
+        "fixed axes: URDF's rpy) or sequence: XYZ (scipy's: upper case intrinsic, lower case extrinsic)"
+    )
+    if not named:
+        return None, f"euler needs its sequence, said one way: {ways}"
+    said = " and ".join(f"{key}: {given[key]}" for key in named)
+    return named[1], f"euler names its sequence once ({said} given): {ways}, not two of them"
 
 
 class Quantities:
@@ -223,6 +260,8 @@ class Quantities:
             self._matrix(origin["matrix"], (*path, key))
         elif given == ["euler"]:
             self._euler(origin["euler"], (*path, key))
+        elif given == ["points"]:
+            self._points(origin["points"], (*path, key))
 
     def _rotvec(self, rotvec: list[float], path: PathKey) -> None:
         """``rotvec: [rx, ry, rz]`` (axis x angle, rad) to rpy; an angle beyond ANGLE_TURNS turns is refused (1e300
@@ -238,7 +277,7 @@ class Quantities:
                 )
             )
             return
-        self._set_rpy(path, rotation_rpy(rotvec=tuple(rotvec)))
+        self._set_rpy(path, rotation_rpy("rotvec", tuple(rotvec)))
 
     def _matrix(self, rows: list[list[float]], path: PathKey) -> None:
         """``matrix:`` (3 rows) to rpy, when it is a rotation: R^T R = I to ORTHONORMAL and det R = +1."""
@@ -265,18 +304,42 @@ class Quantities:
                 )
             )
             return
-        self._set_rpy(path, rotation_rpy(matrix=matrix))
+        self._set_rpy(path, rotation_rpy("matrix", matrix))
 
     def _euler(self, given: dict[str, Any], path: PathKey) -> None:
-        """``euler: {sequence, angles}`` (scipy's names: upper case intrinsic, lower case extrinsic) to rpy."""
-        if given["sequence"] not in EULER_SEQUENCES:
+        """``euler: {intrinsic | extrinsic: axes, angles}`` (the kind said, the axes in either case) or ``euler:
+        {sequence, angles}`` (scipy's names: upper case intrinsic, lower case extrinsic) to rpy."""
+        named = [key for key in EULER_KINDS if key in given]
+        if len(named) != 1:
+            return  # (the schema's oneOf refused it, in the words of euler_kind_problem)
+        kind, axes = named[0], given[named[0]]
+        sequence = axes if kind == "sequence" else euler_sequence(kind, axes) if isinstance(axes, str) else None
+        if sequence not in EULER_SEQUENCES or (kind != "sequence" and axes.upper() not in EULER_AXES):
             return  # (the schema's pattern refused it, in the words of euler_sequence_problem; the passes after run)
         for index in range(3):
             self.convert(given["angles"], index, (*path, "euler", "angles"), "angle")
         angles = self._changes.get((*path, "euler", "angles"), {})
         values = [angles.get(k, given["angles"][k]) for k in range(3)]
         if all(isinstance(v, float) for v in values):
-            self._set_rpy(path, rotation_rpy(euler=(given["sequence"], (values[0], values[1], values[2]))))
+            self._set_rpy(path, rotation_rpy("euler", (sequence, (values[0], values[1], values[2]))))
+
+    def _points(self, given: dict[str, Any], path: PathKey) -> None:
+        """``points: {P, Q, R}`` (lengths, with units) to rpy: the tf lecture's converter's frame, X along Q - P,
+        Z along X x (R - P), Y = Z x X; a degenerate triple is an error at the point that makes it so."""
+        errors = len(self.errors)
+        for name in "PQR":
+            for index in range(3):  # (no note of a length beyond 10 m: a direction is the same in any unit)
+                self.convert(given[name], index, (*path, "points", name), "length", scale=False)
+        if len(self.errors) > errors:
+            return
+        changed = [self._changes.get((*path, "points", name), {}) for name in "PQR"]
+        p, q, r = ([float(c.get(k, given[name][k])) for k in range(3)] for name, c in zip("PQR", changed, strict=True))
+        problem = points_problem((p, q, r))
+        if problem is not None:
+            index, why = problem
+            self.errors.append(self.raw.error((*path, "points", "PQR"[index]), f"not a frame: {why}"))
+            return
+        self._set_rpy(path, rotation_rpy("points", (p, q, r)))
 
     def _quaternion(
         self, quat: list[float], path: PathKey, *, field: str = "quat", written: list[float] | None = None
@@ -302,7 +365,7 @@ class Quantities:
                     + ")",
                 )
             )
-        self._set_rpy(path, rotation_rpy(quaternion=(quat[0] / norm, quat[1] / norm, quat[2] / norm, quat[3] / norm)))
+        self._set_rpy(path, rotation_rpy("quat", (quat[0] / norm, quat[1] / norm, quat[2] / norm, quat[3] / norm)))
 
     def _axis_angle(self, given: dict[str, Any], path: PathKey) -> None:
         """``axis_angle: {axis, angle}`` (right-handed, about the unit axis) to rpy; the axis' length is as for a
@@ -322,7 +385,7 @@ class Quantities:
                 )
             )
             return
-        self._set_rpy(path, rotation_rpy(axis=(axis[0] / norm, axis[1] / norm, axis[2] / norm), angle=angle))
+        self._set_rpy(path, rotation_rpy("axis_angle", ((axis[0] / norm, axis[1] / norm, axis[2] / norm), angle)))
 
     def _set_rpy(self, origin_path: PathKey, rpy: tuple[float, float, float]) -> None:
         """The origin's rpy, as URDF writes it, computed from another way of giving its orientation."""

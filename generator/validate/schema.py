@@ -18,7 +18,7 @@ import jsonschema
 from ..errors import SpecError
 from ..load import PathKey, RawSpec
 from ..shared.package_data import schemas_dir
-from .quantities import euler_sequence_problem
+from .quantities import euler_axes_problem, euler_kind_problem, euler_sequence_problem
 
 
 @cache
@@ -181,9 +181,15 @@ def _schema_message(error: jsonschema.ValidationError) -> Message:
 
 
 def _sequence_message(error: jsonschema.ValidationError, path: PathKey) -> Message | None:
-    """An Euler sequence that is none of scipy's (its pattern, or not a string): which are, not a name's rule."""
+    """An Euler sequence that is none of scipy's (its pattern, or not a string), or none of the twelve under
+    intrinsic/extrinsic: which are, not a name's rule; an euler mapping naming its sequence not exactly once."""
     if path[-2:] == ("euler", "sequence") and error.validator in ("pattern", "type"):
         return path, euler_sequence_problem(error.instance), False
+    if path[-2:] in (("euler", "intrinsic"), ("euler", "extrinsic")) and error.validator in ("pattern", "type"):
+        return path, euler_axes_problem(str(path[-1]), error.instance), False
+    if path[-1:] == ("euler",) and error.validator == "oneOf" and isinstance(error.instance, dict):
+        key, message = euler_kind_problem(error.instance)
+        return (path if key is None else (*path, key)), message, key is not None
     return None
 
 
