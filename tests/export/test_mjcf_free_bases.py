@@ -15,7 +15,7 @@ from conftest import REPO, gen_robot, tetrahedron_stl
 mujoco = pytest.importorskip("mujoco")
 
 FLEET = REPO / "examples" / "scenes" / "diff_drive_fleet.yaml"
-HUMANOID = REPO / "examples" / "robots" / "simple_humanoid.yaml"
+HUMANOID = REPO / "examples" / "robots" / "winter_humanoid.yaml"  # (its torso frame 0.62 m above its soles)
 INERTIA = '<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>'
 
 

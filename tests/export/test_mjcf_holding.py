@@ -13,15 +13,16 @@ from xacrokit.export.mjcf import export_mjcf, write_export
 
 mujoco = pytest.importorskip("mujoco")
 
-# the examples with a fixed base and position servos (each arm, the gantry, the humanoid fixed at its torso, the cells)
+# the examples with a fixed base and position servos (each arm, the gantry, the Winter humanoid held at its torso, the
+# cells)
 HELD = {
     "cartesian_pp",
     "industrial_arm_mod_dh",
     "industrial_arm_std_dh",
     "rp_arm",
-    "simple_humanoid",
     "two_dof_arm",
     "ur10e",
+    "winter_humanoid",
     "bin_sorting_cell",
     "two_arm_cell",
 }

@@ -92,11 +92,12 @@ def test_the_damping_is_what_makes_up_the_difference():
     assert sum(j["motion"]["energy"] for j in joints) == pytest.approx(change, rel=1e-9)
 
 
-def test_the_humanoids_hip_and_knee_hold_the_leg_level():
-    """examples/robots/simple_humanoid.yaml: thigh 0.30 m, 3.0 kg; shin 0.32 m, 1.8 kg; arm 0.50 m, 1.5 kg; each
+def test_the_winter_humanoids_hip_and_knee_hold_the_leg_level():
+    """examples/robots/winter_humanoid.yaml: thigh 0.30 m, 3.0 kg; shin 0.32 m, 1.8 kg; arm 0.50 m, 1.5 kg; each
     centre halfway. With the torso held: hip g (m_t l_t/2 + m_s (l_t + l_s/2)), knee g m_s l_s/2, shoulder g m_a l_a/2,
-    the same on the mirrored right side."""
-    result = gen_robot("size", "examples/robots/simple_humanoid.yaml", "--gravity", "9.81", "--json", cwd=REPO)
+    the same on the mirrored right side. (The chapter's humanoid, simple_humanoid.yaml, is
+    tests/pipeline/test_chapter_humanoid.py's.)"""
+    result = gen_robot("size", "examples/robots/winter_humanoid.yaml", "--gravity", "9.81", "--json", cwd=REPO)
     assert result.returncode == 0, result.stderr
     report = json.loads(result.stdout)
     assert report["gravity"] == G
