@@ -31,7 +31,6 @@ from .model import (
     Wheel,
     attach_joint_name,
     material_name,
-    mount_joint_name,
 )
 from .shared.gc_pause import collector_paused
 from .shared.sim_sensors import sensor_element, topic_namespace
@@ -163,14 +162,15 @@ def _dh_body(robot: Robot, link: etree._Element, row: DHRow) -> None:
 
 
 def _arm(robot: Robot, prefix: str, arm: Arm) -> Iterator[etree._Element]:
-    yield etree.Element("link", name=prefix + arm.base)
-    base_joint = etree.Element("joint", name=prefix + attach_joint_name(arm.base), type="fixed")
-    _sub(base_joint, "parent", link=prefix + arm.parent)
-    _sub(base_joint, "child", link=prefix + arm.base)
-    _origin(base_joint, arm.origin)
-    yield base_joint
+    if arm.base is not None:  # (else the first joint hangs on parent, DH frame 0: base: false)
+        yield etree.Element("link", name=prefix + arm.base)
+        base_joint = etree.Element("joint", name=prefix + attach_joint_name(arm.base), type="fixed")
+        _sub(base_joint, "parent", link=prefix + arm.parent)
+        _sub(base_joint, "child", link=prefix + arm.base)
+        _origin(base_joint, arm.origin)
+        yield base_joint
     rows = arm.rows
-    parent = prefix + arm.base
+    parent = prefix + arm.frame0
     for index, row in enumerate(rows):
         screw = row if arm.convention == "modified" else (rows[index - 1] if index > 0 else None)
         joint = etree.Element("joint", name=prefix + row.name, type=row.type)
@@ -195,7 +195,7 @@ def _arm(robot: Robot, prefix: str, arm: Arm) -> Iterator[etree._Element]:
         parent = prefix + row.link
     last = rows[-1]
     yield etree.Element("link", name=prefix + arm.tool)
-    tool_joint = etree.Element("joint", name=prefix + attach_joint_name(arm.tool), type="fixed")
+    tool_joint = etree.Element("joint", name=prefix + arm.tool_joint_name, type="fixed")
     _sub(tool_joint, "parent", link=prefix + last.link)
     _sub(tool_joint, "child", link=prefix + arm.tool)
     standard = arm.convention == "standard"
@@ -358,7 +358,7 @@ def emit_scene_urdf(scene: Scene) -> str:
         robot = instance.robot
         if robot is None:
             raise ValueError(f"instance {instance.name} is a third-party macro: only xacro can expand it")
-        mount = etree.SubElement(root, "joint", name=instance.prefix + mount_joint_name(robot.root), type="fixed")
+        mount = etree.SubElement(root, "joint", name=instance.prefix + robot.mount_joint_name, type="fixed")
         _sub(mount, "parent", link=instance.parent)
         _sub(mount, "child", link=instance.prefix + robot.root)
         _origin(mount, instance.origin)

@@ -233,24 +233,38 @@ class DHBody:
 
 @dataclass(frozen=True)
 class Arm:
-    """A DH chain: parent -> ``base`` (DH frame 0, at ``origin``) -> rows -> ``tool`` (DH frame n + ``tool_origin``)."""
+    """A DH chain: parent -> ``base`` (DH frame 0, at ``origin``) -> rows -> ``tool`` (DH frame n + ``tool_origin``)
+    on the fixed joint ``tool_joint``. ``base`` None: no link of its own, DH frame 0 is ``parent``'s frame (the spec's
+    ``base: false``; ``origin`` is then the identity) and the first row's joint hangs on ``parent``."""
 
     name: str
     parent: str
     origin: Origin
     convention: Convention
     rows: tuple[DHRow, ...]
-    base: str
+    base: str | None
     tool: str
     tool_origin: Origin = Origin()
+    tool_joint: str | None = None  # the spec's name for the tool frame's joint (``tool: {joint: ...}``)
+
+    @property
+    def frame0(self) -> str:
+        """The link whose frame is DH frame 0: the base link, or ``parent`` for an arm without one."""
+        return self.base if self.base is not None else self.parent
+
+    @property
+    def tool_joint_name(self) -> str:
+        return self.tool_joint or attach_joint_name(self.tool)
 
     @property
     def link_names(self) -> tuple[str, ...]:
-        return (self.base, *(row.link for row in self.rows), self.tool)
+        base = () if self.base is None else (self.base,)
+        return (*base, *(row.link for row in self.rows), self.tool)
 
     @property
     def joint_names(self) -> tuple[str, ...]:
-        return (attach_joint_name(self.base), *(row.name for row in self.rows), attach_joint_name(self.tool))
+        base = () if self.base is None else (attach_joint_name(self.base),)
+        return (*base, *(row.name for row in self.rows), self.tool_joint_name)
 
 
 @dataclass(frozen=True)
@@ -322,7 +336,14 @@ class Robot:
     # named poses: (name, ((joint, position in rad or m), ...)), as the spec gives them (a joint left out is at its
     # start: 0, or the limit nearest 0); `home` is where the robot starts
     poses: tuple[tuple[str, tuple[tuple[str, float], ...]], ...] = ()
+    mount_joint: str | None = None  # the spec's name for the joint that mounts the root (``mount_joint:``)
     source: str = field(default="", compare=False)
+
+    @property
+    def mount_joint_name(self) -> str:
+        """The fixed joint that mounts the root link on a parent (the macro's, a scene's): the spec's name or
+        :func:`mount_joint_name`'s."""
+        return self.mount_joint or mount_joint_name(self.root)
 
     @property
     def mass(self) -> float:

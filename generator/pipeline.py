@@ -168,8 +168,9 @@ def _spec_lines(spec: Spec, robot: Robot) -> dict[tuple[str, str], tuple[int, in
             joint = item.get("joint", attach_joint_name(name)) if isinstance(item, dict) else attach_joint_name(name)
             lines[("link", name)] = lines[("joint", joint)] = at((section, name))
     for arm in robot.arms:
-        lines[("link", arm.base)] = lines[("joint", attach_joint_name(arm.base))] = at(("arms", arm.name))
-        lines[("link", arm.tool)] = lines[("joint", attach_joint_name(arm.tool))] = at(("arms", arm.name))
+        if arm.base is not None:
+            lines[("link", arm.base)] = lines[("joint", attach_joint_name(arm.base))] = at(("arms", arm.name))
+        lines[("link", arm.tool)] = lines[("joint", arm.tool_joint_name)] = at(("arms", arm.name))
         for index, row in enumerate(arm.rows):
             lines[("link", row.link)] = lines[("joint", row.name)] = at(("arms", arm.name, "joints", index))
     return lines

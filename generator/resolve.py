@@ -343,9 +343,10 @@ def _arm(name: str, data: dict[str, Any]) -> Arm:
         origin=origin(data.get("origin")),
         convention=convention,
         rows=_with_bodies(rows, convention),
-        base=arm_base_name(name),
+        base=arm_base_name(name) if data.get("base", True) else None,
         tool=tool.get("name", DEFAULT_TOOL),
         tool_origin=origin(tool.get("origin")),
+        tool_joint=tool.get("joint"),
     )
 
 
@@ -505,6 +506,7 @@ def resolve(spec: Spec) -> Robot:
             for name, pose in data.get("poses", {}).items()
         ),
         files=tuple(PackageFile(path, content) for path, content in sorted(package.files.items())),
+        mount_joint=data.get("mount_joint"),
         source=spec.raw.file,
     )
 

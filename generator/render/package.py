@@ -21,7 +21,7 @@ from markupsafe import Markup
 
 from .. import __version__
 from ..emit import joint_element, link_element, robot_elements
-from ..model import MOVING, Box, Cylinder, Limit, Link, Mesh, Robot, Sphere, material_name, mount_joint_name
+from ..model import MOVING, Box, Cylinder, Limit, Link, Mesh, Robot, Sphere, material_name
 from ..shared.gc_pause import collector_paused
 from ..shared.package_data import macros_dir
 from ..shared.sim_sensors import XACRO_NAMESPACE, bridge_entries, sensor_element
@@ -219,7 +219,7 @@ def _package_context(robot: Robot, macros: MacroMode, spec_name: str, macro_file
         "spec_command": command_text("gen-robot " + shlex.quote(spec_name)),
         "macros": macros,
         "macro_includes": [include_prefix + name for name in macro_files],
-        "mount_joint": mount_joint_name(robot.root),
+        "mount_joint": robot.mount_joint_name,
         **(_inline_parts(robot) if macros == "inline" else _library_parts(robot)),
         "material_name": lambda name: material_name(robot, name),
         "has_control": robot.ros2_control is not None,

@@ -14,7 +14,7 @@ from pathlib import Path
 
 from ..errors import SpecError, SpecErrors
 from ..load import PathKey, RawSpec
-from ..model import Instance, Origin, Robot, Scene, ThirdPartyMacro, mount_joint_name
+from ..model import Instance, Origin, Robot, Scene, ThirdPartyMacro
 from ..resolve import carried_into
 from ..shared.value_text import did_you_mean
 from .probe import probe_names
@@ -38,7 +38,7 @@ class Planned:
         if self.robot is None:
             return None
         prefix, robot = self.prefix, self.robot
-        joints = (*(prefix + n for n in robot.joint_names), prefix + mount_joint_name(robot.root))
+        joints = (*(prefix + n for n in robot.joint_names), prefix + robot.mount_joint_name)
         return tuple(prefix + n for n in robot.link_names), joints
 
 

@@ -7,11 +7,12 @@
     def test_my_tool_accepts_any_robot(spec): ...      # spec: a dict, ready for yaml.safe_dump
 
 ``valid_specs()`` draws specs that exercise every feature: links of every shape (and bare frames, meshes with
-explicit tensors), every joint type, DH arms in both conventions with revolute/prismatic/continuous/fixed rows,
-wheels, fixed frames, materials, unit strings (``"150 mm"``, ``"90 deg"``), ros2_control and Gazebo settings, and mesh
-filenames holding ``${`` / ``$(`` that must come out verbatim. ``invalid_specs()`` draws ``(spec, fault)``: a valid
-spec with exactly one fault of the kind named by ``fault``. ``mirrored_specs()`` draws a spec whose ``left_`` limb is
-mirrored to ``right_`` through a random plane (tests/validate/test_mirror.py checks every copy is the mirror image).
+explicit tensors), every joint type, DH arms in both conventions with revolute/prismatic/continuous/fixed rows (some
+without a base link, some with a named tool joint), wheels, fixed frames, materials, unit strings (``"150 mm"``,
+``"90 deg"``), ros2_control and Gazebo settings, and mesh filenames holding ``${`` / ``$(`` that must come out
+verbatim. ``invalid_specs()`` draws ``(spec, fault)``: a valid spec with exactly one fault of the kind named by
+``fault``. ``mirrored_specs()`` draws a spec whose ``left_`` limb is mirrored to ``right_`` through a random plane
+(tests/validate/test_mirror.py checks every copy is the mirror image).
 
 Requires hypothesis (``pip install '.[test]'`` in a clone of xacrokit).
 """
@@ -262,12 +263,17 @@ def _arm(draw, prefix: str, parent: str, materials: list[str]) -> dict[str, Any]
         "parent": parent,
         "convention": draw(st.sampled_from(["standard", "modified"])),
         "joints": rows,
-        "origin": draw(_origin()),
     }
+    if draw(st.integers(0, 3)) == 0:  # (its first joint on parent, as UR's description hangs it)
+        arm["base"] = False
+    else:
+        arm["origin"] = draw(_origin())
     if draw(st.booleans()):
         arm["tool"] = {"name": f"{prefix}_tool", "origin": draw(_origin())}
     else:
         arm["tool"] = {"name": f"{prefix}_tool0"}
+    if draw(st.booleans()):  # its joint named, as UR names it (wrist_3-flange)
+        arm["tool"]["joint"] = f"{prefix}_link-{prefix}_tool"
     return arm
 
 
@@ -350,7 +356,7 @@ def _frames(draw: Any, links: list[str]) -> dict[str, Any]:
         if draw(st.booleans()):
             frame.update(shape=draw(_shape(draw(st.sampled_from(SOLIDS)))), **draw(_mass_or_density()))
         if draw(st.booleans()):
-            frame["joint"] = f"mount_{k}"
+            frame["joint"] = draw(st.sampled_from([f"mount_{k}", f"base-mount_{k}"]))
         frames[f"frame_{k}"] = frame
     return frames
 

@@ -21,7 +21,9 @@ BodyKind = Literal["link", "arm", "row", "tool", "wheel", "frame", "part"]
 # after the units: an object per body, or a walk per pass, made validation measurably slower on big robots.
 #   kind: link (an entry of links), arm (an arm, whose body is its base link), row (a row of an arm's joints), tool
 #         (an arm's tool frame), wheel or frame.
-#   name: the name of the link the body makes (NAME_base for an arm, tool0 for a tool named nowhere).
+#   name: the name of the link the body makes (NAME_base for an arm, tool0 for a tool named nowhere); for an arm
+#         without a base link (base: false), its parent's name: the link its first row hangs on, which it does not
+#         make (see :func:`has_base_link`).
 #   path: where the body's mapping is in the spec (path[0] is its section; an arm's tool: arms.NAME.tool, also when
 #         the spec gives none).
 #   mapping: the body's mapping in the spec (an arm's tool not given: an empty one).
@@ -33,7 +35,7 @@ def bodies(data: dict[str, Any]) -> Iterator[Body]:
     for name, link in data.get("links", {}).items():
         yield ("link", name, ("links", name), link)
     for name, arm in data.get("arms", {}).items():
-        yield ("arm", arm_base_name(name), ("arms", name), arm)
+        yield ("arm", arm_base_name(name) if has_base_link(arm) else arm["parent"], ("arms", name), arm)
         for index, row in enumerate(arm["joints"]):
             yield ("row", row["link"], ("arms", name, "joints", index), row)
         tool = arm.get("tool", {})
@@ -42,6 +44,16 @@ def bodies(data: dict[str, Any]) -> Iterator[Body]:
         yield ("wheel", name, ("wheels", name), wheel)
     for name, frame in data.get("frames", {}).items():
         yield ("frame", name, ("frames", name), frame)
+
+
+def has_base_link(arm: dict[str, Any]) -> bool:
+    """Whether an arm makes a link of its own for DH frame 0 (NAME_base; not with ``base: false``)."""
+    return arm.get("base", True) is not False
+
+
+def tool_joint_name(tool: dict[str, Any]) -> str:
+    """The name of an arm's tool joint: the tool mapping's ``joint``, else TOOL_joint (tool0_joint by default)."""
+    return str(tool.get("joint") or attach_joint_name(tool.get("name", DEFAULT_TOOL)))
 
 
 def parts(data: dict[str, Any]) -> Iterator[Body]:

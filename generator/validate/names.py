@@ -10,12 +10,12 @@ from typing import Any
 
 from ..errors import SpecError
 from ..load import PathKey, RawSpec, json_path
-from ..model import MOVING, attach_joint_name
+from ..model import MOVING, arm_base_name, attach_joint_name
 from ..shared.kinematic_tree import Tree, cycles
 from ..shared.package_data import PUBLIC_MACROS, XACRO_KEYWORDS
 from ..shared.sim_sensors import CAMERAS, optical_name, sensor_kind
 from ..shared.value_text import did_you_mean
-from .bodies import Body, geometries
+from .bodies import Body, geometries, has_base_link, tool_joint_name
 
 # The robot name becomes a xacro macro name: it must not shadow a library macro or a xacro keyword.
 RESERVED_ROBOT_NAMES = frozenset({*PUBLIC_MACROS, *XACRO_KEYWORDS})
@@ -44,7 +44,12 @@ def link_and_joint_names(data: dict[str, Any], bodies: Sequence[Body]) -> tuple[
             named = "name" in item
             where = (*path, "name") if named else path[:2]
             links.append(Named(name, where, not named))
-            joints.append(Named(attach_joint_name(name), where, not named))
+            if "joint" in item:
+                joints.append(Named(item["joint"], (*path, "joint"), False))
+            else:
+                joints.append(Named(tool_joint_name(item), where, not named))
+        elif kind == "arm" and not has_base_link(item):  # (base: false: the arm makes no link of its own)
+            continue
         elif kind in ("wheel", "frame") and "joint" in item:  # its joint named in the spec (joint: NAME)
             links.append(Named(name, path, True))
             joints.append(Named(item["joint"], (*path, "joint"), False))
@@ -56,6 +61,8 @@ def link_and_joint_names(data: dict[str, Any], bodies: Sequence[Body]) -> tuple[
             where = (*path, "sensor", "optical_frame") if "optical_frame" in item["sensor"] else (*path, "sensor")
             links.append(Named(optical, where, "optical_frame" not in item["sensor"]))
             joints.append(Named(attach_joint_name(optical), where, "optical_frame" not in item["sensor"]))
+    if "mount_joint" in data:  # (the root's mount, made where the robot is mounted: named in the spec)
+        joints.append(Named(data["mount_joint"], ("mount_joint",), False))
     return links, joints
 
 
@@ -115,8 +122,8 @@ def edges(data: dict[str, Any], bodies: Sequence[Body]) -> list[tuple[str, str, 
     for kind, name, path, item in bodies:
         if kind in ("row", "tool"):
             result.append((above, name, path))
-        elif kind != "link":  # an arm's base, a wheel, a frame: hung from the parent the spec names
-            result.append((item["parent"], name, (*path, "parent")))
+        elif kind != "link" and not (kind == "arm" and not has_base_link(item)):  # an arm's base, a wheel, a frame:
+            result.append((item["parent"], name, (*path, "parent")))  # hung from the parent the spec names
         if kind == "frame" and isinstance(item.get("sensor"), dict) and sensor_kind(item["sensor"]) in CAMERAS:
             result.append((name, optical_name(name, item["sensor"]), (*path, "sensor")))  # (a camera's optical frame)
         above = name
@@ -169,6 +176,14 @@ def reference_errors(
             parent = item["parent"]
             yield raw.error(
                 (*path, "parent"), f"parent {parent!r} is not a link of this robot{did_you_mean(parent, link_names)}"
+            )
+        if kind == "arm" and not has_base_link(item) and "origin" in item:
+            yield raw.error(
+                (*path, "origin"),
+                f"an arm with base: false has DH frame 0 at its parent {item['parent']!r}, so it takes no origin; "
+                f"place {item['parent']!r} there instead, or drop base: false (DH frame 0 is then a link "
+                f"{arm_base_name(str(path[1]))!r} at origin)",
+                key=True,
             )
         material = item.get("material")
         if material is not None and material not in materials:

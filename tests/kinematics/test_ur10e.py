@@ -6,7 +6,10 @@
   2.4.5 (urdf/ur_macro.xacro's fixed joints, config/ur10e/default_kinematics.yaml's joint origins), rebuilt here
   from those numbers, read by yourdfpy from our URDF;
 - each link's mass, centre of mass and tensor equal UR's config/ur10e/physical_parameters.yaml (which states them in
-  UR's link frames), and the limits its joint_limits.yaml.
+  UR's link frames), and the limits its joint_limits.yaml;
+- its tree is UR's (issue 42): the links and joints of urdf/ur_macro.xacro, named as there, with the same parents,
+  children, types and origins, so that a launch file or a tf listener written for UR's description works unchanged;
+  and the names changed nothing else: tool0 is where the example put it before (its numbers to 1e-12).
 """
 
 from __future__ import annotations
@@ -19,8 +22,10 @@ import pytest
 import yourdfpy
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from lxml import etree
 from scipy.spatial.transform import Rotation
 
+import xacrokit
 from conftest import REPO
 from xacrokit.kinematics import pose
 from xacrokit.reader.read_robot import read_robot
@@ -50,6 +55,72 @@ FIXED = {
     "tool0": ("flange", (math.pi / 2, 0, math.pi / 2)),
     "ft_frame": ("wrist_3_link", (math.pi, 0, 0)),
 }
+# The tree of Universal_Robots_ROS2_Description 2.4.5 (commit 2221ec0f, tag 2.4.5), urdf/ur_macro.xacro, macro
+# ur_robot with tf_prefix '': joint -> (type, parent, child). Its base_joint (fixed, `parent` -> base_link) mounts the
+# robot on the macro's `parent` and is the mount joint here (test_mounted_as_urs_macro_mounts_it).
+UR_JOINTS = {
+    "base_link-base_link_inertia": ("fixed", "base_link", "base_link_inertia"),
+    "shoulder_pan_joint": ("revolute", "base_link_inertia", "shoulder_link"),
+    "shoulder_lift_joint": ("revolute", "shoulder_link", "upper_arm_link"),
+    "elbow_joint": ("revolute", "upper_arm_link", "forearm_link"),
+    "wrist_1_joint": ("revolute", "forearm_link", "wrist_1_link"),
+    "wrist_2_joint": ("revolute", "wrist_1_link", "wrist_2_link"),
+    "wrist_3_joint": ("revolute", "wrist_2_link", "wrist_3_link"),  # (revolute: UR10e's wrist 3 has limits)
+    "wrist_3_link-ft_frame": ("fixed", "wrist_3_link", "ft_frame"),
+    "base_link-base_fixed_joint": ("fixed", "base_link", "base"),
+    "wrist_3-flange": ("fixed", "wrist_3_link", "flange"),
+    "flange-tool0": ("fixed", "flange", "tool0"),
+}
+UR_LINKS = {
+    "base_link",
+    "base_link_inertia",
+    "shoulder_link",
+    "upper_arm_link",
+    "forearm_link",
+    "wrist_1_link",
+    "wrist_2_link",
+    "wrist_3_link",
+    "ft_frame",
+    "base",
+    "flange",
+    "tool0",
+}
+# tool0 in base_link at joint values (shoulder_pan .. wrist_3), as the example put it before it took UR's tree and
+# names (commit 1d4ab59: ur10e_base between base_link_inertia and shoulder_pan_joint, its own joint names): rows 0-2
+TOOL0_BEFORE = [
+    (
+        (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+        [
+            [-1.0, 2.2204460492503128e-16, 3.4450928483976665e-16, 1.18425],
+            [3.4450928483976655e-16, -2.2204460492503136e-16, 1.0, 0.29069999999999985],
+            [2.220446049250313e-16, 1.0, 2.2204460492503126e-16, 0.06085000000000007],
+        ],
+    ),
+    (
+        (-1.57, -1.57, 0.0, -1.57, 0.0, 0.0),
+        [
+            [0.0007963257007741264, -1.2682720581036322e-06, 0.9999996829318346, 0.2907008108065209],
+            [-0.9999984146597763, 0.001592652411507512, 0.0007963267107333629, -0.000902436824883788],
+            [-0.0015926529164870503, -0.9999987317275396, 2.223982449126554e-16, 1.4847994725095706],
+        ],
+    ),
+    (
+        (0.3, -1.1, 2.0, -0.7, 1.2, -2.5),
+        [
+            [0.3788829710840468, -0.5199404413445418, 0.7655779723039114, 0.6199348180460307],
+            [-0.6644042140885603, 0.42304102071896754, 0.6161195785644346, 0.4182673501726178],
+            [-0.6442163724432094, -0.7420904474816378, -0.18516758148394918, 0.13998999333582632],
+        ],
+    ),
+    (
+        (-5.5, 4.0, -3.0, 6.1, -0.4, 2.2),
+        [
+            [0.5189327417893931, -0.1648987006565875, -0.8387593385594655, -0.34751074703394313],
+            [0.8400260977899763, 0.28010316453677886, 0.46464865462866434, 0.0512464543670122],
+            [0.15831918560518352, -0.9457011344702146, 0.28387391520014676, 0.11449273435162129],
+        ],
+    ),
+]
 # physical_parameters.yaml: mass, cog (in UR's link frame), rotation (roll of the tensor's frame), tensor
 PHYSICAL = {
     "shoulder_link": (
@@ -167,3 +238,50 @@ def test_limits_are_urs(ours):
         assert limit.effort == effort and limit.velocity == pytest.approx(math.radians(velocity), rel=1e-15), name
         assert limit.lower == pytest.approx(-math.radians(position), rel=1e-15), name
         assert limit.upper == pytest.approx(math.radians(position), rel=1e-15), name
+
+
+def _urdf_tree(root):
+    """(links, {joint: (type, parent, child)}) of a parsed URDF."""
+    links = {e.get("name") for e in root.findall("link")}
+    joints = {
+        e.get("name"): (e.get("type"), e.find("parent").get("link"), e.find("child").get("link"))
+        for e in root.findall("joint")
+    }
+    return links, joints
+
+
+def test_the_tree_is_urs_link_by_link_and_joint_by_joint(ours):
+    root = etree.fromstring(read_robot(UR10E).text.encode("utf-8"))
+    links, joints = _urdf_tree(root)
+    assert links == UR_LINKS
+    assert joints == UR_JOINTS
+    # origins, joint by joint: the fixed ones as ur_macro.xacro writes them, the moving ones as its
+    # default_kinematics.yaml places them (to its calibration's rounding, 1e-10)
+    for child, (_, rpy) in FIXED.items():
+        name = next(n for n, (_, _, c) in UR_JOINTS.items() if c == child)
+        assert np.abs(ours.joint_map[name].origin - _pose(0, 0, 0, *rpy)).max() < 1e-15, name
+    for (link, origin), name in zip(KINEMATICS.items(), JOINTS, strict=True):
+        assert ours.joint_map[name].child == link
+        assert np.abs(ours.joint_map[name].origin - _pose(*origin)).max() < 1e-9, name
+
+
+@pytest.mark.parametrize(("q", "before"), TOOL0_BEFORE)
+def test_tool0_is_where_the_example_put_it_before_it_took_urs_names(q, before):
+    found = pose(UR10E, "tool0", in_frame="base_link", at={j: repr(v) for j, v in zip(JOINTS, q, strict=True)})
+    assert np.abs(found.matrix[:3] - np.array(before)).max() <= 1e-12
+
+
+@pytest.mark.parametrize("mode", ["inline", "copy"])
+def test_mounted_as_urs_macro_mounts_it(tmp_path, mode):
+    # UR's ur.urdf.xacro: a link world and ur_robot(tf_prefix, parent="world") -> base_joint, world -> base_link; here
+    # the entry's world:=true (a scene's instance, the macro's parent too), with a prefix as UR's tf_prefix
+    out = tmp_path / "ur10e_description"
+    xacrokit.generate(UR10E, out, macros=mode)
+    text = xacrokit.expand(
+        out / "urdf" / "ur10e.urdf.xacro", {"world": "true", "prefix": "left_"}, package_paths={out.name: out}
+    )
+    links, joints = _urdf_tree(etree.fromstring(text.encode("utf-8")))
+    expected = {"left_base_joint": ("fixed", "world", "left_base_link")}
+    expected |= {"left_" + name: (kind, "left_" + p, "left_" + c) for name, (kind, p, c) in UR_JOINTS.items()}
+    assert joints == expected
+    assert links == {"world"} | {"left_" + name for name in UR_LINKS}

@@ -141,6 +141,24 @@ def test_dh_arm_names_frames_as_documented(expand, tmp_path_factory):
     assert floats(joints["p_tool0_joint"].find("origin").get("xyz")) == pytest.approx([0.1, 0.0, 0.0], abs=1e-15)
 
 
+def test_dh_arm_without_a_base_hangs_its_first_joint_on_parent_and_names_the_tool_joint(expand, tmp_path_factory):
+    # Universal Robots' shape: shoulder_pan_joint on base_link_inertia, flange on wrist_3-flange
+    folder = tmp_path_factory.mktemp("no_base")
+    (folder / "t.yaml").write_text(yaml.safe_dump({"joints": [dict(ONE_ROW)]}), encoding="utf-8")
+    doc = xacro_doc(
+        f"""<link name="p_base_link_inertia"/>
+        <xacro:dh_arm prefix="p_" parent="p_base_link_inertia" base="" tool="flange" tool_joint="l1-flange"
+                      table="${{xacro.load_yaml('{folder / "t.yaml"}')['joints']}}"><origin/></xacro:dh_arm>""",
+        includes=("dh",),
+    )
+    root = expand(doc)
+    assert sorted(e.get("name") for e in root.iter("link")) == ["p_base_link_inertia", "p_flange", "p_l1"]
+    joints = {e.get("name"): (e.find("parent").get("link"), e.find("child").get("link")) for e in root.iter("joint")}
+    assert joints == {"p_j1": ("p_base_link_inertia", "p_l1"), "p_l1-flange": ("p_l1", "p_flange")}
+    first = root.find("joint[@name='p_j1']/origin")
+    assert floats(first.get("xyz")) == [0.0, 0.0, 0.2] and floats(first.get("rpy")) == [0.0, 0.0, 0.0]
+
+
 BAD_ROWS = [
     ({"alpha": None}, "table[0].alpha must be a finite number"),
     ({"alpha": "pi/2"}, "table[0].alpha must be a finite number (rad), got 'pi/2'"),

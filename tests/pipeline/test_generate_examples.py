@@ -82,8 +82,11 @@ def test_names_and_counts_match_the_spec(example):
             joints.add(optical + "_joint")
     for arm_name, arm in spec.get("arms", {}).items():
         tool = arm.get("tool", {}).get("name", "tool0")
-        links |= {f"{arm_name}_base", tool, *(row["link"] for row in arm["joints"])}
-        joints |= {f"{arm_name}_base_joint", f"{tool}_joint", *(row["name"] for row in arm["joints"])}
+        links |= {tool, *(row["link"] for row in arm["joints"])}
+        joints |= {arm.get("tool", {}).get("joint", f"{tool}_joint"), *(row["name"] for row in arm["joints"])}
+        if arm.get("base", True):  # (base: false: the first joint hangs on parent, no ARM_base)
+            links.add(f"{arm_name}_base")
+            joints.add(f"{arm_name}_base_joint")
     urdf_links = [e.get("name") for e in root.findall("link")]
     urdf_joints = [e.get("name") for e in root.findall("joint")]
     assert sorted(urdf_links) == sorted(links) and len(urdf_links) == len(set(urdf_links))

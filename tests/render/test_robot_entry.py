@@ -10,7 +10,6 @@ import xacrokit
 from conftest import ROBOT_EXAMPLES
 from xacrokit.emit import joint_element, link_element, urdf_differences
 from xacrokit.expansion.xacro_expand import expand_file
-from xacrokit.model import mount_joint_name
 from xacrokit.pipeline import build_robot
 from xacrokit.render import render_package, simple_shape_link
 from xacrokit.render.control import controllers
@@ -63,7 +62,7 @@ def test_the_robot_is_written_once_in_its_macro_file(mode):
         macro = etree.fromstring(files[macro_file].encode())
         (definition,) = macro.findall(f"{XACRO}macro[@name='{robot.name}']")
         mount = definition.find(f"{XACRO}if/joint")
-        assert mount.get("name") == "${prefix}" + mount_joint_name(robot.root)
+        assert mount.get("name") == "${prefix}" + robot.mount_joint_name
         written = {e.get("name") for e in definition.iter("link", "joint")} - {mount.get("name")}
         if mode == "inline":
             assert written == {"${prefix}" + n for n in (*robot.link_names, *robot.joint_names)}, spec.name

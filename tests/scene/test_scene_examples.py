@@ -31,6 +31,14 @@ def test_bin_sorting_cell_prefixes_every_name_and_mounts_as_specified(cell):
     mount = root.find("joint[@name='left_gripper_gripper_base_mount_joint']")
     assert mount.find("parent").get("link") == "left_tool0"
     assert by_name["arm"].parent == "table_top"
+    # the UR10e mounted as UR's macro mounts it (ur_robot with tf_prefix left_): base_joint to left_base_link, and
+    # shoulder_pan_joint straight on base_link_inertia (issue 42)
+    arm_mount = root.find("joint[@name='left_base_joint']")
+    assert (arm_mount.find("parent").get("link"), arm_mount.find("child").get("link")) == (
+        "table_top",
+        "left_base_link",
+    )
+    assert root.find("joint[@name='left_shoulder_pan_joint']/parent").get("link") == "left_base_link_inertia"
     mimic = root.find("joint[@name='left_gripper_right_finger_joint']/mimic")
     assert mimic.get("joint") == "left_gripper_left_finger_joint"  # the mimic reference is prefixed too
     control = {c.get("name"): [j.get("name") for j in c.findall("joint")] for c in root.findall("ros2_control")}
