@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, Any, NoReturn
 from .. import __version__
 from ..errors import XacrokitError
 from ..shared.progress_line import Progress
-from ..shared.terminal_text import printable
+from ..shared.terminal_text import controls_escaped, printable
 from .arguments import (
     add_force_option,
     add_robot_options,
@@ -566,7 +566,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 def _lines(exc: object) -> str:
     """An error's text for the terminal: its lines kept (a spec's errors, one a line), everything else outside text may
     hold escaped (an ESC or a carriage return in a file name cannot rewrite the terminal or forge a line's start)."""
-    return "\n".join(printable(line) for line in str(exc).split("\n"))
+    return "\n".join(controls_escaped(line) for line in str(exc).split("\n"))
 
 
 INTERNAL_ERROR = 70  # EX_SOFTWARE (sysexits.h): no input may lead here; the tests feed every bad input class

@@ -29,3 +29,11 @@ def _escaped(ch: str) -> str:
     if code < 0x100:
         return f"\\x{code:02x}"
     return f"\\u{code:04x}" if code < 0x10000 else f"\\U{code:08x}"
+
+
+def controls_escaped(text: object) -> str:
+    """``text`` with each character that is not printable written as its escape, backslashes left as they are: for
+    messages whose names were escaped where they were written (a second pass must not double their backslashes),
+    as a last guard that no ESC or carriage return reaches the terminal."""
+    said = str(text)
+    return said if said.isprintable() else "".join(ch if ch.isprintable() else _escaped(ch) for ch in said)
