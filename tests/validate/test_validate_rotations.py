@@ -218,7 +218,7 @@ def test_the_table_of_forms_in_docs_spec_writes_one_rotation(tmp_path):
     page = (REPO / "docs" / "spec.md").read_text(encoding="utf-8")
     block = re.search(r"One rotation written each way.*?```yaml\n(.*?)```", page, flags=re.S).group(1)
     forms = yaml.safe_load(block)
-    assert list(forms) == ["rpy", "quat", "quat_wxyz", "rotvec", "axis_angle", "matrix", "euler"]
+    assert list(forms) == ["rpy", "quat", "quat_wxyz", "rotvec", "axis_angle", "matrix", "euler", "points"]
     for name, value in forms.items():
         rpy = camera_rpy(tmp_path, {name: value})
         assert np.allclose(rpy_matrix(*rpy), rpy_matrix(0.1, 0.2, 0.3), rtol=0, atol=2e-7), name
