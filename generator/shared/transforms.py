@@ -263,8 +263,9 @@ def rotation_forms(matrix: np.ndarray, *, euler: str = "XYZ") -> dict[str, Any]:
     """A rotation matrix in every form an origin takes, each as an origin writes it: rpy (URDF's, pitch in
     [-pi/2, pi/2], one split at gimbal lock: :func:`canonical_rpy`), quat_xyzw and quat_wxyz (w >= 0), rotvec (axis x
     angle, by scipy), axis_angle ({axis, angle}; angle in [0, pi], the axis [0, 0, 1] at angle 0), the matrix, euler
-    ({intrinsic: XYZ, angles} or {extrinsic: xyz, angles} for ``euler``, scipy's sequence; scipy's angles, the third
-    0 at gimbal lock) and points ({P, Q, R}: P the origin, Q and R one along the frame's X and Y)."""
+    ({intrinsic: XYZ, angles} or {extrinsic: xyz, angles} for ``euler``, scipy's sequence; scipy's angles: within
+    1e-7 rad of the sequence's own gimbal lock scipy sets the third angle to 0, and they give the rotation to that
+    1e-7 only) and points ({P, Q, R}: P the origin, Q and R one along the frame's X and Y)."""
     from scipy.spatial.transform import Rotation  # (heavy: scipy, loaded by the features that print rotations)
 
     rows = np.asarray(matrix, dtype=float)
