@@ -243,6 +243,9 @@ def _structure_message(error: jsonschema.ValidationError, path: PathKey) -> Mess
             False,
         )
     if keyword == "oneOf" and path and path[-1] == "collision":
+        inner = _within_its_form(error)
+        if inner is not None:  # (a mapping or a list, wrong within: say what, where, not that it is no collision)
+            return _schema_message(inner)
         return path, "collision must be same, none, a mapping with a shape (and an origin), or a list of them", False
     if keyword == "maxProperties" and path == ("instances",):
         return (
@@ -254,6 +257,14 @@ def _structure_message(error: jsonschema.ValidationError, path: PathKey) -> Mess
     if keyword in ("minProperties", "maxProperties") and "box" in error.schema.get("properties", {}):
         return path, "a shape needs exactly one of box, cylinder, sphere, mesh", False
     return None
+
+
+def _within_its_form(error: jsonschema.ValidationError) -> jsonschema.ValidationError | None:
+    """The error within the one form of a oneOf that a value has the shape of (a collision mapping with an unknown key
+    or a wrong origin, a list with a wrong entry), or None when the value itself is none of the forms (a number, an
+    empty list: the oneOf's own words say what would be right)."""
+    within = [e for e in error.context or () if e.relative_path or e.validator == "additionalProperties"]
+    return jsonschema.exceptions.best_match(within) if within else None
 
 
 def _bound_message(error: jsonschema.ValidationError, path: PathKey) -> Message | None:

@@ -513,3 +513,27 @@ def test_the_lectures_axis_angle_formulas_on_the_docs_numbers():
     assert np.abs(Rotation.from_rotvec(math.pi * axis).as_matrix() - half).max() <= 1e-15
     for origin in ({"matrix": half.tolist()}, {"axis_angle": {"axis": [1, 1, 0], "angle": "180 deg"}}):
         assert np.abs(rpy_matrix(*camera_rpy(origin)) - half).max() <= 1e-12, origin
+
+
+@pytest.mark.parametrize(
+    ("origin", "where", "words"),
+    [
+        ({"euler": {"angles": [0, 0, 0]}}, "origin.euler", "euler needs its sequence, said one way"),
+        ({"euler": {"intrinsic": "XYZ", "sequence": "XYZ", "angles": [0, 0, 0]}}, "origin.euler.sequence", "once"),
+        ({"points": {"P": [0, 0, 0], "Q": [1, 0, 0]}}, "origin.points", "'R' is required"),
+    ],
+)
+def test_within_a_collision_the_origins_own_words(origin, where, words):
+    """A collision is one of several forms (same, none, a mapping, a list): a wrong origin inside its mapping is said
+    in the origin's words, where it stands, not as 'collision must be same, none, ...'."""
+    spec = yaml.safe_load(yaml.safe_dump(SPEC))
+    spec["links"]["camera"]["collision"] = {"shape": {"box": {"size": [0.02, 0.08, 0.02]}}, "origin": origin}
+    with pytest.raises(SpecErrors) as caught:
+        validate(load_text(yaml.safe_dump(spec, sort_keys=False), "rot.yaml"))
+    (error,) = caught.value.errors
+    assert error.path == f"$.links.camera.collision.{where}" and words in error.message, error
+    spec["links"]["camera"]["collision"] = []  # (a value of none of the forms: the collision's own words, as before)
+    with pytest.raises(SpecErrors) as caught:
+        validate(load_text(yaml.safe_dump(spec, sort_keys=False), "rot.yaml"))
+    (error,) = caught.value.errors
+    assert error.path == "$.links.camera.collision" and "collision must be same, none" in error.message
