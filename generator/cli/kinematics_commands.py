@@ -18,7 +18,40 @@ if TYPE_CHECKING:
     from ..reader.kinematic_model import LimitWarning
     from ..reader.read_robot import ReadRobot
 
-ROTATION_FORMS = ("rpy", "quat_xyzw", "quat_wxyz", "rotvec", "matrix")
+ROTATION_FORMS = ("rpy", "quat_xyzw", "quat_wxyz", "rotvec", "axis_angle", "matrix", "points")
+EULER_FORMS = ("euler", "intrinsic", "extrinsic")  # (euler:SEQ scipy's case; intrinsic:AXES, extrinsic:AXES said)
+
+
+def rotation_form(text: str) -> str:
+    """``--rotation``'s value, checked: one of :data:`ROTATION_FORMS`, or Euler angles as ``euler:XYZ`` (scipy's
+    sequence: upper case intrinsic, lower case extrinsic), ``intrinsic:ZYZ`` or ``extrinsic:xyz`` (the kind said, the
+    axes in either case), the same twelve sequences an origin's ``euler`` takes."""
+    from ..validate.quantities import EULER_SEQUENCES, euler_axes_problem, euler_sequence_problem  # (start-up)
+
+    if text in ROTATION_FORMS:
+        return text
+    kind, colon, axes = text.partition(":")
+    if not colon or kind not in EULER_FORMS:
+        forms = ", ".join(ROTATION_FORMS)
+        raise argparse.ArgumentTypeError(
+            f"{comment_text(text)!r} is no rotation form: give one of {forms}, or Euler angles as euler:XYZ (upper "
+            "case intrinsic, lower case extrinsic), intrinsic:ZYZ or extrinsic:xyz"
+        )
+    if kind == "euler" and axes not in EULER_SEQUENCES:
+        raise argparse.ArgumentTypeError(euler_sequence_problem(axes))
+    if kind != "euler" and axes.upper() not in EULER_SEQUENCES:
+        raise argparse.ArgumentTypeError(euler_axes_problem(kind, axes))
+    return f"{kind}:{axes}"
+
+
+def euler_sequence(form: str) -> str | None:
+    """scipy's sequence of a checked ``--rotation`` Euler form (intrinsic upper case, extrinsic lower), else None."""
+    kind, _, axes = form.partition(":")
+    if kind == "intrinsic":
+        return axes.upper()
+    if kind == "extrinsic":
+        return axes.lower()
+    return axes if kind == "euler" else None
 
 
 def add_kinematics_commands(commands: Any) -> None:
@@ -31,7 +64,15 @@ def add_kinematics_commands(commands: Any) -> None:
         "yaw), the quaternion (x, y, z, w) and the 4x4 matrix T_IN_FRAME. ROBOT is a spec, URDF or xacro document.",
     )
     _common(pose)
-    pose.add_argument("--rotation", choices=ROTATION_FORMS, default="rpy", help="the form --json's rotation takes")
+    pose.add_argument(
+        "--rotation",
+        type=rotation_form,
+        default="rpy",
+        metavar="FORM",
+        help=f"the rotation also in this form (--json: as `rotation`): {', '.join(ROTATION_FORMS)}, or Euler angles "
+        "as euler:XYZ (upper case intrinsic, lower case extrinsic), intrinsic:ZYZ or extrinsic:xyz, any of the 12 "
+        "sequences (default: rpy)",
+    )
     pose.add_argument(
         "--point",
         metavar="X,Y,Z",
@@ -233,6 +274,9 @@ def _cmd_pose(args: argparse.Namespace) -> int:
     lines.append("  quat_xyzw  " + _row(described["quat_xyzw"]))
     lines += ["  matrix     " + _row(row) for row in described["matrix"][:1]]
     lines += ["             " + _row(row) for row in described["matrix"][1:]]
+    if args.rotation not in ("rpy", "quat_xyzw", "matrix"):
+        label = "euler" if euler_sequence(args.rotation) else args.rotation
+        lines.append(f"  {label:<10} {_form_text(described['rotation']['value'])}")
     if "point" in described:
         point = comment_text(args.point)
         lines.append(f"  point      {_row(described['point'])}  m in {in_frame} ({point} in {frame})")
@@ -279,6 +323,15 @@ def _cmd_jacobian(args: argparse.Namespace) -> int:
     return 0
 
 
+def _form_text(value: Any) -> str:
+    """A rotation form's value on one line: numbers as the rows print them, a mapping's keys named."""
+    if isinstance(value, dict):
+        return "  ".join(f"{key} {_form_text(part)}" for key, part in value.items())
+    if isinstance(value, list) and value and isinstance(value[0], list):
+        return "  ".join(_row(row) for row in value)
+    return _row(value) if isinstance(value, list) else str(value) if isinstance(value, str) else _row([value]).strip()
+
+
 def pose_dict(matrix: Any, rotation: str = "rpy") -> dict[str, Any]:
     """A 4x4 pose as the commands print it: xyz, rpy (URDF), quat_xyzw (w >= 0), the matrix, and ``rotation`` in the
     form named (:func:`xacrokit.shared.transforms.rotation_forms`)."""
@@ -286,13 +339,14 @@ def pose_dict(matrix: Any, rotation: str = "rpy") -> dict[str, Any]:
 
     from ..shared.transforms import rotation_forms  # (heavy: numpy)
 
-    forms = rotation_forms(np.asarray(matrix)[:3, :3])
+    sequence = euler_sequence(rotation)
+    forms = rotation_forms(np.asarray(matrix)[:3, :3], **({"euler": sequence} if sequence else {}))
     return {
         "xyz": [float(v) for v in np.asarray(matrix)[:3, 3]],
         "rpy": forms["rpy"],
         "quat_xyzw": forms["quat_xyzw"],
         "matrix": [[float(v) for v in row] for row in np.asarray(matrix)],
-        "rotation": {"form": rotation, "value": forms[rotation]},
+        "rotation": {"form": rotation, "value": forms["euler" if sequence else rotation]},
     }
 
 
