@@ -11,7 +11,6 @@ from conftest import MACRO_DEMO, REPO, ROBOT_EXAMPLES, gen_robot
 from xacrokit.check import check
 from xacrokit.reader.robot_input import RobotInput
 
-
 # The course's own robots keep the course's numbers, and check says where they fall short: that is the lesson
 # (examples/robots/simple_humanoid.yaml's comment). Exactly these findings, nothing else, and no error.
 LESSONS = {
