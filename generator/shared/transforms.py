@@ -75,19 +75,9 @@ def screw_pose(
     standard-DH row (DH frame i is the link frame moved by Tx(a) Rx(alpha)). Its twin _xacrokit_origin_after_x_screw
     (macros/_inc/frames.xacro) computes the same: same operations, same order, each number + 0.0 (no -0.0)."""
     x, y, z = xyz
-    roll, pitch, yaw = rpy
     ca, sa = math.cos(alpha), math.sin(alpha)
-    cr, sr, cp, sp, cy, sy = (
-        math.cos(roll),
-        math.sin(roll),
-        math.cos(pitch),
-        math.sin(pitch),
-        math.cos(yaw),
-        math.sin(yaw),
-    )
-    b00, b01, b02 = cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr
-    b10, b11, b12 = sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr
-    b20, b21, b22 = -sp, cp * sr, cp * cr
+    # (R(rpy) multiplied out, entry for entry as the macro writes it: rpy_matrix)
+    (b00, b01, b02), (b10, b11, b12), (b20, b21, b22) = (map(float, row) for row in rpy_matrix(*rpy))
     r00, r01, r02 = b00, b01, b02
     r10, r11, r12 = ca * b10 - sa * b20, ca * b11 - sa * b21, ca * b12 - sa * b22
     r20 = sa * b10 + ca * b20
