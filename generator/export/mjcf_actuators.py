@@ -160,7 +160,9 @@ def compensate_gravity(world: Any, acts: Any, equality: Any) -> None:
     effort limit). A body below anything else (a free base, a wheel, a joint without a servo) keeps its weight."""
     servos = {a.get("joint"): a for a in acts if a.tag == "position"}
     follows = {e.get("joint1"): e.get("joint2") for e in (equality if equality is not None else [])}
-    driven = set(servos) | {joint for joint, leader in follows.items() if leader in servos}
+    driven = set(servos)
+    while grown := {joint for joint, leader in follows.items() if leader in driven} - driven:
+        driven |= grown  # (a mimic of a mimic: driven through its chain, as keyframes and ros2_control follow it)
     held: set[str] = set()
     stack = [(body, False) for body in world.findall("body")]
     while stack:

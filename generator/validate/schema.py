@@ -305,7 +305,7 @@ def _type_message(error: jsonschema.ValidationError, path: PathKey) -> Message |
         return path, _not_a_mapping(path, error), False
     if keyword == "type" and not path:
         return path, f"a spec is a mapping (robot:, links:, ...), got {type(error.instance).__name__}", False
-    if keyword == "type" and error.validator_value in _PLAIN_TYPES:
+    if keyword == "type" and isinstance(error.validator_value, str) and error.validator_value in _PLAIN_TYPES:
         return path, f"expected {_PLAIN_TYPES[error.validator_value](error.schema)}, got {error.instance!r}", False
     return None
 
