@@ -201,15 +201,7 @@ def motion_of(sizing: Sizing, robot: LoadedRobot) -> Motion | None:
         elif "duration" in point:
             message = "the first waypoint is where the cycle starts: no segment arrives at it to last (give duration "
             read.errors.append(raw.error(("motion", "waypoints", 0, "duration"), message + "on a later waypoint)"))
-        for name, value in point.items():
-            if name in ("pose", "duration"):
-                continue
-            where: PathKey = ("motion", "waypoints", index, name)
-            if name not in names:
-                read.errors.append(raw.error(where, f"{name!r} is not a moving joint{did_you_mean(name, names)}"))
-                continue
-            joint = robot.joints[names.index(name)]
-            current[names.index(name)] = read.quantity(value, "length" if joint.kind == "prismatic" else "angle", where)
+        _set_joint_values(read, robot, point, index, current)
         waypoints.append(tuple(current))
     # (every segment given a duration: a quintic needs no limit, the duration fixes it; a trapezoid's ramps still
     # take the acceleration limit)
@@ -238,6 +230,23 @@ def motion_of(sizing: Sizing, robot: LoadedRobot) -> Motion | None:
     if too_long is not None:
         raise SpecErrors([too_long])
     return motion
+
+
+def _set_joint_values(
+    read: _Reader, robot: LoadedRobot, point: dict[str, Any], index: int, current: list[float]
+) -> None:
+    """Write a waypoint's joint values (rad or m, units read) into ``current``, in the robot's joint order; an unknown
+    joint is a located error."""
+    names = [j.name for j in robot.joints]
+    for name, value in point.items():
+        if name in ("pose", "duration"):
+            continue
+        where: PathKey = ("motion", "waypoints", index, name)
+        if name not in names:
+            read.errors.append(read.raw.error(where, f"{name!r} is not a moving joint{did_you_mean(name, names)}"))
+            continue
+        joint = robot.joints[names.index(name)]
+        current[names.index(name)] = read.quantity(value, "length" if joint.kind == "prismatic" else "angle", where)
 
 
 def _duration_errors(raw: RawSpec, motion: Motion, robot: LoadedRobot, data: dict[str, Any]) -> list[SpecError]:
