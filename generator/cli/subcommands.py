@@ -6,8 +6,9 @@ from __future__ import annotations
 from typing import Any
 
 from .export_command import add_export_command
+from .ik_command import add_ik_command
 from .import_command import add_import_command
-from .kinematics_commands import add_ik_command, add_kinematics_commands
+from .kinematics_commands import add_kinematics_commands
 from .size_commands import add_report_command, add_size_command
 from .view_commands import add_view_commands
 
