@@ -318,6 +318,19 @@ class _Parser(argparse.ArgumentParser):
         self.print_usage(sys.stderr)
         self.exit(2, f"gen-robot: error: {_lines(message)}\n")
 
+    def _parse_optional(self, arg_string: str) -> Any:
+        """A word that starts with '-' and then a digit, or '-.' and a digit, is a value (``--to -0.5,0.3,0.5``,
+        ``--q -30deg,10deg``, ``--load -1,0,0@tool0``), never an option: argparse's own test calls only a bare
+        negative number (``-1``, ``-.5``) a value, and the rest "expected one argument". No gen-robot option starts
+        with a digit. (None is what argparse's classifier answers for a positional word; every command's parser is
+        this class, as ``add_subparsers`` makes its parsers of its parent's class.)"""
+        if _NUMBER_LIKE.match(arg_string) and arg_string not in self._option_string_actions:
+            return None
+        return super()._parse_optional(arg_string)
+
+
+_NUMBER_LIKE = re.compile(r"-\.?[0-9]")
+
 
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(
