@@ -7,17 +7,20 @@ from __future__ import annotations
 import argparse
 import contextlib
 import sys
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from typing import TYPE_CHECKING, Any
 
 from ..errors import XacrokitError
 from ..shared.value_text import comment_text
 from .arguments import add_robot_options, robot_input
+from .joint_arguments import JOINT_ORDER, Given, at_values, q_values, row_values, texts
 from .json_output import print_json, require_finite
 
 if TYPE_CHECKING:
+    from ..kinematics import Jacobian, Pose
     from ..reader.kinematic_model import LimitWarning
     from ..reader.read_robot import ReadRobot
+    from .rows_file import Row
 
 ROTATION_FORMS = ("rpy", "quat_xyzw", "quat_wxyz", "rotvec", "axis_angle", "matrix", "points")
 EULER_FORMS = ("euler", "intrinsic", "extrinsic")  # (euler:SEQ scipy's case; intrinsic:AXES, extrinsic:AXES said)
@@ -60,9 +63,10 @@ def add_kinematics_commands(commands: Any) -> None:
     pose = commands.add_parser(
         "pose",
         help="where a link or frame is in another at given joint values (forward kinematics, no ROS needed)",
-        description="Print the pose of FRAME in --in (default: the root link) with the joints at --at values "
-        "(0 where not given; a mimic joint follows its leader): xyz (m), rpy (rad, URDF's fixed-axis roll, pitch, "
-        "yaw), the quaternion (x, y, z, w) and the 4x4 matrix T_IN_FRAME. ROBOT is a spec, URDF or xacro document.",
+        description="Print the pose of FRAME in --in (default: the root link) with the joints at --q and --at "
+        "values (0 where not given; a mimic joint follows its leader): xyz (m), rpy (rad, URDF's fixed-axis roll, "
+        "pitch, yaw), the quaternion (x, y, z, w) and the 4x4 matrix T_IN_FRAME; with --configurations, one pose per "
+        "row of a file. ROBOT is a spec, URDF or xacro document.",
     )
     _common(pose)
     pose.add_argument(
@@ -80,23 +84,33 @@ def add_kinematics_commands(commands: Any) -> None:
         help="also a point given in FRAME's axes (m, each within 1e4), expressed in --in: T_IN_FRAME p (an object "
         "a camera sees)",
     )
+    pose.add_argument(
+        "--configurations",
+        metavar="FILE",
+        help="a pose for each row of FILE (a trajectory's frames), the robot read once: a .csv (a header row of joint "
+        "names, or no header and the values in the joints' order) or a .yaml (a list of mappings joint: value, or of "
+        "lists in the joints' order); units as --at takes them; --at overrides a row's value (not with --q)",
+    )
     add_robot_options(pose)
     pose.set_defaults(handler=_cmd_pose)
     jac = commands.add_parser(
         "jacobian",
         help="the geometric Jacobian of a frame's origin (6 x n, linear rows first), and tau = J^T w for a wrench",
-        description="Print the 6 x n geometric Jacobian of FRAME's origin at --at values: rows vx, vy, vz (m/s) and "
-        "wx, wy, wz (rad/s) of FRAME relative to the root link, in --in's axes (default: the root link's), one "
-        "column per moving joint (a mimic joint's motion added to its leader's). --wrench also prints tau = J^T w, "
-        "w the wrench the tool exerts on the environment in --in's axes: the torque each motor adds to exert it.",
+        description="Print the 6 x n geometric Jacobian of FRAME's origin at --q and --at values: rows vx, vy, vz "
+        "(m/s) and wx, wy, wz (rad/s) of FRAME relative to the root link, in --in's axes (default: the root link's), "
+        "one column per moving joint (a mimic joint's motion added to its leader's). --exerts also prints tau = J^T "
+        "w, w the wrench the tool exerts on the environment in --in's axes: the torque each motor adds to exert it "
+        "(size --load takes the opposite: the force the environment applies to the robot).",
     )
     _common(jac)
     jac.add_argument(
-        "--wrench",
+        "--exerts",
         metavar="FX,FY,FZ[,MX,MY,MZ]",
-        help="a force (N) and moment (N*m, each within 1e9) the tool exerts on the environment, in --in's axes: prints "
-        "tau = J^T w",
+        help="the wrench the tool exerts on the environment: force (N) and moment (N*m, each within 1e9), in --in's "
+        "axes at FRAME's origin; prints tau = J^T w (a tool pressing 20 N down: --exerts 0,0,-20)",
     )
+    # (--wrench, its old name, kept one release: the same sign; renamed so that the flag says which side of the load)
+    jac.add_argument("--wrench", metavar="FX,FY,FZ[,MX,MY,MZ]", help="deprecated: --exerts (the same values)")
     add_robot_options(jac)
     jac.set_defaults(handler=_cmd_jacobian)
 
@@ -108,19 +122,23 @@ def read_robot_of(args: argparse.Namespace) -> ReadRobot:
 
 
 @contextlib.contextmanager
-def kinematics_flags(args: argparse.Namespace) -> Iterator[None]:
-    """The kinematics' errors said with the option or argument that named what was wrong."""
+def kinematics_flags(args: argparse.Namespace, given: Mapping[str, Given] | None = None) -> Iterator[None]:
+    """The kinematics' errors said with the option or argument that named what was wrong (a joint's value with
+    where ``given`` says it was given: --at, --q or a file's line; --at without it)."""
     from ..kinematics import MovingFrame  # (heavy: lxml)
     from ..reader.kinematic_model import JointValueError, UnknownName  # (heavy: lxml)
 
+    given = given or {}
     try:
         yield
     except UnknownName as exc:
         flag = "FRAME" if exc.name == args.frame else "--in"
-        flag = f"--at {comment_text(exc.name)}" if exc.role == "joint" else flag
-        raise XacrokitError(f"{flag}: {exc.detail}") from None
+        where = given[exc.name].where if exc.name in given else f"--at {comment_text(exc.name)}"
+        raise XacrokitError(f"{where if exc.role == 'joint' else flag}: {exc.detail}") from None
     except JointValueError as exc:
-        raise XacrokitError(f"--at {comment_text(exc.joint)}={comment_text(exc.text)}: {exc.reason}") from None
+        said = given[exc.joint].said if exc.joint in given else None
+        said = said or f"--at {comment_text(exc.joint)}={comment_text(exc.text)}"
+        raise XacrokitError(f"{said}: {exc.reason}") from None
     except MovingFrame as exc:
         raise XacrokitError(
             f"--in {args.in_frame}: it moves with joint {exc.joint!r}; give a frame fixed to the root"
@@ -135,35 +153,31 @@ def _common(parser: argparse.ArgumentParser) -> None:
         "--at",
         action="append",
         default=[],
-        metavar="NAME=VALUE",
-        help="a joint's value, e.g. joint_1=30deg or slider=0.1m (rad or m without a unit); repeatable, each joint "
-        "once",
+        metavar="NAME=VALUE[,...]",
+        help="joint values by name, e.g. joint_1=30deg or joint_1=30deg,slider=0.1m (rad or m without a unit); "
+        "repeatable, each joint once; overrides --q's value of a joint it names",
+    )
+    parser.add_argument(
+        "--q",
+        metavar="V1,V2,...",
+        help=f"every joint's value, in order (units as --at, e.g. 30deg,-0.5,0.1m): {JOINT_ORDER}",
     )
     parser.add_argument("--json", action="store_true", help="print JSON")
 
 
-def _values(args: argparse.Namespace) -> dict[str, str]:
-    """The --at values by joint name; a joint given twice is refused (which one was meant is not for us to guess)."""
-    given: dict[str, str] = {}
-    for item in args.at:
-        name, sign, value = item.partition("=")
-        if not sign or not name.strip() or not value.strip():
-            raise XacrokitError(f"--at {comment_text(item)!r}: give NAME=VALUE, e.g. joint_1=30deg")
-        name = name.strip()
-        if name in given:
-            raise XacrokitError(
-                f"--at {comment_text(name)}: the joint is given twice ({comment_text(given[name])} and "
-                f"{comment_text(value.strip())}): give each joint once"
-            )
-        given[name] = value.strip()
-    return given
-
-
-def _warn(warnings: list[LimitWarning]) -> None:
+def _warn(warnings: list[LimitWarning], given: Mapping[str, Given]) -> None:
     for warning in warnings:
-        sys.stderr.write(
-            f"gen-robot: warning: --at {comment_text(warning.joint)}={comment_text(warning.text)}: {warning.outside}\n"
-        )
+        sys.stderr.write(f"gen-robot: warning: {given[warning.joint].said}: {warning.outside}\n")
+
+
+def _joint_names(robot: ReadRobot) -> list[str]:
+    """The joints one sets, in the file's order (what --q's values and a positional row follow)."""
+    return [joint.name for joint in robot.kinematics.joints]
+
+
+def _given(args: argparse.Namespace, robot: ReadRobot, at: dict[str, Given]) -> dict[str, Given]:
+    """The joint values of --q, with --at's over them (--at names the joints it changes: it wins)."""
+    return {**q_values(args.q, _joint_names(robot)), **at} if args.q is not None else at
 
 
 def _numbers(text: str, kinds: tuple[str, ...], counts: tuple[int, ...], said: str) -> list[float]:
@@ -186,20 +200,63 @@ def _numbers(text: str, kinds: tuple[str, ...], counts: tuple[int, ...], said: s
 def _cmd_pose(args: argparse.Namespace) -> int:
     from ..kinematics import pose  # (heavy: lxml)
 
-    at = _values(args)
+    at = at_values(args.at)
+    if args.configurations is not None:
+        return _pose_rows(args, at)
     robot = read_robot_of(args)
-    with kinematics_flags(args):
-        found = pose(robot, args.frame, in_frame=args.in_frame, at=at)
-    _warn(found.warnings)
-    described = pose_dict(found.matrix, args.rotation)
+    given = _given(args, robot, at)
+    with kinematics_flags(args, given):
+        found = pose(robot, args.frame, in_frame=args.in_frame, at=texts(given))
+    _warn(found.warnings, given)
+    described = _described(found, args, _joint_names(robot))
+    if args.json:
+        print_json(described)
+        return 0
+    sys.stdout.write(_pose_text(found, described, args, ""))
+    return 0
+
+
+def _pose_rows(args: argparse.Namespace, at: dict[str, Given]) -> int:
+    """A pose per row of --configurations, on the robot read once (its kinematic model built once)."""
+    from ..kinematics import pose  # (heavy: lxml)
+    from .rows_file import read_rows  # (start-up: a command's work loads when it runs)
+
+    if args.q is not None:
+        raise XacrokitError("--q and --configurations: the file gives every row's values; give one of them")
+    rows: list[Row] = read_rows(args.configurations)
+    robot = read_robot_of(args)
+    joints = _joint_names(robot)
+    described, shown = [], []
+    for row in rows:
+        given = {**row_values(row, args.configurations, joints), **at}
+        with kinematics_flags(args, given):
+            found = pose(robot, args.frame, in_frame=args.in_frame, at=texts(given))
+        _warn(found.warnings, given)
+        described.append({"line": row.line, **_described(found, args, joints)})
+        if not args.json:
+            shown.append(_pose_text(found, described[-1], args, f"{comment_text(args.configurations)}:{row.line}: "))
+    if args.json:
+        print_json(described)
+    else:
+        sys.stdout.write("".join(shown))
+    return 0
+
+
+def _described(found: Pose, args: argparse.Namespace, joints: list[str]) -> dict[str, Any]:
+    """A pose as --json prints it: the frames, the joints one sets (their order: --q's) and their values, the pose
+    in every form, and --point's image."""
+    described: dict[str, Any] = {"frame": found.frame, "in": found.in_frame, "joints": joints}
+    described["values"] = {name: float(found.values.get(name, 0.0)) for name in joints}
+    described |= pose_dict(found.matrix, args.rotation)
     if args.point is not None:
         described["point"] = _point(args.point, found.matrix)
     require_finite(described, "the pose")  # (in text too: never inf or NaN as an answer)
-    if args.json:
-        print_json({"frame": found.frame, "in": found.in_frame, **described})
-        return 0
+    return described
+
+
+def _pose_text(found: Pose, described: dict[str, Any], args: argparse.Namespace, where: str) -> str:
     frame, in_frame = comment_text(found.frame), comment_text(found.in_frame)  # (names as text: no control codes)
-    lines = [f"pose of {frame} in {in_frame}{_at(found.values)}:"]
+    lines = [f"{where}pose of {frame} in {in_frame}{_at(found.values)}:"]
     lines.append("  xyz        " + _row(described["xyz"]) + "  m")
     lines.append("  rpy        " + _row(described["rpy"]) + "  rad (URDF: R = Rz(y) Ry(p) Rx(r))")
     lines.append("  quat_xyzw  " + _row(described["quat_xyzw"]))
@@ -211,23 +268,38 @@ def _cmd_pose(args: argparse.Namespace) -> int:
     if "point" in described:
         point = comment_text(args.point)
         lines.append(f"  point      {_row(described['point'])}  m in {in_frame} ({point} in {frame})")
-    sys.stdout.write("\n".join(lines) + "\n")
-    return 0
+    return "\n".join(lines) + "\n"
+
+
+def _wrench(args: argparse.Namespace) -> tuple[str, str] | None:
+    """The wrench the tool exerts, with the flag it was given by (--exerts, or --wrench: deprecated, said)."""
+    if args.exerts is not None and args.wrench is not None:
+        raise XacrokitError("--exerts and --wrench: --wrench is --exerts' old name; give --exerts alone")
+    if args.wrench is not None:
+        sys.stderr.write(
+            "gen-robot jacobian: warning: --wrench is deprecated: use --exerts (the same values: the wrench the tool "
+            "exerts on the environment, tau = J^T w; size --load takes the opposite, the force on the robot)\n"
+        )
+        return "--wrench", args.wrench
+    return None if args.exerts is None else ("--exerts", args.exerts)
 
 
 def _cmd_jacobian(args: argparse.Namespace) -> int:
     from ..kinematics import jacobian, joint_torques  # (heavy: lxml)
 
-    at = _values(args)
+    at = at_values(args.at)
+    wrench = _wrench(args)
     robot = read_robot_of(args)
-    with kinematics_flags(args):
-        found = jacobian(robot, args.frame, in_frame=args.in_frame, at=at)
-    _warn(found.pose.warnings)
+    given = _given(args, robot, at)
+    with kinematics_flags(args, given):
+        found = jacobian(robot, args.frame, in_frame=args.in_frame, at=texts(given))
+    _warn(found.pose.warnings, given)
     torques = None
-    if args.wrench is not None:
-        said = f"--wrench {args.wrench!r}: give FX,FY,FZ or FX,FY,FZ,MX,MY,MZ (N, N*m)"
+    if wrench is not None:
+        flag, text = wrench
+        said = f"{flag} {text!r}: give FX,FY,FZ or FX,FY,FZ,MX,MY,MZ (N, N*m)"
         kinds = ("force",) * 3 + ("torque",) * 3
-        torques = joint_torques(found, _numbers(args.wrench, kinds, (3, 6), said))
+        torques = joint_torques(found, _numbers(text, kinds, (3, 6), said))
     rows = [[float(v) for v in row] for row in found.matrix]
     out: dict[str, Any] = {"frame": found.pose.frame, "in": found.pose.in_frame, "joints": found.joints}
     out["jacobian"] = rows
@@ -237,10 +309,14 @@ def _cmd_jacobian(args: argparse.Namespace) -> int:
     if args.json:
         print_json(out)
         return 0
+    sys.stdout.write(_jacobian_text(found, rows, torques))
+    return 0
+
+
+def _jacobian_text(found: Jacobian, rows: list[list[float]], torques: Any) -> str:
     frame, in_frame = comment_text(found.pose.frame), comment_text(found.pose.in_frame)  # (no control codes)
     if not found.joints:
-        sys.stdout.write(f"{frame}: the robot has no joint to move: its Jacobian has no column\n")
-        return 0
+        return f"{frame}: the robot has no joint to move: its Jacobian has no column\n"
     names = [comment_text(n) for n in found.joints]
     width = max([len(n) for n in names] + [12])
     lines = [f"jacobian of {frame}'s origin in {in_frame}'s axes{_at(found.pose.values)}:"]
@@ -250,8 +326,7 @@ def _cmd_jacobian(args: argparse.Namespace) -> int:
     if torques is not None:
         lines.append("tau = J^T w (N*m, N for a prismatic joint; the torque each motor adds to exert the wrench):")
         lines += [f"  {name:<{width}} {float(t):.6g}" for name, t in zip(names, torques, strict=True)]
-    sys.stdout.write("\n".join(lines) + "\n")
-    return 0
+    return "\n".join(lines) + "\n"
 
 
 def _form_text(value: Any) -> str:

@@ -34,7 +34,7 @@ def test_pose_takes_a_point_that_starts_with_a_minus_sign(capsys):
 
 
 def test_jacobian_takes_a_wrench_that_starts_with_a_minus_sign(capsys):
-    code, out, err = run(capsys, "jacobian", PLANAR, "tool_link", "--wrench", "-10,0,0", "--json")
+    code, out, err = run(capsys, "jacobian", PLANAR, "tool_link", "--exerts", "-10,0,0", "--json")
     assert code == 0, err
     # (all joints at 0: the arm along x, so a force along x needs no torque of either joint)
     assert json.loads(out)["torques"] == pytest.approx({"joint_1": 0.0, "joint_2": 0.0}, abs=1e-12)

@@ -135,7 +135,7 @@ def test_pose_and_jacobian_as_commands(tmp_path):
     assert np.array(found["matrix"]).shape == (4, 4)
     rotated = gen_robot("pose", PLANAR, "tool_link", "--at", "joint_1=90deg", "--rotation", "rotvec", "--json")
     assert np.abs(np.array(json.loads(rotated.stdout)["rotation"]["value"]) - [0, 0, math.pi / 2]).max() < 1e-12
-    jac = gen_robot("jacobian", PLANAR, "tool_link", "--at", "joint_2=90deg", "--wrench", "0,10,0", "--json")
+    jac = gen_robot("jacobian", PLANAR, "tool_link", "--at", "joint_2=90deg", "--exerts", "0,10,0", "--json")
     assert jac.returncode == 0, jac.stderr
     said = json.loads(jac.stdout)
     assert said["joints"] == ["joint_1", "joint_2"] and len(said["jacobian"]) == 6
@@ -150,7 +150,7 @@ def test_pose_and_jacobian_as_commands(tmp_path):
         (["pose", PLANAR, "tool_link", "--at", "joint_3=1"], "--at joint_3: no moving joint of that name"),
         (["pose", PLANAR, "tool_link", "--at", "joint_1=1 parsec"], "--at joint_1=1 parsec"),
         (["pose", PLANAR, "tool_link", "--at", "joint_1"], "give NAME=VALUE"),
-        (["jacobian", PLANAR, "tool_link", "--wrench", "1,2"], "give FX,FY,FZ or FX,FY,FZ,MX,MY,MZ"),
+        (["jacobian", PLANAR, "tool_link", "--exerts", "1,2"], "give FX,FY,FZ or FX,FY,FZ,MX,MY,MZ"),
     ],
 )
 def test_a_bad_question_is_a_clear_error(argv, words):

@@ -68,7 +68,7 @@ def inputs(tmp_path_factory) -> dict[str, Path]:
 
 COMMANDS = {
     "pose": lambda path, out: ["pose", path, "tool_link", "--at", "joint_1=0.3"],
-    "jacobian": lambda path, out: ["jacobian", path, "tool_link", "--wrench", "0,0,-1"],
+    "jacobian": lambda path, out: ["jacobian", path, "tool_link", "--exerts", "0,0,-1"],
     "ik": lambda path, out: ["ik", path, "tool_link", "--to", "0.5,0.3,0", "--position-only"],
     "size": lambda path, out: ["size", path, "--payload", "1kg@tool_link"],
     "view": lambda path, out: ["view", path, "-o", str(out / "page.html")],
