@@ -39,11 +39,26 @@ from ..reader.kinematic_model import (
 from ..reader.read_robot import ReadRobot, read_robot
 from ..reader.robot_input import RobotInput
 from ..shared.transforms import rpy_matrix
-from .inverse import Chain, distinct, solve, starts
+from .ik_solver import REACHED, IkSolver, MovingFrame, Solution, Solutions
+
+__all__ = [
+    "REACHED",
+    "IkSolver",
+    "Jacobian",
+    "MovingFrame",
+    "Pose",
+    "Robot",
+    "Solution",
+    "Solutions",
+    "ik",
+    "ik_solver",
+    "inverse_kinematics",
+    "jacobian",
+    "joint_torques",
+    "pose",
+]
 
 Robot = ReadRobot | RobotInput | str | os.PathLike[str]  # what the functions take: a read robot (or what to read)
-
-REACHED = 1e-9  # m, or the pose error's norm: a solution farther from the target than this is not one
 
 
 @dataclass(frozen=True)
@@ -175,41 +190,6 @@ def joint_torques(jac: Jacobian, wrench: Sequence[float]) -> np.ndarray:
     return torques
 
 
-class MovingFrame(XacrokitError):
-    """The frame a target is given in (``frame``) moves with a joint (``joint``); the command line says which option
-    named it."""
-
-    def __init__(self, frame: str, joint: str) -> None:
-        super().__init__(f"frame {frame!r} moves with joint {joint!r}; give a frame fixed to the root")
-        self.frame, self.joint = frame, joint
-
-
-@dataclass(frozen=True)
-class Solutions:
-    """What ``ik`` found: the solutions (joint values by name, and the pose error left), in the order of the starts
-    that found them; when there is none, the closest reach instead."""
-
-    frame: str
-    in_frame: str
-    joints: list[str]
-    solutions: list[tuple[dict[str, float], float]]
-    closest: tuple[dict[str, float], float] | None
-
-
-def _chain(robot: KinematicModel, frame: int) -> Chain:
-    columns = {j.name: [(j.v_index, 1.0)] for j in robot.joints}
-    for follower in robot.followers:
-        columns[follower.leader].append((follower.joint.v_index, follower.multiplier))
-    lower = np.array([j.limits[0] if j.limits else -np.pi for j in robot.joints])
-    upper = np.array([j.limits[1] if j.limits else np.pi for j in robot.joints])
-    names = [j.name for j in robot.joints]
-
-    def configuration(values: np.ndarray) -> np.ndarray:
-        return robot.configuration(dict(zip(names, map(float, values), strict=True)))
-
-    return Chain(robot.model, frame, list(columns.values()), lower, upper, configuration, robot.data)
-
-
 def _require_ranges(read: ReadRobot, model: KinematicModel) -> None:
     """What ik searches: a joint to move, each within limits that hold a value."""
     if not model.joints:
@@ -223,6 +203,53 @@ def _require_ranges(read: ReadRobot, model: KinematicModel) -> None:
             )
 
 
+def ik_solver(robot: Robot, frame: str, *, in_frame: str | None = None) -> IkSolver:
+    """The inverse kinematics of ``frame`` with targets in ``in_frame`` (default: the root link; a frame fixed to it)
+    on the read ``robot``: made once per robot, frame and ``in_frame`` (kept on the robot's kinematic model), then
+    :meth:`~.ik_solver.IkSolver.solve` answers any number of targets.
+
+    Raises:
+        XacrokitError: as :func:`pose`, an ``in_frame`` that moves with a joint (:class:`MovingFrame`), a robot
+            without a joint to move, or a joint whose lower limit is above its upper (no value is within them).
+    """
+    read, model = _read(robot)
+    key = (frame, in_frame or model.root)
+    solver = model.solvers.get(key)
+    if solver is None:
+        _require_ranges(read, model)
+        solver = model.solvers[key] = IkSolver(model, frame, in_frame or model.root)
+    assert isinstance(solver, IkSolver)  # (the only kind kept there)
+    return solver
+
+
+def ik(
+    robot: Robot,
+    frame: str,
+    target: np.ndarray | Sequence[Sequence[float]],
+    *,
+    in_frame: str | None = None,
+    every: bool = False,
+    position_only: bool = False,
+) -> Solutions:
+    """Joint values within the limits that put ``frame`` at ``target`` (a 4x4 pose T_IN_FRAME) on the read ``robot``:
+    every branch (``every``), else the one nearest the rest pose (``ik_solver(...).solve(..., near=)`` takes other
+    values). The solver is made on the first call and kept (:func:`ik_solver`): a loop over targets reads and
+    prepares once.
+
+    Raises:
+        as :func:`ik_solver`; XacrokitError: a search whose pose error overflows at every start.
+    """
+    read, _ = _read(robot)
+    solver = ik_solver(read, frame, in_frame=in_frame)
+    with _located(read):
+        try:
+            return solver.solve(target, every=every, position_only=position_only)
+        except XacrokitError as exc:
+            if isinstance(exc, (FollowerValueError, MovingFrame)):
+                raise
+            raise XacrokitError(f"{read.where}: {exc}") from None
+
+
 def inverse_kinematics(
     robot: Robot,
     frame: str,
@@ -234,40 +261,14 @@ def inverse_kinematics(
 ) -> Solutions:
     """Joint values within the limits that put ``frame`` at ``to`` (x, y, z in m, then roll, pitch, yaw in rad,
     URDF's convention; 3 numbers or ``position_only``: the position only) in ``in_frame`` (default: the root link;
-    it must not move with a joint). ``every``: every distinct solution of the STARTS starts, else the first found.
+    it must not move with a joint): :func:`ik` with the target as numbers.
 
     Raises:
-        XacrokitError: as :func:`pose`, an ``in_frame`` that moves with a joint (:class:`MovingFrame`), a robot
-            without a joint to move, a joint whose lower limit is above its upper (no value is within them), or a
-            search whose pose error overflows at every start.
+        as :func:`ik`.
     """
-    import pinocchio as pin  # (heavy: pinocchio)
-
-    read, model = _read(robot)
-    target_id, base = model.frame_id(frame), model.frame_id(in_frame or model.root)
-    if model.model.frames[base].parentJoint != 0:
-        moved_by = model.model.names[model.model.frames[base].parentJoint]
-        raise MovingFrame(in_frame or model.root, moved_by)
-    _require_ranges(read, model)
     position_only = position_only or len(to) == 3
-    with _located(read):
-        _placed(model, model.configuration({}))
-        rotation = rpy_matrix(*to[3:6]) if not position_only else np.eye(3)
-        goal = model.data.oMf[base] * pin.SE3(rotation, np.array(to[:3], dtype=float))
-        chain = _chain(model, target_id)
-        found = []
-        for start in starts(chain, np.zeros(len(model.joints))):
-            values, error = solve(chain, goal, position_only=position_only, start=start)
-            found.append((values, error))
-            if error <= REACHED and not every:
-                break
-    if not any(np.isfinite(error) for _, error in found):
-        said = "ik cannot search: the pose error is beyond what a float holds at every start"
-        raise XacrokitError(f"{read.where}: {said}")
-    names = [j.name for j in model.joints]
-    named = [(dict(zip(names, map(float, v), strict=True)), e) for v, e in found]
-    reached = [
-        (dict(zip(names, map(float, v), strict=True)), e) for v, e in distinct([f for f in found if f[1] <= REACHED])
-    ]
-    closest = None if reached else min(named, key=lambda item: item[1] if np.isfinite(item[1]) else np.inf)
-    return Solutions(frame, in_frame or model.root, names, reached, closest)
+    target = np.eye(4)
+    target[:3, 3] = to[:3]
+    if not position_only:
+        target[:3, :3] = rpy_matrix(*to[3:6])
+    return ik(robot, frame, target, in_frame=in_frame, every=every, position_only=position_only)

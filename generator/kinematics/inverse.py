@@ -21,6 +21,8 @@ ITERATIONS = 500  # steps per start
 STARTS = 16  # starts of `gen-robot ik` (the first one given)
 LONGEST_STEP = 0.5  # rad or m: the most a joint moves in one step
 DISTINCT = 1e-3  # rad or m: two solutions closer than this in every joint are one
+STALL = 40  # steps without halving the error: a start is stuck
+POLISHED = 4  # the best ends of a search that fails polished for the closest reach
 
 
 @dataclass(frozen=True)
@@ -39,39 +41,88 @@ class Chain:
 
 
 def solve(
-    chain: Chain, target: object, *, position_only: bool, start: Sequence[float] | np.ndarray
+    chain: Chain,
+    target: object,
+    *,
+    position_only: bool,
+    start: Sequence[float] | np.ndarray,
+    iterations: int = ITERATIONS,
 ) -> tuple[np.ndarray, float]:
     """Joint values from ``start`` that put the frame at ``target`` (a pinocchio SE3 in the root's frame; its rotation
-    ignored when ``position_only``), kept within the limits; and the pose error left."""
-    import pinocchio as pin  # (heavy: pinocchio)
-
-    model: Any = chain.model
-    data = chain.data if chain.data is not None else model.createData()
-    goal: Any = target
+    ignored when ``position_only``), kept within the limits; and the pose error left. A start that has not halved its
+    error in STALL steps is stuck (against a limit, or in a local minimum out of reach) and ends there."""
     values = np.clip(np.array(start, dtype=float), chain.lower, chain.upper)
-    error = math.inf
-    for _ in range(ITERATIONS):
-        q = chain.configuration(values)
-        pin.framesForwardKinematics(model, data, q)
-        current = data.oMf[chain.frame]
-        if position_only:
-            residual = current.translation - goal.translation
-            full = pin.computeFrameJacobian(model, data, q, chain.frame, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
-            full = np.asarray(full).reshape(6, model.nv)[:3]  # (a 1-DOF robot's comes as a vector)
-        else:
-            residual = pin.log6(goal.actInv(current)).vector
-            full = pin.computeFrameJacobian(model, data, q, chain.frame, pin.ReferenceFrame.LOCAL)
-            full = pin.Jlog6(goal.actInv(current)) @ np.asarray(full).reshape(6, model.nv)
+    error, best = math.inf, (math.inf, 0)
+    for step_count in range(iterations):
+        residual, full = residual_and_jacobian(chain, target, values, position_only=position_only)
         with np.errstate(over="ignore", invalid="ignore"):  # (judged below: a mimic's multiplier of 1e308)
             error = float(np.linalg.norm(residual))
             step = _step(chain, full, residual, error) if TOLERANCE <= error < math.inf else None
         if step is None:  # (reached, or a pose or step that is not finite numbers: the start ends where it is)
+            break
+        if error < 0.5 * best[0]:
+            best = (error, step_count)
+        elif step_count - best[1] > STALL:
             break
         largest = float(np.abs(step).max(initial=0.0))
         if largest > LONGEST_STEP:  # (near a singularity, out of reach: a step that would leap across the range)
             step *= LONGEST_STEP / largest
         values = np.clip(values + step, chain.lower, chain.upper)
     return values, error
+
+
+def residual_and_jacobian(
+    chain: Chain, target: object, values: np.ndarray, *, position_only: bool
+) -> tuple[np.ndarray, np.ndarray]:
+    """The pose error's vector at ``values`` (the position's difference in the root's axes, or the log of the
+    relative pose) and its derivative by pinocchio's velocity columns (6 or 3 x nv)."""
+    import pinocchio as pin  # (heavy: pinocchio)
+
+    model: Any = chain.model
+    data = chain.data if chain.data is not None else model.createData()
+    goal: Any = target
+    q = chain.configuration(values)
+    pin.framesForwardKinematics(model, data, q)
+    current = data.oMf[chain.frame]
+    if position_only:
+        residual = current.translation - goal.translation
+        full = pin.computeFrameJacobian(model, data, q, chain.frame, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+        return residual, np.asarray(full).reshape(6, model.nv)[:3]  # (a 1-DOF robot's comes as a vector)
+    relative = goal.actInv(current)
+    full = pin.computeFrameJacobian(model, data, q, chain.frame, pin.ReferenceFrame.LOCAL)
+    return pin.log6(relative).vector, pin.Jlog6(relative) @ np.asarray(full).reshape(6, model.nv)
+
+
+def closest_reach(
+    chain: Chain, target: object, *, position_only: bool, found: list[tuple[np.ndarray, float]]
+) -> tuple[np.ndarray, float]:
+    """Out of reach: the values within the limits that bring the frame closest to ``target`` (the least pose error),
+    from the POLISHED best ends of the search ``found``, each polished by a bounded quasi-Newton descent on half the
+    squared error (scipy's L-BFGS-B, its gradient J^T r): damped least squares clipped at a limit stops short of the
+    closest point, where the gradient along the limit is not yet zero."""
+    from scipy.optimize import minimize  # (heavy: scipy)
+
+    def cost(values: np.ndarray) -> tuple[float, np.ndarray]:
+        residual, full = residual_and_jacobian(chain, target, values, position_only=position_only)
+        with np.errstate(over="ignore", invalid="ignore"):
+            part = np.array([sum(m * full[:, v] for v, m in drives) for drives in chain.columns]).T
+            value, gradient = 0.5 * float(residual @ residual), part.T @ residual
+        if not (math.isfinite(value) and np.isfinite(gradient).all()):
+            return math.inf, np.zeros(len(values))
+        return value, gradient
+
+    finite = sorted((f for f in found if math.isfinite(f[1])), key=lambda f: f[1])[:POLISHED]
+    best = min(finite, key=lambda f: f[1])
+    bounds = list(zip(chain.lower, chain.upper, strict=True))
+    for values, _ in finite:
+        result = minimize(
+            cost, values, jac=True, method="L-BFGS-B", bounds=bounds, options={"ftol": 1e-15, "gtol": 1e-12}
+        )
+        polished = np.clip(result.x, chain.lower, chain.upper)
+        error = math.sqrt(2 * cost(polished)[0]) if math.isfinite(cost(polished)[0]) else math.inf
+        if error < best[1]:
+            best = (polished, error)
+    return best
 
 
 def _step(chain: Chain, full: np.ndarray, residual: np.ndarray, error: float) -> np.ndarray | None:

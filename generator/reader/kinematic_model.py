@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -120,6 +120,8 @@ class KinematicModel:
     followers: tuple[Follower, ...]
     moving: tuple[KinematicJoint, ...]
     frames: tuple[str, ...]
+    solvers: dict[tuple[str, str], object] = field(default_factory=dict, compare=False, repr=False)
+    """(the inverse kinematics made for a frame and target frame, kept: :func:`xacrokit.kinematics.ik_solver`)"""
 
     def configuration(self, values: Mapping[str, float]) -> np.ndarray:
         """pinocchio's q: the joints at ``values`` (by name; 0 where not given), the followers at their leaders'.

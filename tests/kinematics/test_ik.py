@@ -33,7 +33,7 @@ def test_the_two_link_arm_has_both_elbow_branches(reach, bearing):
     for q2 in (elbow, -elbow):
         q1 = math.atan2(y, x) - math.atan2(L2 * math.sin(q2), L1 + L2 * math.cos(q2))
         expected.append((math.remainder(q1, 2 * math.pi), q2))
-    got = [(values["joint_1"], values["joint_2"]) for values, _ in found.solutions]
+    got = [(s.values["joint_1"], s.values["joint_2"]) for s in found.solutions]
     for q1, q2 in expected:
         assert any(abs(math.remainder(a - q1, 2 * math.pi)) < 1e-9 and abs(b - q2) < 1e-9 for a, b in got), (
             expected,
@@ -60,18 +60,18 @@ def test_every_ur5_solution_reposes_onto_its_target():
     rpy = pin.rpy.matrixToRpy(goal[:3, :3])
     found = inverse_kinematics(UR5, "tool0", [*goal[:3, 3], *rpy], every=True)
     assert len(found.solutions) >= 2
-    for solution, error in found.solutions:
-        assert error < 1e-9
-        again = pose(UR5, "tool0", at={k: repr(v) for k, v in solution.items()}).matrix
+    for solution in found.solutions:
+        assert solution.error < 1e-9
+        again = pose(UR5, "tool0", at={k: repr(v) for k, v in solution.values.items()}).matrix
         assert np.abs(again[:3, 3] - goal[:3, 3]).max() < 1e-9
         assert np.abs(again[:3, :3] - goal[:3, :3]).max() < 1e-9
 
 
 def test_position_only_and_a_target_in_a_frame_fixed_to_the_root():
     found = inverse_kinematics(UR5, "tool0", [0.3, 0.2, 0.4], in_frame="base_link")
-    (solution, error), *_ = found.solutions
-    again = pose(UR5, "tool0", in_frame="base_link", at={k: repr(v) for k, v in solution.items()}).matrix
-    assert error < 1e-9 and np.abs(again[:3, 3] - [0.3, 0.2, 0.4]).max() < 1e-9
+    first, *_ = found.solutions
+    again = pose(UR5, "tool0", in_frame="base_link", at={k: repr(v) for k, v in first.values.items()}).matrix
+    assert first.error < 1e-9 and np.abs(again[:3, 3] - [0.3, 0.2, 0.4]).max() < 1e-9
 
 
 def test_ik_as_a_command(tmp_path):
@@ -93,7 +93,7 @@ def test_ik_as_a_command(tmp_path):
 @pytest.mark.parametrize(
     ("argv", "words"),
     [
-        (["--to", "1,2"], "give X,Y,Z or X,Y,Z,R,P,Y"),
+        (["--to", "1,2"], "give X,Y,Z (m), or X,Y,Z and the 3 numbers of the orientation"),
         (["--to", "1,2,3 parsec"], "--to '1,2,3 parsec'"),
         (["--to", "0.3,0,0", "--in", "link_2"], "it moves with joint 'joint_2'"),
     ],
@@ -133,8 +133,8 @@ def test_a_robot_of_one_joint_has_a_jacobian_and_inverse_kinematics(tmp_path):
     )
     jac = jacobian(one, "tip", at={"j": "90deg"})
     assert np.abs(jac.matrix[:, 0] - [-0.5, 0, 0, 0, 0, 1]).max() < 1e-12
-    (solution, error), *_ = inverse_kinematics(one, "tip", [0, 0.5, 0]).solutions
-    assert abs(solution["j"] - math.pi / 2) < 1e-9 and error < 1e-9
+    first, *_ = inverse_kinematics(one, "tip", [0, 0.5, 0]).solutions
+    assert abs(first.values["j"] - math.pi / 2) < 1e-9 and first.error < 1e-9
 
 
 def test_a_chain_of_mimics_follows_the_joint_at_its_end_and_a_loop_is_refused(tmp_path):

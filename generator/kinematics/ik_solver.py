@@ -1,0 +1,272 @@
+"""Inverse kinematics on a robot read once: :class:`IkSolver` is made once per robot, frame and target frame (the
+closed form recognised, the chain's joints found, the numeric chain built) and then solves any number of targets.
+
+A chain the closed form knows (:func:`.arm_geometry.recognise`) is solved by it: every branch, each checked on the
+robot with pinocchio (a branch a subproblem could only approach is polished by the numeric solver from there, and
+dropped when it does not reach), each given by its value nearest 0 within the joints' limits, with the count of its
+2-pi equivalents within them; a branch no value of which is within the limits is counted, not given. Any other chain
+is searched numerically (:mod:`.inverse`): from the rest pose (or the values given as ``near``), then from starts
+spread over the limits, STARTS of them for every branch or until one reaches; the result says how many ran, and that
+the list may be incomplete.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..errors import XacrokitError
+from ..reader.kinematic_model import KinematicJoint, KinematicModel
+from .analytic import Branch, branches
+from .arm_geometry import THREE_PARALLEL, ClosedForm, arm_lines, recognise
+from .branch_names import branch_name
+from .inverse import Chain, closest_reach, distinct, solve, starts
+
+REACHED = 1e-9  # m, or the pose error's norm: a solution farther from the target than this is not one
+STARTS = 32  # numeric starts for every branch (--all)
+FIRST_STARTS = 64  # numeric starts at most until one reaches (the default)
+LIMIT_SLACK = 1e-12  # rad: a value this far beyond a limit is at it
+NUMERIC = "numeric (damped least squares)"
+
+
+@dataclass(frozen=True)
+class Solution:
+    """Joint values (every joint one sets, by name; the joints that do not move the frame at their rest value), the
+    pose error left, and for a closed-form branch its name, how many values 2 pi apart within the limits put the
+    frame there too (``equivalents``, this one included; 0 when a continuous joint makes them endless), and the
+    singularity it lies on ("" when none)."""
+
+    values: dict[str, float]
+    error: float
+    branch: str = ""
+    equivalents: int = 1
+    singular: str = ""
+
+
+@dataclass(frozen=True)
+class Solutions:
+    """What ``ik`` found: the solutions, or when there is none, the closest reach; the method, the numeric starts
+    run (0 for the closed form), whether the list is every branch there is (``complete``), and the closed-form
+    branches left out because no value of theirs is within the joints' limits."""
+
+    frame: str
+    in_frame: str
+    joints: list[str]
+    solutions: list[Solution]
+    closest: Solution | None
+    method: str = NUMERIC
+    starts: int = 0
+    complete: bool = False
+    outside_limits: int = 0
+
+
+class MovingFrame(XacrokitError):
+    """The frame a target is given in (``frame``) moves with a joint (``joint``); the command line says which option
+    named it."""
+
+    def __init__(self, frame: str, joint: str) -> None:
+        super().__init__(f"frame {frame!r} moves with joint {joint!r}; give a frame fixed to the root")
+        self.frame, self.joint = frame, joint
+
+
+@dataclass
+class IkSolver:
+    """Inverse kinematics of ``frame`` with targets in ``in_frame`` (a frame fixed to the root) on a kinematic
+    model; :meth:`solve` takes a target as a 4x4 pose."""
+
+    model: KinematicModel
+    frame: str
+    in_frame: str
+    form: ClosedForm | None = field(init=False)
+    chain: Chain = field(init=False)
+    rest: np.ndarray = field(init=False)
+    base: Any = field(init=False)
+
+    def __post_init__(self) -> None:
+        model = self.model
+        target, base = model.frame_id(self.frame), model.frame_id(self.in_frame)
+        if model.model.frames[base].parentJoint != 0:
+            raise MovingFrame(self.in_frame, model.model.names[model.model.frames[base].parentJoint])
+        self.form = recognise(arm_lines(model, target))
+        self.chain = _chain(model, target)
+        self.rest = np.clip(np.zeros(len(model.joints)), self.chain.lower, self.chain.upper)
+        self.base = model.placed(model.configuration({}))[base].copy()
+
+    @property
+    def method(self) -> str:
+        """'closed form (three parallel axes)', 'closed form (spherical wrist)' or the numeric search's name."""
+        return f"closed form ({self.form.kind})" if self.form is not None else NUMERIC
+
+    def solve(
+        self,
+        target: np.ndarray | Sequence[Sequence[float]],
+        *,
+        every: bool = False,
+        position_only: bool = False,
+        near: Sequence[float] | None = None,
+    ) -> Solutions:
+        """The joint values that put the frame at ``target`` (4x4, T_IN_FRAME; its rotation ignored when
+        ``position_only``): every branch (``every``), else the one nearest ``near`` (joint values in the joints'
+        order; default the rest pose)."""
+        import pinocchio as pin  # (heavy: pinocchio)
+
+        matrix = np.asarray(target, dtype=float)
+        goal = self.base * pin.SE3(matrix[:3, :3], matrix[:3, 3])
+        seed = self.rest if near is None else np.clip(np.asarray(near, dtype=float), self.chain.lower, self.chain.upper)
+        if self.form is not None and not position_only:
+            found, outside = self._closed_form(goal)
+            if found:
+                if not every:
+                    found = [min(found, key=lambda s: _distance(s.values, seed, self.model.joints))]
+                return self._result(found, None, self.method, 0, outside)
+        return self._numeric(goal, every=every, position_only=position_only, seed=seed)
+
+    def equivalent_values(self, solution: Solution) -> list[dict[str, float]]:
+        """The other values of a closed-form ``solution``'s chain joints, whole turns apart and within the limits
+        (the chain's joints only; a continuous joint's turns are endless and not listed)."""
+        if self.form is None:
+            return []
+        joints = self.model.joints
+        options = []
+        for k in self.form.lines.joints:
+            value, limits = solution.values[joints[k].name], joints[k].limits
+            if limits is None or joints[k].kind == "continuous":
+                options.append([value])
+                continue
+            first = math.ceil((limits[0] - LIMIT_SLACK - value) / (2 * math.pi))
+            last = math.floor((limits[1] + LIMIT_SLACK - value) / (2 * math.pi))
+            options.append([value + 2 * math.pi * t for t in range(first, last + 1)])
+        names = [joints[k].name for k in self.form.lines.joints]
+        combos = itertools.product(*options)
+        return [dict(zip(names, combo, strict=True)) for combo in combos if combo != tuple(options_of(solution, names))]
+
+    def _closed_form(self, goal: Any) -> tuple[list[Solution], int]:
+        assert self.form is not None  # (only called with one)
+        rotation = tuple(tuple(float(v) for v in row) for row in goal.rotation)
+        position = tuple(float(v) for v in goal.translation)
+        found: list[tuple[np.ndarray, float, Branch]] = []
+        for branch in branches(self.form, rotation, position):  # type: ignore[arg-type]
+            values = self.rest.copy()
+            values[list(self.form.lines.joints)] = branch.values
+            error = _error(self.chain, goal, values)
+            if error > REACHED:  # (a subproblem solved only nearly, or lines parallel only within TOLERANCE)
+                values, error = solve(self.chain, goal, position_only=False, start=values, iterations=20)
+            if error <= REACHED:
+                found.append((values, error, branch))
+        return self._within_limits(found)
+
+    def _within_limits(self, found: list[tuple[np.ndarray, float, Branch]]) -> tuple[list[Solution], int]:
+        assert self.form is not None
+        joints = self.model.joints
+        kept: list[tuple[np.ndarray, float]] = []
+        solutions, outside = [], 0
+        for values, error, branch in found:
+            wrapped, count = _nearest_zero(values, joints, self.form.lines.joints)
+            if wrapped is None:
+                outside += 1
+                continue
+            if any(_same_turns(wrapped, other) for other, _ in kept):
+                continue  # (two roots that meet: a tangency, or a singular continuum's one point)
+            kept.append((wrapped, error))
+            named = branch_name(self.form, tuple(float(wrapped[k]) for k in self.form.lines.joints), branch.roots)
+            solutions.append(Solution(_named(joints, wrapped), error, named, count, branch.singular))
+        return solutions, outside
+
+    def _numeric(self, goal: Any, *, every: bool, position_only: bool, seed: np.ndarray) -> Solutions:
+        found = []
+        count = STARTS if every else FIRST_STARTS
+        ran = 0
+        for start in starts(self.chain, seed, count):
+            ran += 1
+            values, error = solve(self.chain, goal, position_only=position_only, start=start)
+            found.append((values, error))
+            if error <= REACHED and not every:
+                break
+        if not any(math.isfinite(error) for _, error in found):
+            raise XacrokitError("ik cannot search: the pose error is beyond what a float holds at every start")
+        reached = distinct([f for f in found if f[1] <= REACHED])
+        joints = self.model.joints
+        solutions = [Solution(_named(joints, v), e) for v, e in reached]
+        closest = None
+        if not solutions:
+            values, error = closest_reach(self.chain, goal, position_only=position_only, found=found)
+            closest = Solution(_named(joints, values), error)
+        return self._result(solutions, closest, NUMERIC, ran, 0)
+
+    def _result(
+        self, solutions: list[Solution], closest: Solution | None, method: str, ran: int, outside: int
+    ) -> Solutions:
+        names = [j.name for j in self.model.joints]
+        complete = method != NUMERIC
+        return Solutions(self.frame, self.in_frame, names, solutions, closest, method, ran, complete, outside)
+
+
+def _chain(model: KinematicModel, frame: int) -> Chain:
+    """The numeric solver's chain: every joint one sets, with the velocity columns it drives (a mimic joint's column
+    joins its leader's); a joint that does not move ``frame`` keeps its start (its columns are zero there)."""
+    columns = {j.name: [(j.v_index, 1.0)] for j in model.joints}
+    for follower in model.followers:
+        columns[follower.leader].append((follower.joint.v_index, follower.multiplier))
+    lower = np.array([j.limits[0] if j.limits else -np.pi for j in model.joints])
+    upper = np.array([j.limits[1] if j.limits else np.pi for j in model.joints])
+    names = [j.name for j in model.joints]
+
+    def configuration(values: np.ndarray) -> np.ndarray:
+        return model.configuration(dict(zip(names, map(float, values), strict=True)))
+
+    return Chain(model.model, frame, list(columns.values()), lower, upper, configuration, model.data)
+
+
+def _error(chain: Chain, goal: Any, values: np.ndarray) -> float:
+    import pinocchio as pin  # (heavy: pinocchio)
+
+    pin.framesForwardKinematics(chain.model, chain.data, chain.configuration(values))
+    return float(np.linalg.norm(pin.log6(goal.actInv(chain.data.oMf[chain.frame])).vector))
+
+
+def _nearest_zero(
+    values: np.ndarray, joints: Sequence[KinematicJoint], chain: Sequence[int]
+) -> tuple[np.ndarray | None, int]:
+    """The values with each chain joint's turned by whole turns to the one nearest 0 within its limits (a continuous
+    joint's into [-pi, pi]), and how many combinations of whole turns stay within them (0: endless); None when a
+    joint has no such value."""
+    wrapped = values.copy()
+    count = 1
+    for k in chain:
+        value = math.remainder(float(values[k]), 2 * math.pi)
+        limits = joints[k].limits
+        if limits is None or joints[k].kind == "continuous":
+            wrapped[k], count = value, 0
+            continue
+        lower, upper = limits[0] - LIMIT_SLACK, limits[1] + LIMIT_SLACK
+        first, last = math.ceil((lower - value) / (2 * math.pi)), math.floor((upper - value) / (2 * math.pi))
+        if first > last:
+            return None, 0
+        turns = min(range(first, last + 1), key=lambda t: (abs(value + 2 * math.pi * t), -t))
+        wrapped[k] = min(max(value + 2 * math.pi * turns, limits[0]), limits[1])
+        count = count * (last - first + 1) if count else 0
+    return wrapped, count
+
+
+def options_of(solution: Solution, names: Sequence[str]) -> list[float]:
+    return [solution.values[name] for name in names]
+
+
+def _same_turns(a: np.ndarray, b: np.ndarray) -> bool:
+    return all(abs(math.remainder(float(x - y), 2 * math.pi)) < 1e-6 for x, y in zip(a, b, strict=True))
+
+
+def _named(joints: Sequence[KinematicJoint], values: np.ndarray) -> dict[str, float]:
+    return {j.name: float(v) for j, v in zip(joints, values, strict=True)}
+
+
+def _distance(values: dict[str, float], seed: np.ndarray, joints: Sequence[KinematicJoint]) -> float:
+    return sum(abs(values[j.name] - float(s)) for j, s in zip(joints, seed, strict=True))
+
+
+__all__ = ["THREE_PARALLEL", "IkSolver", "MovingFrame", "Solution", "Solutions"]
