@@ -5,11 +5,13 @@ V1,V2,...`` (a vector in the joints' order) and the rows of a ``--configurations
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from typing import TYPE_CHECKING, NamedTuple
 
 from ..errors import XacrokitError
 from ..shared.value_text import comment_text
-from .rows_file import Row
+
+if TYPE_CHECKING:
+    from .rows_file import Row  # (the reader loads YAML: only a command that reads a file loads it)
 
 JOINT_ORDER = (
     "the joints one sets (revolute, continuous and prismatic joints that mimic none) in the file's order; "
@@ -17,10 +19,10 @@ JOINT_ORDER = (
 )
 
 
-@dataclass(frozen=True)
-class Given:
+class Given(NamedTuple):
     """A joint's value as given: its text, ``where`` it was given (``--at joint_1``, ``--q value 2 (joint_2)``,
-    ``traj.csv:3: joint_2``) and ``said``, the two together as messages quote them (``--at joint_1=30deg``)."""
+    ``traj.csv:3: joint_2``) and ``said``, the two together as messages quote them (``--at joint_1=30deg``). (A
+    named tuple, not a dataclass: the command line starts without loading dataclasses' inspect.)"""
 
     text: str
     where: str
