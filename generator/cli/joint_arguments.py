@@ -84,7 +84,7 @@ def q_values(text: str, joints: Sequence[str]) -> dict[str, Given]:
 
 def row_values(row: Row, file: str, joints: Sequence[str]) -> dict[str, Given]:
     """A ``--configurations`` row's values by joint name: named by its columns, or one per joint in ``joints``'
-    order; each said with the file's line and the column."""
+    order; each said with the file's line and the column (a name that is no joint: a CSV's header line)."""
     if row.names is None and len(row.values) != len(joints):
         raise XacrokitError(f"{file}:{row.line}: {_count_problem(len(row.values), joints)}")
     names = row.names if row.names is not None else joints
@@ -92,7 +92,8 @@ def row_values(row: Row, file: str, joints: Sequence[str]) -> dict[str, Given]:
     for index, (name, value) in enumerate(zip(names, row.values, strict=True)):
         shown, place = comment_text(name), f"{file}:{row.line_of(index)}"
         if row.names is not None:
-            given[name] = Given(value, f"{place}: {shown}", f"{place}: {shown}={comment_text(value)}")
+            named = f"{file}:{row.header_line}: column {shown}" if row.header_line is not None else f"{place}: {shown}"
+            given[name] = Given(value, named, f"{place}: {shown}={comment_text(value)}")
         else:
             said = f"{place}: value {index + 1} ({shown}={comment_text(value)})"
             given[name] = Given(value, f"{place}: value {index + 1} ({shown})", said)

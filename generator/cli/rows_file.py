@@ -34,12 +34,14 @@ _NUMBER_START = re.compile(r"[+-]?\.?[0-9]")  # (a value: 0.5, -30deg, .5; a nam
 @dataclass(frozen=True)
 class Row:
     """One row: its line (1-based), its values as text, and their names (None: positional, in the reader's order).
-    ``lines`` holds each value's own line where a row spans lines (a YAML block mapping); empty: all on ``line``."""
+    ``lines`` holds each value's own line where a row spans lines (a YAML block mapping); empty: all on ``line``.
+    ``header_line``: where a CSV's names are (a name that is wrong is wrong there), else None."""
 
     line: int
     values: tuple[str, ...]
     names: tuple[str, ...] | None = None
     lines: tuple[int, ...] = ()
+    header_line: int | None = None
 
     def named(self) -> dict[str, str] | None:
         """The values by name, or None for a positional row."""
@@ -103,9 +105,10 @@ def _csv_lines(text: str, file: str) -> Iterator[tuple[int, tuple[str, ...]]]:
 def _csv_rows(text: str, file: str) -> list[Row]:
     rows: list[Row] = []
     header: tuple[str, ...] | None = None
+    header_line = None
     for line, cells in _csv_lines(text, file):
         if header is None and not rows and not any(_NUMBER_START.match(cell) for cell in cells):
-            header = _header(cells, file, line)
+            header, header_line = _header(cells, file, line), line
             continue
         if len(rows) == MAX_ROWS:
             raise _too_many(file, line)
@@ -117,7 +120,7 @@ def _csv_rows(text: str, file: str) -> list[Row]:
             if not cell:
                 what = f"column {index + 1} ({header[index]})" if header is not None else f"value {index + 1}"
                 raise SpecError(f"{what} is empty; give a value", file=file, line=line)
-        rows.append(Row(line, cells, header))
+        rows.append(Row(line, cells, header, header_line=header_line))
     return rows
 
 

@@ -162,7 +162,7 @@ def test_at_overrides_every_row_and_q_with_a_file_is_refused(capsys, tmp_path):
     [
         ("a.csv", "joint_1,joint_2\n1,2\n1\n", "{f}:3: 1 value for the header's 2 columns (joint_1, joint_2)"),
         ("b.csv", "1,2\n1,2,3\n", "{f}:2: 3 values for the robot's 2 joints (joint_1, joint_2, in this order)"),
-        ("c.csv", "joint_1,joint_9\n1,2\n", "{f}:2: joint_9: no moving joint of that name (did you mean 'joint_2'?)"),
+        ("c.csv", "joint_1,joint_9\n1,2\n", "{f}:1: column joint_9: no moving joint of that name (did you mean"),
         ("d.csv", "1,2\n0.5,abc\n", "{f}:2: value 2 (joint_2=abc): "),
         ("e.csv", "joint_1,joint_2\n1,\n", "{f}:2: column 2 (joint_2) is empty; give a value"),
         ("f.csv", "joint_1,joint_1\n1,2\n", "{f}:1: the header names 'joint_1' twice (columns 1 and 2)"),
