@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 from ..errors import XacrokitError
 from ..shared.value_text import comment_text
 from .arguments import add_robot_options
-from .ik_targets import forms_said, target_pose
+from .ik_targets import forms_said, header_names, target_pose
 from .json_output import print_json, require_finite
 from .kinematics_commands import kinematics_flags, listed_values, read_robot_of, rotation_form
 
@@ -36,6 +36,13 @@ def add_ik_command(commands: Any) -> None:
     ik.add_argument("frame", help="the link or frame to place")
     ik.add_argument("--to", metavar="X,Y,Z[,...]", help="the target pose in --in: X,Y,Z and the orientation's numbers")
     ik.add_argument(
+        "--targets",
+        metavar="FILE",
+        help="many targets, one a row: a CSV (an optional header x,y,z then the orientation's names: roll,pitch,yaw; "
+        "qx,qy,qz,qw; qw,qx,qy,qz; rx,ry,rz; ax,ay,az,angle; r11..r33; a1,a2,a3) or YAML (a list of lists, or of "
+        "mappings with those names); each solved on the robot read once, one solution set per row",
+    )
+    ik.add_argument(
         "--rotation",
         type=rotation_form,
         default="rpy",
@@ -59,21 +66,54 @@ def add_ik_command(commands: Any) -> None:
 def _cmd_ik(args: argparse.Namespace) -> int:
     from ..kinematics import ik_solver  # (heavy: lxml)
 
-    if args.to is None:
-        raise XacrokitError("ik: give the target with --to X,Y,Z[,...]")
-    target = target_pose(args.to, args.rotation)
-    position_only = args.position_only or len(args.to.split(",")) == 3
+    if (args.to is None) == (args.targets is None):
+        raise XacrokitError("ik: give the target with --to X,Y,Z[,...], or many with --targets FILE (one of the two)")
+    given: list[tuple[int | None, tuple[Any, bool]]] = []
+    if args.to is not None:
+        given.append((None, (target_pose(args.to, args.rotation), len(args.to.split(",")) > 3)))
+    else:
+        given.extend(_rows(args))
     robot = read_robot_of(args)
+    out: list[dict[str, Any]] = []
+    texts: list[str] = []
+    reached = True
     with kinematics_flags(args):
         solver = ik_solver(robot, args.frame, in_frame=args.in_frame)
-        found = solver.solve(target, every=args.every, position_only=position_only)
-    out = solutions_dict(found, solver if args.equivalents else None)
-    require_finite(out, "the search")  # (in text too: never inf or NaN as an answer)
+        for line, (target, oriented) in given:
+            position_only = args.position_only or not oriented
+            found = solver.solve(target, every=args.every, position_only=position_only)
+            reached = reached and bool(found.solutions)
+            said = solutions_dict(found, solver if args.equivalents else None)
+            require_finite(said, "the search")  # (in text too: never inf or NaN as an answer)
+            out.append({"line": line, **said} if line is not None else said)
+            text = solutions_text(found, solver if args.equivalents else None)
+            texts.append(text if line is None else f"target {len(texts) + 1} (line {line}):\n{text}")
     if args.json:
-        print_json(out)
+        print_json(out[0] if args.to is not None else {"targets": out})
     else:
-        sys.stdout.write(solutions_text(found, solver if args.equivalents else None))
-    return 0 if found.solutions else 1
+        sys.stdout.write("".join(texts))
+    return 0 if reached else 1
+
+
+def _rows(args: argparse.Namespace) -> list[tuple[int, tuple[Any, bool]]]:
+    """The targets of --targets FILE, each with its line: the row's values read as --to reads them, a header's
+    names checked against the orientation's form."""
+    from .rows_file import read_rows  # (start-up: a command's work loads when it runs)
+
+    names = header_names(args.rotation)
+    targets = []
+    for row in read_rows(args.targets):
+        where = f"{args.targets}:{row.line}"
+        values = list(row.values)
+        if row.names is not None:
+            given = [n.strip().lower() for n in row.names]
+            if given not in (names[:3], names):
+                raise XacrokitError(
+                    f"{where}: the columns are {', '.join(row.names)}; give {', '.join(names)} "
+                    f"(or x, y, z alone) for --rotation {args.rotation}"
+                )
+        targets.append((row.line, (target_pose(",".join(values), args.rotation, flag=where), len(values) > 3)))
+    return targets
 
 
 def solutions_dict(found: Solutions, solver: IkSolver | None) -> dict[str, Any]:

@@ -16,6 +16,22 @@ ORTHONORMAL = 1e-6  # R^T R this close to the identity, as an origin's matrix
 MAX_TURNS = 1000  # an angle of more turns has no digits left for the turn it makes
 
 
+NAMES = {
+    "rpy": ("roll", "pitch", "yaw"),
+    "quat_xyzw": ("qx", "qy", "qz", "qw"),
+    "quat_wxyz": ("qw", "qx", "qy", "qz"),
+    "rotvec": ("rx", "ry", "rz"),
+    "axis_angle": ("ax", "ay", "az", "angle"),
+    "matrix": tuple(f"r{i}{j}" for i in (1, 2, 3) for j in (1, 2, 3)),
+}
+
+
+def header_names(form: str) -> list[str]:
+    """The names of a --targets file's columns for the orientation ``form``: x, y, z then the form's own (Euler
+    angles: a1, a2, a3 in the sequence's order)."""
+    return ["x", "y", "z", *NAMES.get(form, ("a1", "a2", "a3"))]
+
+
 def forms_said() -> str:
     return f"{', '.join(COUNTS)}, or Euler angles (euler:XYZ, intrinsic:ZYZ, extrinsic:xyz)"
 

@@ -12,9 +12,10 @@ the list may be incomplete.
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -30,6 +31,8 @@ from .inverse import Chain, closest_reach, distinct, solve, starts
 REACHED = 1e-9  # m, or the pose error's norm: a solution farther from the target than this is not one
 STARTS = 32  # numeric starts for every branch (--all)
 FIRST_STARTS = 64  # numeric starts at most until one reaches (the default)
+ATLAS = 4096  # configurations posed once per solver, the nearest of which start a numeric search
+NEAREST = 4  # of them, tried first
 LIMIT_SLACK = 1e-12  # rad: a value this far beyond a limit is at it
 NUMERIC = "numeric (damped least squares)"
 
@@ -86,6 +89,8 @@ class IkSolver:
     chain: Chain = field(init=False)
     rest: np.ndarray = field(init=False)
     base: Any = field(init=False)
+    atlas: tuple[np.ndarray, np.ndarray, np.ndarray] | None = field(init=False, default=None)
+    reach: float = field(init=False, default=1.0)
 
     def __post_init__(self) -> None:
         model = self.model
@@ -96,6 +101,7 @@ class IkSolver:
         self.chain = _chain(model, target)
         self.rest = np.clip(np.zeros(len(model.joints)), self.chain.lower, self.chain.upper)
         self.base = model.placed(model.configuration({}))[base].copy()
+        self.reach = float(np.linalg.norm(model.placed(model.configuration({}))[target].translation))
 
     @property
     def method(self) -> str:
@@ -124,7 +130,8 @@ class IkSolver:
                 if not every:
                     found = [min(found, key=lambda s: _distance(s.values, seed, self.model.joints))]
                 return self._result(found, None, self.method, 0, outside)
-        return self._numeric(goal, every=every, position_only=position_only, seed=seed)
+        first = [seed] if near is not None else []
+        return self._numeric(goal, every=every, position_only=position_only, seeds=first + self._nearest(goal))
 
     def equivalent_values(self, solution: Solution) -> list[dict[str, float]]:
         """The other values of a closed-form ``solution``'s chain joints, whole turns apart and within the limits
@@ -177,11 +184,21 @@ class IkSolver:
             solutions.append(Solution(_named(joints, wrapped), error, named, count, branch.singular))
         return solutions, outside
 
-    def _numeric(self, goal: Any, *, every: bool, position_only: bool, seed: np.ndarray) -> Solutions:
+    def _nearest(self, goal: Any) -> list[np.ndarray]:
+        """The NEAREST of ATLAS configurations (spread over the limits, posed once per solver) whose frame is
+        closest to ``goal`` (metres, plus the rotation matrices' difference): starts a few steps from a solution."""
+        if self.atlas is None:
+            self.atlas = _atlas(self.chain, self.rest)
+        values, positions, rotations = self.atlas
+        gap = np.linalg.norm(positions - goal.translation, axis=1)
+        gap += np.linalg.norm((rotations - goal.rotation.reshape(1, 9)), axis=1) * max(self.reach, 0.1)
+        return [values[k] for k in np.argsort(gap)[:NEAREST]]
+
+    def _numeric(self, goal: Any, *, every: bool, position_only: bool, seeds: list[np.ndarray]) -> Solutions:
         found = []
         count = STARTS if every else FIRST_STARTS
         ran = 0
-        for start in starts(self.chain, seed, count):
+        for start in [*seeds, *starts(self.chain, self.rest, count)]:
             ran += 1
             values, error = solve(self.chain, goal, position_only=position_only, start=start)
             found.append((values, error))
@@ -208,18 +225,64 @@ class IkSolver:
 
 def _chain(model: KinematicModel, frame: int) -> Chain:
     """The numeric solver's chain: every joint one sets, with the velocity columns it drives (a mimic joint's column
-    joins its leader's); a joint that does not move ``frame`` keeps its start (its columns are zero there)."""
+    joins its leader's) as a matrix made once; a joint that does not move ``frame`` keeps its start (its columns are
+    zero there)."""
     columns = {j.name: [(j.v_index, 1.0)] for j in model.joints}
     for follower in model.followers:
         columns[follower.leader].append((follower.joint.v_index, follower.multiplier))
     lower = np.array([j.limits[0] if j.limits else -np.pi for j in model.joints])
     upper = np.array([j.limits[1] if j.limits else np.pi for j in model.joints])
-    names = [j.name for j in model.joints]
+    selection = np.zeros((model.model.nv, len(model.joints)))
+    with np.errstate(over="ignore", invalid="ignore"):  # (a mimic's multiplier of 1e308 is judged where it is used)
+        for column, drives in enumerate(columns.values()):
+            for v, multiplier in drives:
+                selection[v, column] += multiplier
+    chain = Chain(model.model, frame, list(columns.values()), lower, upper, _configuration(model), model.data)
+    return dataclasses.replace(chain, selection=selection)
+
+
+def _configuration(model: KinematicModel) -> Callable[[np.ndarray], np.ndarray]:
+    """pinocchio's q of the joints' values in their order: :meth:`KinematicModel.configuration`'s convention (its
+    twin), written with index arrays made once: the solver makes q thousands of times a solve."""
+    import pinocchio as pin  # (heavy: pinocchio)
+
+    neutral = pin.neutral(model.model)
+    plain = [k for k, j in enumerate(model.joints) if j.kind != "continuous"]
+    turning = [k for k, j in enumerate(model.joints) if j.kind == "continuous"]
+    plain_q = np.array([model.joints[k].q_index for k in plain], dtype=int)
+    turning_q = np.array([model.joints[k].q_index for k in turning], dtype=int)
+    column = {j.name: k for k, j in enumerate(model.joints)}
+    followers = [(f, column[f.leader], f.joint.q_index, f.joint.kind == "continuous") for f in model.followers]
 
     def configuration(values: np.ndarray) -> np.ndarray:
-        return model.configuration(dict(zip(names, map(float, values), strict=True)))
+        q: np.ndarray = neutral.copy()
+        q[plain_q] = values[plain]
+        q[turning_q] = np.cos(values[turning])
+        q[turning_q + 1] = np.sin(values[turning])
+        for follower, leader, index, turns in followers:  # (its value checked: FollowerValueError when it overflows)
+            value = follower.value(float(values[leader]))
+            if turns:
+                q[index], q[index + 1] = math.cos(value), math.sin(value)
+            else:
+                q[index] = value
+        return q
 
-    return Chain(model.model, frame, list(columns.values()), lower, upper, configuration, model.data)
+    return configuration
+
+
+def _atlas(chain: Chain, rest: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The rest pose and ATLAS - 1 configurations spread over the chain's limits (Sobol, a fixed seed), and the
+    frame's position and rotation (flattened) at each: a target at the rest pose starts there (and is answered
+    with it)."""
+    import pinocchio as pin  # (heavy: pinocchio)
+
+    values = np.array(starts(chain, rest, ATLAS, seed=1))
+    positions, rotations = np.empty((len(values), 3)), np.empty((len(values), 9))
+    for k, row in enumerate(values):
+        pin.framesForwardKinematics(chain.model, chain.data, chain.configuration(row))
+        placed = chain.data.oMf[chain.frame]
+        positions[k], rotations[k] = placed.translation, placed.rotation.reshape(9)
+    return values, positions, rotations
 
 
 def _error(chain: Chain, goal: Any, values: np.ndarray) -> float:

@@ -21,7 +21,7 @@ ITERATIONS = 500  # steps per start
 STARTS = 16  # starts of `gen-robot ik` (the first one given)
 LONGEST_STEP = 0.5  # rad or m: the most a joint moves in one step
 DISTINCT = 1e-3  # rad or m: two solutions closer than this in every joint are one
-STALL = 40  # steps without halving the error: a start is stuck
+STALL = 6  # steps without halving the error: a start is stuck (another start is cheaper than waiting)
 POLISHED = 4  # the best ends of a search that fails polished for the closest reach
 
 
@@ -38,6 +38,15 @@ class Chain:
     upper: np.ndarray
     configuration: Callable[[np.ndarray], np.ndarray]
     data: Any = None  # (pinocchio Data to reuse across starts; a new one when None)
+    selection: np.ndarray | None = None  # (nv x joints: the columns as a matrix, when made once for many solves)
+
+    def selected(self, full: np.ndarray) -> np.ndarray:
+        """The Jacobian's columns combined per joint one sets (a mimic joint's times its multiplier)."""
+        if self.selection is not None:
+            result: np.ndarray = full @ self.selection
+            return result
+        combined: np.ndarray = np.array([sum(m * full[:, v] for v, m in drives) for drives in self.columns]).T
+        return combined
 
 
 def solve(
@@ -53,21 +62,21 @@ def solve(
     error in STALL steps is stuck (against a limit, or in a local minimum out of reach) and ends there."""
     values = np.clip(np.array(start, dtype=float), chain.lower, chain.upper)
     error, best = math.inf, (math.inf, 0)
-    for step_count in range(iterations):
-        residual, full = residual_and_jacobian(chain, target, values, position_only=position_only)
-        with np.errstate(over="ignore", invalid="ignore"):  # (judged below: a mimic's multiplier of 1e308)
-            error = float(np.linalg.norm(residual))
+    with np.errstate(over="ignore", invalid="ignore"):  # (judged below: a mimic's multiplier of 1e308)
+        for step_count in range(iterations):
+            residual, full = residual_and_jacobian(chain, target, values, position_only=position_only)
+            error = math.sqrt(float(residual @ residual))
             step = _step(chain, full, residual, error) if TOLERANCE <= error < math.inf else None
-        if step is None:  # (reached, or a pose or step that is not finite numbers: the start ends where it is)
-            break
-        if error < 0.5 * best[0]:
-            best = (error, step_count)
-        elif step_count - best[1] > STALL:
-            break
-        largest = float(np.abs(step).max(initial=0.0))
-        if largest > LONGEST_STEP:  # (near a singularity, out of reach: a step that would leap across the range)
-            step *= LONGEST_STEP / largest
-        values = np.clip(values + step, chain.lower, chain.upper)
+            if step is None:  # (reached, or a pose or step that is not finite numbers: the start ends where it is)
+                break
+            if error < 0.5 * best[0]:
+                best = (error, step_count)
+            elif step_count - best[1] > STALL:
+                break
+            largest = float(np.abs(step).max(initial=0.0))
+            if largest > LONGEST_STEP:  # (near a singularity, out of reach: a step that would leap across the range)
+                step *= LONGEST_STEP / largest
+            values = np.clip(values + step, chain.lower, chain.upper)
     return values, error
 
 
@@ -105,7 +114,7 @@ def closest_reach(
     def cost(values: np.ndarray) -> tuple[float, np.ndarray]:
         residual, full = residual_and_jacobian(chain, target, values, position_only=position_only)
         with np.errstate(over="ignore", invalid="ignore"):
-            part = np.array([sum(m * full[:, v] for v, m in drives) for drives in chain.columns]).T
+            part = chain.selected(full)
             value, gradient = 0.5 * float(residual @ residual), part.T @ residual
         if not (math.isfinite(value) and np.isfinite(gradient).all()):
             return math.inf, np.zeros(len(values))
@@ -127,13 +136,14 @@ def closest_reach(
 
 def _step(chain: Chain, full: np.ndarray, residual: np.ndarray, error: float) -> np.ndarray | None:
     """The damped least-squares step on the joints one sets; None when it is not finite numbers."""
-    part = np.array([sum(m * full[:, v] for v, m in drives) for drives in chain.columns]).T
-    damping = 1e-12 + 1e-3 * error  # (less damping as it closes in: quadratic convergence near the solution)
+    part = chain.selected(full)
+    normal = part @ part.T
+    normal.flat[:: len(residual) + 1] += 1e-12 + 1e-3 * error  # (less damping as it closes in: quadratic near it)
     try:
-        step = -part.T @ np.linalg.solve(part @ part.T + damping * np.eye(len(residual)), residual)
+        step: np.ndarray = -part.T @ np.linalg.solve(normal, residual)
     except np.linalg.LinAlgError:  # (a matrix of inf or NaN)
         return None
-    return step if np.isfinite(step).all() else None
+    return step if math.isfinite(float(step.sum())) else None
 
 
 def starts(chain: Chain, first: Sequence[float] | np.ndarray, count: int = STARTS, seed: int = 0) -> list[np.ndarray]:
