@@ -316,6 +316,17 @@ class Surface:
 
 
 @dataclass(frozen=True)
+class Planning:
+    """The spec's ``moveit`` section (docs/moveit.md): planning groups by their joints (``groups``: name -> joints;
+    none given: one group per DH arm), the joints of the robot's gripper (a group and an end effector), and the
+    base's virtual joint (``fixed``, ``planar`` or ``floating``; None: planar on wheels, else fixed)."""
+
+    groups: tuple[tuple[str, tuple[str, ...]], ...] = ()
+    gripper: tuple[str, ...] = ()
+    base: str | None = None
+
+
+@dataclass(frozen=True)
 class Robot:
     """A whole robot. ``links``/``joints`` hold the spec's links, joints and frames; arms and wheels keep their own
     records (they are emitted through the dh_arm and wheel macros) and add the names listed by their properties."""
@@ -337,6 +348,7 @@ class Robot:
     # start: 0, or the limit nearest 0); `home` is where the robot starts
     poses: tuple[tuple[str, tuple[tuple[str, float], ...]], ...] = ()
     mount_joint: str | None = None  # the spec's name for the joint that mounts the root (``mount_joint:``)
+    planning: Planning = Planning()  # (the spec's ``moveit`` section: the SRDF's groups, gripper and virtual joint)
     source: str = field(default="", compare=False)
 
     @property

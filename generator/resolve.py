@@ -39,6 +39,7 @@ from .model import (
     Mimic,
     Origin,
     PackageFile,
+    Planning,
     Robot,
     SafetyController,
     Shape,
@@ -507,6 +508,7 @@ def resolve(spec: Spec) -> Robot:
         ),
         files=tuple(PackageFile(path, content) for path, content in sorted(package.files.items())),
         mount_joint=data.get("mount_joint"),
+        planning=_planning(data.get("moveit", {})),
         source=spec.raw.file,
     )
 
@@ -535,3 +537,9 @@ def carried_into(robot: Robot, package: str) -> Robot:
     )
     files = tuple(PackageFile(f"{folder}/{file.path}", file.content) for file in robot.files)
     return dataclasses.replace(robot, links=links, files=files)
+
+
+def _planning(section: dict[str, Any]) -> Planning:
+    """The spec's ``moveit`` section as the model's :class:`Planning`."""
+    groups = tuple((name, tuple(joints)) for name, joints in section.get("groups", {}).items())
+    return Planning(groups=groups, gripper=tuple(section.get("gripper", ())), base=section.get("base"))

@@ -203,7 +203,7 @@ def parse_generated(path: str, content: str) -> object:
         return ast.dump(ast.parse(content))  # (comments are not in the tree)
     if path.endswith("CMakeLists.txt"):
         return cmake_commands(content)
-    if path.endswith((".xml", ".xacro", ".urdf", ".sdf")):
+    if path.endswith((".xml", ".xacro", ".urdf", ".sdf", ".srdf")):
         parser = etree.XMLParser(remove_comments=True, resolve_entities=False, no_network=True)
         return etree.tostring(etree.fromstring(content.encode("utf-8"), parser))
     if path.endswith((".yaml", ".rviz")):

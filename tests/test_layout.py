@@ -82,6 +82,7 @@ FEATURES = {
     "importer",
     "scene",
     "cli",
+    "moveit",
     "testing",
     "shared",
 }

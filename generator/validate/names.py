@@ -216,6 +216,22 @@ def reference_errors(
                 ("ros2_control", "joints", name), f"{name!r} {what}; only moving joints are controlled", key=True
             )
     yield from _pose_reference_errors(raw, data, types)
+    yield from _planning_reference_errors(raw, data, types)
+
+
+def _planning_reference_errors(raw: RawSpec, data: dict[str, Any], types: dict[str, str]) -> Iterator[SpecError]:
+    """The ``moveit`` section's groups and gripper name joints of the robot (a gripper's: moving joints)."""
+    section = data.get("moveit", {})
+    named = [
+        (("moveit", "groups", g, i), j) for g, joints in section.get("groups", {}).items() for i, j in enumerate(joints)
+    ]
+    gripper = [(("moveit", "gripper", i), j) for i, j in enumerate(section.get("gripper", ()))]
+    moving = sorted(n for n, t in types.items() if t in MOVING)
+    for where, name in named + gripper:
+        if name not in types:
+            yield raw.error(where, f"{name!r} is not a joint of this robot{did_you_mean(name, set(types))}")
+        elif where[1] == "gripper" and types[name] not in MOVING:
+            yield raw.error(where, f"{name!r} is a {types[name]} joint; a gripper's joints move ({', '.join(moving)})")
 
 
 def _pose_reference_errors(raw: RawSpec, data: dict[str, Any], types: dict[str, str]) -> Iterator[SpecError]:
