@@ -120,6 +120,8 @@ def solutions_dict(found: Solutions, solver: IkSolver | None) -> dict[str, Any]:
     """What --json prints of one target's search; each solution's equivalents listed when ``solver`` is given."""
     out: dict[str, Any] = {"frame": found.frame, "in": found.in_frame, "method": found.method}
     out |= {"complete": found.complete, "starts": found.starts, "outside_limits": found.outside_limits}
+    if found.branches:
+        out["branches"] = found.branches
     out["solutions"] = []
     for solution in found.solutions:
         said: dict[str, Any] = {"joints": solution.values, "error": solution.error}
@@ -144,7 +146,7 @@ def solutions_text(found: Solutions, solver: IkSolver | None) -> str:
     lines = [_how(found)]
     for index, solution in enumerate(found.solutions, 1):
         about = [solution.branch] if solution.branch else []
-        about.append(f"error {solution.error:.3g}")
+        about.append("error < 1e-12" if solution.error < 1e-12 else f"error {solution.error:.3g}")  # (--json: exact)
         if solution.branch:
             about.append(_equivalents(solution.equivalents))
         lines.append(f"solution {index} ({'; '.join(about)}):")
@@ -158,8 +160,10 @@ def solutions_text(found: Solutions, solver: IkSolver | None) -> str:
 
 
 def _how(found: Solutions) -> str:
-    if found.complete:
+    if found.branches:
         left = f"; {found.outside_limits} more outside the joints' limits" if found.outside_limits else ""
+        if len(found.solutions) < found.branches:
+            return f"{found.method}: {found.branches} branches{left}; the one nearest the rest pose (--all: every one)"
         return f"{found.method}: every branch{left}"
     starts = "1 start" if found.starts == 1 else f"{found.starts} starts"
     return f"{found.method}, {starts}: the list may be incomplete"

@@ -66,6 +66,7 @@ class Solutions:
     starts: int = 0
     complete: bool = False
     outside_limits: int = 0
+    branches: int = 0  # (the closed form's branches within the limits, of which the solutions are all or one)
 
 
 class MovingFrame(XacrokitError):
@@ -127,11 +128,15 @@ class IkSolver:
         if self.form is not None and not position_only:
             found, outside = self._closed_form(goal)
             if found:
+                count = len(found)
                 if not every:
                     found = [min(found, key=lambda s: _distance(s.values, seed, self.model.joints))]
-                return self._result(found, None, self.method, 0, outside)
+                result = self._result(found, None, self.method, 0, outside)
+                return dataclasses.replace(result, branches=count, complete=len(found) == count)
         first = [seed] if near is not None else []
-        return self._numeric(goal, every=every, position_only=position_only, seeds=first + self._nearest(goal))
+        searched = self._numeric(goal, every=every, position_only=position_only, seeds=first + self._nearest(goal))
+        searched.solutions.sort(key=lambda s: _distance(s.values, seed, self.model.joints))  # (nearest first)
+        return searched
 
     def equivalent_values(self, solution: Solution) -> list[dict[str, float]]:
         """The other values of a closed-form ``solution``'s chain joints, whole turns apart and within the limits

@@ -225,7 +225,7 @@ def test_the_outputs_docs_kinematics_shows_are_the_commands_own():
 
     page = (REPO / "docs" / "kinematics.md").read_text(encoding="utf-8")
     blocks = re.findall(r"```console\n\$ gen-robot (.+?)\n(.*?)```", page, flags=re.S)
-    assert len(blocks) == 4
+    assert len(blocks) == 6
     for command, shown in blocks:
         argv = [REPO / word if word.startswith("examples/") else word for word in shlex.split(command)]
         result = gen_robot(*argv, cwd=REPO)
