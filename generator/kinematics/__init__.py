@@ -39,7 +39,7 @@ from ..reader.kinematic_model import (
 from ..reader.read_robot import ReadRobot, read_robot
 from ..reader.robot_input import RobotInput
 from ..shared.transforms import rpy_matrix
-from .ik_solver import REACHED, IkSolver, MovingFrame, Solution, Solutions
+from .inverse_solver import REACHED, IkSolver, MovingFrame, Solution, Solutions
 
 __all__ = [
     "REACHED",
@@ -206,7 +206,7 @@ def _require_ranges(read: ReadRobot, model: KinematicModel) -> None:
 def ik_solver(robot: Robot, frame: str, *, in_frame: str | None = None) -> IkSolver:
     """The inverse kinematics of ``frame`` with targets in ``in_frame`` (default: the root link; a frame fixed to it)
     on the read ``robot``: made once per robot, frame and ``in_frame`` (kept on the robot's kinematic model), then
-    :meth:`~.ik_solver.IkSolver.solve` answers any number of targets.
+    :meth:`~.inverse_solver.IkSolver.solve` answers any number of targets.
 
     Raises:
         XacrokitError: as :func:`pose`, an ``in_frame`` that moves with a joint (:class:`MovingFrame`), a robot

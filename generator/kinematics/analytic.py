@@ -80,6 +80,9 @@ def _three_parallel(form: ClosedForm, r_g: Mat, p_g: Vec) -> list[Branch]:
     h, p = form.lines.axes, form.lines.points
     n = form.parallel or h[1]
     signs = [dot(h[k], n) for k in (1, 2, 3)]
+    across = _across(n)
+    upper, fore, forearm = perpendicular(sub(p[2], p[1]), n), perpendicular(sub(p[3], p[2]), n), sub(p[3], p[2])
+    back, wrist_arm = scale(-1.0, upper), sub(form.wrist, p[3])
     centre = add(apply(r_g, form.wrist), p_g)
     shoulder = subproblem_4(n, h[0], sub(centre, p[0]), dot(n, sub(form.wrist, p[0])))
     found: list[Branch] = []
@@ -87,23 +90,22 @@ def _three_parallel(form: ClosedForm, r_g: Mat, p_g: Vec) -> list[Branch]:
         q1 = -t1
         r1 = rotation(h[0], q1)
         n1 = apply(r1, n)
+        reached = add(p[0], rotate(h[0], t1, sub(centre, p[0])))
         wrist = subproblem_4(n, h[4], h[5], dot(n1, apply(r_g, h[5])))
         for j, q5 in enumerate(_roots(wrist)):
             t6 = subproblem_1(h[5], rotate(h[4], -q5, n), apply_transposed(r_g, n1))
             q6 = -t6 if t6 is not None else 0.0
             singular = "" if t6 is not None else _UR_WRIST
-            across = _across(n)
             turned = apply_transposed(r1, apply(r_g, rotate(h[5], -q6, rotate(h[4], -q5, across))))
             theta = subproblem_1(n, across, turned) or 0.0
-            reached = add(p[0], rotate(h[0], -q1, sub(centre, p[0])))
-            w = sub(reached, rotate(n, theta, sub(form.wrist, p[3])))
-            upper, fore = perpendicular(sub(p[2], p[1]), n), perpendicular(sub(p[3], p[2]), n)
-            elbow = subproblem_3(h[2], fore, scale(-1.0, upper), norm(perpendicular(sub(w, p[1]), n)))
+            w = sub(reached, rotate(n, theta, wrist_arm))
+            to_w = sub(w, p[1])
+            elbow = subproblem_3(h[2], fore, back, norm(perpendicular(to_w, n)))
+            exact = _exact(shoulder) and _exact(wrist) and _exact(elbow)
             for k, q3 in enumerate(_roots(elbow)):
-                e3 = add(p[2], rotate(h[2], q3, sub(p[3], p[2])))
-                q2 = subproblem_1(h[1], sub(e3, p[1]), sub(w, p[1])) or 0.0
+                e3 = add(p[2], rotate(h[2], q3, forearm))
+                q2 = subproblem_1(h[1], sub(e3, p[1]), to_w) or 0.0
                 q4 = signs[2] * (theta - signs[0] * q2 - signs[1] * q3)
-                exact = all(_exact(s) for s in (shoulder, wrist, elbow))
                 found.append(Branch((q1, q2, q3, q4, q5, q6), (i, j, k), exact, singular))
     return found
 

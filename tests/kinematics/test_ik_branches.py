@@ -14,7 +14,7 @@ import pytest
 
 from conftest import REPO
 from xacrokit.kinematics import ik_solver
-from xacrokit.kinematics.ik_solver import _chain
+from xacrokit.kinematics.inverse_solver import _chain
 from xacrokit.kinematics.inverse import solve, starts
 from xacrokit.reader.read_robot import read_robot
 from xacrokit.shared.transforms import rpy_matrix

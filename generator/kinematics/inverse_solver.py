@@ -33,6 +33,8 @@ STARTS = 32  # numeric starts for every branch (--all)
 FIRST_STARTS = 64  # numeric starts at most until one reaches (the default)
 ATLAS = 4096  # configurations posed once per solver, the nearest of which start a numeric search
 NEAREST = 4  # of them, tried first
+POLISHABLE = 1e-3  # m or rad: a branch the closed form brought this near is polished; farther, it is not one
+TURN = 2 * math.pi
 LIMIT_SLACK = 1e-12  # rad: a value this far beyond a limit is at it
 NUMERIC = "numeric (damped least squares)"
 
@@ -92,6 +94,7 @@ class IkSolver:
     base: Any = field(init=False)
     atlas: tuple[np.ndarray, np.ndarray, np.ndarray] | None = field(init=False, default=None)
     reach: float = field(init=False, default=1.0)
+    ranges: list[tuple[float, float] | None] = field(init=False, default_factory=list)
 
     def __post_init__(self) -> None:
         model = self.model
@@ -99,6 +102,8 @@ class IkSolver:
         if model.model.frames[base].parentJoint != 0:
             raise MovingFrame(self.in_frame, model.model.names[model.model.frames[base].parentJoint])
         self.form = recognise(arm_lines(model, target))
+        chain_joints = [model.joints[k] for k in self.form.lines.joints] if self.form is not None else []
+        self.ranges = [j.limits if j.kind != "continuous" else None for j in chain_joints]
         self.chain = _chain(model, target)
         self.rest = np.clip(np.zeros(len(model.joints)), self.chain.lower, self.chain.upper)
         self.base = model.placed(model.configuration({}))[base].copy()
@@ -126,11 +131,8 @@ class IkSolver:
         goal = self.base * pin.SE3(matrix[:3, :3], matrix[:3, 3])
         seed = self.rest if near is None else np.clip(np.asarray(near, dtype=float), self.chain.lower, self.chain.upper)
         if self.form is not None and not position_only:
-            found, outside = self._closed_form(goal)
+            found, outside, count = self._closed_form(goal, every=every, seed=seed)
             if found:
-                count = len(found)
-                if not every:
-                    found = [min(found, key=lambda s: _distance(s.values, seed, self.model.joints))]
                 result = self._result(found, None, self.method, 0, outside)
                 return dataclasses.replace(result, branches=count, complete=len(found) == count)
         first = [seed] if near is not None else []
@@ -157,41 +159,51 @@ class IkSolver:
         combos = itertools.product(*options)
         return [dict(zip(names, combo, strict=True)) for combo in combos if combo != tuple(options_of(solution, names))]
 
-    def _closed_form(self, goal: Any) -> tuple[list[Solution], int]:
+    def _closed_form(self, goal: Any, *, every: bool, seed: np.ndarray) -> tuple[list[Solution], int, int]:
+        """The closed form's solutions (every branch, or the one nearest ``seed``), the branches outside the limits
+        and the branches within them."""
         assert self.form is not None  # (only called with one)
         rotation = tuple(tuple(float(v) for v in row) for row in goal.rotation)
         position = tuple(float(v) for v in goal.translation)
-        found: list[tuple[np.ndarray, float, Branch]] = []
+        joints, chain = self.model.joints, self.form.lines.joints
+        candidates: list[tuple[list[float], int, Branch]] = []
+        outside = 0
         for branch in branches(self.form, rotation, position):  # type: ignore[arg-type]
-            values = self.rest.copy()
-            values[list(self.form.lines.joints)] = branch.values
-            error = _error(self.chain, goal, values)
-            if error > REACHED:  # (a subproblem solved only nearly, or lines parallel only within TOLERANCE)
-                values, error = solve(self.chain, goal, position_only=False, start=values, iterations=20)
-            if error <= REACHED:
-                found.append((values, error, branch))
-        return self._within_limits(found)
-
-    def _within_limits(self, found: list[tuple[np.ndarray, float, Branch]]) -> tuple[list[Solution], int]:
-        assert self.form is not None
-        joints = self.model.joints
-        kept: list[tuple[np.ndarray, float]] = []
-        solutions, outside = [], 0
-        for values, error, branch in found:
-            wrapped, count = _nearest_zero(values, joints, self.form.lines.joints)
-            if wrapped is None:
-                outside += 1
+            if not branch.exact:  # (a subproblem without an exact root: this branch's triangle does not close)
                 continue
-            if any(_same_turns(wrapped, other) for other, _ in kept):
-                continue  # (two roots that meet: a tangency, or a singular continuum's one point)
-            kept.append((wrapped, error))
-            named = branch_name(self.form, tuple(float(wrapped[k]) for k in self.form.lines.joints), branch.roots)
-            solutions.append(Solution(_named(joints, wrapped), error, named, count, branch.singular))
-        return solutions, outside
+            wrapped, count = _nearest_zero(branch.values, self.ranges)
+            if not wrapped:
+                outside += 1
+            elif not any(_same_turns(wrapped, other) for other, _, _ in candidates):
+                candidates.append((wrapped, count, branch))
+        near = [float(seed[k]) for k in chain]
+        if not every:  # (checked nearest first: the first that reaches is the answer)
+            candidates.sort(key=lambda c: sum(abs(a - b) for a, b in zip(c[0], near, strict=True)))
+        solutions: list[Solution] = []
+        for wrapped, count, branch in candidates:
+            values = self.rest.copy()
+            values[list(chain)] = wrapped
+            reached = self._checked(goal, values)
+            if reached is not None:
+                named = branch_name(self.form, tuple(float(reached[0][k]) for k in chain), branch.roots)
+                solutions.append(Solution(_named(joints, reached[0]), reached[1], named, count, branch.singular))
+                if not every:
+                    break
+        return solutions, outside, len(candidates)
+
+    def _checked(self, goal: Any, values: np.ndarray) -> tuple[np.ndarray, float] | None:
+        """A branch's values and pose error on the robot (pinocchio), polished when the closed form came near (lines
+        parallel or meeting only within TOLERANCE, a tangency); None when it does not reach."""
+        error = _error(self.chain, goal, values)
+        if REACHED < error < POLISHABLE:
+            polished, error = solve(self.chain, goal, position_only=False, start=values, iterations=20)
+            values = polished if error <= REACHED else values
+        return (values, error) if error <= REACHED else None
 
     def _nearest(self, goal: Any) -> list[np.ndarray]:
         """The NEAREST of ATLAS configurations (spread over the limits, posed once per solver) whose frame is
-        closest to ``goal`` (metres, plus the rotation matrices' difference): starts a few steps from a solution."""
+        closest to ``goal`` (metres, plus the rotation matrices' difference times the arm's reach): starts a few
+        steps from a solution."""
         if self.atlas is None:
             self.atlas = _atlas(self.chain, self.rest)
         values, positions, rotations = self.atlas
@@ -297,27 +309,24 @@ def _error(chain: Chain, goal: Any, values: np.ndarray) -> float:
     return float(np.linalg.norm(pin.log6(goal.actInv(chain.data.oMf[chain.frame])).vector))
 
 
-def _nearest_zero(
-    values: np.ndarray, joints: Sequence[KinematicJoint], chain: Sequence[int]
-) -> tuple[np.ndarray | None, int]:
-    """The values with each chain joint's turned by whole turns to the one nearest 0 within its limits (a continuous
-    joint's into [-pi, pi]), and how many combinations of whole turns stay within them (0: endless); None when a
-    joint has no such value."""
-    wrapped = values.copy()
-    count = 1
-    for k in chain:
-        value = math.remainder(float(values[k]), 2 * math.pi)
-        limits = joints[k].limits
-        if limits is None or joints[k].kind == "continuous":
-            wrapped[k], count = value, 0
+def _nearest_zero(values: Sequence[float], ranges: Sequence[tuple[float, float] | None]) -> tuple[list[float], int]:
+    """Each value turned by whole turns to the one nearest 0 within its range (None: a continuous joint, into
+    [-pi, pi]), and how many combinations of whole turns stay within the ranges (0: endless); an empty list when a
+    value has none."""
+    wrapped, count = [], 1
+    for value, limits in zip(values, ranges, strict=True):
+        value = math.remainder(value, TURN)
+        if limits is None:
+            wrapped.append(value)
+            count = 0
             continue
-        lower, upper = limits[0] - LIMIT_SLACK, limits[1] + LIMIT_SLACK
-        first, last = math.ceil((lower - value) / (2 * math.pi)), math.floor((upper - value) / (2 * math.pi))
+        first = math.ceil((limits[0] - LIMIT_SLACK - value) / TURN)
+        last = math.floor((limits[1] + LIMIT_SLACK - value) / TURN)
         if first > last:
-            return None, 0
-        turns = min(range(first, last + 1), key=lambda t: (abs(value + 2 * math.pi * t), -t))
-        wrapped[k] = min(max(value + 2 * math.pi * turns, limits[0]), limits[1])
-        count = count * (last - first + 1) if count else 0
+            return [], 0
+        turns = min(max(0, first), last)  # (value is within half a turn of 0: no turn is nearest, else an end)
+        wrapped.append(min(max(value + TURN * turns, limits[0]), limits[1]))
+        count = count * (last - first + 1)
     return wrapped, count
 
 
@@ -325,8 +334,8 @@ def options_of(solution: Solution, names: Sequence[str]) -> list[float]:
     return [solution.values[name] for name in names]
 
 
-def _same_turns(a: np.ndarray, b: np.ndarray) -> bool:
-    return all(abs(math.remainder(float(x - y), 2 * math.pi)) < 1e-6 for x, y in zip(a, b, strict=True))
+def _same_turns(a: Sequence[float], b: Sequence[float]) -> bool:
+    return all(abs(math.remainder(x - y, TURN)) < 1e-6 for x, y in zip(a, b, strict=True))
 
 
 def _named(joints: Sequence[KinematicJoint], values: np.ndarray) -> dict[str, float]:
