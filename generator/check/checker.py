@@ -15,7 +15,9 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..errors import SpecErrors
+from ..model import HOME_POSE
 from ..reader import InputKind
+from ..reader.named_poses import named_poses, spec_poses
 from ..reader.robot_input import RobotInput, as_input
 from ..reader.robot_source import input_kind, read_source
 from ..shared.gc_pause import collector_paused
@@ -24,6 +26,7 @@ from .consumers import chosen, consumer_findings, start_verdicts
 from .document_rules import first_rules, other_rules
 from .findings import CheckReport, Finding
 from .inertia_geometry import preload_mesh_readers
+from .self_collision_rules import SelfCollisionInput, self_collision_rules
 from .spec_rules import kinematics_rules, spec_findings
 from .urdf_document import Doc, parse_robot
 
@@ -38,6 +41,7 @@ def check(
     prefix: str | None = None,
     consumers: Sequence[str] | None = None,
     progress: Callable[[str], None] | None = None,
+    srdf: str | os.PathLike[str] | None = None,
 ) -> CheckReport:
     """Check a URDF, a xacro document (expanded with its input's mappings) or a spec (generated in memory, never
     written).
@@ -54,6 +58,8 @@ def check(
         consumers: which independent consumers to run (default: every installed one of check_urdf, pinocchio,
             yourdfpy, mujoco); ``[]`` for none.
         progress: called with a short message as each step starts (the CLI shows it on a terminal).
+        srdf: the robot's SRDF, whose disabled pairs G007 respects (default: ``NAME.srdf`` beside the URDF, or its
+            package's ``config/NAME.srdf``; a spec's is the one its package carries).
 
     Raises:
         XacrokitError: the input cannot be read (a spec file that cannot be read raises SpecErrors, a xacro
@@ -88,6 +94,7 @@ def check(
             packages=packages,
             prefix=prefix,
             say=say,
+            srdf=Path(srdf) if srdf is not None else None,
         )
         return _judge(judging)
 
@@ -106,6 +113,7 @@ class Judging:
         packages: the folders its ``package://`` URIs may name (a spec's meshes staged where its package carries them).
         prefix: when given, the prefix every name must start with.
         say: called with a short message as each step starts.
+        srdf: the SRDF given for G007 (None: the one beside the file, if any).
     """
 
     path: Path
@@ -118,6 +126,7 @@ class Judging:
     packages: Mapping[str, str | os.PathLike[str]] | None
     prefix: str | None
     say: Callable[[str], None]
+    srdf: Path | None = None
 
 
 def _judge(judging: Judging) -> CheckReport:
@@ -141,6 +150,10 @@ def _judge(judging: Judging) -> CheckReport:
     findings += other_rules(doc, j.packages, j.path.parent, j.prefix)
     if j.robot is not None and not structural and j.robot.arms:
         findings += kinematics_rules(doc, j.robot, j.text)
+    if not structural:
+        home = named_poses(spec_poses(j.robot), doc.view)[HOME_POSE]
+        given = SelfCollisionInput(j.path, j.packages, home, j.srdf, spec=j.kind == "spec")
+        findings += self_collision_rules(doc, given)
     results = pending()
     findings += consumer_findings(results, where, doc)  # (placed at the link or joint a message names)
     unique = tuple(dict.fromkeys(findings))  # (a spec's visual and collision share a mesh: one finding, not two)

@@ -5,7 +5,7 @@ list: short, whole and worded alike; the docs' rule index (titles_markdown) give
 
 from __future__ import annotations
 
-from . import collision_rules, consumers, inertia_copies, inertia_geometry
+from . import collision_rules, consumers, inertia_copies, inertia_geometry, self_collision_rules
 from . import inertia_rules as inertia
 from . import joint_rules as joints
 from . import number_rules as numbers
@@ -26,6 +26,7 @@ RULES: dict[str, Row] = {
     **inertia_geometry.RULES,  # I008
     **inertia_copies.RULES,  # I009
     **collision_rules.RULES,  # G005, G006
+    **self_collision_rules.RULES,  # G007, G008
     **references.RULES,  # R001-R003, P001
     **sensors.RULES,  # G002-G004
     **spec.RULES,  # K001, V001, V002
@@ -73,6 +74,8 @@ TITLES: dict[str, str] = {
     "I009": "Inertia is not copied onto a part of another size",
     "G005": "No link collides with its detailed visual mesh",
     "G006": "Wheels and feet on the ground have friction",
+    "G007": "No two links collide at the home pose",
+    "G008": "Pairs of links that never collide are counted",
     "R001": "A <gazebo reference> names an existing link or joint",
     "R002": "A material used by name is defined",
     "R003": "Mesh files resolve and exist",

@@ -32,6 +32,7 @@ import numpy as np
 import pinocchio as pin
 from lxml import etree
 
+from ..shared.quiet_stderr import quietly
 from ..shared.ros_packages import mesh_file
 from ..shared.urdf_view import UrdfView, number
 
@@ -104,8 +105,10 @@ def collision_bodies(
     for visual in root.findall("link/visual"):  # (not read: nor its meshes)
         visual.getparent().remove(visual)
     text = etree.tostring(root, encoding="unicode")
-    model = pin.buildModelFromXML(text)
-    geometry = pin.buildGeomFromUrdfString(model, text, pin.COLLISION)
+    built, failure, said = quietly(lambda: _models(text))
+    if failure is not None:
+        raise ValueError(f"pinocchio cannot read the robot: {failure}") from None
+    model, geometry = built
     links = tuple(model.frames[g.parentFrame].name for g in geometry.geometryObjects)
     joints, free = _sampled_joints(model)
     followers = tuple(
@@ -120,6 +123,12 @@ def collision_bodies(
     )
     unbounded = _unbounded_pairs(model, geometry, links, free)
     return CollisionBodies(model, geometry, links, joints, followers, adjacent_pairs(view, set(links)), unbounded)
+
+
+def _models(text: str) -> tuple[Any, Any]:
+    """pinocchio's model of a URDF text and its collision geometry model (coal's shapes)."""
+    model = pin.buildModelFromXML(text)
+    return model, pin.buildGeomFromUrdfString(model, text, pin.COLLISION)
 
 
 def _sampled_joints(model: Any) -> tuple[dict[str, tuple[int, float, float | None]], set[int]]:

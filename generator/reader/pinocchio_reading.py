@@ -12,11 +12,7 @@ as an error of ours.
 from __future__ import annotations
 
 import math
-import os
 import re
-import sys
-import tempfile
-from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -24,6 +20,7 @@ from lxml import etree
 
 from ..errors import XacrokitError
 from ..shared.joint_types import MOVING
+from ..shared.quiet_stderr import quietly
 from ..shared.urdf_view import Joint, UrdfView
 from ..shared.value_text import comment_text
 from .robot_source import urdf_floats
@@ -71,33 +68,11 @@ def pinocchio_model(text: str, view: UrdfView, *, free: bool = False) -> Any:
 
     readable = _with_unit_axes(text, view)
     roots = (pin.JointModelFreeFlyer(),) if free else ()
-    model, failure, said = _quietly(lambda: pin.buildModelFromXML(readable, *roots))
+    model, failure, said = quietly(lambda: pin.buildModelFromXML(readable, *roots))
     if failure is None:
         return model
     complaint = urdfdom_complaint(said)
     raise XacrokitError(f"pinocchio cannot read the robot: {complaint or failure}")
-
-
-def _quietly(call: Callable[[], Any]) -> tuple[Any, Exception | None, str]:
-    """``call()`` with the process's standard error (file descriptor 2, where urdfdom's C++ prints) caught: its
-    result, or the RuntimeError or ValueError it raised, and what it printed."""
-    try:
-        sys.stderr.flush()
-        kept = os.dup(2)
-    except (OSError, ValueError):  # (no standard error to catch: nothing printed reaches anyone)
-        kept = None
-    with tempfile.TemporaryFile() as caught:
-        if kept is not None:
-            os.dup2(caught.fileno(), 2)
-        try:
-            return call(), None, ""
-        except (RuntimeError, ValueError) as exc:
-            caught.seek(0)
-            return None, exc, caught.read(1 << 16).decode("utf-8", errors="replace")
-        finally:
-            if kept is not None:
-                os.dup2(kept, 2)
-                os.close(kept)
 
 
 _COMPLAINT = re.compile(r"^\s*Error:\s*(.*?)\s*$")

@@ -4,7 +4,7 @@ joint joins (or joins through links without collision geometry) is disabled, no 
 Never, and an independent sample (pinocchio and coal driven here, another seed) finds no Never pair in collision.
 
 The independent sample here is 2,000 configurations an example, to keep the test affordable; the acceptance's
-100,000 runs in ``benchmarks/srdf_speed.py never`` (its figures are in benchmarks/RESULTS.md)."""
+100,000 runs in ``benchmarks/srdf_speed.py never`` (its figures are in docs/moveit.md, Speed)."""
 
 from __future__ import annotations
 

@@ -97,6 +97,19 @@ def ball(collision: str) -> str:
   </link>"""
 
 
+def hand(xyz: str) -> str:
+    """A second arm, ``hand``, fixed to the arm at ``xyz``: no joint joins it to the base."""
+    return (
+        link("hand")
+        + f"""
+  <joint name="wrist" type="fixed">
+    <parent link="arm"/><child link="hand"/>
+    <origin xyz="{xyz}"/>
+  </joint>
+"""
+    )
+
+
 CASES = {
     "U001": ('<robot name="x"><link name="a"></robot>\n', base()),
     "U003": (  # a prefix used without its declaration (Drake's exporters write drake: elements)
@@ -251,6 +264,11 @@ CASES = {
         ),
         base(**{"</robot>": WHEEL + '<gazebo reference="wheel"><mu1>1.0</mu1><mu2>1.0</mu2></gazebo>\n</robot>'}),
     ),
+    "G007": (  # a hand fixed to the arm, reaching back into the base at home; then beyond the arm's end
+        base(**{"</robot>": hand("0 0 -0.12") + "</robot>"}),
+        base(**{"</robot>": hand("0 0 0.35") + "</robot>"}),
+    ),
+    "G008": (base(), robot(MATERIAL, BASE_LINK)),  # with its SRDF (G008_fail.srdf): counted; one link, none: nothing
     "R001": (
         base(**{"</robot>": '<gazebo reference="nowhere"><mu1>1</mu1></gazebo>\n</robot>'}),
         base(**{"</robot>": '<gazebo reference="arm"><mu1>1</mu1></gazebo>\n</robot>'}),
@@ -293,11 +311,19 @@ endfacet
 endsolid cube
 """
 
+# G008's robot's SRDF, found beside it: the arm and the base disabled as adjacent
+G008_SRDF = """<?xml version="1.0"?>
+<robot name="corpus">
+  <disable_collisions link1="arm" link2="base_link" reason="Adjacent"/>
+</robot>
+"""
+
 if __name__ == "__main__":
     for rule, (failing, passing) in CASES.items():
         (HERE / f"{rule}_fail.urdf").write_text(failing, encoding="utf-8")
         (HERE / f"{rule}_pass.urdf").write_text(passing, encoding="utf-8")
     (HERE / "meshes" / "cube.stl").write_text(CUBE_STL, encoding="utf-8")
+    (HERE / "G008_fail.srdf").write_text(G008_SRDF, encoding="utf-8")
     import trimesh  # (icospheres of 0.05 m: 1,280 triangles, a visual's detail; 80, a collision mesh's)
 
     for name, divisions in (("ball_detailed", 3), ("ball_coarse", 1)):
