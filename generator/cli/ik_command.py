@@ -39,8 +39,8 @@ def add_ik_command(commands: Any) -> None:
         "--targets",
         metavar="FILE",
         help="many targets, one a row: a CSV (an optional header x,y,z then the orientation's names: roll,pitch,yaw; "
-        "qx,qy,qz,qw; qw,qx,qy,qz; rx,ry,rz; ax,ay,az,angle; r11..r33; a1,a2,a3) or YAML (a list of lists, or of "
-        "mappings with those names); each solved on the robot read once, one solution set per row",
+        "qx,qy,qz,qw; qw,qx,qy,qz; rx,ry,rz; ax,ay,az,angle; r11..r33; px..rz; a1,a2,a3) or YAML (a list of lists, or "
+        "of mappings with those names); each solved on the robot read once, one solution set per row",
     )
     ik.add_argument(
         "--rotation",
@@ -103,13 +103,13 @@ def _rows(args: argparse.Namespace) -> list[tuple[int, tuple[Any, bool]]]:
     names = header_names(args.rotation)
     targets = []
     for row in read_rows(args.targets):
-        where = f"{args.targets}:{row.line}"
+        where = f"{args.targets}:{row.line}:"
         values = list(row.values)
         if row.names is not None:
             given = [n.strip().lower() for n in row.names]
             if given not in (names[:3], names):
                 raise XacrokitError(
-                    f"{where}: the columns are {', '.join(row.names)}; give {', '.join(names)} "
+                    f"{where} the columns are {', '.join(row.names)}; give {', '.join(names)} "
                     f"(or x, y, z alone) for --rotation {args.rotation}"
                 )
         targets.append((row.line, (target_pose(",".join(values), args.rotation, flag=where), len(values) > 3)))

@@ -10,7 +10,7 @@ from typing import Any
 
 from ..errors import XacrokitError
 
-COUNTS = {"rpy": 3, "quat_xyzw": 4, "quat_wxyz": 4, "rotvec": 3, "axis_angle": 4, "matrix": 9}
+COUNTS = {"rpy": 3, "quat_xyzw": 4, "quat_wxyz": 4, "rotvec": 3, "axis_angle": 4, "matrix": 9, "points": 9}
 ANGLES = {"rpy": (0, 1, 2), "axis_angle": (3,)}  # (which of the form's numbers are angles: units allowed)
 ORTHONORMAL = 1e-6  # R^T R this close to the identity, as an origin's matrix
 MAX_TURNS = 1000  # an angle of more turns has no digits left for the turn it makes
@@ -23,6 +23,7 @@ NAMES = {
     "rotvec": ("rx", "ry", "rz"),
     "axis_angle": ("ax", "ay", "az", "angle"),
     "matrix": tuple(f"r{i}{j}" for i in (1, 2, 3) for j in (1, 2, 3)),
+    "points": tuple(f"{point}{axis}" for point in "pqr" for axis in "xyz"),
 }
 
 
@@ -33,7 +34,7 @@ def header_names(form: str) -> list[str]:
 
 
 def forms_said() -> str:
-    return f"{', '.join(COUNTS)}, or Euler angles (euler:XYZ, intrinsic:ZYZ, extrinsic:xyz)"
+    return f"{', '.join(COUNTS)} (P, Q, R), or Euler angles (euler:XYZ, intrinsic:ZYZ, extrinsic:xyz)"
 
 
 def target_pose(text: str, form: str, *, flag: str = "--to") -> Any:
@@ -79,9 +80,21 @@ def target_pose(text: str, form: str, *, flag: str = "--to") -> Any:
     return pose
 
 
+def _number_kind(form: str) -> str:
+    """The kind of an orientation's number that is no angle: the points' coordinates are lengths (units allowed)."""
+    return "length" if form == "points" else "number"
+
+
 def _rotation_problem(form: str, numbers: list[float]) -> str:
     """Why ``numbers`` are no rotation in ``form`` ("" when they are one)."""
     import numpy as np  # (heavy: numpy)
+
+    from ..shared.transforms import points_problem  # (heavy: numpy)
+
+    if form == "points":
+        p, q, r = numbers[0:3], numbers[3:6], numbers[6:9]
+        problem = points_problem(((p[0], p[1], p[2]), (q[0], q[1], q[2]), (r[0], r[1], r[2])))
+        return f"the points P, Q, R give no frame: {problem[1]}" if problem else ""
 
     if form in ("quat_xyzw", "quat_wxyz", "axis_angle"):
         direction = numbers[:3] if form == "axis_angle" else numbers
@@ -123,6 +136,8 @@ def _rotation(form: str, sequence: str | None, numbers: list[float]) -> Any:
         return rotation_matrix("axis_angle", (tuple(v / length for v in numbers[:3]), numbers[3]))
     if form == "rotvec":
         return rotation_matrix("rotvec", tuple(numbers))
+    if form == "points":
+        return rotation_matrix("points", (tuple(numbers[0:3]), tuple(numbers[3:6]), tuple(numbers[6:9])))
     matrix = np.array(numbers, dtype=float).reshape(3, 3)
     u, _, vt = np.linalg.svd(matrix)  # (the nearest rotation: a matrix rounded to 6 digits is 1e-7 off)
     return u @ vt

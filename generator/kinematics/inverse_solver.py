@@ -104,7 +104,7 @@ class IkSolver:
         self.form = recognise(arm_lines(model, target))
         chain_joints = [model.joints[k] for k in self.form.lines.joints] if self.form is not None else []
         self.ranges = [j.limits if j.kind != "continuous" else None for j in chain_joints]
-        self.chain = _chain(model, target)
+        self.chain = numeric_chain(model, target)
         self.rest = np.clip(np.zeros(len(model.joints)), self.chain.lower, self.chain.upper)
         self.base = model.placed(model.configuration({}))[base].copy()
         self.reach = float(np.linalg.norm(model.placed(model.configuration({}))[target].translation))
@@ -240,7 +240,7 @@ class IkSolver:
         return Solutions(self.frame, self.in_frame, names, solutions, closest, method, ran, complete, outside)
 
 
-def _chain(model: KinematicModel, frame: int) -> Chain:
+def numeric_chain(model: KinematicModel, frame: int) -> Chain:
     """The numeric solver's chain: every joint one sets, with the velocity columns it drives (a mimic joint's column
     joins its leader's) as a matrix made once; a joint that does not move ``frame`` keeps its start (its columns are
     zero there)."""

@@ -14,8 +14,8 @@ import pytest
 
 from conftest import REPO
 from xacrokit.kinematics import ik_solver
-from xacrokit.kinematics.inverse_solver import _chain
 from xacrokit.kinematics.inverse import solve, starts
+from xacrokit.kinematics.inverse_solver import numeric_chain
 from xacrokit.reader.read_robot import read_robot
 from xacrokit.shared.transforms import rpy_matrix
 
@@ -51,7 +51,7 @@ def searched(robot, frame, target, count=128):
     """The independent oracle: damped least squares from `count` spread starts, no limits (one turn either way per
     joint, every solution then compared modulo 2 pi), distinct solutions that reach 1e-9."""
     model = robot.kinematics
-    chain = _chain(model, model.frame_id(frame))
+    chain = numeric_chain(model, model.frame_id(frame))
     wide = TURN * np.ones(len(chain.lower))
     chain = dataclasses.replace(chain, lower=-wide, upper=wide)
     names = [j.name for j in model.joints]

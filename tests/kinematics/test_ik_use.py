@@ -209,3 +209,54 @@ def test_the_numeric_search_says_its_starts_and_that_its_list_may_be_incomplete(
     assert result.returncode == 0
     assert first.startswith("numeric (damped least squares), ") and first.endswith("the list may be incomplete")
     assert int(first.split(", ")[1].split()[0]) >= 32
+
+
+@pytest.mark.parametrize(
+    ("argv", "words"),
+    [
+        (["--targets", "/nonexistent/targets.csv"], "/nonexistent/targets.csv: cannot read it"),
+        (["--to", "0.5,0.2,0.4", "--targets", "t.csv"], "one of the two"),
+        ([], "give the target with --to"),
+        (["--to", "0.5,0.2,0.4,0,0,0,1,0,0,2,0,0", "--rotation", "points"], "R is on the line through P and Q"),
+        (["--to", "0.5,0.2,0.4,1,0,0", "--rotation", "bogus"], "'bogus' is no rotation form"),
+    ],
+)
+def test_what_ik_cannot_take_is_said_in_one_line(argv, words):
+    result = gen_robot("ik", UR10E, "tool0", *argv)
+    assert result.returncode == 2 and words in result.stderr and "Traceback" not in result.stderr, result.stderr
+    assert not result.stdout
+
+
+def test_a_row_of_a_targets_file_is_located(tmp_path):
+    rows = tmp_path / "targets.csv"
+    rows.write_text("x,y,z\n0.5,0.2,0.4\n1e308,0,0\n", encoding="utf-8")
+    result = gen_robot("ik", UR10E, "tool0", "--targets", rows)
+    assert result.returncode == 2 and not result.stdout
+    assert result.stderr.startswith(f"gen-robot: error: {rows}:3: '1e308,0,0': 1e+308 m is beyond"), result.stderr
+
+
+def test_the_points_form_is_the_rotations_lectures_triple():
+    """P, Q, R as the tf lecture's converter takes them: X along Q - P, Y towards R; the same branches as the
+    matrix those axes make."""
+    target = ur_target(UR_VALUES)
+    x, y = target[:3, 0], target[:3, 1]
+    xyz = [repr(float(v)) for v in target[:3, 3]]
+    points = [0.0, 0.0, 0.0, *x, *y]
+    by_points = gen_robot(
+        "ik",
+        UR10E,
+        "tool0",
+        "--to",
+        ",".join(xyz + [repr(float(v)) for v in points]),
+        "--rotation",
+        "points",
+        "--all",
+        "--json",
+    )
+    by_rpy = gen_robot("ik", UR10E, "tool0", "--to", _to(target), "--all", "--json")
+    assert by_points.returncode == 0, by_points.stderr
+    got, expected = (
+        sorted(tuple(round(v, 7) for v in s["joints"].values()) for s in json.loads(r.stdout)["solutions"])
+        for r in (by_points, by_rpy)
+    )
+    assert got == expected and len(got) == 8
