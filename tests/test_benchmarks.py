@@ -85,3 +85,20 @@ def test_mesh_memory_script_runs():
     result = run_script("mesh_memory.py", "3")
     for command in ("import", "export"):
         assert f"gen-robot {command}: peak" in result.stdout and "with 3 (12 MB of meshes): ratio" in result.stdout
+
+
+def test_ik_speed_script_runs():
+    """benchmarks/ik_speed.py: our ik against ikpy and roboticstoolbox where installed (3 targets a robot; the times
+    are RESULTS.md's to record, not this test's to judge)."""
+    result = run_script("ik_speed.py", "3")
+    rows = [[cell.strip() for cell in line.strip("|").split("|")] for line in result.stdout.splitlines()]
+    rows = [row for row in rows if len(row) == 8 and row[2] == "3"]
+    robots = ["UR5", "UR10e", "KR 560"] + ([] if "Panda: left out" in result.stdout else ["Panda"])
+    assert sorted({row[0] for row in rows}) == sorted(robots)
+    for robot in robots:
+        solvers = {row[1]: row for row in rows if row[0] == robot}
+        for ours in ("ours, first", "ours, every"):  # (seeded targets drawn within reach: every one answered)
+            assert solvers[ours][3].startswith("100.0% (100.0% at 1e-9)"), solvers[ours]
+            assert float(solvers[ours][4]) > 0 and float(solvers[ours][7].split()[0]) > 0
+        for theirs, package in (("rtb ik_LM", "rtb"), ("rtb ik_LM tol=5e-13", "rtb"), ("ikpy", "ikpy")):
+            assert theirs in solvers or f"comparator unavailable: {package}:" in result.stdout
