@@ -22,7 +22,7 @@ from .expansion.expression_guard import trusting
 from .expansion.xacro_expand import expand_file
 from .load import load_file
 from .model import Robot, Scene, attach_joint_name
-from .moveit.moveit_package import srdf_file
+from .moveit.moveit_package import moveit_files, srdf_file
 from .render import MacroMode, RenderedFile, render_package, render_scene
 from .render.control import axle_offset
 from .resolve import resolve
@@ -237,7 +237,7 @@ def generate(
     progress("expanding with xacro" if via_xacro else "emitting the URDF")
     files.append(expand_package(robot, files) if via_xacro else emitted_urdf(robot.name, emit_urdf(robot)))
     progress("sampling self-collisions for the SRDF")
-    files.append(srdf_file(robot, files, spec_name=Path(spec_path).name))
+    files += moveit_files(robot, files, spec_name=Path(spec_path).name)
     source = SpecSource(Path(spec_path), _spec_lines(spec, robot), spec.warnings)
     said = spec.warnings + _drive_warnings(spec, robot, source.lines)
     warnings = tuple(sorted(said, key=lambda w: (w.line or 0, w.column or 0)))

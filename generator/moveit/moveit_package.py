@@ -13,6 +13,7 @@ from ..render.environment import RenderedFile
 from ..shared.urdf_view import read_view
 from ..write.atomic import write_text_atomic
 from .collision_pairs import Judged, Sampling, adjacent_pairs, collision_bodies, configuration, disabled_pairs
+from .moveit_config_files import moveit_config_files
 from .semantics import Semantics, robot_semantics, scene_semantics
 from .srdf_document import srdf_text
 
@@ -23,6 +24,13 @@ MAX_LINKS = 600  # links with collision geometry beyond which only adjacent pair
 def semantics_of(model: Robot | Scene) -> Semantics:
     """A robot's or a scene's SRDF parts (its matrix aside)."""
     return robot_semantics(model) if isinstance(model, Robot) else scene_semantics(model)
+
+
+def moveit_files(robot: Robot, files: Sequence[RenderedFile], *, spec_name: str) -> list[RenderedFile]:
+    """A robot package's MoveIt files: its SRDF, and the configuration and launch files beside it
+    (:mod:`.moveit_config_files`: for a robot with a JointTrajectoryController)."""
+    srdf = srdf_file(robot, files, spec_name=spec_name)
+    return [srdf, *moveit_config_files(robot, semantics_of(robot), spec_name=spec_name)]
 
 
 def srdf_file(
