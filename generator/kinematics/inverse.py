@@ -152,7 +152,8 @@ def starts(chain: Chain, first: Sequence[float] | np.ndarray, count: int = START
     (16 uniform starts once missed one of the two-link arm's elbow branches)."""
     from scipy.stats import qmc  # (heavy: scipy)
 
-    spread = qmc.Sobol(d=len(chain.lower), scramble=True, seed=seed).random(count)[1:]
+    drawn = 1 << max(count - 1, 0).bit_length()  # (Sobol's balance holds for a power of two: draw one, use count)
+    spread = qmc.Sobol(d=len(chain.lower), scramble=True, seed=seed).random(drawn)[1:count]
     with np.errstate(over="ignore"):
         width = chain.upper - chain.lower
     if np.isfinite(width).all():

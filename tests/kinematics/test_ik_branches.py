@@ -213,3 +213,17 @@ def test_arms_built_in_any_frame_convention_are_solved_in_closed_form(tmp_path, 
         numeric = searched(robot, "l7", target)
         assert len(closed) == len(numeric), ([s.values for s in closed], numeric)
         assert all(any(same_turns(v, s.values, names) for s in closed) for v in numeric)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_a_general_six_joint_arm_is_solved_numerically_for_random_reachable_targets(tmp_path, seed):
+    """Random DH rows (no closed form fits: numeric), 30 targets posed within the joints' limits of +-pi: every one
+    solved (64 starts left 7 of 300 such targets unsolved; 256 none) and re-posed by pinocchio to 1e-9."""
+    rng = np.random.default_rng(seed)
+    rows = [(0, rng.uniform(0, 0.3), rng.uniform(0, 0.5), rng.uniform(-math.pi, math.pi)) for _ in range(6)]
+    robot = read_robot(dh_arm(tmp_path, f"general{seed}", rows, seed, limit=math.pi))
+    solver = ik_solver(robot, "l7")
+    assert solver.method == "numeric (damped least squares)"
+    for _, target in random_targets(robot, "l7", 30, seed):
+        (solution,) = solver.solve(target).solutions
+        assert reposed_error(robot, "l7", solution.values, target) < 1e-9
