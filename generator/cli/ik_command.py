@@ -166,7 +166,8 @@ def _how(found: Solutions) -> str:
             return f"{found.method}: {found.branches} branches{left}; the one nearest the rest pose (--all: every one)"
         return f"{found.method}: every branch{left}"
     starts = "1 start" if found.starts == 1 else f"{found.starts} starts"
-    return f"{found.method}, {starts}: the list may be incomplete"
+    left = f" (the closed form's {found.outside_limits} branches are outside the joints' limits)"
+    return f"{found.method}, {starts}: the list may be incomplete{left if found.outside_limits else ''}"
 
 
 def _equivalents(count: int) -> str:

@@ -1,13 +1,15 @@
 """Inverse kinematics on a robot read once: :class:`IkSolver` is made once per robot, frame and target frame (the
 closed form recognised, the chain's joints found, the numeric chain built) and then solves any number of targets.
 
-A chain the closed form knows (:func:`.arm_geometry.recognise`) is solved by it: every branch, each checked on the
-robot with pinocchio (a branch a subproblem could only approach is polished by the numeric solver from there, and
-dropped when it does not reach), each given by its value nearest 0 within the joints' limits, with the count of its
-2-pi equivalents within them; a branch no value of which is within the limits is counted, not given. Any other chain
-is searched numerically (:mod:`.inverse`): from the rest pose (or the values given as ``near``), then from starts
-spread over the limits, STARTS of them for every branch or until one reaches; the result says how many ran, and that
-the list may be incomplete.
+A chain the closed form knows (:func:`.arm_geometry.recognise`) is solved by it: every branch whose subproblems
+have exact roots, each given by its values nearest 0 (or nearest ``near``) within the joints' limits, with the count
+of its 2-pi equivalents within them, and checked on the robot with pinocchio (one posed between 1e-9 and POLISHABLE
+off, as lines parallel only within the tolerance leave it, is polished by the numeric solver); a branch no value of
+which is within the limits is counted, not given. Without ``every`` the candidates are checked nearest first and the
+first that reaches is the answer. Any other chain (and a target the closed form does not reach) is searched
+numerically (:mod:`.inverse`): from ``near`` when given, the NEAREST of ATLAS configurations posed once per solver,
+then Sobol starts over the limits, until one reaches (FIRST_STARTS at most) or, for every branch, STARTS more and on
+until one reaches; the result says how many ran, and that the list may be incomplete.
 """
 
 from __future__ import annotations
@@ -135,10 +137,13 @@ class IkSolver:
             if found:
                 result = self._result(found, None, self.method, 0, outside)
                 return dataclasses.replace(result, branches=count, complete=len(found) == count)
+        else:
+            outside = 0
         first = [seed] if near is not None else []
-        searched = self._numeric(goal, every=every, position_only=position_only, seeds=first + self._nearest(goal))
+        seeds = first + self._nearest(goal, position_only=position_only)
+        searched = self._numeric(goal, every=every, position_only=position_only, seeds=seeds)
         searched.solutions.sort(key=lambda s: _distance(s.values, seed, self.model.joints))  # (nearest first)
-        return searched
+        return dataclasses.replace(searched, outside_limits=outside)  # (the closed form's, when all were outside)
 
     def equivalent_values(self, solution: Solution) -> list[dict[str, float]]:
         """The other values of a closed-form ``solution``'s chain joints, whole turns apart and within the limits
@@ -168,17 +173,17 @@ class IkSolver:
         joints, chain = self.model.joints, self.form.lines.joints
         candidates: list[tuple[list[float], int, Branch]] = []
         outside = 0
+        centres = [float(seed[k]) for k in chain]
         for branch in branches(self.form, rotation, position):  # type: ignore[arg-type]
             if not branch.exact:  # (a subproblem without an exact root: this branch's triangle does not close)
                 continue
-            wrapped, count = _nearest_zero(branch.values, self.ranges)
+            wrapped, count = _nearest_turns(branch.values, self.ranges, centres)
             if not wrapped:
                 outside += 1
             elif not any(_same_turns(wrapped, other) for other, _, _ in candidates):
                 candidates.append((wrapped, count, branch))
-        near = [float(seed[k]) for k in chain]
         if not every:  # (checked nearest first: the first that reaches is the answer)
-            candidates.sort(key=lambda c: sum(abs(a - b) for a, b in zip(c[0], near, strict=True)))
+            candidates.sort(key=lambda c: sum(abs(a - b) for a, b in zip(c[0], centres, strict=True)))
         solutions: list[Solution] = []
         for wrapped, count, branch in candidates:
             values = self.rest.copy()
@@ -200,15 +205,16 @@ class IkSolver:
             values = polished if error <= REACHED else values
         return (values, error) if error <= REACHED else None
 
-    def _nearest(self, goal: Any) -> list[np.ndarray]:
+    def _nearest(self, goal: Any, *, position_only: bool) -> list[np.ndarray]:
         """The NEAREST of ATLAS configurations (spread over the limits, posed once per solver) whose frame is
-        closest to ``goal`` (metres, plus the rotation matrices' difference times the arm's reach): starts a few
-        steps from a solution."""
+        closest to ``goal`` (metres, plus the rotation matrices' difference times the arm's reach unless
+        ``position_only``): starts a few steps from a solution."""
         if self.atlas is None:
             self.atlas = _atlas(self.chain, self.rest)
         values, positions, rotations = self.atlas
         gap = np.linalg.norm(positions - goal.translation, axis=1)
-        gap += np.linalg.norm((rotations - goal.rotation.reshape(1, 9)), axis=1) * max(self.reach, 0.1)
+        if not position_only:
+            gap += np.linalg.norm((rotations - goal.rotation.reshape(1, 9)), axis=1) * max(self.reach, 0.1)
         return [values[k] for k in np.argsort(gap)[:NEAREST]]
 
     def _numeric(self, goal: Any, *, every: bool, position_only: bool, seeds: list[np.ndarray]) -> Solutions:
@@ -309,13 +315,15 @@ def _error(chain: Chain, goal: Any, values: np.ndarray) -> float:
     return float(np.linalg.norm(pin.log6(goal.actInv(chain.data.oMf[chain.frame])).vector))
 
 
-def _nearest_zero(values: Sequence[float], ranges: Sequence[tuple[float, float] | None]) -> tuple[list[float], int]:
-    """Each value turned by whole turns to the one nearest 0 within its range (None: a continuous joint, into
-    [-pi, pi]), and how many combinations of whole turns stay within the ranges (0: endless); an empty list when a
-    value has none."""
+def _nearest_turns(
+    values: Sequence[float], ranges: Sequence[tuple[float, float] | None], centres: Sequence[float]
+) -> tuple[list[float], int]:
+    """Each value turned by whole turns to the one nearest its centre (0, or the value given as ``near``) within
+    its range (None: a continuous joint, any turn), and how many combinations of whole turns stay within the ranges
+    (0: endless); an empty list when a value has none."""
     wrapped, count = [], 1
-    for value, limits in zip(values, ranges, strict=True):
-        value = math.remainder(value, TURN)
+    for value, limits, centre in zip(values, ranges, centres, strict=True):
+        value = centre + math.remainder(value - centre, TURN)
         if limits is None:
             wrapped.append(value)
             count = 0
@@ -324,7 +332,7 @@ def _nearest_zero(values: Sequence[float], ranges: Sequence[tuple[float, float] 
         last = math.floor((limits[1] + LIMIT_SLACK - value) / TURN)
         if first > last:
             return [], 0
-        turns = min(max(0, first), last)  # (value is within half a turn of 0: no turn is nearest, else an end)
+        turns = min(max(0, first), last)  # (value is within half a turn of its centre: no turn is nearest, or an end)
         wrapped.append(min(max(value + TURN * turns, limits[0]), limits[1]))
         count = count * (last - first + 1)
     return wrapped, count

@@ -272,3 +272,16 @@ def test_every_branch_of_a_numeric_search_includes_what_the_first_solution_finds
     every = ik_solver(robot, "panda_hand").solve(target, every=True)
     assert first.solutions and every.solutions
     assert all(s.error <= 1e-9 for s in every.solutions) and every.starts >= 36
+
+
+def test_near_picks_the_branch_and_the_turn_nearest_the_values_given():
+    """A trajectory's previous point: with `near` at the configuration itself (wrist 3 at 6.0 rad, past a turn),
+    the closed form answers that configuration, wrist 3 at 6.0 and not 6.0 - 2 pi; without it, the turn nearest 0."""
+    values = {**UR_VALUES, "wrist_3_joint": 6.0}
+    target = ur_target(values)
+    solver = ik_solver(read_robot(UR10E), "tool0")
+    names = list(UR_VALUES)
+    (near,) = solver.solve(target, near=[values[n] for n in names]).solutions
+    assert all(abs(near.values[n] - values[n]) < 1e-6 for n in names), near.values
+    (rest,) = solver.solve(target).solutions
+    assert abs(rest.values["wrist_3_joint"] - (6.0 - 2 * math.pi)) < 1e-6 or rest.branch != near.branch
