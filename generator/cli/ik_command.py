@@ -146,7 +146,7 @@ def solutions_text(found: Solutions, solver: IkSolver | None) -> str:
     lines = [_how(found)]
     for index, solution in enumerate(found.solutions, 1):
         about = [solution.branch] if solution.branch else []
-        about.append("error < 1e-12" if solution.error < 1e-12 else f"error {solution.error:.3g}")  # (--json: exact)
+        about.append("error < 1e-10" if solution.error < 1e-10 else f"error {solution.error:.3g}")  # (--json: exact)
         if solution.branch:
             about.append(_equivalents(solution.equivalents))
         lines.append(f"solution {index} ({'; '.join(about)}):")

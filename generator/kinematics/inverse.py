@@ -136,13 +136,15 @@ def closest_reach(
 
 def _step(chain: Chain, full: np.ndarray, residual: np.ndarray, error: float) -> np.ndarray | None:
     """The damped least-squares step on the joints one sets; None when it is not finite numbers."""
+    from scipy.linalg.lapack import dposv  # (heavy: scipy; LAPACK's Cholesky solve, 7x less overhead than numpy's)
+
     part = chain.selected(full)
     normal = part @ part.T
     normal.flat[:: len(residual) + 1] += 1e-12 + 1e-3 * error  # (less damping as it closes in: quadratic near it)
-    try:
-        step: np.ndarray = -part.T @ np.linalg.solve(normal, residual)
-    except np.linalg.LinAlgError:  # (a matrix of inf or NaN)
+    _, solved, info = dposv(normal, residual)
+    if info != 0:  # (not positive definite: a matrix of inf or NaN)
         return None
+    step: np.ndarray = -part.T @ solved
     return step if math.isfinite(float(step.sum())) else None
 
 

@@ -97,6 +97,7 @@ class IkSolver:
     atlas: tuple[np.ndarray, np.ndarray, np.ndarray] | None = field(init=False, default=None)
     reach: float = field(init=False, default=1.0)
     ranges: list[tuple[float, float] | None] = field(init=False, default_factory=list)
+    spread: list[np.ndarray] | None = field(init=False, default=None)
 
     def __post_init__(self) -> None:
         model = self.model
@@ -142,7 +143,7 @@ class IkSolver:
         first = [seed] if near is not None else []
         seeds = first + self._nearest(goal, position_only=position_only)
         searched = self._numeric(goal, every=every, position_only=position_only, seeds=seeds)
-        searched.solutions.sort(key=lambda s: _distance(s.values, seed, self.model.joints))  # (nearest first)
+        searched.solutions.sort(key=lambda s: _order(s.values, seed, self.model.joints))  # (nearest first)
         return dataclasses.replace(searched, outside_limits=outside)  # (the closed form's, when all were outside)
 
     def equivalent_values(self, solution: Solution) -> list[dict[str, float]]:
@@ -220,7 +221,9 @@ class IkSolver:
     def _numeric(self, goal: Any, *, every: bool, position_only: bool, seeds: list[np.ndarray]) -> Solutions:
         found: list[tuple[np.ndarray, float]] = []
         ran, reached_one = 0, False
-        for start in [*seeds, *starts(self.chain, self.rest, FIRST_STARTS)]:
+        if self.spread is None:  # (drawn once per solver: scipy's Sobol costs milliseconds a draw)
+            self.spread = starts(self.chain, self.rest, FIRST_STARTS)
+        for start in [*seeds, *self.spread]:
             ran += 1
             values, error = solve(self.chain, goal, position_only=position_only, start=start)
             found.append((values, error))
@@ -269,26 +272,26 @@ def _configuration(model: KinematicModel) -> Callable[[np.ndarray], np.ndarray]:
     twin), written with index arrays made once: the solver makes q thousands of times a solve."""
     import pinocchio as pin  # (heavy: pinocchio)
 
-    neutral = pin.neutral(model.model)
-    plain = [k for k, j in enumerate(model.joints) if j.kind != "continuous"]
-    turning = [k for k, j in enumerate(model.joints) if j.kind == "continuous"]
-    plain_q = np.array([model.joints[k].q_index for k in plain], dtype=int)
-    turning_q = np.array([model.joints[k].q_index for k in turning], dtype=int)
+    neutral = [float(v) for v in pin.neutral(model.model)]
+    places = [(k, j.q_index, j.kind == "continuous") for k, j in enumerate(model.joints)]
     column = {j.name: k for k, j in enumerate(model.joints)}
     followers = [(f, column[f.leader], f.joint.q_index, f.joint.kind == "continuous") for f in model.followers]
 
     def configuration(values: np.ndarray) -> np.ndarray:
-        q: np.ndarray = neutral.copy()
-        q[plain_q] = values[plain]
-        q[turning_q] = np.cos(values[turning])
-        q[turning_q + 1] = np.sin(values[turning])
+        q = list(neutral)  # (plain floats: numpy's indexing costs more than the loop on a dozen numbers)
+        given = values.tolist()
+        for k, index, turns in places:
+            if turns:
+                q[index], q[index + 1] = math.cos(given[k]), math.sin(given[k])
+            else:
+                q[index] = given[k]
         for follower, leader, index, turns in followers:  # (its value checked: FollowerValueError when it overflows)
-            value = follower.value(float(values[leader]))
+            value = follower.value(given[leader])
             if turns:
                 q[index], q[index + 1] = math.cos(value), math.sin(value)
             else:
                 q[index] = value
-        return q
+        return np.array(q)
 
     return configuration
 
@@ -348,6 +351,13 @@ def _same_turns(a: Sequence[float], b: Sequence[float]) -> bool:
 
 def _named(joints: Sequence[KinematicJoint], values: np.ndarray) -> dict[str, float]:
     return {j.name: float(v) for j, v in zip(joints, values, strict=True)}
+
+
+def _order(values: dict[str, float], seed: np.ndarray, joints: Sequence[KinematicJoint]) -> tuple[float, ...]:
+    """Nearest ``seed`` first; two as near (a symmetric arm's mirror branches), the lower values first: an order
+    that does not hang on which start found which."""
+    distance = round(_distance(values, seed, joints), 9)
+    return (distance, *(round(values[j.name], 9) for j in joints))
 
 
 def _distance(values: dict[str, float], seed: np.ndarray, joints: Sequence[KinematicJoint]) -> float:
