@@ -70,6 +70,7 @@ COMMANDS = {
     "pose": lambda path, out: ["pose", path, "tool_link", "--at", "joint_1=0.3"],
     "jacobian": lambda path, out: ["jacobian", path, "tool_link", "--exerts", "0,0,-1"],
     "ik": lambda path, out: ["ik", path, "tool_link", "--to", "0.5,0.3,0", "--position-only"],
+    "ik-targets": lambda path, out: ["ik", path, "tool_link", "--targets", str(_targets(out)), "--position-only"],
     "size": lambda path, out: ["size", path, "--payload", "1kg@tool_link"],
     "view": lambda path, out: ["view", path, "-o", str(out / "page.html")],
     "render": lambda path, out: ["render", path, "-o", str(out / "picture.png"), "--size", "160x120"],
@@ -79,6 +80,13 @@ COMMANDS = {
     "check": lambda path, out: ["check", path, "--consumers", "none"],
     "report": lambda path, out: ["report", path],
 }
+
+
+def _targets(folder):
+    """Three targets a row (ik --targets): one robot read and one model built for all of them."""
+    path = folder / "targets.csv"
+    path.write_text("x,y,z\n0.5,0.3,0\n0.4,0.2,0\n0.3,-0.4,0\n", encoding="utf-8")
+    return path
 
 
 @pytest.mark.parametrize("kind", ["urdf", "xacro", "spec"])
