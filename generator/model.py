@@ -147,6 +147,7 @@ class Limit:
     velocity: float
     lower: float | None = None
     upper: float | None = None
+    acceleration: float | None = None  # (MoveIt's joint_limits.yaml only: a URDF has no place for it)
 
     @property
     def bounds(self) -> tuple[float, float] | None:

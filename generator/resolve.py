@@ -257,6 +257,7 @@ def _limit(data: dict[str, Any], joint_type: str) -> Limit | None:
         velocity=float(limit["velocity"]),
         lower=float(limit["lower"]) if bounded else None,
         upper=float(limit["upper"]) if bounded else None,
+        acceleration=float(limit["acceleration"]) if "acceleration" in limit else None,
     )
 
 

@@ -9,17 +9,12 @@ from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
-import numpy as np
-
 from ..errors import XacrokitError
 from ..moveit.collision_pairs import (
-    CollisionBodies,
     Pair,
-    Sampling,
     colliding_pairs,
     collision_bodies,
     configuration,
-    disabled_pairs,
 )
 from ..moveit.srdf_reading import SrdfFacts, read_srdf, srdf_beside
 from .findings import Finding, rule_table
@@ -41,14 +36,13 @@ RULES = rule_table(
         "G008": (
             "never-colliding-pairs",
             "info",
-            "a note on a robot with an SRDF (given, or beside the URDF as G007 finds it) or a spec: how many pairs of "
-            "links never collide (the SRDF's Never pairs; a spec's, those never within 5 cm of each other in the "
-            "10,000 configurations its package's SRDF is sampled from)",
+            "a note on a robot with an SRDF (given, or beside the URDF as G007 finds it): how many pairs of links it "
+            "disables as never colliding (gen-robot samples 10,000 configurations for them); on a spec whose links "
+            "intersect at home: those pairs, which its package's SRDF disables as Default",
         ),
     }
 )
 
-SAMPLING = Sampling()  # (a spec's note: as generating its package samples, 10,000 configurations)
 SHOWN = 6  # pairs named in a note
 
 
@@ -99,31 +93,22 @@ def self_collision_rules(doc: Doc, given: SelfCollisionInput) -> Iterator[Findin
             f'disable the pair in an SRDF beside the URDF (reason="Default": gen-robot writes config/NAME.srdf)',
             link.element if link is not None else None,
         )
-    if srdf is not None or given.spec:  # (a bare URDF gets no note: nothing says which pairs it means to skip)
-        yield _note(doc, bodies, home, srdf, disabled, at_home if given.spec else set())
+    note = _note(doc, srdf, disabled, at_home if given.spec else set())
+    if note is not None:  # (a bare URDF gets none: nothing says which pairs it means to skip)
+        yield note
 
 
-def _note(
-    doc: Doc,
-    bodies: CollisionBodies,
-    home: np.ndarray,
-    srdf: Path | None,
-    disabled: dict[Pair, str],
-    default: set[Pair],
-) -> Finding:
-    """The note on the pairs that never collide: the SRDF's count, else a sample's."""
+def _note(doc: Doc, srdf: Path | None, disabled: dict[Pair, str], default: set[Pair]) -> Finding | None:
+    """The note: the SRDF's count of pairs disabled as never colliding; a spec's pairs that intersect at home, which
+    its package's SRDF disables as Default (None for a spec without any: its package's SRDF says the rest)."""
+    said = ""
     if srdf is not None:
         never = sum(1 for reason in disabled.values() if reason == "Never")
         said = f"{srdf.name} disables {len(disabled):,} pairs of links, {never:,} of them as never in collision"
-    else:  # a spec: what its package's SRDF says, sampled as generating it samples
-        judged = disabled_pairs(bodies, home, SAMPLING)
-        never = sum(1 for reason in judged.disabled.values() if reason == "Never")
-        said = (
-            f"the package's SRDF (config/{doc.view.name}.srdf) disables {never:,} of {len(bodies.pairs):,} pairs of "
-            f"links as never in collision (never within {SAMPLING.margin:g} m of each other in "
-            f"{judged.samples:,} configurations, seed {SAMPLING.seed}, or beyond each other's reach)"
-        )
     if default:
         named = ", ".join(f"{a}-{b}" for a, b in sorted(default)[:SHOWN]) + (", ..." if len(default) > SHOWN else "")
-        said += f"; {len(default)} intersecting at home, which the package's SRDF disables as Default: {named}"
-    return doc.finding("G008", "robot", doc.view.name or "", said)
+        said = (
+            f"{len(default)} pairs of links intersect at home, which the package's SRDF (config/{doc.view.name}.srdf) "
+            f"disables as Default: {named}"
+        )
+    return doc.finding("G008", "robot", doc.view.name or "", said) if said else None

@@ -446,12 +446,13 @@ class Quantities:
             self.errors.append(self.raw.error((*path, "density"), f"density must be > 0 kg/m^3, got {value!r}"))
 
     def rates(self, limit: dict[str, Any], path: PathKey, joint_type: str) -> None:
-        """A limit's velocity (rad/s, or m/s for a prismatic joint: 'deg/s', 'rpm', 'mm/s' ...) and effort (N*m or N:
-        'kgf*cm' ...), each > 0."""
+        """A limit's velocity (rad/s, or m/s for a prismatic joint: 'deg/s', 'rpm', 'mm/s' ...), effort (N*m or N:
+        'kgf*cm' ...) and acceleration when given (rad/s^2 or m/s^2: 'deg/s2'), each > 0."""
         prismatic = joint_type == "prismatic"
         speed: Kind = "linear_velocity" if prismatic else "angular_velocity"
         effort: Kind = "force" if prismatic else "torque"
-        for key, kind in (("velocity", speed), ("effort", effort)):
+        rate: Kind = "acceleration" if prismatic else "angular_acceleration"
+        for key, kind in (("velocity", speed), ("effort", effort), ("acceleration", rate)):
             if key not in limit:
                 continue
             errors = len(self.errors)

@@ -10,6 +10,7 @@ not installed here."""
 from __future__ import annotations
 
 import ast
+import math
 from functools import cache
 from pathlib import Path
 
@@ -18,7 +19,7 @@ import yaml
 from lxml import etree
 
 import xacrokit
-from conftest import ROBOT_EXAMPLES
+from conftest import ROBOT_EXAMPLES, gen_robot
 
 FACTS = yaml.safe_load((Path(__file__).parents[1] / "render" / "ros_facts.yaml").read_text(encoding="utf-8"))
 # what MoveItConfigsBuilder reads from config/ by default (moveit_configs_builder.py, moveit2 @ 8fcb5d2): the SRDF
@@ -103,3 +104,23 @@ def test_the_config_check_can_fail(folder):
     joints = managed["moveit_simple_controller_manager"]["joint_trajectory_controller"]["joints"]
     assert joints == ros2["joint_trajectory_controller"]["ros__parameters"]["joints"]
     assert joints[:-1] != ros2["joint_trajectory_controller"]["ros__parameters"]["joints"]
+
+
+def test_an_acceleration_limit_reaches_joint_limits_yaml_and_a_bad_one_is_located(tmp_path):
+    """``limit: {acceleration: 180 deg/s2}`` on one joint: MoveIt's joint_limits.yaml claims it (in rad/s^2) and no
+    other; -1 is refused at its line, exit 2, nothing written."""
+    spec = (ROBOT_EXAMPLES[[p.stem for p in ROBOT_EXAMPLES].index("two_dof_arm")]).read_text(encoding="utf-8")
+    joint = next(line for line in spec.splitlines() if "velocity:" in line and "limit" in line)
+    given = joint.replace("velocity:", "acceleration: 180 deg/s2, velocity:")
+    (tmp_path / "robot.yaml").write_text(spec.replace(joint, given), encoding="utf-8")
+    result = xacrokit.generate(tmp_path / "robot.yaml", tmp_path / "pkg")
+    limits = yaml.safe_load((tmp_path / "pkg" / "config" / "joint_limits.yaml").read_text())["joint_limits"]
+    accelerated = {
+        name: entry["max_acceleration"] for name, entry in limits.items() if entry["has_acceleration_limits"]
+    }
+    assert list(accelerated.values()) == [pytest.approx(math.pi)] and len(limits) > 1, result.name
+    (tmp_path / "bad.yaml").write_text(spec.replace(joint, joint.replace("velocity:", "acceleration: -1, velocity:")))
+    run = gen_robot(tmp_path / "bad.yaml", "-o", tmp_path / "bad")
+    line = spec.splitlines().index(joint) + 1
+    assert run.returncode == 2 and f"bad.yaml:{line}:" in run.stderr and "acceleration" in run.stderr
+    assert not (tmp_path / "bad").exists()
