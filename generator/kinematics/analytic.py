@@ -23,7 +23,9 @@ branch across targets; docs/kinematics.md says how the names read on an arm.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
+from typing import Any
 
 from .arm_geometry import THREE_PARALLEL, ClosedForm
 from .subproblems import (
@@ -76,35 +78,43 @@ def branches(form: ClosedForm, rotation_: Mat, position: Vec) -> list[Branch]:
     return _spherical_wrist(form, r_g, p_g)
 
 
-def _three_parallel(form: ClosedForm, r_g: Mat, p_g: Vec) -> list[Branch]:
+@functools.cache
+def _three_parallel_constants(form: ClosedForm) -> tuple[Any, ...]:
+    """What every target of a three-parallel-axes arm shares (made once per arm: ClosedForm is frozen)."""
     h, p = form.lines.axes, form.lines.points
     n = form.parallel or h[1]
-    signs = [dot(h[k], n) for k in (1, 2, 3)]
-    across = _across(n)
-    upper, fore, forearm = perpendicular(sub(p[2], p[1]), n), perpendicular(sub(p[3], p[2]), n), sub(p[3], p[2])
-    back, wrist_arm = scale(-1.0, upper), sub(form.wrist, p[3])
+    signs = (dot(h[1], n), dot(h[2], n), dot(h[3], n))
+    upper, fore = perpendicular(sub(p[2], p[1]), n), perpendicular(sub(p[3], p[2]), n)
+    offset = dot(n, sub(form.wrist, p[0]))
+    return n, signs, _across(n), fore, scale(-1.0, upper), sub(form.wrist, p[3]), sub(p[3], p[2]), offset
+
+
+def _three_parallel(form: ClosedForm, r_g: Mat, p_g: Vec) -> list[Branch]:
+    h, p = form.lines.axes, form.lines.points
+    n, signs, across, fore, back, wrist_arm, forearm, offset = _three_parallel_constants(form)
     centre = add(apply(r_g, form.wrist), p_g)
-    shoulder = subproblem_4(n, h[0], sub(centre, p[0]), dot(n, sub(form.wrist, p[0])))
+    from_base = sub(centre, p[0])
+    shoulder = subproblem_4(n, h[0], from_base, offset)
+    g6 = apply(r_g, h[5])
     found: list[Branch] = []
     for i, t1 in enumerate(_roots(shoulder)):
         q1 = -t1
-        r1 = rotation(h[0], q1)
-        n1 = apply(r1, n)
-        reached = add(p[0], rotate(h[0], t1, sub(centre, p[0])))
-        wrist = subproblem_4(n, h[4], h[5], dot(n1, apply(r_g, h[5])))
+        n1 = rotate(h[0], q1, n)
+        reached = add(p[0], rotate(h[0], t1, from_base))
+        wrist = subproblem_4(n, h[4], h[5], dot(n1, g6))
+        back_n1 = apply_transposed(r_g, n1)
         for j, q5 in enumerate(_roots(wrist)):
-            t6 = subproblem_1(h[5], rotate(h[4], -q5, n), apply_transposed(r_g, n1))
+            t6 = subproblem_1(h[5], rotate(h[4], -q5, n), back_n1)
             q6 = -t6 if t6 is not None else 0.0
             singular = "" if t6 is not None else _UR_WRIST
-            turned = apply_transposed(r1, apply(r_g, rotate(h[5], -q6, rotate(h[4], -q5, across))))
+            turned = rotate(h[0], t1, apply(r_g, rotate(h[5], -q6, rotate(h[4], -q5, across))))
             theta = subproblem_1(n, across, turned) or 0.0
-            w = sub(reached, rotate(n, theta, wrist_arm))
-            to_w = sub(w, p[1])
+            to_w = sub(sub(reached, rotate(n, theta, wrist_arm)), p[1])
             elbow = subproblem_3(h[2], fore, back, norm(perpendicular(to_w, n)))
             exact = _exact(shoulder) and _exact(wrist) and _exact(elbow)
             for k, q3 in enumerate(_roots(elbow)):
-                e3 = add(p[2], rotate(h[2], q3, forearm))
-                q2 = subproblem_1(h[1], sub(e3, p[1]), to_w) or 0.0
+                e3 = add(sub(p[2], p[1]), rotate(h[2], q3, forearm))
+                q2 = subproblem_1(h[1], e3, to_w) or 0.0
                 q4 = signs[2] * (theta - signs[0] * q2 - signs[1] * q3)
                 found.append(Branch((q1, q2, q3, q4, q5, q6), (i, j, k), exact, singular))
     return found

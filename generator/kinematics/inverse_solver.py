@@ -136,8 +136,11 @@ class IkSolver:
         if self.form is not None and not position_only:
             found, outside, count = self._closed_form(goal, every=every, seed=seed)
             if found:
-                result = self._result(found, None, self.method, 0, outside)
-                return dataclasses.replace(result, branches=count, complete=len(found) == count)
+                names = [j.name for j in self.model.joints]
+                complete = len(found) == count
+                return Solutions(
+                    self.frame, self.in_frame, names, found, None, self.method, 0, complete, outside, count
+                )
         else:
             outside = 0
         first = [seed] if near is not None else []
@@ -169,8 +172,8 @@ class IkSolver:
         """The closed form's solutions (every branch, or the one nearest ``seed``), the branches outside the limits
         and the branches within them."""
         assert self.form is not None  # (only called with one)
-        rotation = tuple(tuple(float(v) for v in row) for row in goal.rotation)
-        position = tuple(float(v) for v in goal.translation)
+        rotation = tuple(map(tuple, goal.rotation.tolist()))
+        position = tuple(goal.translation.tolist())
         joints, chain = self.model.joints, self.form.lines.joints
         candidates: list[tuple[list[float], int, Branch]] = []
         outside = 0
@@ -325,19 +328,22 @@ def _nearest_turns(
     its range (None: a continuous joint, any turn), and how many combinations of whole turns stay within the ranges
     (0: endless); an empty list when a value has none."""
     wrapped, count = [], 1
-    for value, limits, centre in zip(values, ranges, centres, strict=True):
-        value = centre + math.remainder(value - centre, TURN)
+    for k, limits in enumerate(ranges):
+        centre = centres[k]
+        value = centre + math.remainder(values[k] - centre, TURN)
         if limits is None:
             wrapped.append(value)
             count = 0
             continue
-        first = math.ceil((limits[0] - LIMIT_SLACK - value) / TURN)
-        last = math.floor((limits[1] + LIMIT_SLACK - value) / TURN)
+        lower, upper = limits
+        first = math.ceil((lower - LIMIT_SLACK - value) / TURN)
+        last = math.floor((upper + LIMIT_SLACK - value) / TURN)
         if first > last:
             return [], 0
-        turns = min(max(0, first), last)  # (value is within half a turn of its centre: no turn is nearest, or an end)
-        wrapped.append(min(max(value + TURN * turns, limits[0]), limits[1]))
-        count = count * (last - first + 1)
+        turns = first if first > 0 else last if last < 0 else 0  # (within half a turn of its centre, or an end)
+        value += TURN * turns
+        wrapped.append(lower if value < lower else upper if value > upper else value)
+        count *= last - first + 1
     return wrapped, count
 
 
@@ -346,7 +352,11 @@ def options_of(solution: Solution, names: Sequence[str]) -> list[float]:
 
 
 def _same_turns(a: Sequence[float], b: Sequence[float]) -> bool:
-    return all(abs(math.remainder(x - y, TURN)) < 1e-6 for x, y in zip(a, b, strict=True))
+    """Whether two values lists are whole turns apart in every joint (to 1e-6): one branch met twice."""
+    for x, y in zip(a, b, strict=True):  # (a loop that leaves at the first joint apart: most pairs differ early)
+        if abs(math.remainder(x - y, TURN)) >= 1e-6:
+            return False
+    return True
 
 
 def _named(joints: Sequence[KinematicJoint], values: np.ndarray) -> dict[str, float]:
