@@ -80,6 +80,7 @@ class CheckOptions:
     consumers: Sequence[str] | None = None
     package_paths: Mapping[str, str | Path] | None = None
     trust: bool = False
+    srdf: Path | None = None  # (the SRDF whose disabled pairs G007 respects; None: the one beside the file)
 
     def check(self, path: Path, progress: Callable[[str], None] | None = None) -> CheckReport:
         """:func:`~xacrokit.check.checker.check` of ``path`` with these options."""
@@ -88,7 +89,7 @@ class CheckOptions:
         # (untrusted unless told, or unless the environment says so: None)
         given = RobotInput(path, self.mappings, self.package_paths or {}, True if self.trust else None)
         said = _printable(progress) if progress is not None else None
-        return check(given, prefix=self.prefix, consumers=self.consumers, progress=said)
+        return check(given, prefix=self.prefix, consumers=self.consumers, progress=said, srdf=self.srdf)
 
 
 def _printable(progress: Callable[[str], None]) -> Callable[[str], None]:

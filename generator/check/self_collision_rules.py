@@ -28,7 +28,8 @@ RULES = rule_table(
             "no two links' collision geometries intersect at the robot's home pose (a spec's `home`, else its "
             "SRDF's and its ros2_control initial values, else every joint at 0 or its limit nearest 0) unless a "
             "joint joins them (directly, or through links without collision geometry) or the robot's SRDF disables "
-            "the pair (the one given, NAME.srdf beside the URDF, or its package's config/NAME.srdf or srdf/NAME.srdf; "
+            "the pair (the one given with --srdf FILE, NAME.srdf beside the URDF, or its package's config/NAME.srdf or "
+            "srdf/NAME.srdf; "
             "a spec's is the one its package carries, which disables them as Default: G008 names them); a URDF whose "
             "collision geometry holds meshes is posed only when it has an SRDF (reading every mesh into coal costs "
             "about 5 times check's other rules)",

@@ -202,7 +202,9 @@ def _cmd_check(args: argparse.Namespace) -> int:
     # (one robot input's arguments, packages and trust for every file checked)
     given = robot_input(args, paths[0], mappings=[word for word in args.paths if ":=" in word] + args.mappings)
     packages = {name: Path(folder) for name, folder in given.packages.items()}
-    options = CheckOptions(dict(given.mappings), args.prefix, consumers, packages, bool(given.trust))
+    options = CheckOptions(
+        dict(given.mappings), args.prefix, consumers, packages, bool(given.trust), _srdf(args, paths)
+    )
     if len(paths) == 1 and not args.robots_only and form in ("text", "json") and not Path(paths[0]).is_dir():
         return _check_single(Path(paths[0]), options, form, args.strict)  # (one file: its report as before)
     files = robot_files(paths, exclude=args.exclude, robots_only=args.robots_only)
@@ -225,6 +227,18 @@ def _cmd_check(args: argparse.Namespace) -> int:
 
         sys.stdout.write(format_files(checks, colour=_colour(), strict=args.strict))
     return max((check.exit_code(args.strict) for check in checks), default=0)
+
+
+def _srdf(args: argparse.Namespace, paths: list[str]) -> Path | None:
+    """--srdf FILE, checked: one robot file to go with it, and a file that is there."""
+    if args.srdf is None:
+        return None
+    srdf = Path(args.srdf)
+    if len(paths) != 1 or Path(paths[0]).is_dir():
+        raise XacrokitError(f"--srdf {printable(args.srdf)}: an SRDF is one robot's: give it with one robot file")
+    if not srdf.is_file():
+        raise XacrokitError(f"--srdf {printable(args.srdf)}: no such file")
+    return srdf
 
 
 def _check_single(path: Path, options: CheckOptions, form: str, strict: bool) -> int:
@@ -434,6 +448,12 @@ def _add_check_command(commands: Any) -> None:
     )
     chk.add_argument(
         "--prefix", help="require every link, joint, gazebo reference and ros2_control joint to start with this prefix"
+    )
+    chk.add_argument(
+        "--srdf",
+        metavar="FILE",
+        help="the robot's SRDF (MoveIt's semantics): its home and disabled pairs are what G007 judges self-collision "
+        "by (default: NAME.srdf beside the file, or its package's config/NAME.srdf or srdf/NAME.srdf)",
     )
     add_robot_options(chk)
     chk.set_defaults(handler=_cmd_check)

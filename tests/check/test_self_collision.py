@@ -72,3 +72,24 @@ def test_every_generated_package_is_silent_with_its_srdf(example, tmp_path):
     assert [str(f) for f in report.findings if f.rule == "G007"] == []
     (note,) = [f for f in report.findings if f.rule == "G008"]
     assert note.message.startswith(f"{result.name}.srdf disables")
+
+
+def test_srdf_on_the_command_line_is_respected_and_checked(tmp_path):
+    """gen-robot check ROBOT --srdf FILE: the pair the SRDF disables is no longer a warning (a note says the SRDF);
+    a missing file, or an SRDF with several robot files, is an error, exit 2."""
+    import json
+
+    from conftest import gen_robot
+
+    path = _planted(tmp_path)
+    semantics = tmp_path / "semantics" / "robot.srdf"
+    semantics.parent.mkdir()
+    semantics.write_text(SRDF, encoding="utf-8")
+    alone = json.loads(gen_robot("check", path, "--consumers", "none", "--json").stdout)
+    assert [f["rule"] for f in alone["findings"]] == ["G007"]
+    given = gen_robot("check", path, "--consumers", "none", "--json", "--srdf", semantics)
+    assert given.returncode == 0 and [f["rule"] for f in json.loads(given.stdout)["findings"]] == ["G008"]
+    missing = gen_robot("check", path, "--srdf", tmp_path / "nowhere.srdf")
+    assert missing.returncode == 2 and "--srdf" in missing.stderr and "no such file" in missing.stderr
+    several = gen_robot("check", path, path, "--srdf", semantics)
+    assert several.returncode == 2 and "give it with one robot file" in several.stderr
