@@ -98,6 +98,7 @@ class IkSolver:
     reach: float = field(init=False, default=1.0)
     ranges: list[tuple[float, float] | None] = field(init=False, default_factory=list)
     spread: list[np.ndarray] | None = field(init=False, default=None)
+    moves: np.ndarray = field(init=False)
 
     def __post_init__(self) -> None:
         model = self.model
@@ -109,8 +110,17 @@ class IkSolver:
         self.ranges = [j.limits if j.kind != "continuous" else None for j in chain_joints]
         self.chain = numeric_chain(model, target)
         self.rest = np.clip(np.zeros(len(model.joints)), self.chain.lower, self.chain.upper)
+        path = {int(j) for j in model.model.supports[model.model.frames[target].parentJoint]}
+        moved = {int(model.model.getJointId(name)) for name in self.chain_names(path)}
+        self.moves = np.array([int(model.model.getJointId(j.name)) in moved for j in model.joints])
         self.base = model.placed(model.configuration({}))[base].copy()
         self.reach = float(np.linalg.norm(model.placed(model.configuration({}))[target].translation))
+
+    def chain_names(self, path: set[int]) -> set[str]:
+        """The joints one sets that move a frame whose path from the root holds the pinocchio joints ``path``: those
+        on it, and the leaders of the mimic joints on it."""
+        names = {self.model.model.names[j] for j in path}
+        return {*names, *(f.leader for f in self.model.followers if f.joint.name in names)}
 
     @property
     def method(self) -> str:
@@ -214,7 +224,7 @@ class IkSolver:
         closest to ``goal`` (metres, plus the rotation matrices' difference times the arm's reach unless
         ``position_only``): starts a few steps from a solution."""
         if self.atlas is None:
-            self.atlas = _atlas(self.chain, self.rest)
+            self.atlas = _atlas(self.chain, self.rest, self.moves)
         values, positions, rotations = self.atlas
         gap = np.linalg.norm(positions - goal.translation, axis=1)
         if not position_only:
@@ -225,7 +235,8 @@ class IkSolver:
         found: list[tuple[np.ndarray, float]] = []
         ran, reached_one = 0, False
         if self.spread is None:  # (drawn once per solver: scipy's Sobol costs milliseconds a draw)
-            self.spread = starts(self.chain, self.rest, FIRST_STARTS)
+            spread = starts(self.chain, self.rest, FIRST_STARTS)
+            self.spread = [np.where(self.moves, start, self.rest) for start in spread]  # (the others stay at rest)
         for start in [*seeds, *self.spread]:
             ran += 1
             values, error = solve(self.chain, goal, position_only=position_only, start=start)
@@ -299,13 +310,13 @@ def _configuration(model: KinematicModel) -> Callable[[np.ndarray], np.ndarray]:
     return configuration
 
 
-def _atlas(chain: Chain, rest: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _atlas(chain: Chain, rest: np.ndarray, moves: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The rest pose and ATLAS - 1 configurations spread over the chain's limits (Sobol, a fixed seed), and the
     frame's position and rotation (flattened) at each: a target at the rest pose starts there (and is answered
     with it)."""
     import pinocchio as pin  # (heavy: pinocchio)
 
-    values = np.array(starts(chain, rest, ATLAS, seed=1))
+    values = np.where(moves, np.array(starts(chain, rest, ATLAS, seed=1)), rest)  # (joints that move the frame)
     positions, rotations = np.empty((len(values), 3)), np.empty((len(values), 9))
     for k, row in enumerate(values):
         pin.framesForwardKinematics(chain.model, chain.data, chain.configuration(row))

@@ -285,3 +285,16 @@ def test_near_picks_the_branch_and_the_turn_nearest_the_values_given():
     assert all(abs(near.values[n] - values[n]) < 1e-6 for n in names), near.values
     (rest,) = solver.solve(target).solutions
     assert abs(rest.values["wrist_3_joint"] - (6.0 - 2 * math.pi)) < 1e-6 or rest.branch != near.branch
+
+
+def test_joints_that_do_not_move_the_frame_stay_at_rest():
+    """The humanoid's right forearm moves with the right arm's joints only: every other joint (neck, left arm,
+    legs) is answered at rest, reached or not, not at the start a search happened to draw."""
+    humanoid = REPO / "examples" / "robots" / "simple_humanoid.yaml"
+    moving = {"right_shoulder_pitch", "right_elbow"}
+    for target in ("0.2,-0.3,0.3", "0.05,-0.2,0.3"):
+        said = json.loads(gen_robot("ik", humanoid, "right_forearm", "--to", target, "--all", "--json").stdout)
+        answers = [s["joints"] for s in said["solutions"]] + ([said["closest"]["joints"]] if "closest" in said else [])
+        assert answers
+        for joints in answers:
+            assert all(value == 0.0 for name, value in joints.items() if name not in moving), joints
