@@ -48,6 +48,11 @@ def srdf_text(semantics: Semantics, judged: Judged, sampling: Sampling, *, sourc
     )
     if why_not:
         header += f" Only the Adjacent pairs are disabled: {xml_comment_text(why_not)}."
+    elif judged.meshes:
+        header += (
+            f" Its collision geometry holds meshes: its {judged.pairs:,} pairs within reach of each other are not "
+            "sampled (coal on meshes takes minutes; Sampling(meshes=True) asks for it): none is Never or Always."
+        )
     elif judged.samples < sampling.samples:
         header += (
             f" {judged.pairs:,} pairs within reach of each other are too many for {sampling.samples:,} samples: "

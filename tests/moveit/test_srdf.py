@@ -268,3 +268,30 @@ def test_docs_show_the_two_arm_cells_srdf_as_generated(tmp_path):
     example = SCENE_EXAMPLES[[p.stem for p in SCENE_EXAMPLES].index("two_arm_cell")]
     result = xacrokit.generate(example, tmp_path / "pkg")
     assert shown == (tmp_path / "pkg" / "config" / f"{result.name}.srdf").read_text(encoding="utf-8")
+
+
+def test_a_robot_of_mesh_collision_geometry_is_not_sampled_unless_asked(tmp_path):
+    """A two-link arm whose links collide as meshes (a box as STL): the default SRDF judges Adjacent and Default
+    only and says why in its header; Sampling(meshes=True) samples it (TIAGo dual's sampling took 447 s)."""
+    import trimesh
+
+    from xacrokit.moveit.collision_pairs import Sampling, collision_bodies, configuration, disabled_pairs
+    from xacrokit.shared.urdf_view import read_view
+
+    box = tmp_path / "box.stl"
+    trimesh.creation.box(extents=(0.05, 0.05, 0.3)).export(box)
+    mesh = f'<collision><origin xyz="0 0 0.15"/><geometry><mesh filename="{box}"/></geometry></collision>'
+    joint = '<axis xyz="0 1 0"/><limit lower="-2" upper="2" effort="1" velocity="1"/>'
+    urdf = (
+        f'<robot name="m"><link name="a">{mesh}</link><link name="b">{mesh}</link><link name="c">{mesh}</link>'
+        f'<joint name="j1" type="revolute"><parent link="a"/><child link="b"/><origin xyz="0 0 0.3"/>{joint}</joint>'
+        f'<joint name="j2" type="revolute"><parent link="b"/><child link="c"/><origin xyz="0 0 0.3"/>{joint}</joint>'
+        "</robot>"
+    )
+    bodies = collision_bodies(read_view(urdf), tmp_path, None)
+    home = configuration(bodies, {})
+    plain = disabled_pairs(bodies, home, Sampling(samples=1_000))
+    assert bodies.meshes and plain.meshes and plain.samples == 0
+    assert set(plain.disabled.values()) <= {"Adjacent", "Default"}
+    asked = disabled_pairs(bodies, home, Sampling(samples=1_000, meshes=True))
+    assert asked.samples == 1_000 and not asked.meshes
