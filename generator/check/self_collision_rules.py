@@ -32,7 +32,8 @@ RULES = rule_table(
             "srdf/NAME.srdf; "
             "a spec's is the one its package carries, which disables them as Default: G008 names them); a URDF whose "
             "collision geometry holds meshes is posed only when it has an SRDF (reading every mesh into coal costs "
-            "about 5 times check's other rules)",
+            "about 5 times check's other rules), and a robot of more than 400 links with collision geometry not at "
+            "all (the pairs outgrow memory)",
         ),
         "G008": (
             "never-colliding-pairs",
@@ -45,6 +46,7 @@ RULES = rule_table(
 )
 
 SHOWN = 6  # pairs named in a note
+MAX_SOLID = 400  # links with collision geometry posed at most (pinocchio's pairs grow with their square)
 
 
 @dataclass(frozen=True)
@@ -63,8 +65,9 @@ class SelfCollisionInput:
 def self_collision_rules(doc: Doc, given: SelfCollisionInput) -> Iterator[Finding]:
     """G007 for each pair in collision at home that no joint joins and no SRDF disables; notes on what the SRDF
     disables and on the pairs that never collide."""
-    if sum(1 for link in doc.view.links if link.collisions) < 2:
-        return
+    solid = sum(1 for link in doc.view.links if link.collisions)
+    if solid < 2 or solid > MAX_SOLID:
+        return  # (beyond MAX_SOLID links, the pairs' geometry model outgrows memory: a fleet of 3,000 links was killed)
     srdf = given.srdf or (None if given.spec else srdf_beside(given.path))
     meshes = any(g.shape is not None and g.shape.kind == "mesh" for link in doc.view.links for g in link.collisions)
     if meshes and srdf is None and not given.spec:

@@ -93,3 +93,24 @@ def test_srdf_on_the_command_line_is_respected_and_checked(tmp_path):
     assert missing.returncode == 2 and "--srdf" in missing.stderr and "no such file" in missing.stderr
     several = gen_robot("check", path, path, "--srdf", semantics)
     assert several.returncode == 2 and "give it with one robot file" in several.stderr
+
+
+def test_a_robot_of_more_than_400_solid_links_is_not_posed(tmp_path):
+    """401 links of overlapping boxes on fixed joints (every non-adjacent pair collides): beyond MAX_SOLID the
+    pairs' geometry model would outgrow memory (a 3,000-link fleet was killed), so G007 does not pose it; 40 such
+    links are posed and flagged."""
+
+    def chain(count):
+        box = '<collision><geometry><box size="1 1 1"/></geometry></collision>'
+        links = "".join(f'<link name="l{k}">{box}</link>' for k in range(count))
+        joints = "".join(
+            f'<joint name="j{k}" type="fixed"><parent link="l{k - 1}"/><child link="l{k}"/>'
+            '<origin xyz="0.01 0 0"/></joint>'
+            for k in range(1, count)
+        )
+        path = tmp_path / f"chain{count}.urdf"
+        path.write_text(f'<robot name="chain{count}">{links}{joints}</robot>', encoding="utf-8")
+        return path
+
+    assert any(f.rule == "G007" for f in check(chain(40), consumers=[]).findings)
+    assert not any(f.rule == "G007" for f in check(chain(401), consumers=[]).findings)
