@@ -230,14 +230,8 @@ def generate(
     progress("validating")
     spec = validate(raw)
     robot = resolve(spec)
-    progress("rendering the package")
-    files = render_package(robot, macros=macros, spec_name=Path(spec_path).name)
-    extended = _with_extensions(files, Path(output) if output is not None else Path.cwd() / robot.package)
-    via_xacro = via_xacro or extended or bool(robot.extension)  # (an extension is xacro: only xacro expands it)
-    progress("expanding with xacro" if via_xacro else "emitting the URDF")
-    files.append(expand_package(robot, files) if via_xacro else emitted_urdf(robot.name, emit_urdf(robot)))
-    progress("sampling self-collisions for the SRDF")
-    files += moveit_files(robot, files, spec_name=Path(spec_path).name)
+    root_folder = Path(output) if output is not None else Path.cwd() / robot.package
+    files = _package_files(robot, root_folder, macros, via_xacro, Path(spec_path).name, progress)
     source = SpecSource(Path(spec_path), _spec_lines(spec, robot), spec.warnings)
     said = spec.warnings + _drive_warnings(spec, robot, source.lines)
     warnings = tuple(sorted(said, key=lambda w: (w.line or 0, w.column or 0)))
@@ -245,6 +239,22 @@ def generate(
     return GenerateResult(
         model=robot, output=root, actions=actions, files=tuple(files), warnings=warnings, source=source
     )
+
+
+def _package_files(
+    robot: Robot, root: Path, macros: MacroMode, via_xacro: bool, spec_name: str, progress: Callable[[str], None]
+) -> list[RenderedFile]:
+    """A robot's package in memory: rendered, its URDF expanded (xacro when asked, extended or with an extension)
+    or emitted, and its MoveIt files (the SRDF's collision matrix sampled)."""
+    progress("rendering the package")
+    files = render_package(robot, macros=macros, spec_name=spec_name)
+    extended = _with_extensions(files, root)  # (always: it puts the package's own extension files into files)
+    via_xacro = via_xacro or extended or bool(robot.extension)  # (an extension is xacro: only xacro expands it)
+    progress("expanding with xacro" if via_xacro else "emitting the URDF")
+    files.append(expand_package(robot, files) if via_xacro else emitted_urdf(robot.name, emit_urdf(robot)))
+    progress("sampling self-collisions for the SRDF")
+    files += moveit_files(robot, files, spec_name=spec_name)
+    return files
 
 
 def _with_extensions(files: list[RenderedFile], root: Path) -> bool:

@@ -26,7 +26,7 @@ import numpy as np
 from ..errors import XacrokitError
 from ..reader.kinematic_model import KinematicJoint, KinematicModel
 from .analytic import Branch, branches
-from .arm_geometry import THREE_PARALLEL, ClosedForm, arm_lines, recognise
+from .arm_geometry import ClosedForm, arm_lines, recognise
 from .branch_names import branch_name
 from .inverse import Chain, closest_reach, distinct, solve, starts
 
@@ -383,6 +383,3 @@ def _order(values: dict[str, float], seed: np.ndarray, joints: Sequence[Kinemati
 
 def _distance(values: dict[str, float], seed: np.ndarray, joints: Sequence[KinematicJoint]) -> float:
     return sum(abs(values[j.name] - float(s)) for j, s in zip(joints, seed, strict=True))
-
-
-__all__ = ["THREE_PARALLEL", "IkSolver", "MovingFrame", "Solution", "Solutions"]
