@@ -19,7 +19,6 @@ from . import __version__
 from .emit import emit_scene_urdf, emit_urdf
 from .errors import SpecError, XacrokitError
 from .expansion.expression_guard import trusting
-from .expansion.xacro_expand import expand_file
 from .load import load_file
 from .model import Robot, Scene, attach_joint_name
 from .moveit.moveit_package import moveit_files, srdf_file
@@ -97,6 +96,8 @@ def expand_package(model: Robot | Scene, files: list[RenderedFile]) -> RenderedF
     What xacrokit wrote is trusted (every text from a spec is escaped for xacro: no expression of the spec's own is
     ever evaluated), so it expands in-process, unbounded; a scene with a third-party macro is trusted only as the
     caller says (:func:`xacrokit.expansion.expression_guard.trusting`, ``--trust``)."""
+    from .expansion.xacro_expand import expand_file  # (heavy: xacro, only for --via-xacro and the tests)
+
     ours = not isinstance(model, Scene) or all(instance.macro is None for instance in model.instances)
     with tempfile.TemporaryDirectory(prefix="xacrokit-") as scratch:
         root = Path(scratch) / model.package

@@ -10,12 +10,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import XacrokitError
-from ..moveit.collision_pairs import (
-    Pair,
-    colliding_pairs,
-    collision_bodies,
-    configuration,
-)
+from ..moveit.collision_matrix import Pair
 from ..moveit.srdf_reading import SrdfFacts, read_srdf, srdf_beside
 from .findings import Finding, rule_table
 from .urdf_document import Doc
@@ -72,6 +67,8 @@ def self_collision_rules(doc: Doc, given: SelfCollisionInput) -> Iterator[Findin
     meshes = any(g.shape is not None and g.shape.kind == "mesh" for link in doc.view.links for g in link.collisions)
     if meshes and srdf is None and not given.spec:
         return  # (coal reading every collision mesh costs 5 times check's other rules: asked for by an SRDF)
+    from ..moveit.collision_pairs import colliding_pairs, collision_bodies, configuration  # (heavy: pinocchio)
+
     try:
         bodies = collision_bodies(doc.view, given.path.parent, given.packages)
     except (RuntimeError, ValueError, LookupError):

@@ -35,24 +35,9 @@ from lxml import etree
 from ..shared.quiet_stderr import quietly
 from ..shared.ros_packages import mesh_file
 from ..shared.urdf_view import UrdfView, number
+from .collision_matrix import Judged, Pair, Sampling, adjacent_pairs, pair
 
-Pair = tuple[str, str]  # two link names, in alphabetical order (as MoveIt writes them)
-REASONS = ("Adjacent", "Default", "Never", "Always")
 BATCH = 500  # configurations pinocchio checks in one parallel call (pairs decided between batches drop out)
-
-
-@dataclass(frozen=True)
-class Sampling:
-    """How the configurations are drawn: how many, from which seed, the share of them in collision that makes a pair
-    ``Always``, how close (m) a pair may come in them and still be ``Never``, and how many pair checks it may take
-    (a robot of many pairs within reach of each other gets fewer samples, and none below 1,000)."""
-
-    samples: int = 10_000
-    seed: int = 0
-    always: float = 0.95
-    margin: float = 0.05
-    budget: int = 40_000_000  # pair checks it may take (about 5 s): fewer samples for a robot of more pairs
-    meshes: bool = False  # sample a robot whose collision geometry holds meshes (coal on meshes: minutes for TIAGo)
 
 
 @dataclass(frozen=True)
@@ -85,11 +70,6 @@ class CollisionBodies:
     def pairs(self) -> list[Pair]:
         """Every pair of two links with collision geometry, in order."""
         return sorted(pair(a, b) for a, b in itertools.combinations(sorted(set(self.links)), 2))
-
-
-def pair(first: str, second: str) -> Pair:
-    """Two link names in MoveIt's order."""
-    return (first, second) if first < second else (second, first)
 
 
 def collision_bodies(
@@ -158,29 +138,6 @@ def _unbounded_pairs(model: Any, geometry: Any, links: tuple[str, ...], free: se
     for obj, link in zip(geometry.geometryObjects, links, strict=True):
         above.setdefault(link, set()).update(set(model.supports[obj.parentJoint]) & free)
     return frozenset(pair(a, b) for a, b in itertools.combinations(sorted(above), 2) if above[a] != above[b])
-
-
-def adjacent_pairs(view: UrdfView, solid: set[str]) -> frozenset[Pair]:
-    """Links with collision geometry (``solid``) that a joint joins, directly or through links without any (the
-    setup assistant's connection graph, computeConnectionGraph: a link without geometry joins all its neighbours,
-    until nothing changes)."""
-    graph: dict[str, set[str]] = {}
-    for joint in view.joints:
-        if joint.parent and joint.child:
-            graph.setdefault(joint.parent, set()).add(joint.child)
-            graph.setdefault(joint.child, set()).add(joint.parent)
-    changed = True
-    while changed:
-        changed = False
-        for link, neighbours in list(graph.items()):
-            if link in solid:
-                continue
-            for first, second in itertools.combinations(sorted(neighbours), 2):
-                if second not in graph[first]:
-                    graph[first].add(second)
-                    graph[second].add(first)
-                    changed = True
-    return frozenset(pair(link, other) for link, others in graph.items() for other in others if {link, other} <= solid)
 
 
 def configuration(bodies: CollisionBodies, values: Mapping[str, float]) -> np.ndarray:
@@ -273,17 +230,6 @@ def disabled_pairs(bodies: CollisionBodies, home: np.ndarray, sampling: Sampling
     counts = collision_counts(bodies, touched, q, enough=lambda hits, free: hits > 0 and free > free_enough)
     found.update({p: "Always" for p, hits in counts.items() if hits >= sampling.always * samples})
     return Judged(dict(sorted(found.items())), samples, len(rest))
-
-
-@dataclass(frozen=True)
-class Judged:
-    """The disabled pairs (pair -> reason), the configurations sampled to judge them (0: none, ``pairs`` being too
-    many: Never and Always then only where the robot's reach proves it) and the pairs left to sample."""
-
-    disabled: dict[Pair, str]
-    samples: int
-    pairs: int
-    meshes: bool = False  # (not sampled: the collision geometry holds meshes and the sampling did not ask for them)
 
 
 MAX_PAIRS = 200_000  # pairs within reach of each other beyond which not even home is judged (a 630-link chain)

@@ -12,11 +12,12 @@ from ..model import Robot, Scene
 from ..render.environment import RenderedFile
 from ..shared.urdf_view import read_view
 from ..write.atomic import write_text_atomic
-from .collision_pairs import Judged, Sampling, adjacent_pairs, collision_bodies, configuration, disabled_pairs
+from .collision_matrix import Judged, Meshes, Sampling, adjacent_pairs, cached_matrix, matrix_key
 from .moveit_config_files import moveit_config_files
 from .semantics import Semantics, robot_semantics, scene_semantics
 from .srdf_document import srdf_text
 
+Home = tuple[tuple[str, float], ...]  # joint values, in the joints' order
 SAMPLING = Sampling()  # the setup assistant's default: 10,000 configurations; seed 0
 MAX_LINKS = 600  # links with collision geometry beyond which only adjacent pairs are said (180,000 pairs)
 
@@ -63,15 +64,18 @@ def collision_matrix(
 
 
 @functools.lru_cache(maxsize=32)
-def _judged(
-    urdf: str,
-    package: str,
-    meshes: tuple[tuple[str, str | bytes], ...],
-    home: tuple[tuple[str, float], ...],
-    sampling: Sampling,
-) -> Judged:
-    """:func:`collision_matrix` on its values, remembered: a package generated again (a second run, a dry run, the
-    tests' many runs of one example) is not sampled again. (Judged is frozen; its dict is only read.)"""
+def _judged(urdf: str, package: str, meshes: Meshes, home: Home, sampling: Sampling) -> Judged:
+    """:func:`collision_matrix` on its values, remembered in this process and kept in the user's cache folder
+    (``collision_matrix``): a package generated again (a second run, a dry run, the tests' many runs of one example)
+    is not sampled again. (Judged is frozen; its dict is only read.)"""
+    key = matrix_key(urdf, package, meshes, home, sampling)
+    return cached_matrix(key, lambda: _sampled(urdf, package, meshes, home, sampling))
+
+
+def _sampled(urdf: str, package: str, meshes: Meshes, home: Home, sampling: Sampling) -> Judged:
+    """The matrix sampled: the meshes written to a scratch copy of the package for pinocchio to read."""
+    from .collision_pairs import collision_bodies, configuration, disabled_pairs  # (heavy: pinocchio, numpy)
+
     with tempfile.TemporaryDirectory(prefix="xacrokit-srdf-") as scratch:
         root = Path(scratch) / package
         for path, content in meshes:

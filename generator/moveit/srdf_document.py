@@ -7,7 +7,7 @@ from lxml import etree
 
 from .. import __version__
 from ..shared.value_text import num, xml_comment_text
-from .collision_pairs import Judged, Sampling
+from .collision_matrix import Judged, Sampling
 from .semantics import VIRTUAL_JOINT, Semantics
 
 

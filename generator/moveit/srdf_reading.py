@@ -11,7 +11,7 @@ from ..errors import XacrokitError
 from ..shared.input_files import InputError, read_input
 from ..shared.urdf_view import number
 from ..shared.xml_parse import parse_xml
-from .collision_pairs import Pair, pair
+from .collision_matrix import Pair, pair
 
 SRDF_LIMIT = 16 * 1024 * 1024  # bytes of an SRDF read (the largest real ones are a few hundred kB)
 

@@ -11,14 +11,15 @@ import json
 import re
 from collections.abc import Iterator
 from functools import cache, cached_property
-from typing import Any
-
-import jsonschema
+from typing import TYPE_CHECKING, Any
 
 from ..errors import SpecError
 from ..load import PathKey, RawSpec
 from ..shared.package_data import schemas_dir
 from .quantities import euler_axes_problem, euler_kind_problem, euler_sequence_problem
+
+if TYPE_CHECKING:
+    import jsonschema
 
 
 @cache
@@ -66,6 +67,8 @@ def _ecma_pattern(
     before a final newline, so plain jsonschema accepts ``"base\\n"`` as a name. (Our patterns use ``$`` only at their
     end.)
     """
+    import jsonschema  # (start-up: jsonschema is imported only for a document jsonschema-rs rejects)
+
     if validator.is_type(instance, "string") and not _python_regex(pattern).search(instance):
         yield jsonschema.ValidationError(f"{instance!r} does not match {pattern!r}")
 
@@ -76,7 +79,12 @@ def _python_regex(pattern: str) -> re.Pattern[str]:
     return re.compile(pattern[:-1] + r"\Z" if anchored else pattern)
 
 
-_Draft2020 = jsonschema.validators.extend(jsonschema.Draft202012Validator, {"pattern": _ecma_pattern})
+@cache
+def _draft2020() -> Any:
+    """jsonschema's Draft 2020-12 validator class with ECMA-262 patterns, made the first time a document needs it."""
+    import jsonschema  # (heavy: jsonschema, about 80 ms: only a document jsonschema-rs rejects needs it)
+
+    return jsonschema.validators.extend(jsonschema.Draft202012Validator, {"pattern": _ecma_pattern})
 
 
 class SchemaValidator:
@@ -90,7 +98,11 @@ class SchemaValidator:
 
     def __init__(self, schema: dict[str, Any]) -> None:
         self.schema = schema
-        self.full = _Draft2020(schema)
+
+    @cached_property
+    def full(self) -> Any:
+        """jsonschema's validator of the schema, which words the errors (made when first asked for)."""
+        return _draft2020()(self.schema)
 
     @cached_property
     def fast(self) -> Any:
@@ -263,6 +275,8 @@ def _within_its_form(error: jsonschema.ValidationError) -> jsonschema.Validation
     """The error within the one form of a oneOf that a value has the shape of (a collision mapping with an unknown key
     or a wrong origin, a list with a wrong entry), or None when the value itself is none of the forms (a number, an
     empty list: the oneOf's own words say what would be right)."""
+    import jsonschema  # (start-up: an error of jsonschema's has imported it already)
+
     within = [e for e in error.context or () if e.relative_path or e.validator == "additionalProperties"]
     return jsonschema.exceptions.best_match(within) if within else None
 

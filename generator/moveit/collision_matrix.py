@@ -1,0 +1,139 @@
+"""A robot's collision matrix as the SRDF says it, without the sampling that finds it (``collision_pairs``, which
+needs pinocchio and numpy): the pairs and their reasons, how they are sampled, the adjacent pairs (read off the
+URDF alone), and the matrices kept in the user's cache folder.
+
+A matrix is kept under the SHA-256 digest of everything its sampling reads: the URDF's text, the package's name and
+its meshes' bytes, the home pose, the ``Sampling`` and the installs of pinocchio and coal (whose collision checks
+decide it). A package generated again with the same robot (a second run, a changed description or launch file, a
+test) takes it from there in milliseconds; a changed link, joint, limit or mesh samples again. The cached file is
+JSON, read as data only.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib.util
+import itertools
+import json
+import os
+from collections.abc import Callable
+from dataclasses import asdict, dataclass
+
+from .. import __version__
+from ..shared.urdf_view import UrdfView
+from ..shared.user_cache import cache_folder, read_cached, write_cached
+
+Pair = tuple[str, str]  # two link names, in alphabetical order (as MoveIt writes them)
+REASONS = ("Adjacent", "Default", "Never", "Always")
+
+
+@dataclass(frozen=True)
+class Sampling:
+    """How the configurations are drawn: how many, from which seed, the share of them in collision that makes a pair
+    ``Always``, how close (m) a pair may come in them and still be ``Never``, and how many pair checks it may take
+    (a robot of many pairs within reach of each other gets fewer samples, and none below 1,000)."""
+
+    samples: int = 10_000
+    seed: int = 0
+    always: float = 0.95
+    margin: float = 0.05
+    budget: int = 40_000_000  # pair checks it may take (about 5 s): fewer samples for a robot of more pairs
+    meshes: bool = False  # sample a robot whose collision geometry holds meshes (coal on meshes: minutes for TIAGo)
+
+
+@dataclass(frozen=True)
+class Judged:
+    """The disabled pairs (pair -> reason), the configurations sampled to judge them (0: none, ``pairs`` being too
+    many: Never and Always then only where the robot's reach proves it) and the pairs left to sample."""
+
+    disabled: dict[Pair, str]
+    samples: int
+    pairs: int
+    meshes: bool = False  # (not sampled: the collision geometry holds meshes and the sampling did not ask for them)
+
+
+def pair(first: str, second: str) -> Pair:
+    """Two link names in MoveIt's order."""
+    return (first, second) if first < second else (second, first)
+
+
+def adjacent_pairs(view: UrdfView, solid: set[str]) -> frozenset[Pair]:
+    """Links with collision geometry (``solid``) that a joint joins, directly or through links without any (the
+    setup assistant's connection graph, computeConnectionGraph: a link without geometry joins all its neighbours,
+    until nothing changes)."""
+    graph: dict[str, set[str]] = {}
+    for joint in view.joints:
+        if joint.parent and joint.child:
+            graph.setdefault(joint.parent, set()).add(joint.child)
+            graph.setdefault(joint.child, set()).add(joint.parent)
+    changed = True
+    while changed:
+        changed = False
+        for link, neighbours in list(graph.items()):
+            if link in solid:
+                continue
+            for first, second in itertools.combinations(sorted(neighbours), 2):
+                if second not in graph[first]:
+                    graph[first].add(second)
+                    graph[second].add(first)
+                    changed = True
+    return frozenset(pair(link, other) for link, others in graph.items() for other in others if {link, other} <= solid)
+
+
+Meshes = tuple[tuple[str, str | bytes], ...]
+
+
+def matrix_key(urdf: str, package: str, meshes: Meshes, home: tuple[tuple[str, float], ...], sampling: Sampling) -> str:
+    """The digest a matrix is kept under (see the module's docstring)."""
+    digest = hashlib.sha256()
+    installs = [_installed(name) for name in ("pinocchio", "coal")]
+    header = {"urdf": urdf, "package": package, "home": home, "sampling": asdict(sampling), "installs": installs}
+    digest.update(json.dumps(header, sort_keys=True).encode("utf-8"))
+    for path, content in meshes:
+        digest.update(b"\0" + path.encode("utf-8") + b"\0")
+        digest.update(content if isinstance(content, bytes) else content.encode("utf-8"))
+    return digest.hexdigest()
+
+
+def _installed(module: str) -> str:
+    """Where ``module`` is installed, with its file's size and time: a new install of pinocchio or coal changes it
+    (found without importing them, nor reading package metadata: both cost a generation tens of milliseconds)."""
+    spec = importlib.util.find_spec(module)
+    if spec is None or spec.origin is None:
+        return ""
+    try:
+        info = os.stat(spec.origin)
+    except OSError:
+        return spec.origin
+    return f"{spec.origin} {info.st_size} {info.st_mtime_ns}"
+
+
+def cached_matrix(key: str, judge: Callable[[], Judged]) -> Judged:
+    """The matrix kept under ``key`` in the user's cache folder, or ``judge()``'s, kept there for the next run."""
+    folder = cache_folder("collisions", __version__)
+    text = None if folder is None else read_cached(folder, f"{key}.json")
+    if text is not None:
+        found = _from_json(text)
+        if found is not None:
+            return found
+    judged = judge()
+    if folder is not None:
+        write_cached(folder, f"{key}.json", _as_json(judged))
+    return judged
+
+
+def _as_json(judged: Judged) -> str:
+    rows = [[first, second, reason] for (first, second), reason in judged.disabled.items()]
+    return json.dumps({"disabled": rows, "samples": judged.samples, "pairs": judged.pairs, "meshes": judged.meshes})
+
+
+def _from_json(text: str) -> Judged | None:
+    """The matrix a cached file holds, or None when it is not one (damaged, or written by hand)."""
+    try:
+        data = json.loads(text)
+        disabled = {pair(first, second): reason for first, second, reason in data["disabled"]}
+        judged = Judged(disabled, int(data["samples"]), int(data["pairs"]), bool(data["meshes"]))
+    except (ValueError, TypeError, KeyError):
+        return None
+    names_ok = all(isinstance(name, str) for both in disabled for name in both)
+    return judged if names_ok and set(disabled.values()) <= set(REASONS) else None

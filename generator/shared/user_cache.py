@@ -1,0 +1,93 @@
+"""The user's cache folder: work one run did that the next can take instead of doing it again.
+
+Two things are kept there, each in a folder of its own named with xacrokit's version (a new release never reads an
+old release's files):
+
+- ``templates-VERSION``: jinja2's compiled templates (its ``FileSystemBytecodeCache``: each file is written to a
+  temporary name and renamed, so two runs sharing the folder never read half a file; a template whose text changed
+  is compiled again, by its checksum);
+- ``collisions-VERSION``: the collision matrix of a robot's SRDF (``moveit.moveit_package``), a JSON file named by
+  the digest of everything the sampling reads.
+
+Where: ``$XACROKIT_CACHE`` if set, else ``$XDG_CACHE_HOME/xacrokit``, else ``~/.cache/xacrokit``.
+``XACROKIT_CACHE=off`` turns the cache off. The folder is made private (mode 0700); a folder that is not the user's
+own, that others can write to, or that cannot be made, is not used: the run then does all the work itself, with the
+same results (compiled templates are code, so a folder someone else can write to would let them run code as you).
+Deleting the folder at any time is safe.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import stat
+import tempfile
+from pathlib import Path
+
+OFF = "off"
+
+
+def cache_root() -> Path | None:
+    """The cache folder, or None when it is turned off."""
+    chosen = os.environ.get("XACROKIT_CACHE")
+    if chosen is not None:
+        return None if chosen.strip().lower() in (OFF, "") else Path(chosen)
+    xdg = os.environ.get("XDG_CACHE_HOME")
+    base = Path(xdg) if xdg and os.path.isabs(xdg) else Path.home() / ".cache"
+    return base / "xacrokit"
+
+
+def _private(folder: Path) -> bool:
+    """Whether ``folder`` is a real folder of this user that nobody else can write to."""
+    try:
+        info = os.lstat(folder)
+    except OSError:
+        return False
+    if not stat.S_ISDIR(info.st_mode):
+        return False
+    if hasattr(os, "getuid") and info.st_uid != os.getuid():
+        return False
+    return not info.st_mode & (stat.S_IWGRP | stat.S_IWOTH)
+
+
+def cache_folder(kind: str, version: str) -> Path | None:
+    """The folder ``kind-VERSION`` (``version``: xacrokit's) inside the cache folder, made if missing, or None when
+    the cache is off or the folder cannot be used safely (see the module's docstring)."""
+    root = cache_root()
+    if root is None:
+        return None
+    folder = root / f"{kind}-{version}"
+    for path in (root, folder):
+        try:
+            path.mkdir(mode=0o700, exist_ok=True)
+        except OSError:
+            return None
+        if not _private(path):
+            return None
+    return folder
+
+
+def read_cached(folder: Path, name: str) -> str | None:
+    """The text of the cached file ``name``, or None when there is none (or it cannot be read)."""
+    try:
+        return (folder / name).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return None
+
+
+def write_cached(folder: Path, name: str, text: str) -> None:
+    """Write ``text`` as the cached file ``name``: to a temporary file first, then renamed over it, so that a run
+    reading it meanwhile sees the old file or the new one, never part of one (``write.atomic`` does the same for
+    packages, with their permissions; this layer cannot import it). A cache that cannot be written is left as it is:
+    the work is simply done again next time."""
+    try:
+        descriptor, temporary = tempfile.mkstemp(dir=folder, prefix=f".{name}.", suffix=".tmp")
+    except OSError:
+        return
+    try:
+        with os.fdopen(descriptor, "w", encoding="utf-8") as handle:
+            handle.write(text)
+        os.replace(temporary, folder / name)
+    except OSError:
+        with contextlib.suppress(OSError):
+            os.unlink(temporary)
