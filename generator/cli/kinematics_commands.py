@@ -30,10 +30,10 @@ def rotation_form(text: str) -> str:
     """``--rotation``'s value, checked: one of :data:`ROTATION_FORMS`, or Euler angles as ``euler:XYZ`` (scipy's
     sequence: upper case intrinsic, lower case extrinsic), ``intrinsic:ZYZ`` or ``extrinsic:xyz`` (the kind said, the
     axes in either case), the same twelve sequences an origin's ``euler`` takes."""
+    if text in ROTATION_FORMS:  # (argparse checks the default too: the named forms need no import)
+        return text
     from ..validate.quantities import EULER_SEQUENCES, euler_axes_problem, euler_sequence_problem  # (start-up)
 
-    if text in ROTATION_FORMS:
-        return text
     kind, colon, axes = text.partition(":")
     if not colon or kind not in EULER_FORMS:
         forms = ", ".join(ROTATION_FORMS)
@@ -346,7 +346,10 @@ def pose_dict(matrix: Any, rotation: str = "rpy") -> dict[str, Any]:
     from ..shared.transforms import rotation_forms  # (heavy: numpy)
 
     sequence = euler_sequence(rotation)
-    forms = rotation_forms(np.asarray(matrix)[:3, :3], **({"euler": sequence} if sequence else {}))
+    asked = "euler" if sequence else rotation
+    # (only the forms printed: scipy, which rotvec and Euler angles need, is not loaded for the others)
+    only = {"rpy", "quat_xyzw", asked}
+    forms = rotation_forms(np.asarray(matrix)[:3, :3], only=only, **({"euler": sequence} if sequence else {}))
     return {
         "xyz": [float(v) for v in np.asarray(matrix)[:3, 3]],
         "rpy": forms["rpy"],

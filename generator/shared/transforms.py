@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from typing import Any, Protocol
 
 import numpy as np
@@ -249,35 +249,58 @@ def rpy_quaternion(rpy: Sequence[float]) -> tuple[float, float, float, float]:
     return x, y, z, w
 
 
-def rotation_forms(matrix: np.ndarray, *, euler: str = "XYZ") -> dict[str, Any]:
-    """A rotation matrix in every form an origin takes, each as an origin writes it: rpy (URDF's, pitch in
-    [-pi/2, pi/2], one split at gimbal lock: :func:`canonical_rpy`), quat_xyzw and quat_wxyz (w >= 0), rotvec (axis x
-    angle, by scipy), axis_angle ({axis, angle}; angle in [0, pi], the axis [0, 0, 1] at angle 0), the matrix, euler
-    ({intrinsic: XYZ, angles} or {extrinsic: xyz, angles} for ``euler``, scipy's sequence; scipy's angles: within
-    1e-7 rad of the sequence's own gimbal lock scipy sets the third angle to 0, and they give the rotation to that
-    1e-7 only) and points ({P, Q, R}: P the origin, Q and R one along the frame's X and Y)."""
+ROTATION_FORM_NAMES = ("rpy", "quat_xyzw", "quat_wxyz", "rotvec", "axis_angle", "matrix", "euler", "points")
+
+
+def rotation_forms(
+    matrix: np.ndarray, *, euler: str = "XYZ", only: Collection[str] = ROTATION_FORM_NAMES
+) -> dict[str, Any]:
+    """A rotation matrix in the forms an origin takes (those named in ``only``: by default every one), each as an
+    origin writes it: rpy (URDF's, pitch in [-pi/2, pi/2], one split at gimbal lock: :func:`canonical_rpy`),
+    quat_xyzw and quat_wxyz (w >= 0, by pinocchio: Eigen's quaternion, the twin of :func:`rotation_matrix`'s), rotvec
+    (axis x angle, by scipy), axis_angle ({axis, angle}; angle in [0, pi], the axis [0, 0, 1] at angle 0), the matrix,
+    euler ({intrinsic: XYZ, angles} or {extrinsic: xyz, angles} for ``euler``, scipy's sequence; scipy's angles:
+    within 1e-7 rad of the sequence's own gimbal lock scipy sets the third angle to 0, and they give the rotation to
+    that 1e-7 only) and points ({P, Q, R}: P the origin, Q and R one along the frame's X and Y). scipy is loaded only
+    for rotvec, axis_angle and euler (a third of a second: ``gen-robot pose`` prints rpy and the quaternion)."""
+    rows = np.asarray(matrix, dtype=float)
+    forms: dict[str, Any] = {}
+    if "rpy" in only:
+        forms["rpy"] = list(canonical_rpy(rows))
+    if "quat_xyzw" in only or "quat_wxyz" in only:
+        import pinocchio  # (heavy: pinocchio, which the kinematics commands have loaded)
+
+        quat = np.array(pinocchio.Quaternion(rows).normalized().coeffs(), dtype=float)  # (x, y, z, w)
+        quat = -quat if quat[3] < 0 else quat
+        forms["quat_xyzw"] = [float(v) for v in quat]
+        forms["quat_wxyz"] = [float(quat[3]), *map(float, quat[:3])]
+    if "rotvec" in only or "axis_angle" in only:
+        from scipy.spatial.transform import Rotation  # (heavy: scipy, loaded by the features that turn rotations)
+
+        rotvec = [float(v) for v in Rotation.from_matrix(rows).as_rotvec()]
+        angle = math.hypot(*rotvec)
+        axis = [v / angle for v in rotvec] if angle > 0.0 else [0.0, 0.0, 1.0]
+        forms["rotvec"], forms["axis_angle"] = rotvec, {"axis": axis, "angle": angle}
+    if "matrix" in only:
+        forms["matrix"] = [[float(v) for v in row] for row in rows]
+    if "euler" in only:
+        forms["euler"] = {"intrinsic" if euler.isupper() else "extrinsic": euler, "angles": _euler_angles(rows, euler)}
+    if "points" in only:
+        forms["points"] = {
+            "P": [0.0, 0.0, 0.0],
+            "Q": [float(v) for v in rows[:, 0]],
+            "R": [float(v) for v in rows[:, 1]],
+        }
+    return {name: forms[name] for name in ROTATION_FORM_NAMES if name in only}
+
+
+def _euler_angles(rows: np.ndarray, sequence: str) -> list[float]:
+    """scipy's Euler angles of a rotation matrix in ``sequence`` (scipy's: upper case intrinsic)."""
     from scipy.spatial.transform import Rotation  # (heavy: scipy, loaded by the features that print rotations)
 
-    rows = np.asarray(matrix, dtype=float)
-    rotation = Rotation.from_matrix(rows)
-    quat = np.array(matrix_quaternion(rows))
-    quat = -quat if quat[3] < 0 else quat
-    rotvec = [float(v) for v in rotation.as_rotvec()]
-    angle = math.hypot(*rotvec)
-    axis = [v / angle for v in rotvec] if angle > 0.0 else [0.0, 0.0, 1.0]
     with warnings.catch_warnings():  # (scipy warns at gimbal lock, where it sets the third angle to 0: said above)
         warnings.simplefilter("ignore", UserWarning)
-        angles = [float(v) for v in rotation.as_euler(euler)]
-    return {
-        "rpy": list(canonical_rpy(rows)),
-        "quat_xyzw": [float(v) for v in quat],
-        "quat_wxyz": [float(quat[3]), *map(float, quat[:3])],
-        "rotvec": rotvec,
-        "axis_angle": {"axis": axis, "angle": angle},
-        "matrix": [[float(v) for v in row] for row in rows],
-        "euler": {"intrinsic" if euler.isupper() else "extrinsic": euler, "angles": angles},
-        "points": {"P": [0.0, 0.0, 0.0], "Q": [float(v) for v in rows[:, 0]], "R": [float(v) for v in rows[:, 1]]},
-    }
+        return [float(v) for v in Rotation.from_matrix(rows).as_euler(sequence)]
 
 
 def rot_x(angle: float) -> np.ndarray:

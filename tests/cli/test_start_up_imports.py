@@ -14,6 +14,8 @@ import pytest
 REPO = Path(__file__).resolve().parents[2]
 TABLE = re.compile(r"<!-- start-up imports: begin -->\n(.*?)<!-- start-up imports: end -->", re.S)
 UR5 = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
+LINKAGE = REPO / "examples" / "robots" / "linkage_lecture.urdf"
+UR10E = REPO / "examples" / "robots" / "ur10e.yaml"
 # the command of each row: its arguments, and whether its cache is filled by a first run
 COMMANDS = {
     "`gen-robot --help`": (["--help"], False),
@@ -22,6 +24,9 @@ COMMANDS = {
         ["fleet", str(UR5), "--count", "3", "-o", "{out}", "--force"],
         True,
     ),
+    "`gen-robot pose URDF FRAME`": (["pose", str(LINKAGE), "link_C", "--at", "joint_A=0.3"], False),
+    "`gen-robot jacobian URDF FRAME`": (["jacobian", str(LINKAGE), "link_C"], False),
+    "`gen-robot pose SPEC FRAME`": (["pose", str(UR10E), "tool0", "--q", "0.1,0.2,0.3,0.4,0.5,0.6"], False),
 }
 # runs gen-robot's entry point, then writes the names of the modules the process imported
 PROBE = """
