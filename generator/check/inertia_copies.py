@@ -6,19 +6,25 @@ other and never computed. The size of a link's geometry is taken as the largest 
 and collision, a mesh by its convex hull: :func:`~xacrokit.check.inertia_geometry.link_reach`) from their centroid,
 which turning or mirroring a part does not change; sizes more than SIZES apart are different parts. Round placeholders
 (k * identity, I005) and all-zero tensors are left to their own rules.
+
+Of the links sharing an inertial, the first (in the file's order) is taken for the part it was computed for: each
+link of a size different from the first's is said, naming the latest link before it of the first's size. So a
+fleet's copies of one robot get that robot's findings, each naming a link of its own copy, and two links of the
+first's size are never said for a third between them. Each distinct geometry's size is worked out once.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Iterator, Mapping
+from typing import Any
 
 import numpy as np
 
 from ..shared.solid_inertia import is_placeholder
 from ..shared.urdf_view import Link
 from .findings import Finding, rule_table
-from .inertia_geometry import MeshReach, link_reach
+from .inertia_geometry import ReachMemo, geometry_key
 from .urdf_document import Doc
 
 RULES = rule_table(
@@ -35,9 +41,9 @@ RULES = rule_table(
 SIZES = 1.25  # two geometries whose sizes differ by more than this factor are different parts
 
 
-def _size(link: Link, meshes: MeshReach | None) -> float | None:
+def _size(link: Link, reaches: ReachMemo) -> float | None:
     """The largest distance of the link's geometry points from their centroid (None: no geometry, or unreadable)."""
-    reach = link_reach(link, meshes)
+    reach = reaches.reach(link)
     if reach is None:
         return None
     offsets = reach.points - reach.points.mean(axis=0)
@@ -45,10 +51,17 @@ def _size(link: Link, meshes: MeshReach | None) -> float | None:
     return size if math.isfinite(size) and size > 0 else None
 
 
+def _memo(sizes: dict[tuple[Any, ...], float | None], link: Link, reaches: ReachMemo) -> float | None:
+    key = geometry_key(link)
+    if key not in sizes:
+        sizes[key] = _size(link, reaches)
+    return sizes[key]
+
+
 def copied_inertias(
-    doc: Doc, meshes: MeshReach | None, significant: Mapping[str, tuple[float, tuple[float, ...]]]
+    doc: Doc, reaches: ReachMemo, significant: Mapping[str, tuple[float, tuple[float, ...]]]
 ) -> Iterator[Finding]:
-    """I009 on each link whose inertial equals an earlier link's of a different size (named in the message), among
+    """I009 on each link whose inertial equals an earlier link's of a different size, among
     the ``significant`` links (name -> mass and tensor entries: a tenth of their rigid body's mass or more, as I004
     and I005 judge; a 0.1 g dummy inertial on a sensor frame is nobody's copy worth a warning)."""
     groups: dict[tuple[float, ...], list[Link]] = {}
@@ -59,13 +72,16 @@ def copied_inertias(
     for key, links in groups.items():
         if len(links) < 2:
             continue
-        sized = [(link, _size(link, meshes)) for link in links]
-        known = [(link, size) for link, size in sized if size is not None]
-        for index, (link, size) in enumerate(known):
-            other = next(((o, s) for o, s in known[:index] if max(s, size) > SIZES * min(s, size)), None)
-            if other is None:
+        sizes: dict[tuple[Any, ...], float | None] = {}  # (each distinct geometry's size, once)
+        known = [(link, size) for link in links if (size := _memo(sizes, link, reaches)) is not None]
+        if not known:
+            continue
+        like_first = known[0]  # (the latest link of the first one's size: the one a copy is said to copy)
+        for link, size in known[1:]:
+            first, first_size = like_first
+            if max(first_size, size) <= SIZES * min(first_size, size):
+                like_first = (link, size)
                 continue
-            first, first_size = other
             yield doc.finding(
                 "I009",
                 "link",

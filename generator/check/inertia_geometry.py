@@ -39,7 +39,7 @@ from ..shared.ros_packages import mesh_file
 from ..shared.solid_inertia import box_moments, combine, cylinder_moments, sphere_moment, tensor
 from ..shared.transforms import rpy_matrix
 from ..shared.urdf_view import Geometry, Link, Origin, Shape
-from .findings import Finding, rule_table
+from .findings import rule_table
 from .urdf_document import Doc, number_of, triple_of
 
 RULES = rule_table(
@@ -148,6 +148,35 @@ def link_reach(link: Link, meshes: MeshReach | None) -> Reach | None:
     return Reach(points, pieces, axes, "collision" if link.collisions else "visual")
 
 
+def geometry_key(link: Link) -> tuple[Any, ...]:
+    """What the geometry rules read of a link, without its name or lines: links of equal keys (a fleet's copies of
+    one robot, a hand's fingers) have the same reach, and with the same inertial the same I008 and I009 verdicts."""
+
+    def placed(geometry: Geometry) -> tuple[Any, ...]:
+        origin, shape = geometry.origin, geometry.shape
+        return (
+            None if origin is None else (origin.xyz, origin.rpy),
+            None if shape is None else (shape.kind, tuple(sorted(shape.attributes.items()))),
+        )
+
+    return tuple(map(placed, link.visuals)), tuple(map(placed, link.collisions))
+
+
+class ReachMemo:
+    """Each distinct geometry's :class:`Reach` in one document, made once (:func:`geometry_key`): a fleet of 100
+    copies of a robot reads its links' shapes once, not 100 times."""
+
+    def __init__(self, meshes: MeshReach | None) -> None:
+        self.meshes = meshes
+        self.reaches: dict[tuple[Any, ...], Reach | None] = {}
+
+    def reach(self, link: Link) -> Reach | None:
+        key = geometry_key(link)
+        if key not in self.reaches:
+            self.reaches[key] = link_reach(link, self.meshes)
+        return self.reaches[key]
+
+
 def shape_in_link(
     geometry: Geometry, meshes: MeshReach | None
 ) -> tuple[np.ndarray, Callable[[], Solid | None], np.ndarray, np.ndarray] | None:
@@ -175,9 +204,9 @@ def _filling(solids: Sequence[tuple[Solid | None, np.ndarray, np.ndarray]]) -> S
     return Solid(volume, centre, tensor / volume, kind)
 
 
-def geometry_finding(doc: Doc, link: Link, mass: float, entries: Sequence[float], reach: Reach) -> Finding | None:
-    """I008 for a link of ``mass`` (kg) whose tensor entries (ixx, ixy, ixz, iyy, iyz, izz) are a rigid body's."""
-    turn, centre = placement(link.inertial.origin if link.inertial is not None else None)
+def geometry_message(origin: Origin | None, mass: float, entries: Sequence[float], reach: Reach) -> str | None:
+    """What I008 says of a tensor at the inertial ``origin`` within ``reach`` (None: nothing)."""
+    turn, centre = placement(origin)
     stated = turn @ tensor(*entries) @ turn.T  # (in the link frame)
     with np.errstate(all="ignore"):  # (a size of 1e308 overflows: such a link is not judged, U002 says why)
         spans = reach.points.max(axis=0) - reach.points.min(axis=0)
@@ -201,8 +230,7 @@ def geometry_finding(doc: Doc, link: Link, mass: float, entries: Sequence[float]
         )
     if worst[0] <= TOLERANCE:
         return None
-    note = _solid_note(reach.solid(), mass, turn, reach.filled)
-    return doc.finding("I008", "link", link.name, worst[1] + note, link.element)
+    return worst[1] + _solid_note(reach.solid(), mass, turn, reach.filled)
 
 
 def _bounds(

@@ -21,7 +21,7 @@ from ..shared.solid_inertia import (
 from ..shared.urdf_view import Link, Shape
 from .findings import Finding, rule_table
 from .inertia_copies import copied_inertias
-from .inertia_geometry import MARKER, MeshReach, geometry_finding, link_reach
+from .inertia_geometry import MARKER, MeshReach, ReachMemo, geometry_key, geometry_message
 from .urdf_document import Doc, number_of, triple_of
 
 RULES = rule_table(
@@ -140,7 +140,8 @@ class _Context:
     bodies: _Bodies
     moved_bodies: set[str]
     said_base: set[str] = field(default_factory=set)
-    meshes: MeshReach | None = None  # (I008: a mesh's convex hull and solid; None: meshes are not read)
+    reaches: ReachMemo = field(default_factory=lambda: ReachMemo(None))  # (I008, I009: each geometry's, made once)
+    said_i008: dict[tuple[Any, ...], str | None] = field(default_factory=dict)  # (a geometry and inertial: I008)
     # (links judged on their own, with their mass and tensor entries: I009 compares them)
     significant: dict[str, tuple[float, tuple[float, ...]]] = field(default_factory=dict)
 
@@ -167,10 +168,10 @@ def inertia_rules(doc: Doc, meshes: MeshReach | None = None) -> Iterator[Finding
     """I001-I009 for every link; ``meshes`` reads a mesh's hull for I008 and I009 (without it, links drawn by meshes
     are not judged by them)."""
     context = _context(doc)
-    context.meshes = meshes
+    context.reaches = ReachMemo(meshes)  # (a mesh's convex hull and solid; without meshes, they are not read)
     for link, entry, moments in zip(doc.view.links, context.entries, context.moments, strict=True):
         yield from _link_inertia(doc, context, link, entry, moments)
-    yield from copied_inertias(doc, meshes, context.significant)
+    yield from copied_inertias(doc, context.reaches, context.significant)
 
 
 def _link_inertia(doc: Doc, context: _Context, view: Link, entry: Any, moments: Any) -> Iterator[Finding]:
@@ -221,10 +222,20 @@ def _link_inertia(doc: Doc, context: _Context, view: Link, entry: Any, moments: 
         context.significant[name] = (mass, tuple(entry))
         yield from _placeholder(doc, link, name, entry)
         yield from _plausibility(doc, view, mass, sum(moments))
-        reach = link_reach(view, context.meshes)
-        found = geometry_finding(doc, view, mass, entry, reach) if reach is not None else None
-        if found is not None:
-            yield found
+        message = _geometry_message(context, view, mass, entry)
+        if message is not None:
+            yield doc.finding("I008", "link", name, message, link)
+
+
+def _geometry_message(context: _Context, view: Link, mass: float, entry: tuple[float, ...]) -> str | None:
+    """I008's message for a link (None: nothing to say), worked out once for each geometry and inertial: the copies of
+    a fleet's robot, or a hand's identical fingers, are judged once."""
+    origin = view.inertial.origin if view.inertial is not None else None
+    key = (geometry_key(view), None if origin is None else (origin.xyz, origin.rpy), mass, tuple(entry))
+    if key not in context.said_i008:
+        reach = context.reaches.reach(view)
+        context.said_i008[key] = None if reach is None else geometry_message(origin, mass, entry, reach)
+    return context.said_i008[key]
 
 
 def _massless(doc: Doc, context: _Context, view: Link, body: str) -> Iterator[Finding]:

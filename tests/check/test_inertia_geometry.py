@@ -202,3 +202,66 @@ def test_a_mesh_is_kept_as_its_hulls_distinct_vertices(monkeypatch):
         assert np.allclose(bounds(kept, n, centre), bounds(triangles, n, centre), rtol=1e-12)
     monkeypatch.setattr(inertia_geometry, "_MIX", (np.uint64(0), np.uint64(0), np.uint64(0)))  # (every key equal)
     assert len(inertia_geometry._distinct(triangles)) == len(triangles)
+
+
+def _parts_robot(prefix: str) -> str:
+    """A robot's links (names with ``prefix``): one with a tensor five times its box's (I008), and two parts of
+    different sizes sharing one inertial (I009 on the second)."""
+    big = _solid("box", 0.1, 0.2, 0.3, 2.0)[1] * 5
+    shared = _urdf_entries(_solid("box", 0.1, 0.1, 0.03, 1.0)[1])  # (the left part's own, copied to the right)
+    parts = {
+        "big": ('<box size="0.1 0.2 0.3"/>', 2.0, _urdf_entries(big)),
+        "left": ('<box size="0.1 0.1 0.03"/>', 1.0, shared),
+        "right": ('<box size="0.2 0.2 0.06"/>', 1.0, shared),
+    }
+    return f'<link name="{prefix}base_link"/>' + "".join(
+        f'<link name="{prefix}{name}"><visual><geometry>{shape}</geometry></visual><inertial><mass value="{mass}"/>'
+        f"<inertia {entries}/></inertial></link>"
+        f'<joint name="{prefix}{name}_joint" type="revolute"><parent link="{prefix}base_link"/>'
+        f'<child link="{prefix}{name}"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/>'
+        '<dynamics damping="0.1"/></joint>'
+        for name, (shape, mass, entries) in parts.items()
+    )
+
+
+def _urdf_entries(tensor) -> str:
+    names = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+    values = (tensor[0][0], tensor[0][1], tensor[0][2], tensor[1][1], tensor[1][2], tensor[2][2])
+    return " ".join(f'{k}="{float(v)!r}"' for k, v in zip(names, values, strict=True))
+
+
+def _geometry_findings(tmp_path, monkeypatch, prefixes: list[str]) -> tuple[list[tuple[str, str, str]], int]:
+    """I008 and I009 (rule, link, message) of the robot, or of a fleet of its copies fixed to a world link; and how
+    many times a link's geometry was read."""
+    from xacrokit.check import inertia_geometry
+
+    reads = []
+    read = inertia_geometry.link_reach
+    monkeypatch.setattr(inertia_geometry, "link_reach", lambda *a: reads.append(a) or read(*a))
+    if prefixes == [""]:
+        body = _parts_robot("")
+    else:
+        body = '<link name="world"/>' + "".join(
+            _parts_robot(p) + f'<joint name="{p}mount" type="fixed"><parent link="world"/><child link="{p}base_link"/>'
+            f'<origin xyz="{i} 0 0"/></joint>'
+            for i, p in enumerate(prefixes)
+        )
+    path = tmp_path / f"robots_{len(prefixes)}.urdf"
+    path.write_text(f'<?xml version="1.0"?><robot name="r">{body}</robot>', encoding="utf-8")
+    found = [(f.rule, f.element, f.message) for f in check(path, consumers=[]).findings if f.rule in ("I008", "I009")]
+    return found, len(reads)
+
+
+def test_a_fleets_copies_get_the_robots_findings_prefixed_and_each_geometry_is_read_once(tmp_path, monkeypatch):
+    """A fleet's copies of one robot are judged once: the same geometry gives the same findings, each naming links of
+    its own copy (I009 names the left part of the same copy, not another copy's), and the geometry rules read each
+    distinct geometry once, however many copies there are."""
+    alone, reads_alone = _geometry_findings(tmp_path, monkeypatch, [""])
+    assert sorted((rule, link) for rule, link, _ in alone) == [("I008", "big"), ("I009", "right")]
+    prefixes = [f"r{i}_" for i in range(6)]
+    fleet, reads_fleet = _geometry_findings(tmp_path, monkeypatch, prefixes)
+    expected = [
+        (rule, p + link, message.replace("'left'", f"'{p}left'")) for p in prefixes for rule, link, message in alone
+    ]
+    assert sorted(fleet) == sorted(expected)
+    assert reads_fleet == 3 == reads_alone  # (the three shapes, once each, however many copies)
