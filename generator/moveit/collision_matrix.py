@@ -16,12 +16,12 @@ import importlib.util
 import itertools
 import json
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import asdict, dataclass
 
 from .. import __version__
-from ..shared.urdf_view import UrdfView
 from ..shared.user_cache import cache_folder, read_cached, write_cached
+from ..shared.xml_parse import read_urdf_root
 
 Pair = tuple[str, str]  # two link names, in alphabetical order (as MoveIt writes them)
 REASONS = ("Adjacent", "Default", "Never", "Always")
@@ -57,15 +57,28 @@ def pair(first: str, second: str) -> Pair:
     return (first, second) if first < second else (second, first)
 
 
-def adjacent_pairs(view: UrdfView, solid: set[str]) -> frozenset[Pair]:
-    """Links with collision geometry (``solid``) that a joint joins, directly or through links without any (the
-    setup assistant's connection graph, computeConnectionGraph: a link without geometry joins all its neighbours,
-    until nothing changes)."""
+def links_and_joints(urdf: str, where: str) -> tuple[list[str], list[tuple[str | None, str | None]]]:
+    """The links of a URDF text that have collision geometry, and its joints' parent and child links: all the SRDF
+    needs of a robot it does not sample (read without the typed view, whose every origin and shape a 1,000-link
+    fleet's SRDF would pay for)."""
+    root = read_urdf_root(urdf, where)
+    solid = [link.get("name", "") for link in root.iterfind("link") if link.find("collision") is not None]
+    joints = []
+    for joint in root.iterfind("joint"):
+        parent, child = joint.find("parent"), joint.find("child")
+        joints.append((None if parent is None else parent.get("link"), None if child is None else child.get("link")))
+    return solid, joints
+
+
+def adjacent_pairs(joints: Iterable[tuple[str | None, str | None]], solid: set[str]) -> frozenset[Pair]:
+    """Links with collision geometry (``solid``) that a joint (its parent and child) joins, directly or through links
+    without any (the setup assistant's connection graph, computeConnectionGraph: a link without geometry joins all
+    its neighbours, until nothing changes)."""
     graph: dict[str, set[str]] = {}
-    for joint in view.joints:
-        if joint.parent and joint.child:
-            graph.setdefault(joint.parent, set()).add(joint.child)
-            graph.setdefault(joint.child, set()).add(joint.parent)
+    for parent, child in joints:
+        if parent and child:
+            graph.setdefault(parent, set()).add(child)
+            graph.setdefault(child, set()).add(parent)
     changed = True
     while changed:
         changed = False

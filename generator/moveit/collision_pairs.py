@@ -105,7 +105,7 @@ def collision_bodies(
     )
     unbounded = _unbounded_pairs(model, geometry, links, free)
     meshes = root.find("link/collision/geometry/mesh") is not None
-    adjacent = adjacent_pairs(view, set(links))
+    adjacent = adjacent_pairs(((j.parent, j.child) for j in view.joints), set(links))
     return CollisionBodies(model, geometry, links, joints, followers, adjacent, unbounded, meshes)
 
 

@@ -12,7 +12,7 @@ from ..model import Robot, Scene
 from ..render.environment import RenderedFile
 from ..shared.urdf_view import read_view
 from ..write.atomic import write_text_atomic
-from .collision_matrix import Judged, Meshes, Sampling, adjacent_pairs, cached_matrix, matrix_key
+from .collision_matrix import Judged, Meshes, Sampling, adjacent_pairs, cached_matrix, links_and_joints, matrix_key
 from .moveit_config_files import moveit_config_files
 from .semantics import Semantics, robot_semantics, scene_semantics
 from .srdf_document import srdf_text
@@ -40,9 +40,9 @@ def srdf_file(
     """``config/NAME.srdf`` of a rendered package whose ``files`` hold its URDF (``urdf/NAME.urdf``)."""
     urdf = next(file.text for file in files if file.path == f"urdf/{model.name}.urdf")
     semantics = semantics_of(model)
-    view = read_view(urdf, f"urdf/{model.name}.urdf")
-    solid = {link.name for link in view.links if link.collisions}
-    adjacent = Judged({p: "Adjacent" for p in sorted(adjacent_pairs(view, solid))}, 0, 0)
+    links, joints = links_and_joints(urdf, f"urdf/{model.name}.urdf")
+    solid = set(links)
+    adjacent = Judged({p: "Adjacent" for p in sorted(adjacent_pairs(joints, solid))}, 0, 0)
     if len(solid) > MAX_LINKS:
         judged, why_not = adjacent, f"{len(solid):,} links with collision geometry, more than the {MAX_LINKS} sampled"
     else:
