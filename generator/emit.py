@@ -8,6 +8,7 @@ tolerant comparison the differential tests use (numbers to 1e-12, attribute orde
 
 from __future__ import annotations
 
+import copy
 import math
 from collections.abc import Iterator
 
@@ -233,15 +234,45 @@ def _wheel(robot: Robot, prefix: str, wheel: Wheel) -> Iterator[etree._Element]:
     yield gazebo
 
 
+class _Copies:
+    """A scene's robots' links and joints written once each without a prefix, then copied for each instance with its
+    prefix glued to the names they hold (a link's name; a joint's name, parent, child and mimic leader: what
+    :func:`link_element` and :func:`joint_element` glue it to): a fleet of 100 copies writes its numbers once."""
+
+    def __init__(self) -> None:
+        self.written: dict[int, tuple[Robot, list[etree._Element]]] = {}
+
+    def of(self, robot: Robot, prefix: str) -> list[etree._Element]:
+        if id(robot) not in self.written:  # (the robot is kept beside its elements: its id stays its own)
+            links = [link_element(robot, "", link) for link in robot.links]
+            self.written[id(robot)] = (robot, links + [joint_element("", joint) for joint in robot.joints])
+        return [_prefixed(element, prefix) for element in self.written[id(robot)][1]]
+
+
+def _prefixed(element: etree._Element, prefix: str) -> etree._Element:
+    copied = copy.deepcopy(element)
+    copied.set("name", prefix + copied.get("name", ""))
+    if copied.tag == "joint":
+        for tag, attribute in (("parent", "link"), ("child", "link"), ("mimic", "joint")):
+            named = copied.find(tag)
+            if named is not None:
+                named.set(attribute, prefix + named.get(attribute, ""))
+    return copied
+
+
 def robot_elements(
-    robot: Robot, *, prefix: str = "", ros2_control: str = "mock", extras: bool = True
+    robot: Robot, *, prefix: str = "", ros2_control: str = "mock", extras: bool = True, copies: _Copies | None = None
 ) -> list[etree._Element]:
     """The robot's elements (without materials), as its macro writes them for ``prefix``.
 
-    ``extras=False`` leaves out the Gazebo surfaces and the ros2_control block (their own macros write them).
+    ``extras=False`` leaves out the Gazebo surfaces and the ros2_control block (their own macros write them);
+    ``copies``: a scene's links and joints, written once per robot (:class:`_Copies`).
     """
-    elements = [link_element(robot, prefix, link) for link in robot.links]
-    elements += [joint_element(prefix, joint) for joint in robot.joints]
+    if copies is None:
+        elements = [link_element(robot, prefix, link) for link in robot.links]
+        elements += [joint_element(prefix, joint) for joint in robot.joints]
+    else:
+        elements = copies.of(robot, prefix)
     for arm in robot.arms:
         elements += _arm(robot, prefix, arm)
     for wheel in robot.wheels:
@@ -354,6 +385,7 @@ def emit_scene_urdf(scene: Scene) -> str:
             root.append(element)
     root.append(etree.Element("link", name=scene.world))
     control = "mock" if any(r.ros2_control is not None for r in scene.robots) else "none"
+    copies = _Copies()
     for instance in scene.instances:
         robot = instance.robot
         if robot is None:
@@ -362,7 +394,7 @@ def emit_scene_urdf(scene: Scene) -> str:
         _sub(mount, "parent", link=instance.parent)
         _sub(mount, "child", link=instance.prefix + robot.root)
         _origin(mount, instance.origin)
-        for element in robot_elements(robot, prefix=instance.prefix, ros2_control=control):
+        for element in robot_elements(robot, prefix=instance.prefix, ros2_control=control, copies=copies):
             root.append(element)
     etree.indent(root, space="  ")
     return '<?xml version="1.0" ?>\n' + etree.tostring(root, encoding="unicode") + "\n"
