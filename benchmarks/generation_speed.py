@@ -29,8 +29,9 @@ import tempfile
 import time
 from pathlib import Path
 
-import xacrokit
 from bench import FLEET_ROBOT_LINKS, chain_spec
+
+import xacrokit
 
 REPO = Path(__file__).resolve().parent.parent
 UR5 = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
