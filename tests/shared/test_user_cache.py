@@ -118,3 +118,23 @@ def test_the_cache_folder_is_made_private_under_xdg_cache_home_and_named_by_vers
     write_cached(folder, "a.json", "[1]")
     assert read_cached(folder, "a.json") == "[1]" and read_cached(folder, "b.json") is None
     assert [p.name for p in folder.iterdir()] == ["a.json"]  # (no temporary file left)
+
+
+def test_runs_sharing_an_empty_cache_at_once_write_the_same_packages_and_leave_whole_files(tmp_path):
+    """Four runs started together on one empty cache folder: each fills it as it goes (templates, the matrix), none
+    reads another's half-written file, and every package is byte for byte the one a run alone writes."""
+    import subprocess
+    import sys
+
+    env = {**os.environ, "XACROKIT_CACHE": str(tmp_path / "cache")}
+    command = "import sys; from xacrokit.cli import main; sys.exit(main())"
+    runs = [
+        subprocess.Popen([sys.executable, "-c", command, str(UR5), "-o", str(tmp_path / f"out{k}")], env=env)
+        for k in range(4)
+    ]
+    assert [run.wait(timeout=300) for run in runs] == [0, 0, 0, 0]
+    alone = tmp_path / "alone"
+    subprocess.run([sys.executable, "-c", command, str(UR5), "-o", str(alone)], env={**env, "XACROKIT_CACHE": "off"})
+    assert all(package_texts(tmp_path / f"out{k}") == package_texts(alone) for k in range(4))
+    left = [p.name for p in (tmp_path / "cache").rglob("*") if p.name.endswith(".tmp")]
+    assert left == []
