@@ -22,7 +22,7 @@ from ..reader.robot_input import RobotInput, as_input
 from ..reader.robot_source import input_kind, read_source
 from ..shared.gc_pause import collector_paused
 from ..write.atomic import staged_packages
-from .consumers import chosen, consumer_findings, start_verdicts
+from .consumers import SHARING, chosen, consumer_findings, skipped, start_verdicts
 from .document_rules import first_rules, other_rules
 from .findings import CheckReport, Finding
 from .inertia_geometry import preload_mesh_readers
@@ -143,10 +143,13 @@ def _judge(judging: Judging) -> CheckReport:
     # the consumers run while our other rules do (each in its own process): check takes about as long as the slowest
     if j.consumers and not structural:
         j.say(f"running {', '.join(j.consumers)} (and our other rules meanwhile)")
-        preload_mesh_readers(doc)  # (before the consumers fork: they inherit it, and yourdfpy needs it too)
-    pending = start_verdicts(
-        j.consumers, j.text, structural=structural, package_paths=j.packages, base_dir=j.path.parent, shown_as=where
-    )
+    # (trimesh, when our rules may read meshes with it, loaded once for them and yourdfpy's child, which inherits it)
+    prepare = (lambda: preload_mesh_readers(doc)) if any(n in SHARING for n in j.consumers) else None
+    pending = None  # (a tree that is not a tree hangs check_urdf and crashes others: the consumers are not run)
+    if not structural:
+        pending = start_verdicts(
+            j.consumers, j.text, package_paths=j.packages, base_dir=j.path.parent, shown_as=where, prepare=prepare
+        )
     findings += other_rules(doc, j.packages, j.path.parent, j.prefix)
     if j.robot is not None and not structural and j.robot.arms:
         findings += kinematics_rules(doc, j.robot, j.text)
@@ -154,7 +157,7 @@ def _judge(judging: Judging) -> CheckReport:
         home = named_poses(spec_poses(j.robot), doc.view)[HOME_POSE]
         given = SelfCollisionInput(j.path, j.packages, home, j.srdf, spec=j.kind == "spec")
         findings += self_collision_rules(doc, given)
-    results = pending()
+    results = skipped(j.consumers) if pending is None else pending()
     findings += consumer_findings(results, where, doc)  # (placed at the link or joint a message names)
     unique = tuple(dict.fromkeys(findings))  # (a spec's visual and collision share a mesh: one finding, not two)
     return CheckReport(where, j.kind, root.get("name"), unique, tuple(results))

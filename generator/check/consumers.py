@@ -46,6 +46,7 @@ RULES = rule_table(
 )
 
 CONSUMERS = ("check_urdf", "pinocchio", "yourdfpy", "mujoco")
+SHARING = ("yourdfpy",)  # consumers that import what check's rules may read meshes with (trimesh, scipy.spatial)
 LIBRARIES = {"pinocchio": "pinocchio", "yourdfpy": "yourdfpy", "mujoco": "mujoco"}  # consumer -> its Python module
 TIMEOUT_S = 30.0
 OUTPUT_CAP = 64 * 1024  # bytes of a consumer's output kept at its start, and at its end
@@ -281,27 +282,33 @@ def verdicts(
 ) -> list[ConsumerResult]:
     """The named consumers' verdicts on a URDF text checked as the file in ``base_dir``; skipped when the structure is
     broken (``structural``)."""
-    return start_verdicts(names, text, structural=structural, package_paths=package_paths, base_dir=base_dir)()
+    if structural:
+        return skipped(names)
+    return start_verdicts(names, text, package_paths=package_paths, base_dir=base_dir)()
+
+
+def skipped(names: list[str]) -> list[ConsumerResult]:
+    """The named consumers, not run on a URDF whose structure is broken: a tree that is not a tree hangs check_urdf
+    and crashes others, and our finding says it all."""
+    return [ConsumerResult(n, "skipped", "not run: the structure errors above make the URDF unusable") for n in names]
 
 
 def start_verdicts(
     names: list[str],
     text: str,
     *,
-    structural: bool,
     package_paths: Mapping[str, str | os.PathLike[str]] | None,
     base_dir: Path,
     shown_as: str = "the URDF",
+    prepare: Callable[[], None] | None = None,
 ) -> Callable[[], list[ConsumerResult]]:
-    """:func:`verdicts`, started: the consumers run while the caller goes on (check runs its other rules meanwhile),
-    and the function returned waits for their verdicts (``shown_as``: how their messages name the file)."""
+    """:func:`verdicts`, started (on a URDF whose structure is sound: :func:`skipped` otherwise): the consumers run
+    while the caller goes on (check runs its other rules meanwhile), and the function returned waits for their
+    verdicts (``shown_as``: how their messages name the file). ``prepare``: what the caller loads that the consumers
+    of SHARING load too (check's mesh readers: trimesh, which yourdfpy imports), called once the others are started
+    and before those are forked, which inherit it."""
     if not names:
         return list
-    if structural:  # a tree that is not a tree hangs check_urdf and crashes others; our finding says it all
-        skipped = [
-            ConsumerResult(n, "skipped", "not run: the structure errors above make the URDF unusable") for n in names
-        ]
-        return lambda: skipped
     from lxml import etree  # (here, not at the top: this module is also each Python consumer's process)
 
     # relative mesh paths are relative to the checked file: make them absolute before the URDF moves to a scratch folder
@@ -319,8 +326,14 @@ def start_verdicts(
         # before the thread that runs check_urdf (a fork copies one thread only)
         forkable = hasattr(os, "fork")  # (elsewhere each runs as a process of its own, as check_urdf does)
         python = [n for n in names if forkable and n != "check_urdf" and available(n)]
+        if _HOST and prepare is not None:
+            prepare()  # (the host, started once, inherits it)
         hosted = _HOST[0].start(python, urdf, package_paths) if _HOST and python else dict
-        forked = {n: _forked(n, urdf, package_paths) for n in python} if not _HOST else {}
+        # the consumers that share nothing with the caller start first, on the other core, while it prepares
+        forked = {n: _forked(n, urdf, package_paths) for n in python if n not in SHARING} if not _HOST else {}
+        if not _HOST and prepare is not None:
+            prepare()
+        forked |= {n: _forked(n, urdf, package_paths) for n in python if n in SHARING} if not _HOST else {}
         others = _started([n for n in names if n not in python], urdf, package_paths=package_paths)
     except BaseException:
         folder.cleanup()

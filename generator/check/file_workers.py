@@ -16,17 +16,13 @@ from __future__ import annotations
 import contextlib
 import importlib
 import math
-import multiprocessing
 import os
 import re
 import time
 from collections.abc import Callable, Iterator, Mapping, Sequence
-from concurrent.futures import Future, ProcessPoolExecutor
-from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass, field
-from multiprocessing import util
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..errors import XacrokitError
 from ..reader.robot_input import RobotInput
@@ -34,6 +30,9 @@ from ..reader.robot_source import input_kind
 from ..shared.terminal_text import printable
 from .consumers import LIBRARIES, chosen, hosted_consumers
 from .findings import CheckReport
+
+if TYPE_CHECKING:
+    from concurrent.futures import Future
 
 
 @dataclass(frozen=True)
@@ -135,6 +134,9 @@ def _in_workers(
     files: Sequence[Path], options: CheckOptions, jobs: int, say: Callable[[str], None]
 ) -> Iterator[FileCheck]:
 
+    import multiprocessing  # (start-up: only a check of many files has workers)
+    from concurrent.futures import ProcessPoolExecutor  # (start-up: only a check of many files has workers)
+
     # (fork: the workers start from this process with its imports; all of them before any thread of the pool runs)
     pool = ProcessPoolExecutor(
         max_workers=jobs, mp_context=multiprocessing.get_context("fork"), initializer=_worker_starts
@@ -190,6 +192,8 @@ def _worker_starts() -> None:
     """A worker's start: its Python consumers run in one host for all its files, stopped (and waited for) when the
     worker ends."""
 
+    from multiprocessing import util  # (start-up: only a check of many files has workers)
+
     _WORKER.enter_context(hosted_consumers())
     util.Finalize(None, _WORKER.close, exitpriority=10)  # (a worker ends through multiprocessing's finalizers)
 
@@ -197,6 +201,8 @@ def _worker_starts() -> None:
 def _outcome(path: Path, future: Any, place: int) -> FileCheck:
     """The worker's result for ``path`` (at ``place`` in its share); a worker that ended without one (killed, out of
     memory) is said as the file's error."""
+
+    from concurrent.futures.process import BrokenProcessPool  # (start-up: only a check of many files has workers)
 
     try:
         result: FileCheck = future.result()[place]

@@ -40,6 +40,7 @@ from ..shared.solid_inertia import box_moments, combine, cylinder_moments, spher
 from ..shared.transforms import rpy_matrix
 from ..shared.urdf_view import Geometry, Link, Origin, Shape
 from .findings import rule_table
+from .kept_meshes import kept_facts, kept_values
 from .urdf_document import Doc, number_of, triple_of
 
 RULES = rule_table(
@@ -307,12 +308,13 @@ class RobotMeshes:
     unchanged (its path, size and time: the robots of one package share their meshes), up to KEPT_BYTES of vertices.
 
     The maxima the bounds take over a mesh's points are those over its convex hull: a mesh is kept as its hull's
-    vertices (:func:`_hull_vertices`)."""
+    vertices (:func:`_hull_vertices`). Its hull, triangle count and solid are kept across runs too, by the file's
+    bytes (:mod:`.kept_meshes`)."""
 
     def __init__(self, urdf: Path, packages: Mapping[str, str | os.PathLike[str]] | None) -> None:
         self.urdf, self.packages = urdf, packages or {}
         self.read = mesh_reader(urdf, self.packages, parse=_mesh_points)
-        self.read_solid = mesh_reader(urdf, self.packages, process=False)
+        self.read_solid = mesh_reader(urdf, self.packages, parse=lambda data, suffix, said: (data, suffix, said))
 
     def __call__(
         self, filename: str, scale: tuple[float, float, float]
@@ -326,9 +328,17 @@ class RobotMeshes:
         """The solid for a finding's message (None when trimesh cannot read the file numpy-stl read, or make it)."""
 
         try:
-            return _enclosed(self.read_solid(filename).mesh, scale)
+            data, suffix, said = self.read_solid(filename).mesh  # (its bytes: trimesh reads them when not kept)
+
+            def work_out() -> list[float] | None:
+                return _solid_values(require_mesh(data, suffix, said, process=False), scale)
+
+            values = kept_values(data, f"solid:{suffix}:{scale!r}", work_out)
         except XacrokitError:
             return None
+        if values is None:
+            return None
+        return Solid(values[0], np.array(values[1:4]), np.array(values[4:13]).reshape(3, 3), "solid")
 
     def triangles(self, filename: str) -> int | None:
         """How many triangles the mesh has (None: it cannot be read)."""
@@ -353,9 +363,9 @@ class RobotMeshes:
 
 
 def preload_mesh_readers(doc: Doc) -> None:
-    """Import trimesh now when the robot has meshes other than STL (which numpy-stl reads): a check forks its Python
-    consumers next, and yourdfpy's loads trimesh too, so the import (0.7 s) is paid once, before the fork, instead of
-    once in our rules and once in the child."""
+    """Import trimesh now when the robot has meshes other than STL (which numpy-stl reads): a check forks yourdfpy's
+    child next (the other consumers started already), which loads trimesh too, so the import (0.7 s) is paid once,
+    before the fork, instead of once in our rules and once in the child."""
     names = (
         g.shape.get("filename") or ""
         for link in doc.view.links
@@ -372,8 +382,14 @@ _MESHES: dict[tuple[str, str, int, int], tuple[np.ndarray, int] | None] = {}
 
 
 def _mesh_points(data: bytes, suffix: str, said: str) -> tuple[np.ndarray, int]:
-    """A mesh file's vertices (float32, N x 3) and triangle count: an STL's with numpy-stl, another kind's with
-    trimesh. Raises MeshCopyRefused when it holds no triangle."""
+    """A mesh file's hull vertices (float32, N x 3: :func:`_hull_vertices`) and triangle count, as a run before kept
+    them (:mod:`.kept_meshes`: by the file's bytes) or read now. Raises MeshCopyRefused when it holds no triangle."""
+    return kept_facts(data, suffix, lambda: _read_mesh_points(data, suffix, said))
+
+
+def _read_mesh_points(data: bytes, suffix: str, said: str) -> tuple[np.ndarray, int]:
+    """A mesh file's hull vertices and triangle count: an STL's with numpy-stl, another kind's with trimesh. Raises
+    MeshCopyRefused when it holds no triangle."""
 
     if suffix != ".stl":
         mesh = require_mesh(data, suffix, said, process=False)
@@ -422,6 +438,14 @@ def _distinct(points: np.ndarray) -> np.ndarray:
     _, first, back = np.unique(key, return_index=True, return_inverse=True)
     kept = rows[first]
     return kept if np.array_equal(kept[back.reshape(-1)], rows) else rows
+
+
+def _solid_values(mesh: Any, scale: tuple[float, float, float]) -> list[float] | None:
+    """:func:`_enclosed`'s solid as numbers: its volume, centre (3) and tensor per unit mass (9, row by row)."""
+    solid = _enclosed(mesh, scale)
+    if solid is None:
+        return None
+    return [solid.volume, *map(float, solid.center), *map(float, np.asarray(solid.unit_tensor).reshape(-1))]
 
 
 def _enclosed(mesh: Any, scale: tuple[float, float, float]) -> Solid | None:

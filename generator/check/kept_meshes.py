@@ -1,0 +1,83 @@
+"""What the geometry rules take from a mesh file, kept across runs: its convex hull's vertices and its triangle count,
+and the uniform solid it encloses at a scale (for a finding's message).
+
+Reading a mesh and taking its hull is most of what ``gen-robot check`` spends on a robot of meshes (TIAGo dual's 124
+mesh files, the G1's 87: a second and more; the consumers read no mesh, or fewer), and the same files are checked
+again and again (CI, an edit of the URDF around unchanged meshes). So the facts of each file are kept in the user's
+cache folder (:mod:`xacrokit.shared.user_cache`: private to the user, ``XACROKIT_CACHE=off`` turns it off), in
+``meshes-VERSION``, one small JSON file a mesh named by the SHA-256 of FORMAT, the file's suffix (which says the
+reader) and its bytes: a file whose bytes change is a new name, and its facts are worked out afresh. The vertices are
+kept as their float32 bytes, so a kept hull is the same array, bit for bit, as the one worked out. A kept file that
+does not read back whole is worked out again and written anew.
+"""
+
+from __future__ import annotations
+
+import base64
+import hashlib
+import json
+from collections.abc import Callable
+
+import numpy as np
+
+from .. import __version__
+from ..shared.user_cache import cache_folder, read_cached, write_cached
+
+FORMAT = 1  # (raise it when what is kept, or how it is worked out, changes: the old files are then never read)
+Facts = tuple[np.ndarray, int]  # a mesh's hull vertices (float32, N x 3) and its triangle count
+
+
+def kept_facts(data: bytes, suffix: str, work_out: Callable[[], Facts]) -> Facts:
+    """The facts of the mesh file whose bytes are ``data`` (of kind ``suffix``): kept ones, else ``work_out()``'s,
+    then kept. What ``work_out`` raises (a file that is no mesh) is raised, and nothing is kept."""
+    folder = cache_folder("meshes", __version__)
+    if folder is None:
+        return work_out()
+    name = hashlib.sha256(f"{FORMAT}:{suffix}:".encode() + data).hexdigest() + ".json"
+    text = read_cached(folder, name)
+    kept = None if text is None else _read(text)
+    if kept is not None:
+        return kept
+    facts = work_out()
+    write_cached(folder, name, _written(facts))
+    return facts
+
+
+def kept_values(data: bytes, what: str, work_out: Callable[[], list[float] | None]) -> list[float] | None:
+    """Numbers worked out from the mesh file whose bytes are ``data`` (``what``: which numbers, and from what: the
+    reader, a scale), kept as :func:`kept_facts` keeps a mesh's facts (None, too: nothing to work out)."""
+    folder = cache_folder("meshes", __version__)
+    if folder is None:
+        return work_out()
+    name = hashlib.sha256(f"{FORMAT}:{what}:".encode() + data).hexdigest() + ".json"
+    text = read_cached(folder, name)
+    if text is not None:
+        try:
+            said = json.loads(text)
+        except ValueError:
+            said = "damaged"
+        if said is None or (isinstance(said, list) and all(isinstance(v, float) for v in said)):
+            return said
+    values = work_out()
+    write_cached(folder, name, json.dumps(values))  # (a float's repr reads back as the same float)
+    return values
+
+
+def _written(facts: Facts) -> str:
+    points, triangles = facts
+    rows = np.ascontiguousarray(points, dtype="<f4")
+    said = {"triangles": int(triangles), "vertices": len(rows), "points": base64.b64encode(rows.tobytes()).decode()}
+    return json.dumps(said)
+
+
+def _read(text: str) -> Facts | None:
+    """Kept facts, or None when the text is not what :func:`_written` writes (a damaged file)."""
+    try:
+        said = json.loads(text)
+        data = base64.b64decode(said["points"], validate=True)
+        vertices, triangles = said["vertices"], said["triangles"]
+    except (ValueError, KeyError, TypeError):
+        return None
+    if not isinstance(vertices, int) or not isinstance(triangles, int) or triangles < 1 or len(data) != 12 * vertices:
+        return None
+    return np.frombuffer(data, dtype="<f4").reshape(vertices, 3).astype(np.float32), triangles
