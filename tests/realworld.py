@@ -13,6 +13,7 @@ writes them into the verdict file (realworld_verdicts.yaml), keeping the verdict
 from __future__ import annotations
 
 import dataclasses
+import functools
 import hashlib
 import os
 import shutil
@@ -21,6 +22,8 @@ import sys
 import tempfile
 import zipfile
 from pathlib import Path
+
+from filelock import FileLock
 
 HERE = Path(__file__).resolve().parent
 VERDICTS = HERE / "check" / "realworld_verdicts.yaml"
@@ -110,6 +113,14 @@ def unpacked(source: Source) -> Path:
     if (target / ".complete").is_file():
         return target
     cache.mkdir(parents=True, exist_ok=True)
+    # the test run's workers (pytest-xdist) ask at once on a fresh machine: one downloads, the others wait for it
+    with FileLock(cache / ".download.lock", timeout=900):
+        if not (target / ".complete").is_file():
+            _download_and_unpack(source, cache, target)
+    return target
+
+
+def _download_and_unpack(source: Source, cache: Path, target: Path) -> None:
     wheels = cache / "wheels"
     pattern = f"{source.name.replace('-', '_')}-{source.version}-*.whl"
     found = sorted(wheels.glob(pattern))
@@ -130,13 +141,12 @@ def unpacked(source: Source) -> Path:
             archive.extractall(staging)
         (staging / ".complete").write_text(source.sha256, encoding="utf-8")
         shutil.rmtree(target, ignore_errors=True)
-        staging.rename(target)  # (two test processes at once: the second rename fails on a full folder)
+        staging.rename(target)  # (two test runs at once: the second rename fails on a full folder)
     except OSError:
         if not (target / ".complete").is_file():
             raise
     finally:
         shutil.rmtree(staging, ignore_errors=True)
-    return target
 
 
 @dataclasses.dataclass(frozen=True)
@@ -220,6 +230,18 @@ if __name__ == "__main__":
         for robot in corpus():
             for line in findings_of(robot):
                 print(robot.key, line, sep="\t")
+
+
+@functools.cache
+def robots() -> dict[str, RobotFile]:
+    """:func:`corpus_or_skip` by key (the verdict file's keys, which the tests are parametrized with), read once
+    per test process."""
+    return {robot.key: robot for robot in corpus_or_skip()}
+
+
+def seed_of(key: str) -> int:
+    """The file's place in :func:`corpus`'s order: the random seed its tests draw joint values with."""
+    return list(robots()).index(key)
 
 
 def corpus_or_skip() -> list[RobotFile]:

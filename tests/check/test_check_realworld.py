@@ -6,18 +6,11 @@ from __future__ import annotations
 
 import collections
 import os
-from functools import cache
 
 import pytest
 import yaml
 
-from realworld import VERDICTS, RobotFile, corpus_or_skip, findings_of, rejected_by
-
-
-@cache
-def robots() -> dict[str, RobotFile]:
-    return {robot.key: robot for robot in corpus_or_skip()}
-
+from realworld import VERDICTS, findings_of, rejected_by, robots
 
 DATA = yaml.safe_load(VERDICTS.read_text(encoding="utf-8"))
 VERDICT_IDS = DATA["verdicts"]
