@@ -25,7 +25,7 @@ from ..write.atomic import staged_packages
 from .consumers import SHARING, chosen, consumer_findings, skipped, start_verdicts
 from .document_rules import first_rules, other_rules
 from .findings import CheckReport, Finding
-from .inertia_geometry import preload_mesh_readers
+from .inertia_geometry import RobotMeshes, preload_mesh_readers
 from .self_collision_rules import SelfCollisionInput, self_collision_rules
 from .spec_rules import kinematics_rules, spec_findings
 from .urdf_document import Doc, parse_robot
@@ -144,7 +144,8 @@ def _judge(judging: Judging) -> CheckReport:
     if j.consumers and not structural:
         j.say(f"running {', '.join(j.consumers)} (and our other rules meanwhile)")
     # (trimesh, when our rules may read meshes with it, loaded once for them and yourdfpy's child, which inherits it)
-    prepare = (lambda: preload_mesh_readers(doc)) if any(n in SHARING for n in j.consumers) else None
+    meshes = RobotMeshes(j.path.parent / Path(doc.file or "robot.urdf").name, j.packages)
+    prepare = (lambda: preload_mesh_readers(doc, meshes)) if any(n in SHARING for n in j.consumers) else None
     pending = None  # (a tree that is not a tree hangs check_urdf and crashes others: the consumers are not run)
     if not structural:
         pending = start_verdicts(

@@ -40,7 +40,7 @@ from ..shared.solid_inertia import box_moments, combine, cylinder_moments, spher
 from ..shared.transforms import rpy_matrix
 from ..shared.urdf_view import Geometry, Link, Origin, Shape
 from .findings import rule_table
-from .kept_meshes import kept_facts, kept_values
+from .kept_meshes import facts_kept, kept_facts, kept_values
 from .urdf_document import Doc, number_of, triple_of
 
 RULES = rule_table(
@@ -340,6 +340,14 @@ class RobotMeshes:
             return None
         return Solid(values[0], np.array(values[1:4]), np.array(values[4:13]).reshape(3, 3), "solid")
 
+    def kept(self, filename: str) -> bool:
+        """Whether the mesh's facts are kept from a run before (a file that cannot be read needs no reader: True)."""
+        try:
+            data, suffix, _ = self.read_solid(filename).mesh
+        except XacrokitError:
+            return True
+        return facts_kept(data, suffix)
+
     def triangles(self, filename: str) -> int | None:
         """How many triangles the mesh has (None: it cannot be read)."""
         facts = self._facts(filename)
@@ -362,17 +370,18 @@ class RobotMeshes:
         return _MESHES[key]
 
 
-def preload_mesh_readers(doc: Doc) -> None:
-    """Import trimesh now when the robot has meshes other than STL (which numpy-stl reads): a check forks yourdfpy's
-    child next (the other consumers started already), which loads trimesh too, so the import (0.7 s) is paid once,
-    before the fork, instead of once in our rules and once in the child."""
-    names = (
+def preload_mesh_readers(doc: Doc, meshes: RobotMeshes) -> None:
+    """Import trimesh now when our rules will read a mesh with it: one other than STL (which numpy-stl reads) whose
+    facts no run before kept (:mod:`.kept_meshes`). A check forks yourdfpy's child next (the other consumers started
+    already), which loads trimesh too, so the import (0.7 s) is paid once, before the fork, instead of once in our
+    rules and once in the child; when every such mesh is kept, the child imports it alone, while our rules run."""
+    names = {
         g.shape.get("filename") or ""
         for link in doc.view.links
         for g in (*link.visuals, *link.collisions)
         if g.shape is not None and g.shape.kind == "mesh"
-    )
-    if any(not name.lower().endswith(".stl") for name in names):
+    }
+    if any(not meshes.kept(name) for name in sorted(names) if not name.lower().endswith(".stl")):
         # (heavy: trimesh)
         import trimesh  # noqa: F401
 

@@ -33,7 +33,7 @@ def kept_facts(data: bytes, suffix: str, work_out: Callable[[], Facts]) -> Facts
     folder = cache_folder("meshes", __version__)
     if folder is None:
         return work_out()
-    name = hashlib.sha256(f"{FORMAT}:{suffix}:".encode() + data).hexdigest() + ".json"
+    name = _facts_name(data, suffix)
     text = read_cached(folder, name)
     kept = None if text is None else _read(text)
     if kept is not None:
@@ -41,6 +41,17 @@ def kept_facts(data: bytes, suffix: str, work_out: Callable[[], Facts]) -> Facts
     facts = work_out()
     write_cached(folder, name, _written(facts))
     return facts
+
+
+def facts_kept(data: bytes, suffix: str) -> bool:
+    """Whether :func:`kept_facts` would find the facts of this mesh file kept (read back whole)."""
+    folder = cache_folder("meshes", __version__)
+    text = None if folder is None else read_cached(folder, _facts_name(data, suffix))
+    return text is not None and _read(text) is not None
+
+
+def _facts_name(data: bytes, suffix: str) -> str:
+    return hashlib.sha256(f"{FORMAT}:{suffix}:".encode() + data).hexdigest() + ".json"
 
 
 def kept_values(data: bytes, what: str, work_out: Callable[[], list[float] | None]) -> list[float] | None:

@@ -102,3 +102,28 @@ def test_a_second_check_reads_no_mesh_and_says_the_same(cache, tmp_path, monkeyp
     monkeypatch.setenv("XACROKIT_CACHE", "off")
     inertia_geometry._MESHES.clear()
     assert check(urdf, consumers=[]).findings == first.findings and read == ["_read_mesh_points", "_solid_values"]
+
+
+def test_a_mesh_other_than_stl_is_known_kept_once_a_check_read_it(cache, tmp_path):
+    """What decides whether check loads trimesh before it forks yourdfpy's child: a mesh other than STL whose facts
+    are not kept (a file that cannot be read needs no reader)."""
+    (tmp_path / "part.obj").write_text(
+        "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n", encoding="utf-8"
+    )
+    urdf = tmp_path / "robot.urdf"
+    urdf.write_text(
+        """<?xml version="1.0"?>
+<robot name="r">
+  <link name="part">
+    <collision><geometry><mesh filename="part.obj"/></geometry></collision>
+    <inertial><mass value="1"/><inertia ixx="1e-3" ixy="0" ixz="0" iyy="1e-3" iyz="0" izz="1e-3"/></inertial>
+  </link>
+</robot>
+""",
+        encoding="utf-8",
+    )
+    assert not inertia_geometry.RobotMeshes(urdf, {}).kept("part.obj")
+    inertia_geometry._MESHES.clear()
+    check(urdf, consumers=[])
+    assert inertia_geometry.RobotMeshes(urdf, {}).kept("part.obj")
+    assert inertia_geometry.RobotMeshes(urdf, {}).kept("missing.obj")
