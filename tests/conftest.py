@@ -27,10 +27,20 @@ MACRO_DEMO = REPO / "examples" / "macros" / "macros_demo.urdf.xacro"
 assert len(ROBOT_EXAMPLES) >= 9 and len(SCENE_EXAMPLES) >= 3 and MACRO_DEMO.is_file(), "examples moved: update conftest"
 
 # CI keeps example counts modest; HYPOTHESIS_PROFILE=dev (or thorough) raises them locally.
-settings.register_profile("ci", max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-settings.register_profile("dev", max_examples=100, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-settings.register_profile("thorough", max_examples=1000, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
+PROFILE_SCALE = {"ci": 1, "dev": 4, "thorough": 40}
+PROFILE = os.environ.get("HYPOTHESIS_PROFILE", "ci")
+for _name, _scale in PROFILE_SCALE.items():
+    settings.register_profile(
+        _name, max_examples=25 * _scale, deadline=None, suppress_health_check=[HealthCheck.too_slow]
+    )
+settings.load_profile(PROFILE)
+
+
+def budget(examples: int) -> int:
+    """A property's own example count in CI (``@settings(max_examples=budget(n))``, its test saying why ``n``: what
+    one example costs, what the space holds), raised by the dev and thorough profiles as they raise the default 25."""
+    return examples * PROFILE_SCALE.get(PROFILE, 1)
+
 
 XACRO_HEADER = '<?xml version="1.0"?>\n<robot name="t" xmlns:xacro="http://www.ros.org/wiki/xacro">\n'
 

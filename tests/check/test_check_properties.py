@@ -9,7 +9,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import xacrokit
-from conftest import REPO, gen_robot, mesh_package_at
+from conftest import REPO, budget, gen_robot, mesh_package_at
 from xacrokit.check import RULES, check, generation_warnings
 from xacrokit.pipeline import build_robot, expand_package
 from xacrokit.reader.robot_input import RobotInput
@@ -36,7 +36,9 @@ def mesh_package(tmp_path_factory):
     return mesh_package_at(tmp_path_factory.mktemp("some_pkg"))
 
 
-@settings(suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+# budget: an example renders and checks a random robot twice, inline and with the library macros (half a second);
+# test_each_single_fault_is_caught_by_its_rule and the generation properties draw the same robots again
+@settings(max_examples=budget(15), suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 @given(spec=valid_specs())
 def test_valid_specs_check_clean_by_our_rules(tmp_path_factory, mesh_package, spec):
     folder = tmp_path_factory.mktemp("clean")

@@ -10,7 +10,7 @@ import ast
 import pytest
 from hypothesis import HealthCheck, given, settings
 
-from conftest import ROBOT_EXAMPLES, SCENE_EXAMPLES, cmake_commands, parse_generated
+from conftest import ROBOT_EXAMPLES, SCENE_EXAMPLES, budget, cmake_commands, parse_generated
 from xacrokit.load import load_file
 from xacrokit.pipeline import build_robot
 from xacrokit.render import render_package, render_scene
@@ -32,7 +32,8 @@ def models():
     return robot, scene, plain
 
 
-@settings(max_examples=40, suppress_health_check=[HealthCheck.function_scoped_fixture])
+# budget: 40 hostile names, more than the default: rendering two packages takes 0.2 s and the name is all that varies
+@settings(max_examples=budget(40), suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(name=names)
 def test_any_file_name_leaves_every_generated_file_as_a_plain_name_does(models, name):
     robot, scene, plain = models
