@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import ast
+import compileall
 import os
 import re
 import shutil
@@ -25,6 +26,15 @@ SCENE_EXAMPLES = sorted((REPO / "examples" / "scenes").glob("*.yaml"))
 MACRO_DEMO = REPO / "examples" / "macros" / "macros_demo.urdf.xacro"
 # tests loop over these lists: an empty one (examples moved) would let them pass without looking at anything
 assert len(ROBOT_EXAMPLES) >= 9 and len(SCENE_EXAMPLES) >= 3 and MACRO_DEMO.is_file(), "examples moved: update conftest"
+
+
+def pytest_configure(config):
+    """Compile the package's modules once, before any test: the tests start gen-robot, check's consumers and the
+    benchmarks as processes (well over a thousand), and an editable install on a machine that sets
+    PYTHONDONTWRITEBYTECODE (as CI's does) would compile every module of xacrokit in each of them (about 0.25 s of
+    CPU a process). compileall writes only what is missing or stale; a worker of its own runs it too."""
+    compileall.compile_dir(Path(xacrokit.__file__).parent, quiet=1)
+
 
 # CI keeps example counts modest; HYPOTHESIS_PROFILE=dev (or thorough) raises them locally.
 PROFILE_SCALE = {"ci": 1, "dev": 4, "thorough": 40}
