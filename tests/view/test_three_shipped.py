@@ -52,7 +52,9 @@ def _tarball() -> bytes:
                 raise
             pytest.skip(f"the npm registry cannot be reached: {exc}")
         cached.parent.mkdir(parents=True, exist_ok=True)
-        cached.write_bytes(data)
+        partial = cached.with_name(f".{cached.name}.{os.getpid()}")  # (written whole: another run may read it)
+        partial.write_bytes(data)
+        os.replace(partial, cached)
     return cached.read_bytes()
 
 
