@@ -23,7 +23,6 @@ from importlib import import_module
 from typing import Any
 
 from .errors import ExpandError, ResourceError, SpecError, SpecErrors, XacrokitError
-from .shared.package_data import macros_dir
 
 __version__ = "0.1.0"
 
@@ -34,6 +33,7 @@ _LAZY = {
     "ConflictError": ("xacrokit.write.package_writer", "ConflictError"),
     "check": ("xacrokit.check", "check"),
     "CheckReport": ("xacrokit.check", "CheckReport"),
+    "macros_dir": ("xacrokit.shared.package_data", "macros_dir"),  # (importlib.resources: 15-30 ms a command)
 }
 
 __all__ = [
