@@ -315,6 +315,7 @@ class RobotMeshes:
         self.urdf, self.packages = urdf, packages or {}
         self.read = mesh_reader(urdf, self.packages, parse=_mesh_points)
         self.read_solid = mesh_reader(urdf, self.packages, parse=lambda data, suffix, said: (data, suffix, said))
+        self._where: dict[str, tuple[str, Path]] = {}
 
     def __call__(
         self, filename: str, scale: tuple[float, float, float]
@@ -353,11 +354,19 @@ class RobotMeshes:
         facts = self._facts(filename)
         return None if facts is None else facts[1]
 
+    def _located(self, filename: str) -> tuple[str, Path]:
+        """The package or folder a mesh URI is read below, and its file (asked once a URI for this robot: the rules
+        ask for each mesh several times, and finding a package costs a tenth of a millisecond)."""
+        if filename not in self._where:
+            root = str(mesh_root(self.urdf, filename, self.packages))
+            self._where[filename] = (root, mesh_file(filename, self.urdf.parent, self.packages))
+        return self._where[filename]
+
     def _facts(self, filename: str) -> tuple[np.ndarray, int] | None:
         try:
-            path = mesh_file(filename, self.urdf.parent, self.packages)
+            root, path = self._located(filename)
             status = path.stat()
-            key = (str(mesh_root(self.urdf, filename, self.packages)), str(path), status.st_size, status.st_mtime_ns)
+            key = (root, str(path), status.st_size, status.st_mtime_ns)
         except (OSError, LookupError, ValueError):
             return None
         if key not in _MESHES:
