@@ -1,13 +1,15 @@
 """The user's cache folder: work one run did that the next can take instead of doing it again.
 
-Two things are kept there, each in a folder of its own named with xacrokit's version (a new release never reads an
-old release's files):
+Three things are kept there, each in a folder of its own named with xacrokit's version (a new release never reads
+an old release's files):
 
 - ``templates-VERSION``: jinja2's compiled templates (its ``FileSystemBytecodeCache``: each file is written to a
   temporary name and renamed, so two runs sharing the folder never read half a file; a template whose text changed
   is compiled again, by its checksum);
 - ``collisions-VERSION``: the collision matrix of a robot's SRDF (``moveit.moveit_package``), a JSON file named by
-  the digest of everything the sampling reads.
+  the digest of everything the sampling reads;
+- ``meshes-VERSION``: what check's geometry rules take from a mesh file (its hull, its triangle count, the solid it
+  encloses: ``check.kept_meshes``), a JSON file named by the digest of the file's bytes.
 
 Where: ``$XACROKIT_CACHE`` if set, else ``$XDG_CACHE_HOME/xacrokit``, else ``~/.cache/xacrokit``.
 ``XACROKIT_CACHE=off`` turns the cache off. The folder is made private (mode 0700); a folder that is not the user's
