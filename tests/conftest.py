@@ -9,6 +9,7 @@ import re
 import shutil
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -34,6 +35,18 @@ def pytest_configure(config):
     PYTHONDONTWRITEBYTECODE (as CI's does) would compile every module of xacrokit in each of them (about 0.25 s of
     CPU a process). compileall writes only what is missing or stale; a worker of its own runs it too."""
     compileall.compile_dir(Path(xacrokit.__file__).parent, quiet=1)
+    # A cache folder of this run's own, which its workers inherit (unless XACROKIT_CACHE names one): every run starts
+    # cold, as CI does, so that no test passes on templates, collision matrices or mesh facts an earlier run kept.
+    if "PYTEST_XDIST_WORKER" not in os.environ and "XACROKIT_CACHE" not in os.environ:
+        config.xacrokit_cache = tempfile.mkdtemp(prefix="xacrokit-test-cache-")
+        os.environ["XACROKIT_CACHE"] = config.xacrokit_cache
+
+
+def pytest_unconfigure(config):
+    folder = getattr(config, "xacrokit_cache", None)
+    if folder is not None:
+        shutil.rmtree(folder, ignore_errors=True)
+        del os.environ["XACROKIT_CACHE"]
 
 
 # CI keeps example counts modest; HYPOTHESIS_PROFILE=dev (or thorough) raises them locally.

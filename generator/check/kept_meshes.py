@@ -21,7 +21,7 @@ from collections.abc import Callable
 import numpy as np
 
 from .. import __version__
-from ..shared.user_cache import cache_folder, read_cached, write_cached
+from ..shared.user_cache import cache_folder, read_cached, source_stamp, write_cached
 
 FORMAT = 1  # (raise it when what is kept, or how it is worked out, changes: the old files are then never read)
 Facts = tuple[np.ndarray, int]  # a mesh's hull vertices (float32, N x 3) and its triangle count
@@ -51,7 +51,13 @@ def facts_kept(data: bytes, suffix: str) -> bool:
 
 
 def _facts_name(data: bytes, suffix: str) -> str:
-    return hashlib.sha256(f"{FORMAT}:{suffix}:".encode() + data).hexdigest() + ".json"
+    return hashlib.sha256(f"{FORMAT}:{_code()}:{suffix}:".encode() + data).hexdigest() + ".json"
+
+
+def _code() -> str:
+    """The code that works the facts out: trimesh's install and our modules that call it (an edit of them, in an
+    editable install, works the facts out afresh)."""
+    return source_stamp("trimesh", "xacrokit.check.inertia_geometry", "xacrokit.shared.mesh_solids")
 
 
 def kept_values(data: bytes, what: str, work_out: Callable[[], list[float] | None]) -> list[float] | None:
@@ -60,7 +66,7 @@ def kept_values(data: bytes, what: str, work_out: Callable[[], list[float] | Non
     folder = cache_folder("meshes", __version__)
     if folder is None:
         return work_out()
-    name = hashlib.sha256(f"{FORMAT}:{what}:".encode() + data).hexdigest() + ".json"
+    name = hashlib.sha256(f"{FORMAT}:{_code()}:{what}:".encode() + data).hexdigest() + ".json"
     text = read_cached(folder, name)
     if text is not None:
         try:

@@ -3,24 +3,22 @@ needs pinocchio and numpy): the pairs and their reasons, how they are sampled, t
 URDF alone), and the matrices kept in the user's cache folder.
 
 A matrix is kept under the SHA-256 digest of everything its sampling reads: the URDF's text, the package's name and
-its meshes' bytes, the home pose, the ``Sampling`` and the installs of pinocchio and coal (whose collision checks
-decide it). A package generated again with the same robot (a second run, a changed description or launch file, a
-test) takes it from there in milliseconds; a changed link, joint, limit or mesh samples again. The cached file is
-JSON, read as data only.
+its meshes' bytes, the home pose, the ``Sampling``, the installs of pinocchio and coal (whose collision checks
+decide it) and the sampling's own module (an edit of it samples again). A package generated again with the same
+robot (a second run, a changed description or launch file, a test) takes it from there in milliseconds; a changed
+link, joint, limit or mesh samples again. The cached file is JSON, read as data only.
 """
 
 from __future__ import annotations
 
 import hashlib
-import importlib.util
 import itertools
 import json
-import os
 from collections.abc import Callable, Iterable
 from dataclasses import asdict, dataclass
 
 from .. import __version__
-from ..shared.user_cache import cache_folder, read_cached, write_cached
+from ..shared.user_cache import cache_folder, read_cached, source_stamp, write_cached
 from ..shared.xml_parse import read_urdf_root
 
 Pair = tuple[str, str]  # two link names, in alphabetical order (as MoveIt writes them)
@@ -99,26 +97,13 @@ Meshes = tuple[tuple[str, str | bytes], ...]
 def matrix_key(urdf: str, package: str, meshes: Meshes, home: tuple[tuple[str, float], ...], sampling: Sampling) -> str:
     """The digest a matrix is kept under (see the module's docstring)."""
     digest = hashlib.sha256()
-    installs = [_installed(name) for name in ("pinocchio", "coal")]
+    installs = source_stamp("pinocchio", "coal", "xacrokit.moveit.collision_pairs")
     header = {"urdf": urdf, "package": package, "home": home, "sampling": asdict(sampling), "installs": installs}
     digest.update(json.dumps(header, sort_keys=True).encode("utf-8"))
     for path, content in meshes:
         digest.update(b"\0" + path.encode("utf-8") + b"\0")
         digest.update(content if isinstance(content, bytes) else content.encode("utf-8"))
     return digest.hexdigest()
-
-
-def _installed(module: str) -> str:
-    """Where ``module`` is installed, with its file's size and time: a new install of pinocchio or coal changes it
-    (found without importing them, nor reading package metadata: both cost a generation tens of milliseconds)."""
-    spec = importlib.util.find_spec(module)
-    if spec is None or spec.origin is None:
-        return ""
-    try:
-        info = os.stat(spec.origin)
-    except OSError:
-        return spec.origin
-    return f"{spec.origin} {info.st_size} {info.st_mtime_ns}"
 
 
 def cached_matrix(key: str, judge: Callable[[], Judged]) -> Judged:

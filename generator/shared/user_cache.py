@@ -15,12 +15,15 @@ Where: ``$XACROKIT_CACHE`` if set, else ``$XDG_CACHE_HOME/xacrokit``, else ``~/.
 ``XACROKIT_CACHE=off`` turns the cache off. The folder is made private (mode 0700); a folder that is not the user's
 own, that others can write to, or that cannot be made, is not used: the run then does all the work itself, with the
 same results (compiled templates are code, so a folder someone else can write to would let them run code as you).
-Deleting the folder at any time is safe.
+Deleting the folder at any time is safe. Each key also holds :func:`source_stamp` of the code that does the work
+(and of the libraries it calls), so that an edited module is never answered from its old results.
 """
 
 from __future__ import annotations
 
 import contextlib
+import functools
+import importlib.util
 import os
 import stat
 import tempfile
@@ -67,6 +70,23 @@ def cache_folder(kind: str, version: str) -> Path | None:
         if not _private(path):
             return None
     return folder
+
+
+@functools.cache
+def source_stamp(*modules: str) -> str:
+    """Where each module is installed, with its file's size and time, found without importing it: a cache key that
+    holds it changes when the code that does the work is installed anew or edited (an editable install), so that a
+    result of older code is never taken."""
+    stamps = []
+    for module in modules:
+        spec = importlib.util.find_spec(module)
+        origin = None if spec is None else spec.origin
+        try:
+            info = os.stat(origin) if origin else None
+        except OSError:
+            info = None
+        stamps.append(f"{origin} {info.st_size} {info.st_mtime_ns}" if info else str(origin))
+    return "; ".join(stamps)
 
 
 def read_cached(folder: Path, name: str) -> str | None:

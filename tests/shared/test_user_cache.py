@@ -138,3 +138,26 @@ def test_runs_sharing_an_empty_cache_at_once_write_the_same_packages_and_leave_w
     assert all(package_texts(tmp_path / f"out{k}") == package_texts(alone) for k in range(4))
     left = [p.name for p in (tmp_path / "cache").rglob("*") if p.name.endswith(".tmp")]
     assert left == []
+
+
+def test_a_key_holds_the_code_that_does_the_work_so_an_edited_module_is_never_answered_from_old_results(
+    tmp_path, monkeypatch
+):
+    from xacrokit.moveit.collision_matrix import Sampling, matrix_key
+    from xacrokit.shared.user_cache import source_stamp
+
+    (tmp_path / "worker_module.py").write_text("X = 1\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    first = source_stamp("worker_module")
+    os.utime(tmp_path / "worker_module.py", ns=(1, 1))  # (edited: its time changes)
+    source_stamp.cache_clear()
+    assert source_stamp("worker_module") != first and "worker_module.py" in first
+    source_stamp.cache_clear()
+    key = matrix_key("<robot/>", "p", (), (), Sampling())
+    pairs = Path(collision_pairs.__file__)
+    monkeypatch.setattr(
+        os, "stat", lambda path, *a, **k: os.lstat(tmp_path) if str(path) == str(pairs) else os.lstat(path)
+    )
+    source_stamp.cache_clear()
+    assert matrix_key("<robot/>", "p", (), (), Sampling()) != key
+    source_stamp.cache_clear()
