@@ -52,10 +52,11 @@ def test_benchmark_stage_measurement_runs(tmp_path, monkeypatch):
 
 
 def test_check_speed_script_runs():
-    """benchmarks/check_speed.py: gen-robot check against its consumers alone, on three real robots (one run)."""
-    result = run_script("check_speed.py", "1")
+    """benchmarks/check_speed.py: gen-robot check against its consumers alone, on one real robot named (one run; the
+    three robots of its default list go through the same code, each about 13 s a run: RESULTS.md's runs time them)."""
+    result = run_script("check_speed.py", "1", "xarm7")
     rows = [line for line in result.stdout.splitlines() if "(slowest: " in line]
-    assert [row.split()[0] for row in rows] == ["xarm7.urdf", "g1_29dof_with_hand_rev_1_0.urdf", "tiago_dual.urdf"]
+    assert [row.split()[0] for row in rows] == ["xarm7.urdf"]
     for row in rows:
         ratio = float(row.split("-> ")[1].split()[0])
         assert 0.5 < ratio < 10  # (a ratio, measured: not a timing target, which RESULTS.md records)
