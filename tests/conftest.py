@@ -31,7 +31,7 @@ assert len(ROBOT_EXAMPLES) >= 9 and len(SCENE_EXAMPLES) >= 3 and MACRO_DEMO.is_f
 
 def pytest_configure(config):
     """Compile the package's modules once, before any test: the tests start gen-robot, check's consumers and the
-    benchmarks as processes (well over a thousand), and an editable install on a machine that sets
+    benchmarks as processes (hundreds), and an editable install on a machine that sets
     PYTHONDONTWRITEBYTECODE (as CI's does) would compile every module of xacrokit in each of them (about 0.25 s of
     CPU a process). compileall writes only what is missing or stale; a worker of its own runs it too."""
     compileall.compile_dir(Path(xacrokit.__file__).parent, quiet=1)
