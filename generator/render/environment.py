@@ -19,7 +19,7 @@ from markupsafe import Markup
 from .. import __version__
 from ..model import Box, Cylinder
 from ..shared.package_data import templates_dir
-from ..shared.user_cache import cache_folder
+from ..shared.user_cache import cache_folder, source_stamp
 from ..shared.value_text import num, vec, xacro_text, xml_comment_text
 
 MacroMode = Literal["copy", "find", "inline"]
@@ -50,8 +50,12 @@ def indent_block(text: str, width: int) -> Markup:
 class _TemplateCache(jinja2.FileSystemBytecodeCache):
     """jinja2's compiled templates kept in the user's cache folder (``shared.user_cache``): a run takes them instead of
     compiling the templates again (about 0.25 s of a robot's generation). jinja2 writes each file to a temporary name
-    and renames it, and compiles again a template whose text changed; a file that cannot be read or written only
-    means compiling, never a failed run."""
+    and renames it, and compiles again a template whose text changed; a new jinja2, or an edit of this module, names
+    other files; a file that cannot be read or written only means compiling, never a failed run."""
+
+    def get_cache_key(self, name: str, filename: str | None = None) -> str:
+        # (the code jinja2 compiles depends on its version and on this module's settings: autoescape, trim_blocks)
+        return super().get_cache_key(f"{source_stamp('jinja2', 'xacrokit.render.environment')}|{name}", filename)
 
     def load_bytecode(self, bucket: jinja2.bccache.Bucket) -> None:
         try:

@@ -161,3 +161,15 @@ def test_a_key_holds_the_code_that_does_the_work_so_an_edited_module_is_never_an
     source_stamp.cache_clear()
     assert matrix_key("<robot/>", "p", (), (), Sampling()) != key
     source_stamp.cache_clear()
+
+
+def test_a_compiled_templates_name_holds_jinja2s_install_and_the_environments_module(tmp_path, monkeypatch):
+    """jinja2 compiles autoescape and whitespace settings into a template's code: a new jinja2 or an edit of
+    render/environment.py must not take code compiled before it."""
+    import importlib
+
+    settings_module = importlib.import_module("xacrokit.render.environment")  # (the module, not its function)
+    cache = settings_module._TemplateCache(str(tmp_path))
+    before = cache.get_cache_key("package/package.xml.j2")
+    monkeypatch.setattr(settings_module, "source_stamp", lambda *modules: "another install")
+    assert cache.get_cache_key("package/package.xml.j2") != before
