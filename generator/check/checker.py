@@ -76,11 +76,8 @@ def check(
     except SpecErrors as exc:
         if all(e.line is None for e in exc.errors):  # the file itself cannot be read: no report to give
             raise
-
         return CheckReport(str(path), kind, None, spec_findings(exc.errors, "V002"))
-    notes: tuple[Finding, ...] = ()
-    if source.warnings:
-        notes = spec_findings(source.warnings)
+    notes: tuple[Finding, ...] = spec_findings(source.warnings) if source.warnings else ()
     with staged_packages(source.carried) as staged:  # (a spec's meshes, where its package will carry them)
         packages = {**staged, **(source.packages or {})} if staged else source.packages
         judging = Judging(

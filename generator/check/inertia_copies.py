@@ -10,21 +10,20 @@ which turning or mirroring a part does not change; sizes more than SIZES apart a
 Of the links sharing an inertial, the first (in the file's order) is taken for the part it was computed for: each
 link of a size different from the first's is said, naming the latest link before it of the first's size. So a
 fleet's copies of one robot get that robot's findings, each naming a link of its own copy, and two links of the
-first's size are never said for a third between them. Each distinct geometry's size is worked out once.
+first's size are never said for a third between them. Each distinct geometry's reach is read once (``ReachMemo``).
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Iterator, Mapping
-from typing import Any
 
 import numpy as np
 
 from ..shared.solid_inertia import is_placeholder
 from ..shared.urdf_view import Link
 from .findings import Finding, rule_table
-from .inertia_geometry import ReachMemo, geometry_key
+from .inertia_geometry import ReachMemo
 from .urdf_document import Doc
 
 RULES = rule_table(
@@ -51,13 +50,6 @@ def _size(link: Link, reaches: ReachMemo) -> float | None:
     return size if math.isfinite(size) and size > 0 else None
 
 
-def _memo(sizes: dict[tuple[Any, ...], float | None], link: Link, reaches: ReachMemo) -> float | None:
-    key = geometry_key(link)
-    if key not in sizes:
-        sizes[key] = _size(link, reaches)
-    return sizes[key]
-
-
 def copied_inertias(
     doc: Doc, reaches: ReachMemo, significant: Mapping[str, tuple[float, tuple[float, ...]]]
 ) -> Iterator[Finding]:
@@ -72,8 +64,7 @@ def copied_inertias(
     for key, links in groups.items():
         if len(links) < 2:
             continue
-        sizes: dict[tuple[Any, ...], float | None] = {}  # (each distinct geometry's size, once)
-        known = [(link, size) for link in links if (size := _memo(sizes, link, reaches)) is not None]
+        known = [(link, size) for link in links if (size := _size(link, reaches)) is not None]
         if not known:
             continue
         like_first = known[0]  # (the latest link of the first one's size: the one a copy is said to copy)

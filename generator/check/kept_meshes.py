@@ -21,7 +21,7 @@ from collections.abc import Callable
 import numpy as np
 
 from .. import __version__
-from ..shared.user_cache import cache_folder, read_cached, source_stamp, write_cached
+from ..shared.user_cache import cache_folder, kept, read_cached, source_stamp
 
 FORMAT = 1  # (raise it when what is kept, or how it is worked out, changes: the old files are then never read)
 Facts = tuple[np.ndarray, int]  # a mesh's hull vertices (float32, N x 3) and its triangle count
@@ -30,24 +30,20 @@ Facts = tuple[np.ndarray, int]  # a mesh's hull vertices (float32, N x 3) and it
 def kept_facts(data: bytes, suffix: str, work_out: Callable[[], Facts]) -> Facts:
     """The facts of the mesh file whose bytes are ``data`` (of kind ``suffix``): kept ones, else ``work_out()``'s,
     then kept. What ``work_out`` raises (a file that is no mesh) is raised, and nothing is kept."""
-    folder = cache_folder("meshes", __version__)
-    if folder is None:
-        return work_out()
-    name = _facts_name(data, suffix)
-    text = read_cached(folder, name)
-    kept = None if text is None else _read(text)
-    if kept is not None:
-        return kept
-    facts = work_out()
-    write_cached(folder, name, _written(facts))
-    return facts
+    return kept("meshes", __version__, _facts_name(data, suffix), work_out, _written, _read)
 
 
 def facts_kept(data: bytes, suffix: str) -> bool:
     """Whether :func:`kept_facts` would find the facts of this mesh file kept (read back whole)."""
     folder = cache_folder("meshes", __version__)
     text = None if folder is None else read_cached(folder, _facts_name(data, suffix))
-    return text is not None and _read(text) is not None
+    if text is None:
+        return False
+    try:
+        _read(text)
+    except ValueError:
+        return False
+    return True
 
 
 def _facts_name(data: bytes, suffix: str) -> str:
@@ -63,21 +59,16 @@ def _code() -> str:
 def kept_values(data: bytes, what: str, work_out: Callable[[], list[float] | None]) -> list[float] | None:
     """Numbers worked out from the mesh file whose bytes are ``data`` (``what``: which numbers, and from what: the
     reader, a scale), kept as :func:`kept_facts` keeps a mesh's facts (None, too: nothing to work out)."""
-    folder = cache_folder("meshes", __version__)
-    if folder is None:
-        return work_out()
     name = hashlib.sha256(f"{FORMAT}:{_code()}:{what}:".encode() + data).hexdigest() + ".json"
-    text = read_cached(folder, name)
-    if text is not None:
-        try:
-            said = json.loads(text)
-        except ValueError:
-            said = "damaged"
-        if said is None or (isinstance(said, list) and all(isinstance(v, float) for v in said)):
-            return said
-    values = work_out()
-    write_cached(folder, name, json.dumps(values))  # (a float's repr reads back as the same float)
-    return values
+    return kept("meshes", __version__, name, work_out, json.dumps, _values)  # (a float's repr reads back the same)
+
+
+def _values(text: str) -> list[float] | None:
+    """Kept numbers (or None). Raises ValueError when the text is not what :func:`kept_values` writes."""
+    said = json.loads(text)
+    if said is None or (isinstance(said, list) and all(isinstance(v, float) for v in said)):
+        return said
+    raise ValueError("not kept numbers")
 
 
 def _written(facts: Facts) -> str:
@@ -87,14 +78,14 @@ def _written(facts: Facts) -> str:
     return json.dumps(said)
 
 
-def _read(text: str) -> Facts | None:
-    """Kept facts, or None when the text is not what :func:`_written` writes (a damaged file)."""
+def _read(text: str) -> Facts:
+    """Kept facts. Raises ValueError when the text is not what :func:`_written` writes (a damaged file)."""
     try:
         said = json.loads(text)
         data = base64.b64decode(said["points"], validate=True)
         vertices, triangles = said["vertices"], said["triangles"]
-    except (ValueError, KeyError, TypeError):
-        return None
+    except (KeyError, TypeError) as exc:
+        raise ValueError(f"not kept facts: {exc}") from exc
     if not isinstance(vertices, int) or not isinstance(triangles, int) or triangles < 1 or len(data) != 12 * vertices:
-        return None
+        raise ValueError("not kept facts: counts")
     return np.frombuffer(data, dtype="<f4").reshape(vertices, 3).astype(np.float32), triangles

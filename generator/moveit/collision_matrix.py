@@ -18,7 +18,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import asdict, dataclass
 
 from .. import __version__
-from ..shared.user_cache import cache_folder, read_cached, source_stamp, write_cached
+from ..shared.user_cache import kept, source_stamp
 from ..shared.xml_parse import read_urdf_root
 
 Pair = tuple[str, str]  # two link names, in alphabetical order (as MoveIt writes them)
@@ -108,16 +108,7 @@ def matrix_key(urdf: str, package: str, meshes: Meshes, home: tuple[tuple[str, f
 
 def cached_matrix(key: str, judge: Callable[[], Judged]) -> Judged:
     """The matrix kept under ``key`` in the user's cache folder, or ``judge()``'s, kept there for the next run."""
-    folder = cache_folder("collisions", __version__)
-    text = None if folder is None else read_cached(folder, f"{key}.json")
-    if text is not None:
-        found = _from_json(text)
-        if found is not None:
-            return found
-    judged = judge()
-    if folder is not None:
-        write_cached(folder, f"{key}.json", _as_json(judged))
-    return judged
+    return kept("collisions", __version__, f"{key}.json", judge, _as_json, _from_json)
 
 
 def _as_json(judged: Judged) -> str:
@@ -125,13 +116,15 @@ def _as_json(judged: Judged) -> str:
     return json.dumps({"disabled": rows, "samples": judged.samples, "pairs": judged.pairs, "meshes": judged.meshes})
 
 
-def _from_json(text: str) -> Judged | None:
-    """The matrix a cached file holds, or None when it is not one (damaged, or written by hand)."""
+def _from_json(text: str) -> Judged:
+    """The matrix a cached file holds. Raises ValueError when it is not one (damaged, or written by hand)."""
     try:
         data = json.loads(text)
         disabled = {pair(first, second): reason for first, second, reason in data["disabled"]}
         judged = Judged(disabled, int(data["samples"]), int(data["pairs"]), bool(data["meshes"]))
-    except (ValueError, TypeError, KeyError):
-        return None
+    except (TypeError, KeyError) as exc:
+        raise ValueError(f"not a kept matrix: {exc}") from exc
     names_ok = all(isinstance(name, str) for both in disabled for name in both)
-    return judged if names_ok and set(disabled.values()) <= set(REASONS) else None
+    if not names_ok or not set(disabled.values()) <= set(REASONS):
+        raise ValueError("not a kept matrix: names or reasons")
+    return judged

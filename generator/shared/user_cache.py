@@ -27,9 +27,12 @@ import importlib.util
 import os
 import stat
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
+from typing import TypeVar
 
 OFF = "off"
+T = TypeVar("T")
 
 
 def cache_root() -> Path | None:
@@ -87,6 +90,25 @@ def source_stamp(*modules: str) -> str:
             info = None
         stamps.append(f"{origin} {info.st_size} {info.st_mtime_ns}" if info else str(origin))
     return "; ".join(stamps)
+
+
+def kept(
+    kind: str, version: str, name: str, work_out: Callable[[], T], write: Callable[[T], str], read: Callable[[str], T]
+) -> T:
+    """``work_out()``'s result, kept as the file ``name`` (its text ``write(result)``) in the folder ``kind-VERSION``
+    (``version``: xacrokit's): a run that finds the file takes ``read(text)`` instead. A file ``read`` refuses (it
+    raises ValueError: damaged, or not what was written) is worked out again and written anew; with the cache off or
+    unusable, the work is simply done."""
+    folder = cache_folder(kind, version)
+    if folder is None:
+        return work_out()
+    text = read_cached(folder, name)
+    if text is not None:
+        with contextlib.suppress(ValueError):
+            return read(text)
+    result = work_out()
+    write_cached(folder, name, write(result))
+    return result
 
 
 def read_cached(folder: Path, name: str) -> str | None:
