@@ -6,11 +6,12 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterator, Mapping
+from collections.abc import Set as AbstractSet
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import XacrokitError
-from ..moveit.collision_matrix import Pair
+from ..moveit.collision_matrix import Pair, collision_text, home_pairs_key, kept_home_pairs
 from ..moveit.srdf_reading import SrdfFacts, read_srdf, srdf_beside
 from .findings import Finding, rule_table
 from .urdf_document import Doc
@@ -67,21 +68,23 @@ def self_collision_rules(doc: Doc, given: SelfCollisionInput) -> Iterator[Findin
     meshes = any(g.shape is not None and g.shape.kind == "mesh" for link in doc.view.links for g in link.collisions)
     if meshes and srdf is None and not given.spec:
         return  # (coal reading every collision mesh costs 5 times check's other rules: asked for by an SRDF)
-    from ..moveit.collision_pairs import colliding_pairs, collision_bodies, configuration  # (heavy: pinocchio)
-
     try:
-        bodies = collision_bodies(doc.view, given.path.parent, given.packages)
-    except (RuntimeError, ValueError, LookupError):
-        return  # (a mesh not found, a URDF pinocchio refuses: R003 and the consumers say so)
-    facts = SrdfFacts({}, {})
+        text, mesh_files = collision_text(doc.view, given.path.parent, given.packages)
+    except (ValueError, LookupError):
+        return  # (a mesh not found: R003 says so)
+    facts, complaint = SrdfFacts({}, {}), None
     if srdf is not None:
         try:
             facts = read_srdf(srdf)
         except XacrokitError as exc:
-            yield doc.finding("G007", "robot", doc.view.name or "", f"{exc}: its disabled pairs are not respected")
+            said = f"{exc}: its disabled pairs are not respected"
+            complaint = doc.finding("G007", "robot", doc.view.name or "", said)
             srdf = None  # (nor counted)
-    home = configuration(bodies, {**given.home, **facts.home})  # (an SRDF's home: the spec's, where it came from)
-    at_home = colliding_pairs(bodies, home) - bodies.adjacent
+    at_home = _pairs_at_home(doc, text, mesh_files, {**given.home, **facts.home})  # (an SRDF's home: the spec's)
+    if at_home is None:
+        return  # (a mesh unreadable, a URDF pinocchio refuses: R003 and the consumers say so)
+    if complaint is not None:
+        yield complaint
     disabled = {p: "Default" for p in at_home} if given.spec else facts.disabled
     for first, second in sorted(at_home - disabled.keys()):
         link = doc.view.link(first)
@@ -94,12 +97,34 @@ def self_collision_rules(doc: Doc, given: SelfCollisionInput) -> Iterator[Findin
             f'disable the pair in an SRDF beside the URDF (reason="Default": gen-robot writes config/NAME.srdf)',
             link.element if link is not None else None,
         )
-    note = _note(doc, srdf, disabled, at_home if given.spec else set())
+    note = _note(doc, srdf, disabled, at_home if given.spec else frozenset())
     if note is not None:  # (a bare URDF gets none: nothing says which pairs it means to skip)
         yield note
 
 
-def _note(doc: Doc, srdf: Path | None, disabled: dict[Pair, str], default: set[Pair]) -> Finding | None:
+def _pairs_at_home(doc: Doc, text: str, meshes: list[Path], home: Mapping[str, float]) -> frozenset[Pair] | None:
+    """The pairs of links whose collision geometries intersect at ``home`` and that no joint joins (pinocchio and
+    coal on ``text``, :func:`~xacrokit.moveit.collision_matrix.collision_text`), kept in the user's cache folder for
+    the next check of the same robot (the same text, mesh bytes, home and installs:
+    :func:`~xacrokit.moveit.collision_matrix.home_pairs_key`); None when they cannot be posed."""
+    try:
+        key = home_pairs_key(text, meshes, home)
+    except OSError:
+        return None
+
+    def pose() -> frozenset[Pair]:
+        from ..moveit.collision_pairs import bodies_of, colliding_pairs, configuration  # (heavy: pinocchio)
+
+        bodies = bodies_of(doc.view, text, meshes=bool(meshes))
+        return frozenset(colliding_pairs(bodies, configuration(bodies, home)) - bodies.adjacent)
+
+    try:
+        return kept_home_pairs(key, pose)
+    except (RuntimeError, ValueError, LookupError):
+        return None  # (pinocchio or coal refused the robot: the consumers say so)
+
+
+def _note(doc: Doc, srdf: Path | None, disabled: dict[Pair, str], default: AbstractSet[Pair]) -> Finding | None:
     """The note: the SRDF's count of pairs disabled as never colliding; a spec's pairs that intersect at home, which
     its package's SRDF disables as Default (None for a spec without any: its package's SRDF says the rest)."""
     said = ""

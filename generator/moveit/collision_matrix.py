@@ -11,15 +11,25 @@ link, joint, limit or mesh samples again. The cached file is JSON, read as data 
 
 from __future__ import annotations
 
+import copy
 import hashlib
 import itertools
 import json
-from collections.abc import Callable, Iterable
+import os
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import asdict, dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from lxml import etree
 
 from .. import __version__
+from ..shared.ros_packages import mesh_file
 from ..shared.user_cache import kept, source_stamp
 from ..shared.xml_parse import read_urdf_root
+
+if TYPE_CHECKING:
+    from ..shared.urdf_view import UrdfView
 
 Pair = tuple[str, str]  # two link names, in alphabetical order (as MoveIt writes them)
 REASONS = ("Adjacent", "Default", "Never", "Always")
@@ -128,3 +138,59 @@ def _from_json(text: str) -> Judged:
     if not names_ok or not set(disabled.values()) <= set(REASONS):
         raise ValueError("not a kept matrix: names or reasons")
     return judged
+
+
+def collision_text(
+    view: UrdfView, base: Path, packages: Mapping[str, str | os.PathLike[str]] | None
+) -> tuple[str, list[Path]]:
+    """The URDF text pinocchio reads for a robot's collision geometry (``view``: its parse): its collision meshes
+    named by their files (found from ``base`` and ``packages``), its visuals left out (nor their meshes read); and
+    those mesh files, in the document's order.
+
+    Raises:
+        LookupError, ValueError: a collision mesh whose file cannot be found.
+    """
+    root = copy.deepcopy(view.root)
+    files = []
+    for mesh in root.iterfind("link/collision/geometry/mesh"):
+        files.append(mesh_file(mesh.get("filename", ""), base, packages))
+        mesh.set("filename", str(files[-1]))
+    for visual in root.findall("link/visual"):  # (not read: nor its meshes)
+        visual.getparent().remove(visual)
+    return etree.tostring(root, encoding="unicode"), files
+
+
+def home_pairs_key(text: str, meshes: Iterable[Path], home: Mapping[str, float]) -> str:
+    """The digest G007's pairs in collision at ``home`` are kept under: the text pinocchio reads
+    (:func:`collision_text`), its mesh files' bytes, the home pose, and the installs of pinocchio and coal and of the
+    module that poses them. Raises OSError: a mesh file cannot be read."""
+    digest = hashlib.sha256()
+    installs = source_stamp("pinocchio", "coal", "xacrokit.moveit.collision_pairs")
+    header = {"urdf": text, "home": sorted(home.items()), "installs": installs}
+    digest.update(json.dumps(header, sort_keys=True).encode("utf-8"))
+    for path in meshes:
+        digest.update(b"\0" + str(path).encode("utf-8") + b"\0")
+        digest.update(hashlib.sha256(Path(path).read_bytes()).digest())
+    return digest.hexdigest()
+
+
+def kept_home_pairs(key: str, pose: Callable[[], frozenset[Pair]]) -> frozenset[Pair]:
+    """The pairs kept under ``key`` (:func:`home_pairs_key`) in the user's cache folder, or ``pose()``'s, kept there
+    for the next check of the same robot."""
+    return kept("collisions", __version__, f"home-{key}.json", pose, _pairs_json, _pairs_from_json)
+
+
+def _pairs_json(pairs: frozenset[Pair]) -> str:
+    return json.dumps({"pairs": sorted(pairs)})
+
+
+def _pairs_from_json(text: str) -> frozenset[Pair]:
+    """The pairs a kept file holds. Raises ValueError when it is not such a file."""
+    try:
+        rows = json.loads(text)["pairs"]
+        found = frozenset(pair(first, second) for first, second in rows)
+    except (TypeError, KeyError) as exc:
+        raise ValueError(f"not kept pairs: {exc}") from exc
+    if not all(isinstance(name, str) for both in found for name in both):
+        raise ValueError("not kept pairs: names")
+    return found

@@ -19,7 +19,6 @@ stay in the batch pinocchio checks in parallel, so the cost is that of the pairs
 
 from __future__ import annotations
 
-import copy
 import itertools
 import math
 import os
@@ -30,12 +29,10 @@ from typing import Any
 
 import numpy as np
 import pinocchio as pin
-from lxml import etree
 
 from ..shared.quiet_stderr import quietly
-from ..shared.ros_packages import mesh_file
 from ..shared.urdf_view import UrdfView, number
-from .collision_matrix import Judged, Pair, Sampling, adjacent_pairs, pair
+from .collision_matrix import Judged, Pair, Sampling, adjacent_pairs, collision_text, pair
 
 BATCH = 500  # configurations pinocchio checks in one parallel call (pairs decided between batches drop out)
 
@@ -81,12 +78,14 @@ def collision_bodies(
         LookupError, ValueError: a collision mesh whose file cannot be found.
         ValueError: pinocchio refused the URDF (its words).
     """
-    root = copy.deepcopy(view.root)
-    for mesh in root.iterfind("link/collision/geometry/mesh"):
-        mesh.set("filename", str(mesh_file(mesh.get("filename", ""), base, packages)))
-    for visual in root.findall("link/visual"):  # (not read: nor its meshes)
-        visual.getparent().remove(visual)
-    text = etree.tostring(root, encoding="unicode")
+    text, meshes = collision_text(view, base, packages)
+    return bodies_of(view, text, meshes=bool(meshes))
+
+
+def bodies_of(view: UrdfView, text: str, *, meshes: bool) -> CollisionBodies:
+    """The :class:`CollisionBodies` of a URDF (``view``: its parse) from the text pinocchio reads of it
+    (:func:`.collision_matrix.collision_text`; ``meshes``: whether its collision geometry holds meshes). Raises
+    ValueError: pinocchio refused it (its words)."""
     built, failure, said = quietly(lambda: _models(text))
     if failure is not None:
         raise ValueError(f"pinocchio cannot read the robot: {failure}") from None
@@ -104,7 +103,6 @@ def collision_bodies(
         if j.mimic is not None and j.name in joints and j.mimic.joint in joints
     )
     unbounded = _unbounded_pairs(model, geometry, links, free)
-    meshes = root.find("link/collision/geometry/mesh") is not None
     adjacent = adjacent_pairs(((j.parent, j.child) for j in view.joints), set(links))
     return CollisionBodies(model, geometry, links, joints, followers, adjacent, unbounded, meshes)
 
