@@ -24,20 +24,23 @@ branch across targets; docs/kinematics.md says how the names read on an arm.
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass
-from typing import Any
+import math
+from typing import NamedTuple
 
 from .arm_geometry import THREE_PARALLEL, ClosedForm
 from .subproblems import (
+    DEGENERATE,
     Mat,
     Vec,
     add,
+    angles,
     apply,
     apply_transposed,
     cross,
     dot,
     multiply,
     norm,
+    parts,
     perpendicular,
     rotate,
     rotation,
@@ -48,6 +51,7 @@ from .subproblems import (
     subproblem_3,
     subproblem_4,
     transposed,
+    turned,
 )
 
 BRANCH_NAMES = {
@@ -56,11 +60,10 @@ BRANCH_NAMES = {
 }
 
 
-@dataclass(frozen=True)
-class Branch:
+class Branch(NamedTuple):
     """One closed-form solution: the six joint values (the chain's order), which root each step took, whether
     every subproblem was solved exactly (False: the nearest, to be checked), and the singularity it lies on
-    ("" when none)."""
+    ("" when none). (A named tuple: a solve makes eight, and a frozen dataclass costs four times as much to make.)"""
 
     values: tuple[float, ...]
     roots: tuple[int, int, int]
@@ -78,46 +81,144 @@ def branches(form: ClosedForm, rotation_: Mat, position: Vec) -> list[Branch]:
     return _spherical_wrist(form, r_g, p_g)
 
 
-@functools.cache
-def _three_parallel_constants(form: ClosedForm) -> tuple[Any, ...]:
+class _Shoulder(NamedTuple):
+    """Subproblem 4 for q1 made once per arm: n . rotate(h1, t, f) = offset is a . f cos t + b . f sin t + c h1 . f
+    = offset (f the wrist centre from a point of axis 1)."""
+
+    a: Vec
+    b: Vec
+    c: float
+    offset: float
+
+
+def _shoulder(form: ClosedForm, n: Vec) -> _Shoulder:
+    h0, p0 = form.lines.axes[0], form.lines.points[0]
+    hk = dot(n, h0)
+    return _Shoulder(sub(n, scale(hk, h0)), cross(n, h0), hk, dot(n, sub(form.wrist, p0)))
+
+
+def _fixed(h: Vec, k: Vec, p: Vec, base: float = 0.0) -> tuple[float, float, float]:
+    """Subproblem 4's phase and radius for h . rotate(k, t, p) = d when h, k and p are the arm's, and what to take
+    from d (with ``base`` taken from d as well): :func:`.subproblems.subproblem_4`'s first steps, once per arm."""
+    along, hk = dot(k, p), dot(h, k)
+    a, b = dot(h, p) - hk * along, dot(h, cross(k, p))
+    return math.atan2(b, a), math.hypot(a, b), hk * along + base
+
+
+class _ThreeParallel(NamedTuple):
     """What every target of a three-parallel-axes arm shares (made once per arm: ClosedForm is frozen)."""
+
+    shoulder: _Shoulder
+    n_about_1: tuple[Vec, Vec, Vec]  # (n turned by q1 about axis 1)
+    across_about_1: tuple[Vec, Vec, Vec]  # (a unit vector across n, and n x it, turned by q1: theta's frame)
+    normal_about_1: tuple[Vec, Vec, Vec]
+    wrist: tuple[float, float, float]  # (q5's phase, radius and constant term)
+    n_about_5: tuple[Vec, Vec, Vec]  # (n turned by -q5 about axis 5)
+    across_about_5: tuple[Vec, Vec, Vec]
+    wrist_arm: tuple[Vec, Vec, Vec]  # (the wrist centre from axis 4, turned by theta about n)
+    elbow: tuple[float, float, float]  # (q3's phase, radius and constant term, |fore|^2 + |back|^2 halved)
+    forearm: tuple[Vec, Vec, Vec]  # (axis 4's point from axis 3's, turned by q3)
+    upper: Vec  # (axis 3's point from axis 2's)
+    signs: tuple[float, float, float]
+
+
+@functools.cache
+def _three_parallel_constants(form: ClosedForm) -> _ThreeParallel:
     h, p = form.lines.axes, form.lines.points
     n = form.parallel or h[1]
-    signs = (dot(h[1], n), dot(h[2], n), dot(h[3], n))
-    upper, fore = perpendicular(sub(p[2], p[1]), n), perpendicular(sub(p[3], p[2]), n)
-    offset = dot(n, sub(form.wrist, p[0]))
-    return n, signs, _across(n), fore, scale(-1.0, upper), sub(form.wrist, p[3]), sub(p[3], p[2]), offset
+    across = _across(n)
+    fore, back = perpendicular(sub(p[3], p[2]), n), scale(-1.0, perpendicular(sub(p[2], p[1]), n))
+    phase, radius, constant = _fixed(back, h[2], fore)
+    elbow = (phase, radius, constant - (dot(fore, fore) + dot(back, back)) / 2.0)
+    return _ThreeParallel(
+        _shoulder(form, n),
+        parts(h[0], n),
+        parts(h[0], across),
+        parts(h[0], cross(n, across)),
+        _fixed(n, h[4], h[5]),
+        parts(h[4], n),
+        parts(h[4], across),
+        parts(n, sub(form.wrist, p[3])),
+        elbow,
+        parts(h[2], sub(p[3], p[2])),
+        sub(p[2], p[1]),
+        (dot(h[1], n), dot(h[2], n), dot(h[3], n)),
+    )
+
+
+def _shoulder_roots(
+    shoulder: _Shoulder, h0: Vec, base: Vec, f: Vec
+) -> tuple[tuple[list[float], bool] | None, tuple[Vec, Vec, Vec]]:
+    """q1's subproblem for the wrist centre at ``f`` from axis 1's point, and f's parts about axis 1
+    (:func:`.subproblems.parts`, its part along the axis moved by ``base``: f turned from there)."""
+    a, b = shoulder.a, shoulder.b
+    along = h0[0] * f[0] + h0[1] * f[1] + h0[2] * f[2]
+    x = a[0] * f[0] + a[1] * f[1] + a[2] * f[2]
+    y = b[0] * f[0] + b[1] * f[1] + b[2] * f[2]
+    radius = math.hypot(x, y)
+    f_parts = (
+        (base[0] + along * h0[0], base[1] + along * h0[1], base[2] + along * h0[2]),
+        (f[0] - along * h0[0], f[1] - along * h0[1], f[2] - along * h0[2]),
+        (h0[1] * f[2] - h0[2] * f[1], h0[2] * f[0] - h0[0] * f[2], h0[0] * f[1] - h0[1] * f[0]),
+    )
+    if radius < DEGENERATE:
+        return None, f_parts
+    return angles(math.atan2(y, x), radius, shoulder.offset - shoulder.c * along), f_parts
 
 
 def _three_parallel(form: ClosedForm, r_g: Mat, p_g: Vec) -> list[Branch]:
+    """The chain of the module's docstring, its arithmetic written out on floats (a solve's hot loop): vectors the
+    arm fixes are turned from their parts (:func:`.subproblems.parts`), and theta is read in a frame across n."""
+    k = _three_parallel_constants(form)
     h, p = form.lines.axes, form.lines.points
-    n, signs, across, fore, back, wrist_arm, forearm, offset = _three_parallel_constants(form)
-    centre = add(apply(r_g, form.wrist), p_g)
-    from_base = sub(centre, p[0])
-    shoulder = subproblem_4(n, h[0], from_base, offset)
+    f = sub(add(apply(r_g, form.wrist), p_g), p[0])
+    shoulder, f_parts = _shoulder_roots(k.shoulder, h[0], sub(p[0], p[1]), f)
     g6 = apply(r_g, h[5])
     found: list[Branch] = []
     for i, t1 in enumerate(_roots(shoulder)):
-        q1 = -t1
-        n1 = rotate(h[0], q1, n)
-        reached = add(p[0], rotate(h[0], t1, from_base))
-        wrist = subproblem_4(n, h[4], h[5], dot(n1, g6))
+        c1, s1 = math.cos(t1), -math.sin(t1)  # (of q1 = -t1)
+        n1 = turned(k.n_about_1, c1, s1)
+        frame = (
+            apply_transposed(r_g, turned(k.across_about_1, c1, s1)),
+            apply_transposed(r_g, turned(k.normal_about_1, c1, s1)),
+        )
         back_n1 = apply_transposed(r_g, n1)
+        reach = turned(f_parts, c1, -s1)  # (the wrist centre turned by t1 about axis 1, from axis 2's point)
+        wrist = angles(k.wrist[0], k.wrist[1], dot(n1, g6) - k.wrist[2]) if k.wrist[1] >= DEGENERATE else None
         for j, q5 in enumerate(_roots(wrist)):
-            t6 = subproblem_1(h[5], rotate(h[4], -q5, n), back_n1)
-            q6 = -t6 if t6 is not None else 0.0
-            singular = "" if t6 is not None else _UR_WRIST
-            turned = rotate(h[0], t1, apply(r_g, rotate(h[5], -q6, rotate(h[4], -q5, across))))
-            theta = subproblem_1(n, across, turned) or 0.0
-            to_w = sub(sub(reached, rotate(n, theta, wrist_arm)), p[1])
-            elbow = subproblem_3(h[2], fore, back, norm(perpendicular(to_w, n)))
+            c5, s5 = math.cos(q5), -math.sin(q5)  # (of -q5)
+            t6 = subproblem_1(h[5], turned(k.n_about_5, c5, s5), back_n1)
+            theta, to_w = _theta(k, turned(k.across_about_5, c5, s5), h[5], t6, frame, reach)
+            elbow = _elbow(k, to_w, form.parallel or h[1])
             exact = _exact(shoulder) and _exact(wrist) and _exact(elbow)
-            for k, q3 in enumerate(_roots(elbow)):
-                e3 = add(sub(p[2], p[1]), rotate(h[2], q3, forearm))
-                q2 = subproblem_1(h[1], e3, to_w) or 0.0
-                q4 = signs[2] * (theta - signs[0] * q2 - signs[1] * q3)
-                found.append(Branch((q1, q2, q3, q4, q5, q6), (i, j, k), exact, singular))
+            q6, singular = (-t6, "") if t6 is not None else (0.0, _UR_WRIST)
+            for m, q3 in enumerate(_roots(elbow)):
+                e3 = turned(k.forearm, math.cos(q3), math.sin(q3))
+                q2 = subproblem_1(h[1], (e3[0] + k.upper[0], e3[1] + k.upper[1], e3[2] + k.upper[2]), to_w) or 0.0
+                q4 = k.signs[2] * (theta - k.signs[0] * q2 - k.signs[1] * q3)
+                found.append(Branch((-t1, q2, q3, q4, q5, q6), (i, j, m), exact, singular))
     return found
+
+
+def _theta(
+    k: _ThreeParallel, across_5: Vec, h5: Vec, t6: float | None, frame: tuple[Vec, Vec], reach: Vec
+) -> tuple[float, Vec]:
+    """theta = q2 + q3 + q4 (step 4: the angle about n from a vector across n to where the wrist's turns take it,
+    read in the frame made for q1) and w (step 5)."""
+    v = rotate(h5, t6, across_5) if t6 is not None else across_5
+    x, y = dot(v, frame[0]), dot(v, frame[1])
+    theta = math.atan2(y, x) if math.hypot(x, y) >= DEGENERATE else 0.0
+    arm = turned(k.wrist_arm, math.cos(theta), math.sin(theta))
+    return theta, (reach[0] - arm[0], reach[1] - arm[1], reach[2] - arm[2])
+
+
+def _elbow(k: _ThreeParallel, to_w: Vec, n: Vec) -> tuple[list[float], bool] | None:
+    """q3 (step 5): subproblem 3 with the distance of w from axis 2, its constants made once per arm."""
+    phase, radius, constant = k.elbow
+    if radius < DEGENERATE:
+        return None
+    along = dot(to_w, n)
+    return angles(phase, radius, -(dot(to_w, to_w) - along * along) / 2.0 - constant)
 
 
 _UR_WRIST = (

@@ -13,42 +13,80 @@ the root it took, *a* or *b*.
 
 from __future__ import annotations
 
+import functools
 import math
+from typing import NamedTuple
 
 from .arm_geometry import THREE_PARALLEL, ClosedForm
-from .subproblems import Vec, add, cross, dot, norm, perpendicular, rotate, scale, sub, subproblem_1
+from .subproblems import Vec, dot, parts, rotate, sub, subproblem_1, turned
 
 UP: Vec = (0.0, 0.0, 1.0)
 SLIGHT = 1e-9  # m, or a sine: a side this close to the line has no side
 
 
-def branch_name(form: ClosedForm, values: tuple[float, ...], roots: tuple[int, int, int]) -> str:
-    """'shoulder left, elbow up, wrist no flip' for the branch at ``values`` (the chain's six joints)."""
+class _Naming(NamedTuple):
+    """What naming a branch takes of the arm, made once per arm: the sides are measured in the frame joint 1 turns
+    with (where the shoulder stays at axis 2's point), up turned back by q1 instead of the arm by it."""
+
+    up: tuple[Vec, Vec, Vec]  # (up, turned by -q1 about axis 1)
+    upper: tuple[Vec, Vec, Vec]  # (axis 3's point from axis 2's, turned by q2)
+    fore: tuple[Vec, Vec, Vec]  # (the wrist centre from axis 3's point, turned by q3)
+    upper_arm: Vec  # (axis 3's point from axis 2's)
+    base: Vec  # (axis 2's point from axis 1's)
+    offset: Vec | None  # (three parallel axes: the shoulder's offset along n, at q1 = 0)
+    singular: float | None  # (joint 5's value where the wrist is singular; None: the wrist has no such value)
+
+
+@functools.cache
+def _naming(form: ClosedForm) -> _Naming:
     h, p = form.lines.axes, form.lines.points
-
-    def placed(point: Vec, joints: int) -> Vec:  # (a point of link `joints` where the values put it)
-        for k in reversed(range(joints)):
-            point = add(p[k], rotate(h[k], values[k], sub(point, p[k])))
-        return point
-
-    shoulder, elbow, wrist = placed(p[1], 1), placed(p[2], 2), placed(form.wrist, 3)
-    reach = perpendicular(sub(wrist, p[0]), UP)
+    offset = None
     if form.kind == THREE_PARALLEL and form.parallel is not None:
         n = form.parallel
-        offset = scale(dot(n, sub(form.wrist, p[0])), rotate(h[0], values[0], n))
-        side = _side(dot(offset, cross(UP, reach)), ("left", "right"), roots[0])
-    else:
-        side = _side(dot(perpendicular(sub(elbow, p[0]), UP), reach), ("front", "back"), roots[0])
-    line = sub(wrist, shoulder)
-    across = sub(UP, scale(dot(UP, line) / max(dot(line, line), 1e-300), line))
-    bend = _side(dot(sub(elbow, shoulder), across) if norm(across) > SLIGHT else 0.0, ("up", "down"), roots[1])
-    return f"shoulder {side}, elbow {bend}, wrist {_flip(form, values, roots[2])}"
-
-
-def _flip(form: ClosedForm, values: tuple[float, ...], root: int) -> str:
-    h = form.lines.axes
+        k = dot(n, sub(form.wrist, p[0]))
+        offset = (k * n[0], k * n[1], k * n[2])
     along = form.parallel if form.kind == THREE_PARALLEL and form.parallel is not None else h[3]
-    singular = subproblem_1(h[4], h[5], along)
+    return _Naming(
+        parts(h[0], UP),
+        parts(h[1], sub(p[2], p[1])),
+        parts(h[2], sub(form.wrist, p[2])),
+        sub(p[2], p[1]),
+        sub(p[1], p[0]),
+        offset,
+        subproblem_1(h[4], h[5], along),
+    )
+
+
+def branch_name(form: ClosedForm, values: tuple[float, ...], roots: tuple[int, int, int]) -> str:
+    """'shoulder left, elbow up, wrist no flip' for the branch at ``values`` (the chain's six joints).
+
+    The parts are placed by joints 2 and 3 only, and up turned back by joint 1 (dot and cross products do not change
+    when all their vectors turn alike): the shoulder at axis 2's point P2, the elbow at P2 + e, the wrist centre at
+    P2 + w. (Written out on floats: a solve names every branch it gives.)"""
+    k = _naming(form)
+    u0, u1, u2 = turned(k.up, math.cos(values[0]), -math.sin(values[0]))
+    e0, e1, e2 = turned(k.upper, math.cos(values[1]), math.sin(values[1]))
+    f0, f1, f2 = turned(k.fore, math.cos(values[2]), math.sin(values[2]))
+    a = k.upper_arm
+    w0, w1, w2 = rotate(form.lines.axes[1], values[1], (f0 + a[0], f1 + a[1], f2 + a[2]))
+    b0, b1, b2 = k.base
+    r0, r1, r2 = w0 + b0, w1 + b1, w2 + b2  # (the wrist centre from axis 1's point)
+    if k.offset is not None:
+        o0, o1, o2 = k.offset
+        measure = o0 * (u1 * r2 - u2 * r1) + o1 * (u2 * r0 - u0 * r2) + o2 * (u0 * r1 - u1 * r0)
+        side = _side(measure, ("left", "right"), roots[0])
+    else:
+        x0, x1, x2 = e0 + b0, e1 + b1, e2 + b2  # (the elbow from axis 1's point)
+        measure = x0 * r0 + x1 * r1 + x2 * r2 - (x0 * u0 + x1 * u1 + x2 * u2) * (r0 * u0 + r1 * u1 + r2 * u2)
+        side = _side(measure, ("front", "back"), roots[0])
+    ratio = (u0 * w0 + u1 * w1 + u2 * w2) / max(w0 * w0 + w1 * w1 + w2 * w2, 1e-300)
+    c0, c1, c2 = u0 - ratio * w0, u1 - ratio * w1, u2 - ratio * w2  # (up, across the line to the wrist)
+    large = math.sqrt(c0 * c0 + c1 * c1 + c2 * c2) > SLIGHT
+    bend = _side(e0 * c0 + e1 * c1 + e2 * c2 if large else 0.0, ("up", "down"), roots[1])
+    return f"shoulder {side}, elbow {bend}, wrist {_flip(k.singular, values, roots[2])}"
+
+
+def _flip(singular: float | None, values: tuple[float, ...], root: int) -> str:
     if singular is None:
         return "a" if root == 0 else "b"
     return _side(math.sin(values[4] - singular), ("no flip", "flip"), root)

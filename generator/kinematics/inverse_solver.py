@@ -29,6 +29,7 @@ from .analytic import Branch, branches
 from .arm_geometry import ClosedForm, arm_lines, recognise
 from .branch_names import branch_name
 from .inverse import Chain, closest_reach, distinct, solve, starts
+from .reposed import CLOSE, Reposer
 
 REACHED = 1e-9  # m, or the pose error's norm: a solution farther from the target than this is not one
 STARTS = 32  # numeric starts for every branch (--all)
@@ -99,6 +100,10 @@ class IkSolver:
     ranges: list[tuple[float, float] | None] = field(init=False, default_factory=list)
     spread: list[np.ndarray] | None = field(init=False, default=None)
     moves: np.ndarray = field(init=False)
+    reposer: Reposer | None = field(init=False, default=None)
+    names: list[str] = field(init=False, default_factory=list)
+    rest_values: list[float] = field(init=False, default_factory=list)  # (the rest pose, plain floats)
+    centres: list[float] = field(init=False, default_factory=list)  # (the closed form's chain at rest)
 
     def __post_init__(self) -> None:
         model = self.model
@@ -115,6 +120,10 @@ class IkSolver:
         self.moves = np.array([int(model.model.getJointId(j.name)) in moved for j in model.joints])
         self.base = model.placed(model.configuration({}))[base].copy()
         self.reach = float(np.linalg.norm(model.placed(model.configuration({}))[target].translation))
+        self.names, self.rest_values = [j.name for j in model.joints], self.rest.tolist()
+        if self.form is not None:
+            self.reposer = Reposer.of(model, target, self.form.lines.joints, self.rest)
+            self.centres = [self.rest_values[k] for k in self.form.lines.joints]
 
     def chain_names(self, path: set[int]) -> set[str]:
         """The joints one sets that move a frame whose path from the root holds the pinocchio joints ``path``: those
@@ -146,7 +155,7 @@ class IkSolver:
         if self.form is not None and not position_only:
             found, outside, count = self._closed_form(goal, every=every, seed=seed)
             if found:
-                names = [j.name for j in self.model.joints]
+                names = list(self.names)
                 complete = len(found) == count
                 return Solutions(
                     self.frame, self.in_frame, names, found, None, self.method, 0, complete, outside, count
@@ -182,33 +191,44 @@ class IkSolver:
         """The closed form's solutions (every branch, or the one nearest ``seed``), the branches outside the limits
         and the branches within them."""
         assert self.form is not None  # (only called with one)
-        rotation = tuple(map(tuple, goal.rotation.tolist()))
-        position = tuple(goal.translation.tolist())
-        joints, chain = self.model.joints, self.form.lines.joints
-        candidates: list[tuple[list[float], int, Branch]] = []
-        outside = 0
-        centres = [float(seed[k]) for k in chain]
-        for branch in branches(self.form, rotation, position):  # type: ignore[arg-type]
-            if not branch.exact:  # (a subproblem without an exact root: this branch's triangle does not close)
-                continue
-            wrapped, count = _nearest_turns(branch.values, self.ranges, centres)
-            if not wrapped:
-                outside += 1
-            elif not any(_same_turns(wrapped, other) for other, _, _ in candidates):
-                candidates.append((wrapped, count, branch))
+        pose = goal.homogeneous.tolist()
+        rotation = (tuple(pose[0][:3]), tuple(pose[1][:3]), tuple(pose[2][:3]))
+        position = (pose[0][3], pose[1][3], pose[2][3])
+        centres = self.centres if seed is self.rest else [float(seed[k]) for k in self.form.lines.joints]
+        candidates, outside = _candidates(branches(self.form, rotation, position), self.ranges, centres)
         if not every:  # (checked nearest first: the first that reaches is the answer)
-            candidates.sort(key=lambda c: sum(abs(a - b) for a, b in zip(c[0], centres, strict=True)))
+            candidates.sort(key=lambda c: _distance_to(c[0], centres))
         solutions: list[Solution] = []
         for wrapped, count, branch in candidates:
-            values = self.rest.copy()
-            values[list(chain)] = wrapped
-            reached = self._checked(goal, values)
+            reached = self._reposed(goal, pose, wrapped)
             if reached is not None:
-                named = branch_name(self.form, tuple(float(reached[0][k]) for k in chain), branch.roots)
-                solutions.append(Solution(_named(joints, reached[0]), reached[1], named, count, branch.singular))
+                named = branch_name(self.form, reached[1], branch.roots)
+                solutions.append(Solution(reached[0], reached[2], named, count, branch.singular))
                 if not every:
                     break
         return solutions, outside, len(candidates)
+
+    def _reposed(
+        self, goal: Any, pose: list[list[float]], wrapped: list[float]
+    ) -> tuple[dict[str, float], tuple[float, ...], float] | None:
+        """A branch's values (every joint, by name; and the chain's), re-posed on the robot, and its pose error; None
+        when it does not reach. The reposer's error first; a branch it leaves further than CLOSE is measured by
+        :meth:`_checked` (and polished there when near)."""
+        assert self.form is not None  # (only called with one)
+        chain = self.form.lines.joints
+        if self.reposer is not None:
+            error = self.reposer.error(wrapped, pose)
+            if error <= CLOSE:
+                full = self.rest_values.copy()
+                for k, value in zip(chain, wrapped, strict=True):
+                    full[k] = value
+                return dict(zip(self.names, full, strict=True)), tuple(wrapped), error
+        values = self.rest.copy()
+        values[list(chain)] = wrapped
+        reached = self._checked(goal, values)
+        if reached is None:
+            return None
+        return _named(self.model.joints, reached[0]), tuple(float(reached[0][k]) for k in chain), reached[1]
 
     def _checked(self, goal: Any, values: np.ndarray) -> tuple[np.ndarray, float] | None:
         """A branch's values and pose error on the robot (pinocchio), polished when the closed form came near (lines
@@ -332,6 +352,36 @@ def _error(chain: Chain, goal: Any, values: np.ndarray) -> float:
     return float(np.linalg.norm(pin.log6(goal.actInv(chain.data.oMf[chain.frame])).vector))
 
 
+def _candidates(
+    found: list[Branch], ranges: Sequence[tuple[float, float] | None], centres: Sequence[float]
+) -> tuple[list[tuple[list[float], int, Branch]], int]:
+    """The exact branches by their values nearest ``centres`` (:func:`_nearest_turns`), each once (one met twice,
+    whole turns apart, is left out), with the count of their equivalents; and how many have no value within the
+    limits."""
+    candidates: list[tuple[list[float], int, Branch]] = []
+    outside = 0
+    for branch in found:
+        if not branch.exact:  # (a subproblem without an exact root: this branch's triangle does not close)
+            continue
+        wrapped, count = _nearest_turns(branch.values, ranges, centres)
+        if not wrapped:
+            outside += 1
+            continue
+        for other, _, _ in candidates:
+            if _same_turns(wrapped, other):
+                break
+        else:
+            candidates.append((wrapped, count, branch))
+    return candidates, outside
+
+
+def _distance_to(values: Sequence[float], centres: Sequence[float]) -> float:
+    total = 0.0
+    for a, b in zip(values, centres, strict=True):
+        total += abs(a - b)
+    return total
+
+
 def _nearest_turns(
     values: Sequence[float], ranges: Sequence[tuple[float, float] | None], centres: Sequence[float]
 ) -> tuple[list[float], int]:
@@ -339,9 +389,8 @@ def _nearest_turns(
     its range (None: a continuous joint, any turn), and how many combinations of whole turns stay within the ranges
     (0: endless); an empty list when a value has none."""
     wrapped, count = [], 1
-    for k, limits in enumerate(ranges):
-        centre = centres[k]
-        value = centre + math.remainder(values[k] - centre, TURN)
+    for value, limits, centre in zip(values, ranges, centres, strict=True):
+        value = centre + math.remainder(value - centre, TURN)
         if limits is None:
             wrapped.append(value)
             count = 0
@@ -364,6 +413,8 @@ def options_of(solution: Solution, names: Sequence[str]) -> list[float]:
 
 def _same_turns(a: Sequence[float], b: Sequence[float]) -> bool:
     """Whether two values lists are whole turns apart in every joint (to 1e-6): one branch met twice."""
+    if abs(math.remainder(a[0] - b[0], TURN)) >= 1e-6:  # (most pairs differ at the first joint: no loop for them)
+        return False
     for x, y in zip(a, b, strict=True):  # (a loop that leaves at the first joint apart: most pairs differ early)
         if abs(math.remainder(x - y, TURN)) >= 1e-6:
             return False

@@ -103,11 +103,19 @@ def transposed(m: Mat) -> Mat:
 
 def subproblem_1(k: Vec, p: Vec, q: Vec) -> float | None:
     """The angle about ``k`` that turns ``p`` onto ``q`` (their parts at right angles to ``k``: the nearest when
-    those differ in length); None when ``p`` lies along ``k`` (every angle does)."""
-    pp, qp = perpendicular(p, k), perpendicular(q, k)
-    if norm(pp) < DEGENERATE or norm(qp) < DEGENERATE:
+    those differ in length); None when ``p`` lies along ``k`` (every angle does). (Written out on floats: the
+    closed forms call it a dozen times a target.)"""
+    k0, k1, k2 = k
+    p0, p1, p2 = p
+    q0, q1, q2 = q
+    a = k0 * p0 + k1 * p1 + k2 * p2
+    b = k0 * q0 + k1 * q1 + k2 * q2
+    x0, x1, x2 = p0 - a * k0, p1 - a * k1, p2 - a * k2
+    y0, y1, y2 = q0 - b * k0, q1 - b * k1, q2 - b * k2
+    if math.sqrt(x0 * x0 + x1 * x1 + x2 * x2) < DEGENERATE or math.sqrt(y0 * y0 + y1 * y1 + y2 * y2) < DEGENERATE:
         return None
-    return math.atan2(dot(k, cross(pp, qp)), dot(pp, qp))
+    sine = k0 * (x1 * y2 - x2 * y1) + k1 * (x2 * y0 - x0 * y2) + k2 * (x0 * y1 - x1 * y0)
+    return math.atan2(sine, x0 * y0 + x1 * y1 + x2 * y2)
 
 
 def subproblem_4(h: Vec, k: Vec, p: Vec, d: float) -> tuple[list[float], bool] | None:
@@ -122,13 +130,32 @@ def subproblem_4(h: Vec, k: Vec, p: Vec, d: float) -> tuple[list[float], bool] |
     radius = math.hypot(a, b)
     if radius < DEGENERATE:
         return None
-    phase = math.atan2(b, a)
-    cosine = (d - hk * along) / radius
-    if abs(cosine) <= 1.0:
+    return angles(math.atan2(b, a), radius, d - hk * along)
+
+
+def angles(phase: float, radius: float, value: float) -> tuple[list[float], bool]:
+    """The angles t with ``radius`` cos(t - ``phase``) = ``value`` (``radius`` above DEGENERATE), as
+    :func:`subproblem_4` gives them: its last step, apart for the solvers that make ``phase`` and ``radius`` once
+    per arm."""
+    cosine = value / radius
+    if -1.0 <= cosine <= 1.0:
         spread = math.acos(cosine)
         return ([phase + spread, phase - spread] if spread > 0.0 else [phase]), True
     exact = abs(cosine) <= 1.0 + TANGENT
     return [phase if cosine > 0 else phase + math.pi], exact
+
+
+def parts(k: Vec, a: Vec) -> tuple[Vec, Vec, Vec]:
+    """``a``'s part along the unit axis ``k``, its part across it and k x a: ``a`` turned by t about ``k`` is the
+    first plus cos t times the second plus sin t times the third (Rodrigues, for a vector turned many times)."""
+    along = dot(k, a)
+    return scale(along, k), (a[0] - along * k[0], a[1] - along * k[1], a[2] - along * k[2]), cross(k, a)
+
+
+def turned(parts_: tuple[Vec, Vec, Vec], c: float, s: float) -> Vec:
+    """The vector of :func:`parts` ``parts_`` turned by the angle of cosine ``c`` and sine ``s``."""
+    (a0, a1, a2), (b0, b1, b2), (d0, d1, d2) = parts_
+    return (a0 + c * b0 + s * d0, a1 + c * b1 + s * d1, a2 + c * b2 + s * d2)
 
 
 def subproblem_3(k: Vec, p: Vec, q: Vec, distance: float) -> tuple[list[float], bool] | None:

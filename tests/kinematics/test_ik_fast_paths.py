@@ -1,0 +1,99 @@
+"""The closed form's arithmetic written out for speed, against the plain forms it replaced: a branch's name against
+the parts placed joint by joint (the naming rule as docs/kinematics.md states it), the reposer's pose error against
+pinocchio's log6, and every branch of random targets re-posed by pinocchio's forward kinematics."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+from conftest import REPO
+from xacrokit.kinematics import ik_solver
+from xacrokit.kinematics.analytic import branches
+from xacrokit.kinematics.arm_geometry import THREE_PARALLEL
+from xacrokit.kinematics.branch_names import SLIGHT, branch_name
+from xacrokit.kinematics.reposed import CLOSE
+from xacrokit.kinematics.subproblems import add, cross, dot, norm, perpendicular, rotate, scale, sub, subproblem_1
+from xacrokit.reader.read_robot import read_robot
+
+ARMS = {
+    "ur5": REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml",
+    "ur10e": REPO / "examples" / "robots" / "ur10e.yaml",
+    "kuka": REPO / "examples" / "robots" / "kuka_kr560_r3100_2.yaml",
+}
+UP = (0.0, 0.0, 1.0)
+
+
+def plain_name(form, values, roots):
+    """The naming rule with every part placed by joints 3, 2, then 1 (the form the fast one replaced)."""
+    h, p = form.lines.axes, form.lines.points
+
+    def placed(point, joints):
+        for k in reversed(range(joints)):
+            point = add(p[k], rotate(h[k], values[k], sub(point, p[k])))
+        return point
+
+    def side(measure, names, root):
+        return ("a" if root == 0 else "b") if abs(measure) <= SLIGHT else names[0] if measure > 0 else names[1]
+
+    shoulder, elbow, wrist = placed(p[1], 1), placed(p[2], 2), placed(form.wrist, 3)
+    reach = perpendicular(sub(wrist, p[0]), UP)
+    if form.kind == THREE_PARALLEL:
+        offset = scale(dot(form.parallel, sub(form.wrist, p[0])), rotate(h[0], values[0], form.parallel))
+        first = side(dot(offset, cross(UP, reach)), ("left", "right"), roots[0])
+    else:
+        first = side(dot(perpendicular(sub(elbow, p[0]), UP), reach), ("front", "back"), roots[0])
+    line = sub(wrist, shoulder)
+    across = sub(UP, scale(dot(UP, line) / max(dot(line, line), 1e-300), line))
+    bend = side(dot(sub(elbow, shoulder), across) if norm(across) > SLIGHT else 0.0, ("up", "down"), roots[1])
+    singular = subproblem_1(h[4], h[5], form.parallel if form.kind == THREE_PARALLEL else h[3])
+    flip = side(math.sin(values[4] - singular), ("no flip", "flip"), roots[2])
+    return f"shoulder {first}, elbow {bend}, wrist {flip}"
+
+
+@pytest.mark.parametrize("arm", sorted(ARMS))
+def test_a_branch_is_named_as_its_parts_placed_joint_by_joint_say(arm):
+    solver = ik_solver(read_robot(ARMS[arm]), "tool0")
+    rng = np.random.default_rng(5)
+    names = set()
+    for _ in range(2000):
+        values = tuple(rng.uniform(-2 * math.pi, 2 * math.pi, 6))
+        roots = tuple(int(r) for r in rng.integers(0, 2, 3))
+        name = branch_name(solver.form, values, roots)
+        assert name == plain_name(solver.form, values, roots), values
+        names.add(name)
+    assert len(names) == 8  # (every name met: the test compares every side of every measure)
+
+
+@pytest.mark.parametrize("arm", sorted(ARMS))
+def test_every_branch_re_poses_by_pinocchio_and_the_reposer_agrees_with_log6(arm):
+    robot = read_robot(ARMS[arm])
+    model = robot.kinematics
+    solver = ik_solver(robot, "tool0")
+    frame = model.frame_id("tool0")
+    chain = solver.form.lines.joints
+    rng = np.random.default_rng(9)
+    for _ in range(100):
+        values = {j.name: float(rng.uniform(*j.span)) for j in model.joints}
+        pin.framesForwardKinematics(model.model, model.data, model.configuration(values))
+        goal = model.data.oMf[frame].copy()
+        rotation = tuple(tuple(row) for row in goal.rotation.tolist())
+        found = [b for b in branches(solver.form, rotation, tuple(goal.translation.tolist())) if b.exact]
+        assert found
+        for branch in found:
+            named = {model.joints[k].name: v for k, v in zip(chain, branch.values, strict=True)}
+            pin.framesForwardKinematics(model.model, model.data, model.configuration(named))
+            log6 = float(np.linalg.norm(pin.log6(goal.actInv(model.data.oMf[frame])).vector))
+            assert log6 < 1e-9
+            ours = solver.reposer.error(list(branch.values), goal.homogeneous.tolist())
+            assert ours <= CLOSE and abs(ours - log6) <= 1e-12
+        nudged = list(found[0].values)
+        nudged[int(rng.integers(0, 6))] += float(rng.choice([1e-7, 1e-4, 0.3]))
+        named = {model.joints[k].name: v for k, v in zip(chain, nudged, strict=True)}
+        pin.framesForwardKinematics(model.model, model.data, model.configuration(named))
+        log6 = float(np.linalg.norm(pin.log6(goal.actInv(model.data.oMf[frame])).vector))
+        ours = solver.reposer.error(nudged, goal.homogeneous.tolist())
+        assert ours > CLOSE and 0.5 * log6 < ours < 2 * log6  # (off the target: both say so, about as far)
