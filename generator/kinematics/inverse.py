@@ -60,23 +60,26 @@ def solve(
     """Joint values from ``start`` that put the frame at ``target`` (a pinocchio SE3 in the root's frame; its rotation
     ignored when ``position_only``), kept within the limits; and the pose error left. A start that has not halved its
     error in STALL steps is stuck (against a limit, or in a local minimum out of reach) and ends there."""
-    values = np.clip(np.array(start, dtype=float), chain.lower, chain.upper)
+    from scipy.linalg.lapack import dposv  # (heavy: scipy; LAPACK's Cholesky solve, 7x less overhead than numpy's)
+
+    lower, upper = chain.lower, chain.upper
+    values = np.clip(np.array(start, dtype=float), lower, upper)
     error, best = math.inf, (math.inf, 0)
     with np.errstate(over="ignore", invalid="ignore"):  # (judged below: a mimic's multiplier of 1e308)
         for step_count in range(iterations):
             residual, full = residual_and_jacobian(chain, target, values, position_only=position_only)
             error = math.sqrt(float(residual @ residual))
-            step = _step(chain, full, residual, error) if TOLERANCE <= error < math.inf else None
+            step = _step(chain, full, residual, error, dposv) if TOLERANCE <= error < math.inf else None
             if step is None:  # (reached, or a pose or step that is not finite numbers: the start ends where it is)
                 break
             if error < 0.5 * best[0]:
                 best = (error, step_count)
             elif step_count - best[1] > STALL:
                 break
-            largest = float(np.abs(step).max(initial=0.0))
+            largest = max(map(abs, step.tolist()), default=0.0)  # (plain floats: numpy's calls cost more on 7)
             if largest > LONGEST_STEP:  # (near a singularity, out of reach: a step that would leap across the range)
                 step *= LONGEST_STEP / largest
-            values = np.clip(values + step, chain.lower, chain.upper)
+            values = np.minimum(np.maximum(values + step, lower), upper)  # (np.clip, without its wrappers)
     return values, error
 
 
@@ -134,10 +137,9 @@ def closest_reach(
     return best
 
 
-def _step(chain: Chain, full: np.ndarray, residual: np.ndarray, error: float) -> np.ndarray | None:
-    """The damped least-squares step on the joints one sets; None when it is not finite numbers."""
-    from scipy.linalg.lapack import dposv  # (heavy: scipy; LAPACK's Cholesky solve, 7x less overhead than numpy's)
-
+def _step(chain: Chain, full: np.ndarray, residual: np.ndarray, error: float, dposv: Any) -> np.ndarray | None:
+    """The damped least-squares step on the joints one sets (``dposv``: LAPACK's Cholesky solve, imported once a
+    start); None when it is not finite numbers."""
     part = chain.selected(full)
     normal = part @ part.T
     normal.flat[:: len(residual) + 1] += 1e-12 + 1e-3 * error  # (less damping as it closes in: quadratic near it)
