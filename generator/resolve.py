@@ -10,9 +10,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from pathlib import Path
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from .model import (
     AXIAL,
@@ -67,6 +65,9 @@ from .shared.solid_inertia import (
 )
 from .shared.transforms import dh_body_end, dh_body_pose, rpy_matrix, screw_pose
 from .validate import Spec
+
+if TYPE_CHECKING:
+    import numpy as np
 
 DEFAULT_INTERFACES = Interfaces(command=("position",), state=("position", "velocity"))
 WHEEL_INTERFACES = Interfaces(command=("velocity",), state=("position", "velocity"))
@@ -201,6 +202,8 @@ def _placed(geometry: dict[str, Any], package: _Package) -> list[tuple[Shape, Or
 def _composite(name: str, data: dict[str, Any], package: _Package) -> Link:
     """A link of parts: each part's geometries, and the exact sum of the parts' inertias (physics.combine) about the
     common centre of mass, in the link's axes."""
+    import numpy as np  # (heavy: numpy)
+
     visuals: list[Visual] = []
     collisions: list[Collision] = []
     bodies: list[tuple[float, np.ndarray, np.ndarray, np.ndarray]] = []

@@ -33,10 +33,12 @@ from lxml import etree
 
 from ..errors import SpecErrors
 from ..model import Origin as SpecOrigin
+from ..reader.mesh_copies import mesh_to_copy, robot_folder
 from ..reader.read_robot import ReadRobot, read_robot
 from ..reader.robot_input import RobotInput
 from ..reader.robot_source import urdf_floats
 from ..shared.input_files import CopiedFile
+from ..shared.mesh_solids import MESH_SUFFIXES, is_relative
 from ..shared.ros_packages import mesh_file
 from ..shared.urdf_view import Inertial, Joint, Link, Material, MaterialRef, Origin, Shape, UrdfView, read_view
 from .wheel_match import wheels
@@ -481,8 +483,6 @@ def _relative_meshes(imported: Imported, urdf: Any, packages: Mapping[str, Any],
     (:func:`~xacrokit.reader.mesh_copies.mesh_to_copy`: no link, nothing outside the robot's folder, a mesh of its
     kind) and streamed when the spec is written; a mesh that is not is a located error, and nothing is imported."""
 
-    from ..reader.mesh_copies import mesh_to_copy, robot_folder  # (heavy: numpy)
-    from ..shared.mesh_solids import MESH_SUFFIXES, is_relative  # (heavy: numpy)
     from ..validate.bodies import geometries  # (heavy: jsonschema)
 
     found: list[tuple[dict[str, Any], str, str]] = []  # (the spec's mesh, the file, where the URDF names it)

@@ -16,6 +16,8 @@ import math
 import re
 from typing import TYPE_CHECKING, Any
 
+from ..shared.solid_inertia import wheel_moments
+
 if TYPE_CHECKING:
     from ..shared.urdf_view import UrdfView
 
@@ -82,8 +84,6 @@ def _axle(joint: dict[str, Any], link: dict[str, Any]) -> str | None:
 def _cylinders(link: dict[str, Any], axle: str) -> bool:
     """Whether a link's explicit inertia is the wheel's: a uniform cylinder's about its centre, in the link's axes
     (the wheel macro's), to 1e-12 of its largest moment."""
-    from ..shared.solid_inertia import wheel_moments  # (heavy: numpy)
-
     inertia = link["inertia"]
     if inertia.get("origin", {}) not in ({}, {"xyz": [0.0, 0.0, 0.0]}) or any(
         inertia.get(k, 0.0) for k in ("ixy", "ixz", "iyz")

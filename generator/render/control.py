@@ -6,13 +6,14 @@ inactive)."""
 
 from __future__ import annotations
 
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from ..model import Robot
 from ..shared.transforms import origin_transform
 from ..shared.units import STANDARD_GRAVITY
+
+if TYPE_CHECKING:
+    pass
 
 
 def controllers(robot: Robot, prefix: str = "", *, mounted: bool = False) -> dict[str, Any]:
@@ -57,6 +58,8 @@ def axle_offset(robot: Robot) -> tuple[float, float] | None:
     its zero pose; None without a drive or when a wheel's parent is not reached through the spec's joints.
     diff_drive_controller's odometry is of that midpoint and it publishes it as the base frame: off it, the odometry
     is wrong whenever the robot turns."""
+    import numpy as np  # (heavy: numpy)
+
     if _differential_drive(robot, "") is None:
         return None
     joint_of = {joint.child: joint for joint in robot.joints}

@@ -13,11 +13,12 @@ import hashlib
 import os
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from .ros_packages import mesh_file, with_nearby_packages
+
+if TYPE_CHECKING:
+    pass
 
 MAX_MESH_BYTES = 32 * 1024 * 1024  # a CAD part's mesh is a few MB (the largest of 600 in the corpus: 15 MB); trimesh
 # takes about 13 times a binary STL's size in memory to read it, so this keeps a read under 0.5 GB
@@ -84,6 +85,7 @@ def mesh_solid(path: Path, scale: tuple[float, float, float]) -> MeshSolid:
 @functools.lru_cache(maxsize=256)
 def _solid(path: str, size: int, mtime: int, scale: tuple[float, float, float]) -> MeshSolid:
     """(size and mtime: a file changed on disk is read again)"""
+    import numpy as np  # (heavy: numpy)
     import trimesh  # (heavy: trimesh)
 
     if size > MAX_MESH_BYTES:

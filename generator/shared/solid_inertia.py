@@ -11,11 +11,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
-from typing import Literal
-
-import numpy as np
+from typing import TYPE_CHECKING, Literal
 
 from .transforms import exact_product
+
+if TYPE_CHECKING:
+    import numpy as np
 
 TOLERANCE = 1e-9  # relative: a principal moment <= this * the largest is zero; the triangle inequality's slack
 
@@ -84,6 +85,8 @@ def combine(parts: Sequence[tuple[float, np.ndarray, np.ndarray, np.ndarray]]) -
     parts, each (mass, centre of mass in the common frame, rotation of its tensor's axes into the common frame,
     tensor about its own centre of mass): each tensor rotated (R I R^T), then moved to the common centre of mass by
     the parallel-axis theorem (m (|d|^2 E - d d^T), d from the common centre to the part's)."""
+    import numpy as np  # (heavy: numpy)
+
     total = math.fsum(mass for mass, _, _, _ in parts)
     center = sum((mass * np.asarray(com, dtype=float) for mass, com, _, _ in parts), np.zeros(3)) / total
     result = np.zeros((3, 3))
@@ -106,12 +109,16 @@ def is_placeholder(ixx: float, ixy: float, ixz: float, iyy: float, iyz: float, i
 
 def tensor(ixx: float, ixy: float, ixz: float, iyy: float, iyz: float, izz: float) -> np.ndarray:
     """The symmetric 3x3 matrix of six inertia entries."""
+    import numpy as np  # (heavy: numpy)
+
     return np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]], dtype=float)
 
 
 def principal_moments(entries: Sequence[Sequence[float]]) -> list[list[float]]:
     """The principal moments (ascending) of many tensors given as (ixx, ixy, ixz, iyy, iyz, izz), in one batched
     eigvalsh (per-tensor numpy calls cost ten times more on robots with many links). Entries must be finite."""
+    import numpy as np  # (heavy: numpy)
+
     if not entries:
         return []
     batch = np.array(entries, dtype=float).reshape(-1, 6)[:, [0, 1, 2, 1, 3, 4, 2, 4, 5]].reshape(-1, 3, 3)
@@ -152,6 +159,8 @@ def describe_problem(problem: TensorProblem, moments: Iterable[float]) -> str:
 
 def tensor_problem(matrix: np.ndarray, rel: float = TOLERANCE) -> str | None:
     """Why ``matrix`` cannot be a rigid body's inertia about its centre of mass (a sentence), or None when it can."""
+    import numpy as np  # (heavy: numpy)
+
     if not np.all(np.isfinite(matrix)):
         return "the inertia tensor has entries that are not finite"
     moments = np.linalg.eigvalsh(matrix).tolist()

@@ -8,9 +8,11 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Collection, Sequence
-from typing import Any, Protocol
+from typing import TYPE_CHECKING, Any, Protocol
 
-import numpy as np
+if TYPE_CHECKING:
+    import numpy as np
+
 
 Vec3 = tuple[float, float, float]
 
@@ -113,6 +115,8 @@ def canonical_rpy(matrix: np.ndarray) -> tuple[float, float, float]:
     (pitch in [-pi/2, pi/2], as URDF reads it) away from gimbal lock; at it (:data:`GIMBAL_LOCK`), one split of the
     turn that roll and yaw share: yaw 0, pitch +-pi/2 exactly, the whole turn in roll (rounded to
     :data:`LOCK_ROLL_DECIMALS` decimals, in (-pi, pi]), so that every form of one rotation writes the same URDF."""
+    import numpy as np  # (heavy: numpy)
+
     rows = np.asarray(matrix, dtype=float)
     if math.hypot(rows[0, 0], rows[1, 0]) <= GIMBAL_LOCK:
         # (at yaw 0, R = Ry(+-pi/2) Rx(roll), whose middle row is (0, cos roll, -sin roll): the rpy definition read)
@@ -157,6 +161,8 @@ def points_matrix(points: Points) -> np.ndarray:
     X x (R - P), Y = Z x X, each normalised, the matrix's columns (the frame's axes in its parent). The points are
     first scaled by a power of two (exactly), so that neither a difference nor a cross product overflows or
     underflows. Raises ValueError with :func:`points_problem`'s reason for a degenerate triple."""
+    import numpy as np  # (heavy: numpy)
+
     problem = points_problem(points)
     if problem is not None:
         raise ValueError(problem[1])
@@ -198,6 +204,7 @@ def rotation_matrix(form: str, value: Any) -> np.ndarray:
     ``axis_angle`` ((unit axis, angle), right-handed), ``rotvec`` (axis x angle), ``matrix``, ``euler`` ((sequence,
     angles): scipy's sequence, upper case intrinsic) or ``points`` ((P, Q, R): :func:`points_matrix`); with
     pinocchio's conversions (Eigen's quaternion and angle-axis, the exponential map) and scipy's for Euler angles."""
+    import numpy as np  # (heavy: numpy)
     import pinocchio  # (heavy: pinocchio, loaded only for an origin given another way than rpy)
 
     if form == "quat":
@@ -263,6 +270,8 @@ def rotation_forms(
     within 1e-7 rad of the sequence's own gimbal lock scipy sets the third angle to 0, and they give the rotation to
     that 1e-7 only) and points ({P, Q, R}: P the origin, Q and R one along the frame's X and Y). scipy is loaded only
     for rotvec, axis_angle and euler (a third of a second: ``gen-robot pose`` prints rpy and the quaternion)."""
+    import numpy as np  # (heavy: numpy)
+
     rows = np.asarray(matrix, dtype=float)
     forms: dict[str, Any] = {}
     if "rpy" in only:
@@ -304,16 +313,22 @@ def _euler_angles(rows: np.ndarray, sequence: str) -> list[float]:
 
 
 def rot_x(angle: float) -> np.ndarray:
+    import numpy as np  # (heavy: numpy)
+
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
 
 
 def rot_y(angle: float) -> np.ndarray:
+    import numpy as np  # (heavy: numpy)
+
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
 
 
 def rot_z(angle: float) -> np.ndarray:
+    import numpy as np  # (heavy: numpy)
+
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
@@ -322,6 +337,8 @@ def rpy_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
     """URDF's fixed-axis roll-pitch-yaw: R = Rz(yaw) Ry(pitch) Rx(roll), multiplied out (as :func:`screw_pose`
     writes it): each entry one product of sines and cosines, the same bits on every machine, where numpy's ``@``
     calls the BLAS, whose kernels (chosen by the processor) round differently in the last digit."""
+    import numpy as np  # (heavy: numpy)
+
     cr, sr, cp, sp, cy, sy = (
         math.cos(roll),
         math.sin(roll),
@@ -344,6 +361,8 @@ def exact_product(left: np.ndarray, right: np.ndarray) -> np.ndarray:
     (``math.fsum``), so a number written into a generated file is the same on every machine: numpy's ``@`` calls the
     BLAS, whose kernel is chosen by the processor and rounds otherwise in the last digit (a composite link's inertia
     differed between two CI machines). For the small matrices of generation only: it is Python, not BLAS."""
+    import numpy as np  # (heavy: numpy)
+
     a, b = np.asarray(left, dtype=float), np.asarray(right, dtype=float)
     columns = b.reshape(len(b), -1)
     result = np.array(
@@ -356,6 +375,8 @@ def exact_product(left: np.ndarray, right: np.ndarray) -> np.ndarray:
 
 
 def transform(rotation: np.ndarray, translation: Sequence[float]) -> np.ndarray:
+    import numpy as np  # (heavy: numpy)
+
     result = np.eye(4)
     result[:3, :3] = rotation
     result[:3, 3] = translation
@@ -372,6 +393,8 @@ def dh_step(row: DHScrew, q: float, convention: str) -> np.ndarray:
     standard: Rz(theta) Tz(d) Tx(a) Rx(alpha); modified: Rx(alpha) Tx(a) Rz(theta) Tz(d). q adds to theta (revolute,
     continuous) or d (prismatic).
     """
+    import numpy as np  # (heavy: numpy)
+
     theta, d = row.theta, row.d
     if row.type in ("revolute", "continuous"):
         theta += q

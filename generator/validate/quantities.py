@@ -6,9 +6,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from ..errors import SpecError
 from ..load import PathKey, RawSpec
@@ -18,6 +16,9 @@ from ..shared.units import Kind, UnitError, bound_problem, parse_quantity, plain
 from ..shared.value_text import did_you_mean
 from .bodies import bodies, geometries, joint_types, parts
 from .physics import AXIS_LENGTHS, implausible
+
+if TYPE_CHECKING:
+    pass
 
 # A plain-number angle beyond this many turns is most likely degrees: one turn for an orientation or a position, two
 # for a joint's range (multi-turn joints exist; a range beyond two turns written in radians is rarer than degrees left
@@ -281,6 +282,7 @@ class Quantities:
 
     def _matrix(self, rows: list[list[float]], path: PathKey) -> None:
         """``matrix:`` (3 rows) to rpy, when it is a rotation: R^T R = I to ORTHONORMAL and det R = +1."""
+        import numpy as np  # (heavy: numpy)
 
         matrix = np.array(rows, dtype=float)
         largest = float(np.abs(matrix).max())

@@ -16,9 +16,7 @@ import math
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from ..errors import SpecError
 from ..load import PathKey, RawSpec
@@ -36,6 +34,9 @@ from ..shared.mesh_solids import (
 from ..shared.solid_inertia import capsule_volume, tube_volume
 from ..shared.transforms import dh_body_end, exact_product, rpy_matrix
 from .bodies import Body, geometries
+
+if TYPE_CHECKING:
+    pass
 
 DENSEST = 22_590.0  # kg/m^3: osmium, the densest element
 LIGHTEST = 1.0  # kg/m^3: less than air (1.2); no solid body in a robot is lighter
@@ -276,6 +277,8 @@ def mesh_inertias(items: Sequence[Body], solids: dict[PathKey, Solid]) -> dict[P
         (xx, xy, xz), (_, yy, yz), (_, _, zz) = (tuple(scale * v for v in row) for row in mesh.unit_inertia)
         origin = item.get("origin") or {}
         xyz, rpy = origin.get("xyz", (0.0, 0.0, 0.0)), origin.get("rpy", (0.0, 0.0, 0.0))
+        import numpy as np  # (heavy: numpy, for a mesh body only)
+
         center = np.asarray(xyz, dtype=float) + exact_product(rpy_matrix(*rpy), np.asarray(mesh.center, dtype=float))
         found[path] = {
             "inertia": {

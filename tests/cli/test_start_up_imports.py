@@ -14,6 +14,7 @@ import pytest
 REPO = Path(__file__).resolve().parents[2]
 TABLE = re.compile(r"<!-- start-up imports: begin -->\n(.*?)<!-- start-up imports: end -->", re.S)
 UR5 = REPO / "examples" / "robots" / "industrial_arm_std_dh.yaml"
+DIFF_DRIVE = REPO / "examples" / "robots" / "diff_drive.yaml"
 LINKAGE = REPO / "examples" / "robots" / "linkage_lecture.urdf"
 UR10E = REPO / "examples" / "robots" / "ur10e.yaml"
 # the command of each row: its arguments, and whether its cache is filled by a first run
@@ -22,6 +23,10 @@ COMMANDS = {
     "`gen-robot SPEC` (its collision matrix cached)": ([str(UR5), "-o", "{out}", "--force"], True),
     "`gen-robot fleet SPEC --count 3` (its collision matrix cached)": (
         ["fleet", str(UR5), "--count", "3", "-o", "{out}", "--force"],
+        True,
+    ),
+    "`gen-robot fleet SPEC --count 3`, a spec of boxes, cylinders and spheres (its collision matrix cached)": (
+        ["fleet", str(DIFF_DRIVE), "--count", "3", "-o", "{out}", "--force"],
         True,
     ),
     "`gen-robot pose URDF FRAME`": (["pose", str(LINKAGE), "link_C", "--at", "joint_A=0.3"], False),
