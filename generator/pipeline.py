@@ -131,8 +131,10 @@ class SpecURDF:
     spec: Spec | None = None
 
 
-def spec_urdf(spec_path: str | Path) -> SpecURDF:
-    """The URDF that expanding a spec's package with xacro gives (the one :func:`generate` writes with via_xacro).
+def spec_urdf(spec_path: str | Path, *, emitted: bool = False) -> SpecURDF:
+    """The URDF that expanding a spec's package with xacro gives (the one :func:`generate` writes with via_xacro);
+    with ``emitted``, the one it writes by default, from the direct emitter (the same robot, to the last digit: the
+    tests expand every example and random specs both ways; no template rendered, no xacro run).
 
     Raises:
         SpecErrors: the spec (or a robot of a scene) is invalid.
@@ -142,10 +144,12 @@ def spec_urdf(spec_path: str | Path) -> SpecURDF:
     raw = load_file(path)
     if is_scene(raw):  # generated in memory as a whole
         scene = build_scene(raw)
+        if emitted:
+            return SpecURDF(emit_scene_urdf(scene), scene, {}, scene.warnings)
         return SpecURDF(expand_package(scene, render_scene(scene, spec_name=path.name)).text, scene, {}, scene.warnings)
     spec = validate(raw)
     robot = resolve(spec)
-    urdf = expand_package(robot, render_package(robot, spec_name=path.name)).text
+    urdf = emit_urdf(robot) if emitted else expand_package(robot, render_package(robot, spec_name=path.name)).text
     return SpecURDF(urdf, robot, _spec_lines(spec, robot), spec.warnings, spec)
 
 

@@ -118,7 +118,7 @@ def add_kinematics_commands(commands: Any) -> None:
 def read_robot_of(args: argparse.Namespace) -> ReadRobot:
     from ..reader.read_robot import read_robot  # (heavy: lxml)
 
-    return read_robot(robot_input(args, args.robot))
+    return read_robot(robot_input(args, args.robot), emitted=True)  # (a spec: the URDF gen-robot SPEC writes)
 
 
 @contextlib.contextmanager

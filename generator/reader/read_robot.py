@@ -111,9 +111,11 @@ class ReadRobot:
             yield {**staged, **self.packages}
 
 
-def read_robot(robot: ReadRobot | RobotInput | str | os.PathLike[str]) -> ReadRobot:
+def read_robot(robot: ReadRobot | RobotInput | str | os.PathLike[str], *, emitted: bool = False) -> ReadRobot:
     """Read the robot ``robot`` names (a :class:`RobotInput`, or a path read with its defaults): its text once, its
-    view once. A robot already read is returned as it is (the features' Python API takes either).
+    view once. A robot already read is returned as it is (the features' Python API takes either). A spec's URDF is
+    its package's expanded with xacro, or with ``emitted`` the one ``gen-robot SPEC`` writes (the same robot:
+    :func:`~xacrokit.pipeline.spec_urdf`; what the kinematics commands read, without xacro's or jinja2's time).
 
     Raises:
         XacrokitError: unreadable input, name:=value arguments for input that is not xacro, or not a URDF.
@@ -122,8 +124,9 @@ def read_robot(robot: ReadRobot | RobotInput | str | os.PathLike[str]) -> ReadRo
     if isinstance(robot, ReadRobot):
         return robot
     given = as_input(robot)
-    source = read_source(given)
-    where = str(given.path) if source.kind == "urdf" else f"{given.path} (as expanded)"
+    source = read_source(given, emitted=emitted)
+    made = "as generated" if emitted and source.kind == "spec" else "as expanded"
+    where = str(given.path) if source.kind == "urdf" else f"{given.path} ({made})"
     text, root = declared(source.text, where)
     return ReadRobot(
         given,

@@ -69,10 +69,11 @@ class RobotSource:
     validated: Spec | None = None  # a robot spec's validated form (its data, with every value's place)
 
 
-def read_source(robot: RobotInput) -> RobotSource:
-    """The robot ``robot`` names as URDF text: a spec generated in memory (never written), a xacro document expanded
-    with its mappings, a URDF read (a regular file of at most MAX_URDF_BYTES). A URDF or xacro file inside a ROS
-    package finds that package and its workspace siblings for ``package://`` and ``$(find)`` by itself.
+def read_source(robot: RobotInput, *, emitted: bool = False) -> RobotSource:
+    """The robot ``robot`` names as URDF text: a spec generated in memory (never written; its package expanded with
+    xacro, or with ``emitted`` the URDF the direct emitter writes: :func:`~xacrokit.pipeline.spec_urdf`), a xacro
+    document expanded with its mappings, a URDF read (a regular file of at most MAX_URDF_BYTES). A URDF or xacro file
+    inside a ROS package finds that package and its workspace siblings for ``package://`` and ``$(find)`` by itself.
 
     Raises:
         XacrokitError: unreadable input, or name:=value arguments for input that is not xacro.
@@ -83,7 +84,7 @@ def read_source(robot: RobotInput) -> RobotSource:
     if robot.mappings and kind != "xacro":
         raise XacrokitError("name:=value arguments only apply to xacro input")
     if kind == "spec":  # (a spec's own reader says why it cannot be read, located)
-        return _spec_source(robot)
+        return _spec_source(robot, emitted=emitted)
     try:
         require_regular_file(path, MAX_URDF_BYTES)
     except OSError as exc:
@@ -101,13 +102,13 @@ def read_source(robot: RobotInput) -> RobotSource:
         raise XacrokitError(f"cannot read {path}: {why}") from None
 
 
-def _spec_source(robot: RobotInput) -> RobotSource:
+def _spec_source(robot: RobotInput, *, emitted: bool) -> RobotSource:
     """A robot or scene spec's URDF, generated in memory (a scene's third-party macros trusted as ``robot`` says)."""
     from ..model import Robot  # (heavy: lxml)
     from ..pipeline import spec_urdf  # (the whole generator: loaded for spec input only)
 
     with trusting(bool(robot.trust)):
-        described = spec_urdf(robot.path)
+        described = spec_urdf(robot.path, emitted=emitted)
     model = described.model if isinstance(described.model, Robot) else None  # (only a robot has DH arms)
     carried = dict(described.model.carried_files)
     lines, warnings = described.lines, described.warnings
