@@ -93,9 +93,21 @@ def fk_robot(urdf: str):
 
 
 def poses(robot, values: dict[str, float]) -> dict[str, np.ndarray]:
-    """Every link's world pose at ``values`` (every moving joint's value: none is left from an earlier call)."""
+    """Every link's world pose at ``values`` (every moving joint's value: none is left from an earlier call): yourdfpy's
+    joint transforms (its scene graph's edges, parent link to child link) composed down the tree once. (Its
+    get_transform composes each link's whole path again with numpy's multi_dot, which spent most of the real-robot
+    corpus's import tests choosing a multiplication order for 4x4 matrices.)"""
     robot.update_cfg({name: value for name, value in values.items() if name in robot.actuated_joint_names})
-    return {name: robot.get_transform(name) for name in robot.link_map}
+    forest = robot.scene.graph.transforms
+    found = {robot.scene.graph.base_frame: np.eye(4)}
+
+    def pose(link: str) -> np.ndarray:
+        if link not in found:
+            parent = forest.parents[link]
+            found[link] = pose(parent) @ forest.edge_data[(parent, link)]["matrix"]
+        return found[link]
+
+    return {name: pose(name) for name in robot.link_map}
 
 
 @pytest.mark.parametrize("example", ROBOT_EXAMPLES, ids=lambda p: p.stem)
