@@ -14,6 +14,7 @@ from ..errors import XacrokitError
 from ..reader.mesh_copies import MeshRead
 from ..shared.input_files import CopiedFile
 from .mjcf_actuators import num
+from .obj_text import obj_text
 
 READABLE = (".obj", ".msh")  # what MuJoCo reads as it is (binary STL too: decided by looking at the file)
 STL_FACES = 200_000  # the most triangles MuJoCo's STL reader takes
@@ -96,8 +97,7 @@ class Meshes:
         ):
             out = f"{stem}{suffix}"
         else:
-            exported = mesh.export(file_type="obj", include_normals=False, include_texture=False)
-            data = exported.encode("utf-8") if isinstance(exported, str) else bytes(exported)
+            data = obj_text(mesh)
             out = f"{stem}.obj"
             self.notes.append(f"mesh {filename!r} converted to OBJ for MuJoCo")
         taken = set(self.files.values())
