@@ -167,7 +167,18 @@ def assert_refused(code: int, err: str, words: str) -> None:
 
 
 def gen_robot(*args, cwd=None) -> subprocess.CompletedProcess:
-    """Run the gen-robot command line with this interpreter; text output captured."""
+    """Run the gen-robot command line as ``python -m xacrokit.cli ARGS`` would, in this process (tests/in_process.py:
+    its exit code, its output as text, file descriptors and all, in a working folder, environment, warning filters
+    and logging a new process would have). A process of its own costs 0.5 to 1.5 s, most of it starting; a test
+    that proves something of the process (a signal, a kill, its imports, the console script, a closed output) uses
+    :func:`gen_robot_process`."""
+    from in_process import run_main  # (start-up: the command line's modules, imported by the first call)
+
+    return run_main([str(a) for a in args], cwd=cwd)
+
+
+def gen_robot_process(*args, cwd=None) -> subprocess.CompletedProcess:
+    """Run the gen-robot command line in a process of its own with this interpreter; text output captured."""
     command = [sys.executable, "-m", "xacrokit.cli", *map(str, args)]
     return subprocess.run(command, capture_output=True, text=True, cwd=cwd, timeout=300)
 

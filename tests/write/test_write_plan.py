@@ -11,7 +11,7 @@ import pytest
 from write_helpers import contents, two_specs
 
 import xacrokit
-from conftest import REPO, gen_robot, snapshot
+from conftest import REPO, gen_robot, gen_robot_process, snapshot
 from xacrokit.errors import XacrokitError
 from xacrokit.render import RenderedFile
 from xacrokit.write.package_writer import MANIFEST, ConflictError, plan, write
@@ -149,7 +149,7 @@ def test_a_second_writer_waits_for_the_first_then_stops_with_a_message(tmp_path,
             with package_lock(out, wait=0.2):
                 pass
         monkeypatch.setenv("XACROKIT_LOCK_WAIT", "0.5")  # a whole second process: refused after its wait
-        result = gen_robot(SPEC, "-o", out)
+        result = gen_robot_process(SPEC, "-o", out)
     assert result.returncode == 2 and "another gen-robot is writing" in result.stderr, result.stderr
     assert "(waited 0.5 s)" in result.stderr
     assert not any(out.iterdir())
