@@ -5,11 +5,13 @@ A chain the closed form knows (:func:`.arm_geometry.recognise`) is solved by it:
 have exact roots, each given by its values nearest 0 (or nearest ``near``) within the joints' limits, with the count
 of its 2-pi equivalents within them, and checked on the robot with pinocchio (one posed between 1e-9 and POLISHABLE
 off, as lines parallel only within the tolerance leave it, is polished by the numeric solver); a branch no value of
-which is within the limits is counted, not given. Without ``every`` the candidates are checked nearest first and the
-first that reaches is the answer. Any other chain (and a target the closed form does not reach) is searched
-numerically (:mod:`.inverse`): from ``near`` when given, the NEAREST of ATLAS configurations posed once per solver,
-then Sobol starts over the limits, until one reaches (FIRST_STARTS at most) or, for every branch, STARTS more and on
-until one reaches; the result says how many ran, and that the list may be incomplete.
+which is within the limits is counted, not given. Without ``every`` the candidates are checked nearest first (the
+sum of the joints' distances from ``near``; two as near to 1e-9, as a mirror pair can be, the lower values first,
+compared joint by joint from joint 1: the numeric search's order) and the first that reaches is the answer. Any
+other chain (and a target the closed form does not reach) is searched numerically (:mod:`.inverse`): from ``near``
+when given, the NEAREST of ATLAS configurations posed once per solver, then Sobol starts over the limits, until one
+reaches (FIRST_STARTS at most) or, for every branch, STARTS more and on until one reaches; the result says how many
+ran, and that the list may be incomplete.
 """
 
 from __future__ import annotations
@@ -198,8 +200,8 @@ class IkSolver:
         position = (pose[0][3], pose[1][3], pose[2][3])
         centres = self.centres if seed is self.rest else [float(seed[k]) for k in self.form.lines.joints]
         candidates, outside = _candidates(branches(self.form, rotation, position), self.ranges, centres)
-        if not every:  # (checked nearest first: the first that reaches is the answer)
-            candidates.sort(key=lambda c: _distance_to(c[0], centres))
+        if not every:  # (checked nearest first: the first that reaches is the answer; ties, the lower values)
+            candidates.sort(key=lambda c: (round(_distance_to(c[0], centres), 9), c[0]))
         solutions: list[Solution] = []
         for wrapped, count, branch in candidates:
             reached = self._reposed(goal, pose, wrapped)

@@ -97,3 +97,35 @@ def test_every_branch_re_poses_by_pinocchio_and_the_reposer_agrees_with_log6(arm
         log6 = float(np.linalg.norm(pin.log6(goal.actInv(model.data.oMf[frame])).vector))
         ours = solver.reposer.error(nudged, goal.homogeneous.tolist())
         assert ours > CLOSE and 0.5 * log6 < ours < 2 * log6  # (off the target: both say so, about as far)
+
+
+@pytest.mark.parametrize("arm", sorted(ARMS))
+def test_the_first_answer_is_the_nearest_branch_and_of_two_as_near_the_lower_values(arm):
+    """With ``near`` halfway between two branches, the two are exactly as near (sum of the joints' distances): the
+    first answer is the nearest of every branch, and of two as near (to 1e-9) the one whose values are lower, joint by
+    joint from joint 1, whichever rounding the two distances took."""
+    robot = read_robot(ARMS[arm])
+    model = robot.kinematics
+    solver = ik_solver(robot, "tool0")
+    names = [j.name for j in model.joints]
+    rng = np.random.default_rng(17)
+    ties = 0
+    for _ in range(40):
+        values = {j.name: float(rng.uniform(*j.span)) for j in model.joints}
+        pin.framesForwardKinematics(model.model, model.data, model.configuration(values))
+        target = model.data.oMf[model.frame_id("tool0")].homogeneous
+        every = solver.solve(target, every=True).solutions
+        a, b = (np.array([s.values[n] for n in names]) for s in rng.choice(every, 2, replace=False))
+        near = (a + b) / 2
+        listed = solver.solve(target, every=True, near=near).solutions
+
+        def key(solution, near=near):
+            row = [solution.values[n] for n in names]
+            return round(sum(abs(v - c) for v, c in zip(row, near, strict=True)), 9), row
+
+        ordered = sorted(listed, key=key)
+        ties += key(ordered[0])[0] == key(ordered[1])[0]
+        (first,) = solver.solve(target, near=near).solutions
+        assert first.branch == ordered[0].branch
+        assert all(abs(first.values[n] - ordered[0].values[n]) < 1e-12 for n in names)
+    assert ties >= 10  # (the midpoint's two branches are the nearest most of the time: the rule is exercised)
