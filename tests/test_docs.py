@@ -16,7 +16,7 @@ import pytest
 from lxml import etree
 
 import xacrokit
-from conftest import REPO
+from conftest import REPO, gen_robot
 from xacrokit.shared.macro_banners import XACRO_NS, read_macro_docs, render_reference
 from xacrokit.shared.package_data import PUBLIC_MACRO_FILES, PUBLIC_MACROS
 
@@ -136,6 +136,23 @@ def test_docs_error_sample_is_real_output(tmp_path):
     assert result.stderr == sample
 
 
+def run_shell_line(command: str, folder: Path, env: dict[str, str], shell: bool) -> subprocess.CompletedProcess:
+    """A docs line run as a reader's shell runs it: the first through the shell itself (the console script on PATH),
+    the others, each ``gen-robot WORDS`` with at most ``> FILE`` after it, in this process (conftest.gen_robot, the
+    same words, output and exit code: tests/cli/test_cli_process.py), ``> FILE`` writing the output into the
+    folder. Anything else a line may hold is the shell's."""
+    words = shlex.split(command)
+    redirect = words[-2:-1] == [">"]
+    plain = words[:-2] if redirect else words
+    if shell or plain[:1] != ["gen-robot"] or any(w in ("|", ">", "<", "&&", ";", ">>") for w in plain):
+        return subprocess.run(command, shell=True, cwd=folder, env=env, capture_output=True, text=True, timeout=300)
+    result = gen_robot(*plain[1:], cwd=folder)
+    if redirect:
+        (folder / words[-1]).write_text(result.stdout, encoding="utf-8")
+        result.stdout = ""
+    return result
+
+
 def test_command_examples_run_in_sequence(tmp_path):
     """Every sh block of the README after its two set-up commands, then every sh block of docs/ (by file name), run in
     one folder in order, as a reader would: the README's quick starts make the my_robot spec, package and xacro
@@ -151,9 +168,7 @@ def test_command_examples_run_in_sequence(tmp_path):
             if not command or command.startswith("pip "):
                 continue  # installing is what the README's first command shows
             command = re.sub(r"(?<![\w/.])examples/", f"{REPO.as_posix()}/examples/", command)  # (the repository's)
-            result = subprocess.run(
-                command, shell=True, cwd=tmp_path, env=env, capture_output=True, text=True, timeout=300
-            )
+            result = run_shell_line(command, tmp_path, env, shell=not ran)
             assert result.returncode == 0, (command, result.stdout, result.stderr)
             ran.append(command)
     for command in ("gen-robot new", "gen-robot check", "gen-robot expand", "gen-robot fleet"):
