@@ -129,6 +129,9 @@ class _Server(ThreadingHTTPServer):
     """At most MAX_CONNECTIONS at once; a client gone mid-answer is no error to print."""
 
     daemon_threads = True
+    # connections the kernel keeps waiting to be accepted (socketserver's 5 dropped a burst's SYNs, and each client
+    # dropped waited TCP's one-second retry: 30 s for 200 connections made one after another)
+    request_queue_size = 128
 
     def __init__(self, address: tuple[str, int], handler: type[BaseHTTPRequestHandler]) -> None:
         super().__init__(address, handler)
