@@ -115,7 +115,8 @@ def read_robot(robot: ReadRobot | RobotInput | str | os.PathLike[str], *, emitte
     """Read the robot ``robot`` names (a :class:`RobotInput`, or a path read with its defaults): its text once, its
     view once. A robot already read is returned as it is (the features' Python API takes either). A spec's URDF is
     its package's expanded with xacro, or with ``emitted`` the one ``gen-robot SPEC`` writes (the same robot:
-    :func:`~xacrokit.pipeline.spec_urdf`; what the kinematics commands read, without xacro's or jinja2's time).
+    :func:`~xacrokit.reader.spec_reading.spec_urdf`; what the kinematics commands read, without xacro's or
+    jinja2's time).
 
     Raises:
         XacrokitError: unreadable input, name:=value arguments for input that is not xacro, or not a URDF.

@@ -71,9 +71,10 @@ class RobotSource:
 
 def read_source(robot: RobotInput, *, emitted: bool = False) -> RobotSource:
     """The robot ``robot`` names as URDF text: a spec generated in memory (never written; its package expanded with
-    xacro, or with ``emitted`` the URDF the direct emitter writes: :func:`~xacrokit.pipeline.spec_urdf`), a xacro
-    document expanded with its mappings, a URDF read (a regular file of at most MAX_URDF_BYTES). A URDF or xacro file
-    inside a ROS package finds that package and its workspace siblings for ``package://`` and ``$(find)`` by itself.
+    xacro, or with ``emitted`` the URDF the direct emitter writes: :func:`~xacrokit.reader.spec_reading.spec_urdf`),
+    a xacro document expanded with its mappings, a URDF read (a regular file of at most MAX_URDF_BYTES). A URDF or
+    xacro file inside a ROS package finds that package and its workspace siblings for ``package://`` and ``$(find)``
+    by itself.
 
     Raises:
         XacrokitError: unreadable input, or name:=value arguments for input that is not xacro.
@@ -105,7 +106,7 @@ def read_source(robot: RobotInput, *, emitted: bool = False) -> RobotSource:
 def _spec_source(robot: RobotInput, *, emitted: bool) -> RobotSource:
     """A robot or scene spec's URDF, generated in memory (a scene's third-party macros trusted as ``robot`` says)."""
     from ..model import Robot  # (heavy: lxml)
-    from ..pipeline import spec_urdf  # (the whole generator: loaded for spec input only)
+    from .spec_reading import spec_urdf  # (the generator's readers: loaded for spec input only)
 
     with trusting(bool(robot.trust)):
         described = spec_urdf(robot.path, emitted=emitted)

@@ -13,7 +13,6 @@ from pathlib import Path
 from ..errors import ExpandError, SpecError
 from ..load import PathKey, RawSpec
 from ..model import Instance, Origin, ThirdPartyMacro
-from ..render import render_probe
 from ..shared.urdf_view import read_view
 
 Found = tuple[tuple[str, ...], tuple[str, ...]]  # (links, joints)
@@ -26,6 +25,7 @@ def probe_names(
     (located at the instance's ``xacro`` entry) that says why the scene cannot use it."""
 
     from ..expansion.xacro_expand import expand_file  # (heavy: xacro)
+    from ..render import render_probe  # (heavy: jinja2)
 
     where: PathKey = ("instances", name, "xacro")
     instance = Instance(name=name, prefix=prefix, parent=parent, origin=Origin(), links=(), joints=(), macro=macro)
