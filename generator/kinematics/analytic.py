@@ -30,6 +30,7 @@ from typing import NamedTuple
 from .arm_geometry import THREE_PARALLEL, ClosedForm
 from .subproblems import (
     DEGENERATE,
+    TANGENT,
     Mat,
     Vec,
     add,
@@ -49,8 +50,8 @@ from .subproblems import (
     subproblem_1,
     subproblem_2,
     subproblem_3,
-    subproblem_4,
     transposed,
+    turn,
     turned,
 )
 
@@ -189,7 +190,7 @@ def _three_parallel(form: ClosedForm, r_g: Mat, p_g: Vec) -> list[Branch]:
             c5, s5 = math.cos(q5), -math.sin(q5)  # (of -q5)
             t6 = subproblem_1(h[5], turned(k.n_about_5, c5, s5), back_n1)
             theta, to_w = _theta(k, turned(k.across_about_5, c5, s5), h[5], t6, frame, reach)
-            elbow = _elbow(k, to_w, form.parallel or h[1])
+            elbow = _elbow_of(k.elbow, to_w, form.parallel or h[1])
             exact = _exact(shoulder) and _exact(wrist) and _exact(elbow)
             q6, singular = (-t6, "") if t6 is not None else (0.0, _UR_WRIST)
             for m, q3 in enumerate(_roots(elbow)):
@@ -212,9 +213,9 @@ def _theta(
     return theta, (reach[0] - arm[0], reach[1] - arm[1], reach[2] - arm[2])
 
 
-def _elbow(k: _ThreeParallel, to_w: Vec, n: Vec) -> tuple[list[float], bool] | None:
-    """q3 (step 5): subproblem 3 with the distance of w from axis 2, its constants made once per arm."""
-    phase, radius, constant = k.elbow
+def _elbow_of(elbow: tuple[float, float, float], to_w: Vec, n: Vec) -> tuple[list[float], bool] | None:
+    """q3 (step 5): subproblem 3 with the distance of w from axis 2, its constants (``elbow``) made once per arm."""
+    phase, radius, constant = elbow
     if radius < DEGENERATE:
         return None
     along = dot(to_w, n)
@@ -232,41 +233,166 @@ _SPHERICAL = (
 
 
 def _spherical_wrist(form: ClosedForm, r_g: Mat, p_g: Vec) -> list[Branch]:
+    """The module's chain for a spherical wrist: joints 2 and 3 parallel (:func:`_parallel_arm`, on floats), or
+    axes 1 and 2 meeting (:func:`_meeting_shoulder`)."""
+    if form.parallel is not None:
+        return _parallel_arm(form, r_g, p_g)
     h = form.lines.axes
     centre = add(apply(r_g, form.wrist), p_g)
     found: list[Branch] = []
-    for i, k, (q1, q2, q3), exact in _position(form, centre):
-        turned = multiply(multiply(rotation(h[0], q1), rotation(h[1], q2)), rotation(h[2], q3))
-        rest = multiply(transposed(turned), r_g)
-        pairs = subproblem_2(h[3], h[4], h[5], apply(rest, h[5]))
-        singular = ""
-        if pairs is None:  # (axis 6 in line with axis 4: q4 is free; take 0)
-            q5 = subproblem_1(h[4], h[5], apply(rest, h[5])) or 0.0
-            pairs, singular = ([(0.0, q5)], True), _SPHERICAL
-        for j, (q4, q5) in enumerate(pairs[0]):
-            across = _across(h[5])
-            image = rotate(h[4], -q5, rotate(h[3], -q4, apply(rest, across)))
-            q6 = subproblem_1(h[5], across, image) or 0.0
-            found.append(Branch((q1, q2, q3, q4, q5, q6), (i, k, j), exact and pairs[1], singular))
+    for i, k, (q1, q2, q3), exact in _meeting_shoulder(form, centre):
+        turned_ = multiply(multiply(rotation(h[0], q1), rotation(h[1], q2)), rotation(h[2], q3))
+        rest = multiply(transposed(turned_), r_g)
+        across = _across(h[5])
+        for j, (q4, q5, q6), wrist_exact, singular in _wrist(h, apply(rest, h[5]), apply(rest, across), across):
+            found.append(Branch((q1, q2, q3, q4, q5, q6), (i, k, j), exact and wrist_exact, singular))
     return found
 
 
-def _position(form: ClosedForm, centre: Vec) -> list[tuple[int, int, tuple[float, float, float], bool]]:
-    """The first three joints' values that put the wrist centre W at ``centre``, with their roots' indices."""
+def _wrist(h: tuple[Vec, ...], v: Vec, v6: Vec, across: Vec) -> list[tuple[int, Vec, bool, str]]:
+    """Step 2: joints 4, 5 and 6 that turn axis 6 onto ``v`` and ``across`` (at right angles to axis 6) onto ``v6``
+    (both turned back by joints 1 to 3), with the root index, whether exact, and the singularity."""
+    pairs = subproblem_2(h[3], h[4], h[5], v)
+    singular = ""
+    if pairs is None:  # (axis 6 in line with axis 4: q4 is free; take 0)
+        q5 = subproblem_1(h[4], h[5], v) or 0.0
+        pairs, singular = ([(0.0, q5)], True), _SPHERICAL
+    found = []
+    for j, (q4, q5) in enumerate(pairs[0]):
+        image = rotate(h[4], -q5, rotate(h[3], -q4, v6))
+        found.append((j, (q4, q5, subproblem_1(h[5], across, image) or 0.0), pairs[1], singular))
+    return found
+
+
+class _WristPair(NamedTuple):
+    """Subproblem 2 about axes 4 and 5 for axis 6 (p = h6, the same every target), written for any q = v: the
+    middle vector m = alpha h4 + beta h5 +- gamma (h4 x h5) with alpha, beta from q's part along each axis and the
+    arm's constants, then q5 = atan2((h5 x h6) . m, (h6 - (h5.h6) h5) . m) and q4 from m to v about h4, their dot
+    products taken with the constants (:func:`.subproblems.subproblem_2`, its twin, written out)."""
+
+    h4: Vec
+    h5: Vec
+    cosine: float  # (h4 . h5)
+    across: Vec  # (h4 x h5)
+    sine2: float
+    along: float  # (h5 . h6)
+    square: float  # (h6 . h6)
+    normal: Vec  # (h4 x across)
+    q5_sine: tuple[float, float]  # ((h5 x h6) . h4, (h5 x h6) . across)
+    q5_cosine: tuple[float, float]  # ((h6 - (h5.h6) h5) . h4, and . across)
+    q6_across: tuple[Vec, Vec, Vec]  # (axis 6's across vector turned by q5, :func:`.subproblems.parts`)
+    q6_normal: tuple[Vec, Vec, Vec]  # (h6 x across, turned by q5)
+
+
+def _wrist_pair(h: tuple[Vec, ...], across6: Vec) -> _WristPair:
+    h4, h5, h6 = h[3], h[4], h[5]
+    across = cross(h4, h5)
+    sine_vector, cosine_vector = cross(h5, h6), sub(h6, scale(dot(h5, h6), h5))
+    return _WristPair(
+        h4,
+        h5,
+        dot(h4, h5),
+        across,
+        dot(across, across),
+        dot(h5, h6),
+        dot(h6, h6),
+        cross(h4, across),
+        (dot(sine_vector, h4), dot(sine_vector, across)),
+        (dot(cosine_vector, h4), dot(cosine_vector, across)),
+        parts(h5, across6),
+        parts(h5, cross(h6, across6)),
+    )
+
+
+def _wrist_on_floats(w: _WristPair, v: Vec, v6: Vec) -> tuple[list[Vec], bool] | None:
+    """Step 2 as :func:`_wrist` gives it (q4, q5, q6 for each middle vector, and whether exact), on floats; None
+    where subproblem 1 has no direction (the wrist singularity: :func:`_wrist` answers it)."""
+    c, (x4, y4, z4), (xa, ya, za), (xn, yn, zn) = w.cosine, w.h4, w.across, w.normal
+    a1 = x4 * v[0] + y4 * v[1] + z4 * v[2]
+    on5 = w.h5[0] * v[0] + w.h5[1] * v[1] + w.h5[2] * v[2]
+    on_across, on_normal = xa * v[0] + ya * v[1] + za * v[2], xn * v[0] + yn * v[1] + zn * v[2]
+    alpha = (a1 - c * w.along) / (1.0 - c * c)
+    beta = (w.along - c * a1) / (1.0 - c * c)
+    rest = w.square - alpha * alpha - beta * beta - 2.0 * alpha * beta * c
+    square = v[0] * v[0] + v[1] * v[1] + v[2] * v[2]
+    scale_ = max(w.square, square, 1e-300)
+    exact = rest >= -TANGENT * scale_ and abs(w.square - square) <= TANGENT * scale_
+    gamma = math.sqrt(max(rest, 0.0) / w.sine2)
+    on4 = alpha + beta * c  # (the middle vector's part along h4)
+    middle2 = alpha * alpha + beta * beta + 2.0 * alpha * beta * c + gamma * gamma * w.sine2
+    if math.sqrt(max(middle2 - on4 * on4, 0.0)) < DEGENERATE or math.sqrt(max(square - a1 * a1, 0.0)) < DEGENERATE:
+        return None
+    p0, p1, p2 = parts(w.h4, v6)
+    found = []
+    for g in (gamma, -gamma) if gamma > 0 else (gamma,):
+        q5 = math.atan2(alpha * w.q5_sine[0] + g * w.q5_sine[1], alpha * w.q5_cosine[0] + g * w.q5_cosine[1])
+        q4 = math.atan2(beta * on_across + g * on_normal, alpha * a1 + beta * on5 + g * on_across - on4 * a1)
+        c4, s4, c5, s5 = math.cos(q4), -math.sin(q4), math.cos(q5), math.sin(q5)
+        y0, y1, y2 = turned((p0, p1, p2), c4, s4)  # (v6 turned back by q4)
+        (e0, e1, e2), (f0, f1, f2) = turned(w.q6_across, c5, s5), turned(w.q6_normal, c5, s5)
+        found.append((q4, q5, math.atan2(y0 * f0 + y1 * f1 + y2 * f2, y0 * e0 + y1 * e1 + y2 * e2)))
+    return found, exact
+
+
+class _ParallelArm(NamedTuple):
+    """What every target of a spherical-wrist arm with joints 2 and 3 parallel shares (made once per arm)."""
+
+    shoulder: _Shoulder
+    elbow: tuple[float, float, float]  # (q3's phase, radius and constant term, as the three-parallel-axes arm's)
+    forearm: tuple[Vec, Vec, Vec]  # (the wrist centre from axis 3's point, turned by q3)
+    upper: Vec  # (axis 3's point from axis 2's)
+    across: Vec  # (a unit vector at right angles to axis 6)
+    wrist: _WristPair
+
+
+@functools.cache
+def _parallel_arm_constants(form: ClosedForm) -> _ParallelArm:
+    h, p, n = form.lines.axes, form.lines.points, form.parallel or form.lines.axes[1]
+    fore, back = perpendicular(sub(form.wrist, p[2]), n), scale(-1.0, perpendicular(sub(p[2], p[1]), n))
+    phase, radius, constant = _fixed(back, h[2], fore)
+    elbow = (phase, radius, constant - (dot(fore, fore) + dot(back, back)) / 2.0)
+    forearm, across = parts(h[2], sub(form.wrist, p[2])), _across(h[5])
+    return _ParallelArm(_shoulder(form, n), elbow, forearm, sub(p[2], p[1]), across, _wrist_pair(h, across))
+
+
+def _parallel_arm(form: ClosedForm, r_g: Mat, p_g: Vec) -> list[Branch]:
+    """Step 1 as the three parallel axes' shoulder and elbow (q1 from n . E1^-1(G W) = n . W, q3 from the wrist
+    centre's distance from axis 2, q2 turning it onto), then step 2 on axis 6 and a vector across it turned back
+    by joints 1 to 3 (Rodrigues on floats: no matrices made)."""
+    k = _parallel_arm_constants(form)
+    h, p = form.lines.axes, form.lines.points
+    f = sub(add(apply(r_g, form.wrist), p_g), p[0])
+    shoulder, f_parts = _shoulder_roots(k.shoulder, h[0], sub(p[0], p[1]), f)
+    g6, a6 = parts(h[0], apply(r_g, h[5])), parts(h[0], apply(r_g, k.across))
+    found: list[Branch] = []
+    for i, t1 in enumerate(_roots(shoulder)):
+        c1, s1 = math.cos(t1), math.sin(t1)
+        reach = turned(f_parts, c1, s1)  # (the wrist centre turned by t1 = -q1 about axis 1, from axis 2's point)
+        elbow = _elbow_of(k.elbow, reach, form.parallel or h[1])
+        back6, back_across = turned(g6, c1, s1), turned(a6, c1, s1)
+        for m, q3 in enumerate(_roots(elbow)):
+            c3, s3 = math.cos(q3), math.sin(q3)
+            e3 = turned(k.forearm, c3, s3)
+            q2 = subproblem_1(h[1], (e3[0] + k.upper[0], e3[1] + k.upper[1], e3[2] + k.upper[2]), reach) or 0.0
+            c2, s2 = math.cos(q2), -math.sin(q2)
+            v = turn(h[2], c3, -s3, turn(h[1], c2, s2, back6))
+            v6 = turn(h[2], c3, -s3, turn(h[1], c2, s2, back_across))
+            exact = _exact(shoulder) and _exact(elbow)
+            fast = _wrist_on_floats(k.wrist, v, v6)
+            if fast is None:
+                for j, values, wrist_exact, singular in _wrist(h, v, v6, k.across):
+                    found.append(Branch((-t1, q2, q3, *values), (i, m, j), exact and wrist_exact, singular))
+                continue
+            for j, (q4, q5, q6) in enumerate(fast[0]):
+                found.append(Branch((-t1, q2, q3, q4, q5, q6), (i, m, j), exact and fast[1]))
+    return found
+
+
+def _meeting_shoulder(form: ClosedForm, centre: Vec) -> list[tuple[int, int, tuple[float, float, float], bool]]:
+    """The first three joints' values that put the wrist centre W at ``centre`` when axes 1 and 2 meet at A:
+    |E3 W - A| = |G W - A| gives q3, subproblem 2 q1 and q2; with their roots' indices."""
     h, p = form.lines.axes, form.lines.points
     found = []
-    if form.parallel is not None:
-        n = form.parallel
-        shoulder = subproblem_4(n, h[0], sub(centre, p[0]), dot(n, sub(form.wrist, p[0])))
-        for i, t1 in enumerate(_roots(shoulder)):
-            reached = add(p[0], rotate(h[0], t1, sub(centre, p[0])))
-            upper, fore = perpendicular(sub(p[2], p[1]), n), perpendicular(sub(form.wrist, p[2]), n)
-            elbow = subproblem_3(h[2], fore, scale(-1.0, upper), norm(perpendicular(sub(reached, p[1]), n)))
-            for k, q3 in enumerate(_roots(elbow)):
-                e3 = add(p[2], rotate(h[2], q3, sub(form.wrist, p[2])))
-                q2 = subproblem_1(h[1], sub(e3, p[1]), sub(reached, p[1])) or 0.0
-                found.append((i, k, (-t1, q2, q3), _exact(shoulder) and _exact(elbow)))
-        return found
     meet = form.shoulder or p[0]
     elbow = subproblem_3(h[2], sub(form.wrist, p[2]), sub(meet, p[2]), norm(sub(centre, meet)))
     for k, q3 in enumerate(_roots(elbow)):

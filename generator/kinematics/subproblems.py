@@ -64,6 +64,19 @@ def rotate(k: Vec, angle: float, a: Vec) -> Vec:
     )
 
 
+def turn(k: Vec, c: float, s: float, a: Vec) -> Vec:
+    """``a`` turned about the unit axis ``k`` by the angle of cosine ``c`` and sine ``s`` (:func:`rotate` on floats,
+    for an angle whose cosine and sine are already made)."""
+    k0, k1, k2 = k
+    a0, a1, a2 = a
+    along = (k0 * a0 + k1 * a1 + k2 * a2) * (1.0 - c)
+    return (
+        a0 * c + (k1 * a2 - k2 * a1) * s + k0 * along,
+        a1 * c + (k2 * a0 - k0 * a2) * s + k1 * along,
+        a2 * c + (k0 * a1 - k1 * a0) * s + k2 * along,
+    )
+
+
 def rotation(k: Vec, angle: float) -> Mat:
     """The matrix of :func:`rotate` (rows)."""
     c, s = math.cos(angle), math.sin(angle)

@@ -129,3 +129,71 @@ def test_the_first_answer_is_the_nearest_branch_and_of_two_as_near_the_lower_val
         assert first.branch == ordered[0].branch
         assert all(abs(first.values[n] - ordered[0].values[n]) < 1e-12 for n in names)
     assert ties >= 10  # (the midpoint's two branches are the nearest most of the time: the rule is exercised)
+
+
+def plain_spherical_wrist(form, r_g, p_g):
+    """The spherical-wrist chain with joints 2 and 3 parallel as first written (rotation matrices multiplied, every
+    subproblem called as a function): the reference the float-written path replaced."""
+    from xacrokit.kinematics.analytic import _across, _exact, _roots
+    from xacrokit.kinematics.subproblems import (
+        apply,
+        multiply,
+        rotation,
+        subproblem_2,
+        subproblem_3,
+        subproblem_4,
+        transposed,
+    )
+
+    h, p, n = form.lines.axes, form.lines.points, form.parallel
+    centre = add(apply(r_g, form.wrist), p_g)
+    found = []
+    shoulder = subproblem_4(n, h[0], sub(centre, p[0]), dot(n, sub(form.wrist, p[0])))
+    for i, t1 in enumerate(_roots(shoulder)):
+        reached = add(p[0], rotate(h[0], t1, sub(centre, p[0])))
+        upper, fore = perpendicular(sub(p[2], p[1]), n), perpendicular(sub(form.wrist, p[2]), n)
+        elbow = subproblem_3(h[2], fore, scale(-1.0, upper), norm(perpendicular(sub(reached, p[1]), n)))
+        for m, q3 in enumerate(_roots(elbow)):
+            e3 = add(p[2], rotate(h[2], q3, sub(form.wrist, p[2])))
+            q2 = subproblem_1(h[1], sub(e3, p[1]), sub(reached, p[1])) or 0.0
+            turned = multiply(multiply(rotation(h[0], -t1), rotation(h[1], q2)), rotation(h[2], q3))
+            rest = multiply(transposed(turned), r_g)
+            pairs = subproblem_2(h[3], h[4], h[5], apply(rest, h[5]))
+            assert pairs is not None  # (random targets: never on the wrist singularity)
+            for j, (q4, q5) in enumerate(pairs[0]):
+                across = _across(h[5])
+                image = rotate(h[4], -q5, rotate(h[3], -q4, apply(rest, across)))
+                q6 = subproblem_1(h[5], across, image) or 0.0
+                exact = _exact(shoulder) and _exact(elbow) and pairs[1]
+                found.append(((-t1, q2, q3, q4, q5, q6), (i, m, j), exact))
+    return found
+
+
+def test_the_spherical_wrist_on_floats_gives_the_plain_chains_branches_each_re_posed_by_pinocchio():
+    robot = read_robot(ARMS["kuka"])
+    model = robot.kinematics
+    solver = ik_solver(robot, "tool0")
+    form, frame, chain = solver.form, model.frame_id("tool0"), solver.form.lines.joints
+    assert form.parallel is not None  # (the KR 560: joints 2 and 3 parallel, the path written on floats)
+    lines = form.lines
+    rng = np.random.default_rng(23)
+    counted = 0
+    for _ in range(300):
+        values = {j.name: float(rng.uniform(*j.span)) for j in model.joints}
+        pin.framesForwardKinematics(model.model, model.data, model.configuration(values))
+        goal = model.data.oMf[frame].copy()
+        rotation = tuple(tuple(row) for row in goal.rotation.tolist())
+        found = branches(form, rotation, tuple(goal.translation.tolist()))
+        r_g = np.asarray(rotation) @ np.asarray(lines.home_rotation).T
+        p_g = goal.translation - r_g @ np.asarray(lines.home_position)
+        plain = plain_spherical_wrist(form, tuple(map(tuple, r_g.tolist())), tuple(p_g.tolist()))
+        assert [(b.roots, b.exact) for b in found] == [(roots, exact) for _, roots, exact in plain]
+        for branch, (reference, _, _) in zip(found, plain, strict=True):
+            assert max(abs(a - b) for a, b in zip(branch.values, reference, strict=True)) < 1e-9
+            if not branch.exact:
+                continue
+            counted += 1
+            named = {model.joints[k].name: v for k, v in zip(chain, branch.values, strict=True)}
+            pin.framesForwardKinematics(model.model, model.data, model.configuration(named))
+            assert float(np.linalg.norm(pin.log6(goal.actInv(model.data.oMf[frame])).vector)) < 1e-9
+    assert counted >= 300 * 4  # (most targets have all 8 branches exact; every one re-posed)
