@@ -135,16 +135,21 @@ def never_in_collision(model, geometry, srdf: Path, count: int, seed: int) -> se
     rng = np.random.default_rng(seed)
     found: set[frozenset[str]] = set()
     mimics = mimic_rules(srdf.parent.parent / "urdf" / f"{model.name}.urdf")
+    lowers, uppers = model.lowerPositionLimit, model.upperPositionLimit  # (each a copy: taken once, not per joint)
+    spans = []
+    for index in range(1, model.njoints):
+        joint = model.joints[index]
+        spans.append(
+            (model.names[index], (-math.pi, math.pi) if joint.nq == 2 else (lowers[joint.idx_q], uppers[joint.idx_q]))
+        )
+    data, geometry_data = model.createData(), pin.GeometryData(kept)
     for _ in range(count):
-        values = {}
-        for index in range(1, model.njoints):
-            joint = model.joints[index]
-            lower, upper = model.lowerPositionLimit[joint.idx_q], model.upperPositionLimit[joint.idx_q]
-            span = (-math.pi, math.pi) if joint.nq == 2 else (lower, upper)
-            values[model.names[index]] = rng.uniform(*span)
+        values = {name: rng.uniform(*span) for name, span in spans}  # (drawn in the joints' order, as ever)
         for follower, (leader, multiplier, offset) in mimics.items():
             values[follower] = multiplier * values[leader] + offset
-        found |= colliding(model, kept, q_of(model, values))
+        q = q_of(model, values)
+        if pin.computeCollisions(model, data, kept, geometry_data, q, False):  # (whether any pair collides)
+            found |= colliding(model, kept, q)  # (which: rarely asked, each pair's result read in Python)
     return found
 
 
