@@ -81,24 +81,30 @@ def links_and_joints(urdf: str, where: str) -> tuple[list[str], list[tuple[str |
 def adjacent_pairs(joints: Iterable[tuple[str | None, str | None]], solid: set[str]) -> frozenset[Pair]:
     """Links with collision geometry (``solid``) that a joint (its parent and child) joins, directly or through links
     without any (the setup assistant's connection graph, computeConnectionGraph: a link without geometry joins all
-    its neighbours, until nothing changes)."""
+    its neighbours, until nothing changes). That closure, found at once: two solid links a joint joins, and every two
+    solid links that touch one group of links without geometry joined to each other (a fleet's world link and the
+    bases fixed to it: one group)."""
     graph: dict[str, set[str]] = {}
     for parent, child in joints:
         if parent and child:
             graph.setdefault(parent, set()).add(child)
             graph.setdefault(child, set()).add(parent)
-    changed = True
-    while changed:
-        changed = False
-        for link, neighbours in list(graph.items()):
-            if link in solid:
-                continue
-            for first, second in itertools.combinations(sorted(neighbours), 2):
-                if second not in graph[first]:
-                    graph[first].add(second)
-                    graph[second].add(first)
-                    changed = True
-    return frozenset(pair(link, other) for link, others in graph.items() for other in others if {link, other} <= solid)
+    found = {pair(link, other) for link, others in graph.items() if link in solid for other in others if other in solid}
+    seen: set[str] = set()
+    for start in graph:
+        if start in solid or start in seen:
+            continue
+        group, touched, left = {start}, set(), [start]  # (links without geometry joined; the solid ones they touch)
+        while left:
+            for other in graph[left.pop()]:
+                if other in solid:
+                    touched.add(other)
+                elif other not in group:
+                    group.add(other)
+                    left.append(other)
+        seen |= group
+        found.update(itertools.combinations(sorted(touched), 2))
+    return frozenset(found)
 
 
 Meshes = tuple[tuple[str, str | bytes], ...]
