@@ -18,7 +18,7 @@ import math
 from typing import NamedTuple
 
 from .arm_geometry import THREE_PARALLEL, ClosedForm
-from .subproblems import Vec, dot, parts, rotate, sub, subproblem_1, turned
+from .subproblems import Vec, dot, parts, sub, subproblem_1, turn, turned
 
 UP: Vec = (0.0, 0.0, 1.0)
 SLIGHT = 1e-9  # m, or a sine: a side this close to the line has no side
@@ -65,10 +65,11 @@ def branch_name(form: ClosedForm, values: tuple[float, ...], roots: tuple[int, i
     P2 + w. (Written out on floats: a solve names every branch it gives.)"""
     k = _naming(form)
     u0, u1, u2 = turned(k.up, math.cos(values[0]), -math.sin(values[0]))
-    e0, e1, e2 = turned(k.upper, math.cos(values[1]), math.sin(values[1]))
+    c2, s2 = math.cos(values[1]), math.sin(values[1])
+    e0, e1, e2 = turned(k.upper, c2, s2)
     f0, f1, f2 = turned(k.fore, math.cos(values[2]), math.sin(values[2]))
     a = k.upper_arm
-    w0, w1, w2 = rotate(form.lines.axes[1], values[1], (f0 + a[0], f1 + a[1], f2 + a[2]))
+    w0, w1, w2 = turn(form.lines.axes[1], c2, s2, (f0 + a[0], f1 + a[1], f2 + a[2]))
     b0, b1, b2 = k.base
     r0, r1, r2 = w0 + b0, w1 + b1, w2 + b2  # (the wrist centre from axis 1's point)
     if k.offset is not None:

@@ -201,9 +201,9 @@ class IkSolver:
         centres = self.centres if seed is self.rest else [float(seed[k]) for k in self.form.lines.joints]
         candidates, outside = _candidates(branches(self.form, rotation, position), self.ranges, centres)
         if not every:  # (checked nearest first: the first that reaches is the answer; ties, the lower values)
-            candidates.sort(key=lambda c: (round(_distance_to(c[0], centres), 9), c[0]))
+            candidates.sort(key=lambda c: (round(c[3], 9), c[0]))
         solutions: list[Solution] = []
-        for wrapped, count, branch in candidates:
+        for wrapped, count, branch, _ in candidates:
             reached = self._reposed(goal, pose, wrapped)
             if reached is not None:
                 named = branch_name(self.form, reached[1], branch.roots)
@@ -368,57 +368,54 @@ def _error(chain: Chain, goal: Any, values: np.ndarray) -> float:
 
 def _candidates(
     found: list[Branch], ranges: Sequence[tuple[float, float] | None], centres: Sequence[float]
-) -> tuple[list[tuple[list[float], int, Branch]], int]:
+) -> tuple[list[tuple[list[float], int, Branch, float]], int]:
     """The exact branches by their values nearest ``centres`` (:func:`_nearest_turns`), each once (one met twice,
-    whole turns apart, is left out), with the count of their equivalents; and how many have no value within the
-    limits."""
-    candidates: list[tuple[list[float], int, Branch]] = []
+    whole turns apart, is left out), with the count of their equivalents and their distance from ``centres``; and
+    how many have no value within the limits."""
+    candidates: list[tuple[list[float], int, Branch, float]] = []
     outside = 0
     for branch in found:
         if not branch.exact:  # (a subproblem without an exact root: this branch's triangle does not close)
             continue
-        wrapped, count = _nearest_turns(branch.values, ranges, centres)
+        wrapped, count, distance = _nearest_turns(branch.values, ranges, centres)
         if not wrapped:
             outside += 1
             continue
-        for other, _, _ in candidates:
-            if _same_turns(wrapped, other):
+        first = wrapped[0]
+        for other in candidates:  # (most pairs differ at the first joint: the loop's call left out for them)
+            if abs(math.remainder(first - other[0][0], TURN)) < 1e-6 and _same_turns(wrapped, other[0]):
                 break
         else:
-            candidates.append((wrapped, count, branch))
+            candidates.append((wrapped, count, branch, distance))
     return candidates, outside
-
-
-def _distance_to(values: Sequence[float], centres: Sequence[float]) -> float:
-    total = 0.0
-    for a, b in zip(values, centres, strict=True):
-        total += abs(a - b)
-    return total
 
 
 def _nearest_turns(
     values: Sequence[float], ranges: Sequence[tuple[float, float] | None], centres: Sequence[float]
-) -> tuple[list[float], int]:
+) -> tuple[list[float], int, float]:
     """Each value turned by whole turns to the one nearest its centre (0, or the value given as ``near``) within
-    its range (None: a continuous joint, any turn), and how many combinations of whole turns stay within the ranges
-    (0: endless); an empty list when a value has none."""
-    wrapped, count = [], 1
+    its range (None: a continuous joint, any turn), how many combinations of whole turns stay within the ranges
+    (0: endless), and the sum of the values' distances from their centres; an empty list when a value has none."""
+    wrapped, count, distance = [], 1, 0.0
     for value, limits, centre in zip(values, ranges, centres, strict=True):
         value = centre + math.remainder(value - centre, TURN)
         if limits is None:
             wrapped.append(value)
+            distance += abs(value - centre)
             count = 0
             continue
         lower, upper = limits
         first = math.ceil((lower - LIMIT_SLACK - value) / TURN)
         last = math.floor((upper + LIMIT_SLACK - value) / TURN)
         if first > last:
-            return [], 0
+            return [], 0, math.inf
         turns = first if first > 0 else last if last < 0 else 0  # (within half a turn of its centre, or an end)
         value += TURN * turns
-        wrapped.append(lower if value < lower else upper if value > upper else value)
+        value = lower if value < lower else upper if value > upper else value
+        wrapped.append(value)
+        distance += abs(value - centre)
         count *= last - first + 1
-    return wrapped, count
+    return wrapped, count, distance
 
 
 def options_of(solution: Solution, names: Sequence[str]) -> list[float]:
