@@ -59,26 +59,29 @@ def solve(
 ) -> tuple[np.ndarray, float]:
     """Joint values from ``start`` that put the frame at ``target`` (a pinocchio SE3 in the root's frame; its rotation
     ignored when ``position_only``), kept within the limits; and the pose error left. A start that has not halved its
-    error in STALL steps is stuck (against a limit, or in a local minimum out of reach) and ends there."""
+    error in STALL steps is stuck (against a limit, or in a local minimum out of reach) and ends there. A step that
+    would take joints past their limits is made again without them (:func:`_bounded_step`)."""
     from scipy.linalg.lapack import dposv  # (heavy: scipy; LAPACK's Cholesky solve, 7x less overhead than numpy's)
 
     lower, upper = chain.lower, chain.upper
+    limits = (lower.tolist(), upper.tolist())
     values = np.clip(np.array(start, dtype=float), lower, upper)
     error, best = math.inf, (math.inf, 0)
     with np.errstate(over="ignore", invalid="ignore"):  # (judged below: a mimic's multiplier of 1e308)
         for step_count in range(iterations):
             residual, full = residual_and_jacobian(chain, target, values, position_only=position_only)
             error = math.sqrt(float(residual @ residual))
-            step = _step(chain, full, residual, error, dposv) if TOLERANCE <= error < math.inf else None
+            step = (
+                _bounded_step(chain.selected(full), (residual, error), values, limits, dposv)
+                if TOLERANCE <= error < math.inf
+                else None
+            )
             if step is None:  # (reached, or a pose or step that is not finite numbers: the start ends where it is)
                 break
             if error < 0.5 * best[0]:
                 best = (error, step_count)
             elif step_count - best[1] > STALL:
                 break
-            largest = max(map(abs, step.tolist()), default=0.0)  # (plain floats: numpy's calls cost more on 7)
-            if largest > LONGEST_STEP:  # (near a singularity, out of reach: a step that would leap across the range)
-                step *= LONGEST_STEP / largest
             values = np.minimum(np.maximum(values + step, lower), upper)  # (np.clip, without its wrappers)
     return values, error
 
@@ -93,15 +96,14 @@ def residual_and_jacobian(
     model: Any = chain.model
     data = chain.data if chain.data is not None else model.createData()
     goal: Any = target
-    q = chain.configuration(values)
-    pin.framesForwardKinematics(model, data, q)
-    current = data.oMf[chain.frame]
+    pin.computeJointJacobians(model, data, chain.configuration(values))  # (the joints' placements with them: one pass)
+    current = pin.updateFramePlacement(model, data, chain.frame)
     if position_only:
         residual = current.translation - goal.translation
-        full = pin.computeFrameJacobian(model, data, q, chain.frame, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+        full = pin.getFrameJacobian(model, data, chain.frame, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
         return residual, np.asarray(full).reshape(6, model.nv)[:3]  # (a 1-DOF robot's comes as a vector)
     relative = goal.actInv(current)
-    full = pin.computeFrameJacobian(model, data, q, chain.frame, pin.ReferenceFrame.LOCAL)
+    full = pin.getFrameJacobian(model, data, chain.frame, pin.ReferenceFrame.LOCAL)
     return pin.log6(relative).vector, pin.Jlog6(relative) @ np.asarray(full).reshape(6, model.nv)
 
 
@@ -137,17 +139,49 @@ def closest_reach(
     return best
 
 
-def _step(chain: Chain, full: np.ndarray, residual: np.ndarray, error: float, dposv: Any) -> np.ndarray | None:
-    """The damped least-squares step on the joints one sets (``dposv``: LAPACK's Cholesky solve, imported once a
-    start); None when it is not finite numbers."""
-    part = chain.selected(full)
+def _bounded_step(
+    part: np.ndarray,
+    at: tuple[np.ndarray, float],
+    values: np.ndarray,
+    limits: tuple[list[float], list[float]],
+    dposv: Any,
+) -> np.ndarray | None:
+    """The damped least-squares step on the Jacobian's columns of the joints one sets (``part``) from ``at`` (the
+    residual and its norm), at most LONGEST_STEP in any joint; when it would take joints past their ``limits``, the
+    step made again with those joints held (their columns left out: an active set), so that the others make up the
+    clipped joints' share instead of the step losing it (on the Panda's limits a start otherwise takes twice the
+    steps). None when it is not finite numbers."""
+    residual, error = at
+    made = _step(part, residual, error, dposv)
+    if made is None:
+        return None
+    step, moves = made
+    bounds = zip(values.tolist(), moves, limits[0], limits[1], strict=True)  # (plain floats: 5 numpy calls cost more)
+    over = [k for k, (v, d, low, high) in enumerate(bounds) if (v + d < low and d < 0.0) or (v + d > high and d > 0.0)]
+    if over and len(over) < len(moves):
+        held = part.copy()
+        held[:, over] = 0.0
+        again = _step(held, residual, error, dposv)
+        step = again[0] if again is not None else step
+    return step
+
+
+def _step(part: np.ndarray, residual: np.ndarray, error: float, dposv: Any) -> tuple[np.ndarray, list[float]] | None:
+    """The damped least-squares step on the Jacobian's columns ``part`` (``dposv``: LAPACK's Cholesky solve, imported
+    once a start), at most LONGEST_STEP in any joint, and as plain floats; None when it is not finite numbers."""
     normal = part @ part.T
     normal.flat[:: len(residual) + 1] += 1e-12 + 1e-3 * error  # (less damping as it closes in: quadratic near it)
     _, solved, info = dposv(normal, residual)
     if info != 0:  # (not positive definite: a matrix of inf or NaN)
         return None
-    step: np.ndarray = -part.T @ solved
-    return step if math.isfinite(float(step.sum())) else None
+    step: np.ndarray = solved @ part
+    moves = step.tolist()  # (plain floats: numpy's calls cost more on 7)
+    if not math.isfinite(sum(moves)):
+        return None
+    largest = max(map(abs, moves), default=0.0)
+    factor = -LONGEST_STEP / largest if largest > LONGEST_STEP else -1.0  # (near a singularity, out of reach: a
+    step *= factor  # step that would leap across the range is shortened; and the sign: the step is -J^T solved)
+    return step, [factor * d for d in moves]
 
 
 def starts(chain: Chain, first: Sequence[float] | np.ndarray, count: int = STARTS, seed: int = 0) -> list[np.ndarray]:
