@@ -11,6 +11,7 @@ is within it, and every branch the closed form gives is checked on the robot and
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -49,6 +50,15 @@ class ClosedForm:
     wrist: Vec
     parallel: Vec | None
     shoulder: Vec | None
+
+    def __hash__(self) -> int:
+        """The fields' hash, made once: the closed forms' constants are cached by form and looked up for every
+        target and branch (a frozen dataclass would hash its nested tuples again at each lookup)."""
+        return self._hash
+
+    @functools.cached_property
+    def _hash(self) -> int:
+        return hash((self.lines, self.kind, self.wrist, self.parallel, self.shoulder))
 
 
 def arm_lines(model: KinematicModel, frame: int) -> ArmLines | None:

@@ -385,9 +385,13 @@ def _candidates(
         if not wrapped:
             outside += 1
             continue
-        first = wrapped[0]
-        for other in candidates:  # (most pairs differ at the first joint: the loop's call left out for them)
-            if abs(math.remainder(first - other[0][0], TURN)) < 1e-6 and _same_turns(wrapped, other[0]):
+        elbow, wrist = wrapped[2], wrapped[4]
+        for other in candidates:  # (two branches differ at joint 3 or 5, but for the shoulder's: no call for most)
+            if (
+                abs(math.remainder(elbow - other[0][2], TURN)) < 1e-6
+                and abs(math.remainder(wrist - other[0][4], TURN)) < 1e-6
+                and _same_turns(wrapped, other[0])
+            ):
                 break
         else:
             candidates.append((wrapped, count, branch, distance))
