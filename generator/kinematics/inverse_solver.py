@@ -111,6 +111,7 @@ class IkSolver:
     names: list[str] = field(init=False, default_factory=list)
     rest_values: list[float] = field(init=False, default_factory=list)  # (the rest pose, plain floats)
     centres: list[float] = field(init=False, default_factory=list)  # (the closed form's chain at rest)
+    whole: bool = field(init=False, default=False)  # (the closed form's chain is every joint one sets, in order)
 
     def __post_init__(self) -> None:
         model = self.model
@@ -131,6 +132,7 @@ class IkSolver:
         if self.form is not None:
             self.reposer = Reposer.of(model, target, self.form.lines.joints, self.rest)
             self.centres = [self.rest_values[k] for k in self.form.lines.joints]
+            self.whole = list(self.form.lines.joints) == list(range(len(self.names)))
 
     def chain_names(self, path: set[int]) -> set[str]:
         """The joints one sets that move a frame whose path from the root holds the pinocchio joints ``path``: those
@@ -225,6 +227,8 @@ class IkSolver:
         chain = self.form.lines.joints
         if self.reposer is not None:
             error = self.reposer.error(wrapped, pose)
+            if error <= CLOSE and self.whole:  # (the chain is every joint: nothing to place among the others)
+                return dict(zip(self.names, wrapped, strict=True)), tuple(wrapped), error
             if error <= CLOSE:
                 full = self.rest_values.copy()
                 for k, value in zip(chain, wrapped, strict=True):

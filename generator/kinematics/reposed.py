@@ -34,22 +34,24 @@ class Reposer:
     template: list[float]
     slots: tuple[tuple[int, bool], ...]
     direct: bool = False
+    pinocchio: Any = None  # (the module, imported once: an import statement costs a branch's check a tenth)
 
     @classmethod
     def of(cls, model: KinematicModel, frame: int, chain: Sequence[int], rest: np.ndarray) -> Reposer | None:
         """The reposer of the chain joints ``chain`` (indices into the joints one sets), the others at ``rest``; None
         for a robot with mimic joints, whose q :meth:`KinematicModel.configuration` makes (and checks)."""
+        import pinocchio as pin  # (heavy: pinocchio)
+
         if model.followers:
             return None
         template = model.configuration({j.name: float(v) for j, v in zip(model.joints, rest, strict=True)})
         slots = tuple((model.joints[k].q_index, model.joints[k].kind == "continuous") for k in chain)
         direct = slots == tuple((k, False) for k in range(len(template)))
-        return cls(model.model, model.data, frame, template.tolist(), slots, direct)
+        return cls(model.model, model.data, frame, template.tolist(), slots, direct, pin)
 
     def error(self, values: Sequence[float], goal: Sequence[Sequence[float]]) -> float:
         """The pose error (the module's e) of the chain at ``values`` against ``goal`` (4x4 rows as lists)."""
-        import pinocchio as pin  # (heavy: pinocchio)
-
+        pin = self.pinocchio
         if self.direct:  # (q is the chain's values: six revolute joints, nothing else)
             q = values
         else:
