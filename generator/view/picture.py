@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import copy
 import io
+import logging
 import os
 from collections.abc import Mapping
 from pathlib import Path
@@ -116,8 +117,6 @@ def _placing_urdf(urdf: Any) -> Any:
     link is in the scene graph yet is asked of the graph's node table, where yourdfpy asks ``graph.nodes``, which
     hashes the whole graph again after each visual added (32 of 35 s drawing a chain of 2,000 links; the same scene,
     so the same picture, either way)."""
-    import logging  # (start-up: only a picture builds a scene)
-
     import trimesh  # (heavy: trimesh)
 
     said = logging.getLogger("yourdfpy.urdf")  # (yourdfpy's own logger: its warning, said as it says it)
