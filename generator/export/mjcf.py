@@ -42,7 +42,7 @@ from lxml import etree
 from ..errors import XacrokitError
 from ..model import Robot
 from ..reader.kinematic_model import require_placeable, unit_axis
-from ..reader.mesh_copies import MeshRead, mesh_reader
+from ..reader.mesh_copies import MeshRead
 from ..reader.named_poses import named_poses, spec_poses
 from ..reader.read_robot import ReadRobot, read_robot
 from ..reader.robot_input import RobotInput
@@ -57,7 +57,7 @@ from ..write.outputs import OutputFile, output_file, write_outputs
 from .mjcf_actuators import actuators, commanded, compensate_gravity, gains, mimics, num
 from .mjcf_ground import Ground
 from .mjcf_keyframes import keyframes
-from .mjcf_meshes import FlatMesh, Meshes
+from .mjcf_meshes import FlatMesh, Meshes, export_reader
 
 MJ_MINVAL = 1e-15  # MuJoCo's mjMINVAL: the least mass and moment a moving body may have
 MASSLESS = (1e-12, 1e-14)  # (kg, kg m^2): what a moving link without mass gets, MuJoCo needing more than 1e-15
@@ -587,7 +587,7 @@ def export_mjcf(
         raise XacrokitError(f"base {base!r}: the root's joint is one of auto, fixed or free")
     read_in = read_robot(robot)
     with read_in.mesh_packages() as packages:
-        read = mesh_reader(read_in.path, packages)
+        read = export_reader(read_in.path, packages)
         spec = read_in.spec
         export = mjcf(read_in, read, base=base, floor=floor, poses=spec_poses(spec), armature=spec_armature(spec))
         for name, mesh in export.meshes.items():  # (a spec's meshes, staged for the block: read while they last)

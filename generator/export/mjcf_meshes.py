@@ -3,15 +3,16 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from pathlib import Path
+import os
+from collections.abc import Callable, Mapping
+from pathlib import Path, PurePosixPath
 from typing import Any
 
 import numpy as np
 from lxml import etree
 
 from ..errors import XacrokitError
-from ..reader.mesh_copies import MeshRead
+from ..reader.mesh_copies import MeshRead, mesh_reader
 from ..shared.input_files import CopiedFile
 from .mjcf_actuators import num
 from .obj_text import obj_text
@@ -82,19 +83,20 @@ class Meshes:
         return name
 
     def _copy(self, read: MeshRead, filename: str) -> str:
-        mesh = read.mesh
+        source = Path(read.copy.relative)
+        stem = "".join(c if c.isalnum() or c in "_-" else "_" for c in source.stem)[:60] or "mesh"
+        suffix = source.suffix.lower()
+        copied = suffix in READABLE or (
+            suffix == ".stl" and _binary_stl_faces(read.head, read.copy.size) in range(1, STL_FACES + 1)
+        )
+        mesh = read.mesh if copied and not self.keep_points and _solid(read.mesh.vertices) else _merged(read.mesh)
         spread = np.linalg.svd(mesh.vertices - mesh.vertices.mean(axis=0), compute_uv=False)
         if len(mesh.vertices) < 4 or spread[-1] <= 1e-9 * spread[0]:
             raise FlatMesh(f"mesh {filename!r} is flat (all its vertices in one plane): MuJoCo cannot take it")
         if self.keep_points:
             self.vertices[str(read.copy.root / read.copy.relative)] = _hull_points(np.asarray(mesh.vertices, float))
-        source = Path(read.copy.relative)
-        stem = "".join(c if c.isalnum() or c in "_-" else "_" for c in source.stem)[:60] or "mesh"
-        suffix = source.suffix.lower()
         data: bytes | CopiedFile = read.copy
-        if suffix in READABLE or (
-            suffix == ".stl" and _binary_stl_faces(read.head, read.copy.size) in range(1, STL_FACES + 1)
-        ):
+        if copied:
             out = f"{stem}{suffix}"
         else:
             data = obj_text(mesh)
@@ -107,6 +109,37 @@ class Meshes:
             count += 1
         self.written[out] = data
         return out
+
+
+def export_reader(urdf: Path, packages: Mapping[str, str | os.PathLike[str]]) -> Callable[[str], MeshRead]:
+    """The export's mesh reader: :func:`~xacrokit.reader.mesh_copies.mesh_reader`, merging duplicate vertices as it
+    reads (trimesh's ``process``), but for an STL, which is read as it is and merged only when the export needs its
+    vertices (:func:`_merged`): most are binary STL files copied as they are, and merging took a fifth of exporting a
+    robot of them. (An STL merged later is the mesh merged as it is read: every STL of the real-robot corpus, 802,
+    gives the same vertices, faces and metadata either way; trimesh's readers of the other kinds differ.)"""
+    merged, plain = mesh_reader(urdf, packages), mesh_reader(urdf, packages, process=False)
+
+    def read(filename: str) -> MeshRead:
+        return (plain if PurePosixPath(filename).suffix.lower() == ".stl" else merged)(filename)
+
+    return read
+
+
+def _merged(mesh: Any) -> Any:
+    """The mesh with its duplicate vertices merged (in place), as a reader's ``process`` gives it."""
+    if not mesh.metadata.get("processed"):
+        mesh.process()
+    return mesh
+
+
+def _solid(vertices: np.ndarray) -> bool:
+    """Whether a mesh's vertices, duplicates and all, are far from one plane: its thinnest spread more than 1e-4 of its
+    widest. Merging only drops repeated vertices (and ones within 1e-8 of another), which changes that ratio by far
+    less than the 1e5 between this bound and the 1e-9 that makes a mesh flat: one solid here is solid merged."""
+    if len(vertices) < 4:
+        return False
+    spread = np.linalg.svd(vertices - vertices.mean(axis=0), compute_uv=False)
+    return bool(spread[-1] > 1e-4 * spread[0])
 
 
 def _hull_points(vertices: np.ndarray) -> np.ndarray:
