@@ -4,7 +4,6 @@ gives located errors (exit 2), never another exception, never a file written."""
 from __future__ import annotations
 
 import subprocess
-import sys
 
 import pinocchio as pin
 import pytest
@@ -14,7 +13,7 @@ from hypothesis import strategies as st
 from lxml import etree
 
 import xacrokit
-from conftest import check_urdf_binary, parse_generated
+from conftest import check_urdf_binary, gen_robot, parse_generated
 from xacrokit.testing import FAULTS, invalid_specs, valid_specs
 
 FAULT_WORDS = {
@@ -91,12 +90,7 @@ def test_every_single_fault_gives_located_errors_and_writes_nothing(tmp_path_fac
 def test_invalid_specs_exit_2_from_the_command_line(tmp_path_factory, case):
     spec, _ = case
     folder, path = write_spec(tmp_path_factory, spec, "cli")
-    result = subprocess.run(
-        [sys.executable, "-m", "xacrokit.cli", str(path), "-o", str(folder / "pkg")],
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
+    result = gen_robot(path, "-o", folder / "pkg")
     assert result.returncode == 2 and "Traceback" not in result.stderr
     assert f"{path}:" in result.stderr and not (folder / "pkg").exists()
 

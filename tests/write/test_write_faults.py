@@ -1,6 +1,7 @@
-"""Fault injection on real gen-robot processes: SIGKILL at chosen and at random points of a first write and of an
-update, two writers at once, a read-only folder, a full disk. After each: no torn file (every file is whole, as one
-spec or the other generates it), and the next run succeeds and gives exactly the package a clean run gives.
+"""Fault injection: on real gen-robot processes, SIGKILL at chosen and at random points of a first write and of an
+update, and two writers at once; with the command line run in the test's process (conftest.gen_robot), a read-only
+folder and a full disk. After each: no torn file (every file is whole, as one spec or the other generates it), and the
+next run succeeds and gives exactly the package a clean run gives.
 
 The kill points are seeded (the same on every run). The read-only folder and the full disk need a small tmpfs,
 which only root can mount: elsewhere those tests are skipped, with the reason."""
@@ -21,6 +22,7 @@ import pytest
 from write_helpers import contents, two_specs
 
 import xacrokit
+from conftest import gen_robot
 from xacrokit.write.atomic import TEMPORARY
 from xacrokit.write.package_writer import MANIFEST
 
@@ -178,12 +180,6 @@ def small_tmpfs(folder, size):
         yield folder
     finally:
         subprocess.run(["umount", "-l", str(folder)], capture_output=True)
-
-
-def gen_robot(*words):
-    return subprocess.run(
-        [sys.executable, "-m", "xacrokit.cli", *map(str, words)], capture_output=True, text=True, timeout=120
-    )
 
 
 def test_a_read_only_folder_is_refused_whole_and_the_next_run_writes(tmp_path, specs):
