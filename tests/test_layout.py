@@ -8,6 +8,7 @@ no function over 60 lines (its docstring aside: ruff keeps complexity under 15),
 from __future__ import annotations
 
 import ast
+import functools
 import re
 from collections.abc import Iterable, Mapping
 from pathlib import Path
@@ -381,9 +382,11 @@ START_UP = "xacrokit.cli"
 REASON = re.compile(r"#.*\(\w")  # a comment saying why, in a word or more, in parentheses: # (heavy: pinocchio)
 
 
-def _top_level_imports(name: str) -> set[str]:
+@functools.cache
+def _top_level_imports(name: str) -> frozenset[str]:
     """Every module ``name`` imports when it is imported (its own and third-party, outside functions and outside
-    ``if TYPE_CHECKING:``), and its parent packages."""
+    ``if TYPE_CHECKING:``), and its parent packages. (Parsed once: the walks of heavy_brought pass every module many
+    times, which took 20 s parsing the package again and again.)"""
     path = MODULES[name]
     package = name if path.name == "__init__.py" else name.rpartition(".")[0]
     found = {".".join(name.split(".")[:k]) for k in range(2, len(name.split(".")))}
@@ -399,7 +402,7 @@ def _top_level_imports(name: str) -> set[str]:
             found |= set(_imported(node, package))
             continue
         pending += [child for child in ast.iter_child_nodes(node) if isinstance(child, ast.stmt)]
-    return found
+    return frozenset(found)
 
 
 def _imported(node: ast.Import | ast.ImportFrom, package: str) -> list[str]:
