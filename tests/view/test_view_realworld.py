@@ -5,6 +5,7 @@ an R003 mesh error for; and in headless chromium a few of them pose every link a
 
 from __future__ import annotations
 
+import functools
 import json
 
 import lxml.html
@@ -61,6 +62,13 @@ def test_every_real_robot_makes_a_page_missing_only_what_the_verdicts_say_is_mis
     assert bool(missing) == bool(mesh_errors(key)), missing[:2]
 
 
+@functools.cache
+def page_of(key: str) -> str:
+    """The page of a corpus robot, made once in a test process (the Panda's and the Go1's are read by two tests)."""
+    robot = robots()[key]
+    return page(RobotInput(robot.path, packages=robot.packages))
+
+
 @pytest.mark.parametrize(
     ("key", "most"),
     [
@@ -71,12 +79,11 @@ def test_every_real_robot_makes_a_page_missing_only_what_the_verdicts_say_is_mis
 def test_real_robot_pages_are_compact(key, most):
     """Issue 33: the Panda's page under 3 MB, the Go1's under 8 MB (they were 9.1 and 37.4 MB with every visual's
     mesh embedded as the COLLADA reader's vertices), with every mesh drawn."""
-    robot = robots()[key]
-    html = page(RobotInput(robot.path, packages=robot.packages))
+    html = page_of(key)
     assert len(html.encode("utf-8")) < most
     found = json.loads(lxml.html.fromstring(html).get_element_by_id("robot").text)
     assert found["missing"] == []
-    root = etree.fromstring(robot.path.read_bytes())
+    root = etree.fromstring(robots()[key].path.read_bytes())
     assert sum(len(link["visuals"]) for link in found["links"]) == len(root.findall("link/visual"))
 
 
@@ -94,7 +101,7 @@ PICKED = (  # (STL, DAE and OBJ meshes; a mobile base; 7 to 130 links; uint32 in
 def test_real_robots_open_offline_and_pose_as_pinocchio_does(key, tmp_path, browser):
     robot = robots()[key]
     html = tmp_path / "robot.html"
-    html.write_text(page(RobotInput(robot.path, packages=robot.packages)), encoding="utf-8")
+    html.write_text(page_of(key), encoding="utf-8")
     open_page(browser, html)
     assert [e for e in browser.get_log("browser") if e["level"] == "SEVERE"] == []
     assert [u for u in requests_made(browser) if not u.startswith(("file://", "data:"))] == []
