@@ -121,8 +121,10 @@ class ConsumerHost:
                 signal.signal(signal.SIGINT, signal.SIG_DFL)
                 silence()
                 limit_resources(self.bounds, cpu=False)
-                if self.warm:  # (a library that fails to import fails again in the load: that is its verdict)
-                    with contextlib.suppress(Exception):
+                if self.warm:
+                    with contextlib.suppress(
+                        Exception
+                    ):  # (one that fails to import fails again in the load: its verdict)
                         importlib.import_module(self.warm)
                 _serve(self.load, requests, answers)
                 code = 0
