@@ -15,7 +15,6 @@ meets the bound by what it kept. Answers are JSON, never pickle.
 from __future__ import annotations
 
 import contextlib
-import importlib
 import json
 import os
 import select
@@ -34,8 +33,8 @@ class ConsumerHost:
     """A child that loads URDFs with the Python consumers (``load``), within ``bounds`` for each load, started when
     first asked and again after it ends."""
 
-    def __init__(self, load: Load, bounds: Bounds, warm: str = "") -> None:
-        self.load, self.bounds, self.warm = load, bounds, warm  # (warm: a module the child imports as it starts)
+    def __init__(self, load: Load, bounds: Bounds) -> None:
+        self.load, self.bounds = load, bounds
         self._pid: int | None = None
         self._send = self._receive = -1
         self._pending = b""
@@ -67,12 +66,6 @@ class ConsumerHost:
             return found
 
         return collect
-
-    def warm_up(self) -> None:
-        """Start the host now (before any thread is started), which imports ``warm`` while the caller goes on: a
-        library's import (yourdfpy's is a second) is done by the time the first URDF is sent."""
-        if self._pid is None:
-            self._start()
 
     def _result(self, name: str, answer: dict[str, str] | str) -> ConsumerResult:
         if answer == "timeout":
@@ -121,11 +114,6 @@ class ConsumerHost:
                 signal.signal(signal.SIGINT, signal.SIG_DFL)
                 silence()
                 limit_resources(self.bounds, cpu=False)
-                if self.warm:
-                    with contextlib.suppress(
-                        Exception
-                    ):  # (one that fails to import fails again in the load: its verdict)
-                        importlib.import_module(self.warm)
                 _serve(self.load, requests, answers)
                 code = 0
             finally:

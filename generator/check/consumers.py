@@ -328,15 +328,12 @@ def start_verdicts(
         python = [n for n in names if forkable and n != "check_urdf" and available(n)]
         if _HOST and prepare is not None:
             prepare()  # (the host, started once, inherits it)
-        hosted = [_HOST[0].start(python, urdf, package_paths)] if _HOST and python else []
-        # (warm: those whose child started with the command, its library imported meanwhile: sent the URDF now)
-        hosted += [_WARM[n].start([n], urdf, package_paths) for n in python if n in _WARM and not _HOST]
-        each = [n for n in python if n not in _WARM and not _HOST]  # (a child forked now for each)
+        hosted = _HOST[0].start(python, urdf, package_paths) if _HOST and python else dict
         # the consumers that share nothing with the caller start first, on the other core, while it prepares
-        forked = {n: _forked(n, urdf, package_paths) for n in each if n not in SHARING}
+        forked = {n: _forked(n, urdf, package_paths) for n in python if n not in SHARING} if not _HOST else {}
         if not _HOST and prepare is not None:
             prepare()
-        forked |= {n: _forked(n, urdf, package_paths) for n in each if n in SHARING}
+        forked |= {n: _forked(n, urdf, package_paths) for n in python if n in SHARING} if not _HOST else {}
         others = _started([n for n in names if n not in python], urdf, package_paths=package_paths)
     except BaseException:
         folder.cleanup()
@@ -345,8 +342,7 @@ def start_verdicts(
     def collect() -> list[ConsumerResult]:
         try:
             results = {name: wait() for name, wait in forked.items()}
-            for wait in hosted:
-                results.update(wait())
+            results.update(hosted())
             results.update((r.name, r) for r in others())
             # (a message naming the scratch copy names the file checked: a verdict does not depend on where it ran)
             return [replace(results[n], message=results[n].message.replace(str(urdf), shown_as)) for n in names]
@@ -357,31 +353,6 @@ def start_verdicts(
 
 
 _HOST: list[ConsumerHost] = []  # (the host the Python consumers run in, while :func:`hosted_consumers` holds one)
-_WARM: dict[str, ConsumerHost] = {}  # (a host per Python consumer, started early, while :func:`warm_consumers` lasts)
-
-
-@contextlib.contextmanager
-def warm_consumers(names: Sequence[str] | None) -> Iterator[None]:
-    """While it lasts, the next check in this process sends each of the Python consumers ``names`` (None: every
-    installed one) to a child of its own started now (:class:`~xacrokit.check.consumer_host.ConsumerHost`, the same
-    bounds as a forked consumer's), which imports the consumer's library at once: for ``gen-robot check FILE``, whose
-    slowest consumer's import (yourdfpy's, a second) then runs while check imports its rules and reads the file,
-    instead of after. numpy, which every one of them imports, is imported here first and shared."""
-    import numpy  # noqa: F401  (heavy: numpy; imported before the children start, which share it)
-
-    wanted = [n for n in (CONSUMERS if names is None else names) if n in LIBRARIES and available(n)]
-    hosts = (
-        {n: ConsumerHost(load_with, CONSUMER_BOUNDS, warm=LIBRARIES[n]) for n in wanted} if hasattr(os, "fork") else {}
-    )
-    try:
-        for host in hosts.values():
-            host.warm_up()
-        _WARM.update(hosts)
-        yield
-    finally:
-        for name, host in hosts.items():
-            _WARM.pop(name, None)
-            host.stop()
 
 
 @contextlib.contextmanager

@@ -182,50 +182,21 @@ def _cmd_new(args: argparse.Namespace) -> int:
 
 
 def _cmd_check(args: argparse.Namespace) -> int:
-    with _warm_consumers(args):
-        return _check_command(args)
-
-
-def _consumer_names(args: argparse.Namespace) -> list[str] | None:
-    """--consumers: None for every installed one ('all', the default), else the names given ('none': [])."""
-    if args.consumers in ("all", None):
-        return None
-    if args.consumers == "none":
-        return []
-    return [c.strip() for c in args.consumers.split(",") if c.strip()]
-
-
-def _check_paths(args: argparse.Namespace) -> list[str]:
-    # (the paths and the name:=value words come as one list of positionals: a word with ':=' is a mapping, as xacro
-    # reads its own command line)
-    return [word for word in args.paths if ":=" not in word]
-
-
-def _single(args: argparse.Namespace, paths: list[str]) -> bool:
-    """Whether ``gen-robot check`` checks one file and gives its report as text or JSON (not a run of many)."""
-    form = "json" if args.json else args.format
-    return len(paths) == 1 and not args.robots_only and form in ("text", "json") and not Path(paths[0]).is_dir()
-
-
-def _warm_consumers(args: argparse.Namespace) -> contextlib.AbstractContextManager[None]:
-    """For one file, the Python consumers' children started before check imports its rules (each imports its
-    library meanwhile: :func:`~xacrokit.check.consumers.warm_consumers`); a run of many has hosts of its own."""
-    if not _single(args, _check_paths(args)):
-        return contextlib.nullcontext()
-    from ..check.consumers import warm_consumers  # (start-up: a command's work loads when it runs)
-
-    return warm_consumers(_consumer_names(args))
-
-
-def _check_command(args: argparse.Namespace) -> int:
     from ..check.file_workers import CheckOptions, check_files, run_dict  # (heavy: concurrent)
     from ..check.robot_files import robot_files  # (heavy: lxml)
 
     form = "json" if args.json else args.format
     if args.jobs is not None and args.jobs < 1:
         raise XacrokitError(f"-j/--jobs {args.jobs}: give the number of worker processes, 1 or more")
-    consumers = _consumer_names(args)
-    paths = _check_paths(args)
+    if args.consumers in ("all", None):
+        consumers = None
+    elif args.consumers == "none":
+        consumers = []
+    else:
+        consumers = [c.strip() for c in args.consumers.split(",") if c.strip()]
+    # (the paths and the name:=value words come as one list of positionals: a word with ':=' is a mapping, as xacro
+    # reads its own command line)
+    paths = [word for word in args.paths if ":=" not in word]
     if not paths:
         raise XacrokitError("check: give a file or folder to check (name:=value words are xacro arguments)")
     # (one robot input's arguments, packages and trust for every file checked)
@@ -234,7 +205,7 @@ def _check_command(args: argparse.Namespace) -> int:
     options = CheckOptions(
         dict(given.mappings), args.prefix, consumers, packages, bool(given.trust), _srdf(args, paths)
     )
-    if _single(args, paths):
+    if len(paths) == 1 and not args.robots_only and form in ("text", "json") and not Path(paths[0]).is_dir():
         return _check_single(Path(paths[0]), options, form, args.strict)  # (one file: its report as before)
     files = robot_files(paths, exclude=args.exclude, robots_only=args.robots_only)
     if not files:
