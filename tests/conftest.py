@@ -132,11 +132,11 @@ def expand(tmp_path_factory):
     return run
 
 
-def tetrahedron_stl() -> bytes:
-    """A closed tetrahedron as binary STL (MuJoCo reads only binary STL)."""
+def tetrahedron_stl(lift: float = 0.0) -> bytes:
+    """A closed tetrahedron of 0.1 m as binary STL (MuJoCo reads only binary STL), raised by ``lift`` metres."""
     import struct
 
-    corners = [(0.0, 0.0, 0.0), (0.1, 0.0, 0.0), (0.0, 0.1, 0.0), (0.0, 0.0, 0.1)]
+    corners = [(0.0, 0.0, lift), (0.1, 0.0, lift), (0.0, 0.1, lift), (0.0, 0.0, lift + 0.1)]
     faces = ((0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3))
     data = bytearray(b"xacrokit test tetrahedron".ljust(80, b" ")) + struct.pack("<I", len(faces))
     for face in faces:

@@ -6,11 +6,12 @@ from __future__ import annotations
 
 import json
 import os
-import struct
 import subprocess
 import sys
 
 from check_helpers import CORPUS
+
+from conftest import tetrahedron_stl
 
 # the check run in a process of its own, which says its findings and whether it imported pinocchio
 SCRIPT = """
@@ -23,19 +24,6 @@ print(json.dumps({"rules": rules, "pinocchio": "pinocchio" in sys.modules}))
 EMPTY_SRDF = '<?xml version="1.0"?>\n<robot name="corpus"/>\n'  # (an SRDF beside the URDF: G007 poses meshes)
 
 
-def stl(lift: float) -> bytes:
-    """A closed tetrahedron of 0.1 m as binary STL, raised by ``lift`` metres."""
-    corners = [(0.0, 0.0, lift), (0.1, 0.0, lift), (0.0, 0.1, lift), (0.0, 0.0, lift + 0.1)]
-    faces = ((0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3))
-    data = bytearray(b"xacrokit test tetrahedron".ljust(80, b" ")) + struct.pack("<I", len(faces))
-    for face in faces:
-        data += struct.pack("<3f", 0.0, 0.0, 0.0)
-        for index in face:
-            data += struct.pack("<3f", *corners[index])
-        data += struct.pack("<H", 0)
-    return bytes(data)
-
-
 def planted(tmp_path, lift: float = 0.0):
     """G007's planted overlap (the hand inside the base at home) with the hand's collision a mesh beside the URDF."""
     text = (CORPUS / "G007_fail.urdf").read_text(encoding="utf-8")
@@ -46,7 +34,7 @@ def planted(tmp_path, lift: float = 0.0):
     path = tmp_path / "planted.urdf"
     path.write_text(text, encoding="utf-8")
     (tmp_path / "planted.srdf").write_text(EMPTY_SRDF, encoding="utf-8")
-    (tmp_path / "hand.stl").write_bytes(stl(lift))
+    (tmp_path / "hand.stl").write_bytes(tetrahedron_stl(lift))
     return path
 
 
@@ -63,7 +51,7 @@ def test_a_second_check_takes_the_pairs_kept_and_a_changed_mesh_is_posed_again(t
     first = checked(path, cache)
     assert first == {"rules": ["G007", "G008"], "pinocchio": True}  # (the hand's mesh inside the base, posed)
     assert checked(path, cache) == {"rules": ["G007", "G008"], "pinocchio": False}  # (kept: pinocchio not imported)
-    (tmp_path / "hand.stl").write_bytes(stl(1.0))  # (the same file name, the mesh a metre up: no overlap)
+    (tmp_path / "hand.stl").write_bytes(tetrahedron_stl(1.0))  # (the same file name, the mesh a metre up: no overlap)
     assert checked(path, cache) == {"rules": ["G008"], "pinocchio": True}
     assert checked(path, cache) == {"rules": ["G008"], "pinocchio": False}
     kept = sorted(cache.rglob("home-*.json"))
