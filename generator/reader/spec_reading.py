@@ -56,8 +56,8 @@ def expand_package(model: Robot | Scene, files: list[RenderedFile]) -> RenderedF
 
 @dataclass(frozen=True)
 class SpecURDF:
-    """A spec's URDF made in memory (nothing written), for ``gen-robot check``: what the spec describes (a robot, or a
-    scene), where each link and joint of a robot is written in its spec (``(kind, name) -> (line, column)``; a
+    """A spec's URDF made in memory (nothing written), for check and the readers: what the spec describes (a robot,
+    or a scene), where each link and joint of a robot is written in its spec (``(kind, name) -> (line, column)``; a
     scene's come from several files: none), the spec's warnings (see Spec.warnings), and a robot spec's validated
     form (its data with every value's place: what ``gen-robot report`` reads volumes from; a scene's: None)."""
 
@@ -69,9 +69,9 @@ class SpecURDF:
 
 
 def spec_urdf(spec_path: str | Path, *, emitted: bool = False) -> SpecURDF:
-    """The URDF that expanding a spec's package with xacro gives (the one :func:`generate` writes with via_xacro);
-    with ``emitted``, the one it writes by default, from the direct emitter (the same robot, to the last digit: the
-    tests expand every example and random specs both ways; no template rendered, no xacro run).
+    """The URDF that expanding a spec's package with xacro gives (the one :func:`~xacrokit.pipeline.generate` writes
+    with via_xacro); with ``emitted``, the one it writes by default, from the direct emitter (the same robot, to the
+    last digit: the tests expand every example and random specs both ways; no template rendered, no xacro run).
 
     Raises:
         SpecErrors: the spec (or a robot of a scene) is invalid.
