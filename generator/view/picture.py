@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import copy
 import io
-import logging
 import os
 from collections.abc import Mapping
 from pathlib import Path
@@ -86,7 +85,7 @@ def _placed_meshes(
         require_mesh_file(root, file, where=f"mesh {element!r}")
     try:  # (yourdfpy's own reader of the root already parsed: URDF.load would parse the text again)
         described = yourdfpy.URDF._parse_robot(xml_element=_for_yourdfpy(view.root))
-        placed_robot = _placing_urdf(yourdfpy.URDF)(robot=described, filename_handler=resolve, build_scene_graph=True)
+        placed_robot = yourdfpy.URDF(robot=described, filename_handler=resolve, build_scene_graph=True)
     except XacrokitError:
         raise
     except Exception as exc:  # noqa: BLE001  (yourdfpy and trimesh raise what their readers raise)
@@ -110,45 +109,6 @@ def _placed_meshes(
 
 
 MAX_LINKS = 5000  # links render draws (yourdfpy builds its scene in time that grows with their square)
-
-
-def _placing_urdf(urdf: Any) -> Any:
-    """yourdfpy's URDF class with its scene built as yourdfpy builds it, step for step, but for one question: whether a
-    link is in the scene graph yet is asked of the graph's node table, where yourdfpy asks ``graph.nodes``, which
-    hashes the whole graph again after each visual added (32 of 35 s drawing a chain of 2,000 links; the same scene,
-    so the same picture, either way)."""
-    import trimesh  # (heavy: trimesh)
-
-    said = logging.getLogger("yourdfpy.urdf")  # (yourdfpy's own logger: its warning, said as it says it)
-
-    class PlacingUrdf(urdf):
-        def _create_scene(
-            self,
-            use_collision_geometry: bool = False,
-            load_geometry: bool = True,
-            force_mesh: bool = False,
-            force_single_geometry_per_link: bool = False,
-        ) -> Any:
-            scene = trimesh.scene.Scene(base_frame=self._base_link)
-            for joint in self.robot.joints:
-                matrix, _ = self._forward_kinematics_joint(joint)
-                scene.graph.update(frame_from=joint.parent, frame_to=joint.child, matrix=matrix)
-            for link in self.robot.links:
-                if link.name not in scene.graph.transforms.node_data and link.name != scene.graph.base_frame:
-                    said.warning(f"{link.name} not connected via joints. Will add link to base frame.")
-                    scene.graph.update(frame_from=scene.graph.base_frame, frame_to=link.name)
-                self._add_geometries_to_scene(
-                    scene,
-                    geometries=link.collisions if use_collision_geometry else link.visuals,
-                    link_name=link.name,
-                    load_geometry=load_geometry,
-                    force_mesh=force_mesh,
-                    force_single_geometry=force_single_geometry_per_link,
-                    skip_materials=use_collision_geometry,
-                )
-            return scene
-
-    return PlacingUrdf
 
 
 def world_transforms(graph: Any) -> dict[str, np.ndarray]:
