@@ -15,7 +15,6 @@ from ..errors import XacrokitError
 from ..reader.mesh_copies import MeshRead, mesh_reader
 from ..shared.input_files import CopiedFile
 from .mjcf_actuators import num
-from .obj_text import obj_text
 
 READABLE = (".obj", ".msh")  # what MuJoCo reads as it is (binary STL too: decided by looking at the file)
 STL_FACES = 200_000  # the most triangles MuJoCo's STL reader takes
@@ -89,9 +88,15 @@ class Meshes:
         copied = suffix in READABLE or (
             suffix == ".stl" and _binary_stl_faces(read.head, read.copy.size) in range(1, STL_FACES + 1)
         )
-        mesh = read.mesh if copied and not self.keep_points and _solid(read.mesh.vertices) else _merged(read.mesh)
-        spread = np.linalg.svd(mesh.vertices - mesh.vertices.mean(axis=0), compute_uv=False)
-        if len(mesh.vertices) < 4 or spread[-1] <= 1e-9 * spread[0]:
+        # (an STL copied as it is need not be merged when it is far from flat: merging only drops repeated vertices
+        # and ones within 1e-8 of another, which moves the ratio of its spreads far less than the 1e5 between the
+        # 1e-4 here and the 1e-9 that makes a mesh flat)
+        spread = _spread(read.mesh.vertices) if copied and not self.keep_points else None
+        solid = spread is not None and spread[0] > 1e-4 * spread[1]
+        mesh = read.mesh if solid else _merged(read.mesh)
+        if not solid:
+            spread = _spread(mesh.vertices)
+        if spread is None or spread[0] <= 1e-9 * spread[1]:
             raise FlatMesh(f"mesh {filename!r} is flat (all its vertices in one plane): MuJoCo cannot take it")
         if self.keep_points:
             self.vertices[str(read.copy.root / read.copy.relative)] = _hull_points(np.asarray(mesh.vertices, float))
@@ -99,7 +104,8 @@ class Meshes:
         if copied:
             out = f"{stem}{suffix}"
         else:
-            data = obj_text(mesh)
+            exported = mesh.export(file_type="obj", include_normals=False, include_texture=False)
+            data = exported.encode("utf-8") if isinstance(exported, str) else bytes(exported)
             out = f"{stem}.obj"
             self.notes.append(f"mesh {filename!r} converted to OBJ for MuJoCo")
         taken = set(self.files.values())
@@ -132,14 +138,13 @@ def _merged(mesh: Any) -> Any:
     return mesh
 
 
-def _solid(vertices: np.ndarray) -> bool:
-    """Whether a mesh's vertices, duplicates and all, are far from one plane: its thinnest spread more than 1e-4 of its
-    widest. Merging only drops repeated vertices (and ones within 1e-8 of another), which changes that ratio by far
-    less than the 1e5 between this bound and the 1e-9 that makes a mesh flat: one solid here is solid merged."""
+def _spread(vertices: np.ndarray) -> tuple[float, float] | None:
+    """A mesh's thinnest and widest spread about its centre (the singular values of its centred vertices); None for
+    fewer than 4 vertices."""
     if len(vertices) < 4:
-        return False
+        return None
     spread = np.linalg.svd(vertices - vertices.mean(axis=0), compute_uv=False)
-    return bool(spread[-1] > 1e-4 * spread[0])
+    return float(spread[-1]), float(spread[0])
 
 
 def _hull_points(vertices: np.ndarray) -> np.ndarray:
