@@ -26,6 +26,8 @@ import gc
 import hashlib
 import io
 import os
+import threading
+from collections import OrderedDict
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
@@ -108,8 +110,12 @@ def read_mesh_below(
     except OSError as exc:
         raise MeshCopyRefused(f"{said}: cannot be read: {exc.strerror or exc}") from None
     suffix = pure.suffix.lower()
-    mesh = parse(data, suffix, said) if parse is not None else require_mesh(data, suffix, said, process)
-    copy = CopiedFile(root, pure.as_posix(), identity, len(data), hashlib.sha256(data).hexdigest())
+    digest = hashlib.sha256(data)
+    if parse is not None:
+        mesh = parse(data, suffix, said)
+    else:
+        mesh = _memo_or_read(data, digest.digest(), suffix, said, process)
+    copy = CopiedFile(root, pure.as_posix(), identity, len(data), digest.hexdigest())
     return MeshRead(mesh, copy, data[:84])
 
 
@@ -160,11 +166,26 @@ def require_mesh_file(root: Path, source: Path, *, where: str = "") -> None:
 
 
 def require_mesh(data: bytes, suffix: str, said: str, process: bool) -> Any:
-    """The mesh trimesh reads from ``data`` as the kind ``suffix`` says; refused (MeshCopyRefused) when it reads none
-    with a triangle."""
+    """The mesh trimesh reads from ``data`` as the kind ``suffix`` says (a copy of the one read before from the same
+    bytes, :class:`_ReadMeshes`); refused (MeshCopyRefused) when it reads none with a triangle."""
+    return _memo_or_read(data, hashlib.sha256(data).digest(), suffix, said, process)
+
+
+def _memo_or_read(data: bytes, digest: bytes, suffix: str, said: str, process: bool) -> Any:
+    _unswept[0] += len(data)  # (what trimesh reads or copies makes the cycles a later sweep frees)
+    key = (digest, suffix, process)
+    kept = _READ_MESHES.get(key)
+    if kept is None:
+        kept = _read_mesh(data, suffix, said, process)
+        _READ_MESHES.put(key, kept)
+    # a copy for the caller, who may change it (export merges an STL's vertices, check scales them): the arrays,
+    # visual and metadata copied, and the cache's items (none as trimesh reads a file: the copy is the mesh as read)
+    return kept.copy(include_cache=True)
+
+
+def _read_mesh(data: bytes, suffix: str, said: str, process: bool) -> Any:
     import trimesh  # (heavy: trimesh)
 
-    _unswept[0] += len(data)  # (what trimesh reads makes the cycles a later sweep frees; numpy-stl's arrays make none)
     try:
         mesh: Any = trimesh.load(io.BytesIO(data), file_type=suffix[1:], force="mesh", process=process)
         triangles = len(mesh.faces)
@@ -176,6 +197,43 @@ def require_mesh(data: bytes, suffix: str, said: str, process: bool) -> Any:
             "be one"
         )
     return mesh
+
+
+READ_MESH_VERTICES = 8_000_000  # the vertices the meshes kept hold at most (about 200 MB of float64, faces apart)
+
+
+class _ReadMeshes:
+    """The meshes trimesh read in this process, by their file's bytes (SHA-256), suffix and ``process``, the least
+    recently used dropped first once they hold more than READ_MESH_VERTICES: robots share meshes (the corpus's 129
+    name 2,533 files, of 885 contents), ``view --watch`` reads a robot's again on every change, and a run of several
+    features reads a robot's meshes in each. Sized by vertices, which functools.lru_cache cannot bound by; the
+    standard library's OrderedDict keeps the order (its documented LRU use). Callers get copies, never these."""
+
+    def __init__(self, most: int) -> None:
+        self.most = most
+        self.meshes: OrderedDict[tuple[bytes, str, bool], Any] = OrderedDict()
+        self.vertices = 0
+        self.lock = threading.Lock()  # (view --watch serves pages from threads)
+
+    def get(self, key: tuple[bytes, str, bool]) -> Any:
+        with self.lock:
+            mesh = self.meshes.get(key)
+            if mesh is not None:
+                self.meshes.move_to_end(key)
+            return mesh
+
+    def put(self, key: tuple[bytes, str, bool], mesh: Any) -> None:
+        with self.lock:
+            if key in self.meshes or len(mesh.vertices) > self.most:
+                return
+            self.meshes[key] = mesh
+            self.vertices += len(mesh.vertices)
+            while self.vertices > self.most:
+                _, dropped = self.meshes.popitem(last=False)
+                self.vertices -= len(dropped.vertices)
+
+
+_READ_MESHES = _ReadMeshes(READ_MESH_VERTICES)
 
 
 def mesh_root(urdf: Path, filename: str, packages: Mapping[str, str | os.PathLike[str]]) -> Path:
