@@ -212,7 +212,11 @@ def ik_solver(robot: Robot, frame: str, *, in_frame: str | None = None) -> IkSol
         XacrokitError: as :func:`pose`, an ``in_frame`` that moves with a joint (:class:`MovingFrame`), a robot
             without a joint to move, or a joint whose lower limit is above its upper (no value is within them).
     """
-    read, model = _read(robot)
+    return _solver(*_read(robot), frame, in_frame)
+
+
+def _solver(read: ReadRobot, model: KinematicModel, frame: str, in_frame: str | None) -> IkSolver:
+    """:func:`ik_solver` of the robot read (the solver kept on its kinematic model)."""
     key = (frame, in_frame or model.root)
     solver = model.solvers.get(key)
     if solver is None:
@@ -239,15 +243,14 @@ def ik(
     Raises:
         as :func:`ik_solver`; XacrokitError: a search whose pose error overflows at every start.
     """
-    read, _ = _read(robot)
-    solver = ik_solver(read, frame, in_frame=in_frame)
-    with _located(read):
-        try:
-            return solver.solve(target, every=every, position_only=position_only)
-        except XacrokitError as exc:
-            if isinstance(exc, (FollowerValueError, MovingFrame)):
-                raise
-            raise XacrokitError(f"{read.where}: {exc}") from None
+    read, model = _read(robot)  # (read and checked once: a loop over targets pays the solve alone)
+    solver = _solver(read, model, frame, in_frame)
+    try:
+        return solver.solve(target, every=every, position_only=position_only)
+    except MovingFrame:
+        raise
+    except XacrokitError as exc:  # (a mimic joint's value that overflows, as :func:`_located` says it, or a search)
+        raise XacrokitError(f"{read.where}: {exc}") from None
 
 
 def inverse_kinematics(

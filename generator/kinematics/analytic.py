@@ -36,7 +36,6 @@ from .subproblems import (
     add,
     angles,
     apply,
-    apply_transposed,
     cross,
     dot,
     multiply,
@@ -51,8 +50,6 @@ from .subproblems import (
     subproblem_2,
     subproblem_3,
     transposed,
-    turn,
-    turned,
 )
 
 BRANCH_NAMES = {
@@ -74,18 +71,31 @@ class Branch(NamedTuple):
 
 def branches(form: ClosedForm, rotation_: Mat, position: Vec) -> list[Branch]:
     """Every branch that puts the chain's frame at (``rotation_``, ``position``) in the root's frame."""
-    lines = form.lines
-    r_g = multiply(rotation_, transposed(lines.home_rotation))
-    p_g = sub(position, apply(r_g, lines.home_position))
+    (h00, h01, h02), (h10, h11, h12), (h20, h21, h22) = form.lines.home_rotation  # (G = T M^-1, on floats)
+    (a0, a1, a2), (b0, b1, b2), (c0, c1, c2) = rotation_
+    r0 = (a0 * h00 + a1 * h01 + a2 * h02, a0 * h10 + a1 * h11 + a2 * h12, a0 * h20 + a1 * h21 + a2 * h22)
+    r1 = (b0 * h00 + b1 * h01 + b2 * h02, b0 * h10 + b1 * h11 + b2 * h12, b0 * h20 + b1 * h21 + b2 * h22)
+    r2 = (c0 * h00 + c1 * h01 + c2 * h02, c0 * h10 + c1 * h11 + c2 * h12, c0 * h20 + c1 * h21 + c2 * h22)
+    (x0, x1, x2), (p0, p1, p2) = form.lines.home_position, position
+    p_g = (
+        p0 - (r0[0] * x0 + r0[1] * x1 + r0[2] * x2),
+        p1 - (r1[0] * x0 + r1[1] * x1 + r1[2] * x2),
+        p2 - (r2[0] * x0 + r2[1] * x1 + r2[2] * x2),
+    )
+    r_g = (r0, r1, r2)
     if form.kind == THREE_PARALLEL:
         return _three_parallel(form, r_g, p_g)
     return _spherical_wrist(form, r_g, p_g)
 
 
 class _Shoulder(NamedTuple):
-    """Subproblem 4 for q1 made once per arm: n . rotate(h1, t, f) = offset is a . f cos t + b . f sin t + c h1 . f
-    = offset (f the wrist centre from a point of axis 1)."""
+    """Step 1 made once per arm, subproblem 4 for q1: n . rotate(h1, t, f) = offset is a . f cos t + b . f sin t
+    + c h1 . f = offset, f the wrist centre (``wrist`` at the zero pose) from axis 1's point ``origin``."""
 
+    wrist: Vec
+    origin: Vec
+    axis: Vec  # (axis 1)
+    base: Vec  # (axis 1's point from axis 2's)
     a: Vec
     b: Vec
     c: float
@@ -95,7 +105,34 @@ class _Shoulder(NamedTuple):
 def _shoulder(form: ClosedForm, n: Vec) -> _Shoulder:
     h0, p0 = form.lines.axes[0], form.lines.points[0]
     hk = dot(n, h0)
-    return _Shoulder(sub(n, scale(hk, h0)), cross(n, h0), hk, dot(n, sub(form.wrist, p0)))
+    a, b, offset = sub(n, scale(hk, h0)), cross(n, h0), dot(n, sub(form.wrist, p0))
+    return _Shoulder(form.wrist, p0, h0, sub(p0, form.lines.points[1]), a, b, hk, offset)
+
+
+def _shoulder_roots(k: _Shoulder, r_g: Mat, p_g: Vec) -> tuple[list[float], bool, tuple[float, ...]] | None:
+    """Step 1 on floats: the roots t1 (= -q1), whether exact, and the wrist centre's parts about axis 1 (flat, as
+    :func:`.subproblems.parts` gives them, its part along the axis moved to axis 2's point: turned by t1 it is the
+    wrist centre from there); None when q1 has no equation (the wrist centre's plane holds axis 1)."""
+    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = r_g
+    (w0, w1, w2), (o0, o1, o2), (g0, g1, g2) = k.wrist, k.origin, p_g
+    f0 = r00 * w0 + r01 * w1 + r02 * w2 + g0 - o0  # (the wrist centre from axis 1's point)
+    f1 = r10 * w0 + r11 * w1 + r12 * w2 + g1 - o1
+    f2 = r20 * w0 + r21 * w1 + r22 * w2 + g2 - o2
+    (h0, h1, h2), (b0, b1, b2), (a0, a1, a2), (d0, d1, d2) = k.axis, k.base, k.a, k.b
+    along = h0 * f0 + h1 * f1 + h2 * f2
+    x, y = a0 * f0 + a1 * f1 + a2 * f2, d0 * f0 + d1 * f1 + d2 * f2
+    radius = math.hypot(x, y)
+    if radius < DEGENERATE:
+        return None
+    roots, exact = angles(math.atan2(y, x), radius, k.offset - k.c * along)
+    return (
+        roots,
+        exact,
+        (
+            (b0 + along * h0, b1 + along * h1, b2 + along * h2, f0 - along * h0, f1 - along * h1, f2 - along * h2)
+            + (h1 * f2 - h2 * f1, h2 * f0 - h0 * f2, h0 * f1 - h1 * f0)
+        ),
+    )
 
 
 def _fixed(h: Vec, k: Vec, p: Vec, base: float = 0.0) -> tuple[float, float, float]:
@@ -107,20 +144,28 @@ def _fixed(h: Vec, k: Vec, p: Vec, base: float = 0.0) -> tuple[float, float, flo
 
 
 class _ThreeParallel(NamedTuple):
-    """What every target of a three-parallel-axes arm shares (made once per arm: ClosedForm is frozen)."""
+    """What every target of a three-parallel-axes arm shares (made once per arm: ClosedForm is frozen). A vector the
+    solve turns is kept as its :func:`.subproblems.parts`, flat: nine floats, along, across and k x it."""
 
     shoulder: _Shoulder
-    n_about_1: tuple[Vec, Vec, Vec]  # (n turned by q1 about axis 1)
-    across_about_1: tuple[Vec, Vec, Vec]  # (a unit vector across n, and n x it, turned by q1: theta's frame)
-    normal_about_1: tuple[Vec, Vec, Vec]
-    wrist: tuple[float, float, float]  # (q5's phase, radius and constant term)
-    n_about_5: tuple[Vec, Vec, Vec]  # (n turned by -q5 about axis 5)
-    across_about_5: tuple[Vec, Vec, Vec]
-    wrist_arm: tuple[Vec, Vec, Vec]  # (the wrist centre from axis 4, turned by theta about n)
+    axis_6: Vec
+    n_about_1: tuple[float, ...]  # (n turned by q1 about axis 1)
+    across_about_1: tuple[float, ...]  # (a unit vector across n, and n x it, turned by q1: theta's frame)
+    normal_about_1: tuple[float, ...]
+    wrist_roots: tuple[float, float, float]  # (q5's phase, radius and constant term)
+    n_about_5: tuple[float, ...]  # (n turned by -q5 about axis 5)
+    across_about_5: tuple[float, ...]
+    wrist_arm: tuple[float, ...]  # (the wrist centre from axis 4, turned by theta about n)
     elbow: tuple[float, float, float]  # (q3's phase, radius and constant term, |fore|^2 + |back|^2 halved)
-    forearm: tuple[Vec, Vec, Vec]  # (axis 4's point from axis 3's, turned by q3)
+    n: Vec
+    forearm: tuple[float, ...]  # (axis 4's point from axis 3's, turned by q3)
+    axis_2: Vec
     upper: Vec  # (axis 3's point from axis 2's)
     signs: tuple[float, float, float]
+
+
+def _flat(parts_: tuple[Vec, Vec, Vec]) -> tuple[float, ...]:
+    return (*parts_[0], *parts_[1], *parts_[2])
 
 
 @functools.cache
@@ -133,93 +178,129 @@ def _three_parallel_constants(form: ClosedForm) -> _ThreeParallel:
     elbow = (phase, radius, constant - (dot(fore, fore) + dot(back, back)) / 2.0)
     return _ThreeParallel(
         _shoulder(form, n),
-        parts(h[0], n),
-        parts(h[0], across),
-        parts(h[0], cross(n, across)),
+        h[5],
+        _flat(parts(h[0], n)),
+        _flat(parts(h[0], across)),
+        _flat(parts(h[0], cross(n, across))),
         _fixed(n, h[4], h[5]),
-        parts(h[4], n),
-        parts(h[4], across),
-        parts(n, sub(form.wrist, p[3])),
+        _flat(parts(h[4], n)),
+        _flat(parts(h[4], across)),
+        _flat(parts(n, sub(form.wrist, p[3]))),
         elbow,
-        parts(h[2], sub(p[3], p[2])),
+        n,
+        _flat(parts(h[2], sub(p[3], p[2]))),
+        h[1],
         sub(p[2], p[1]),
         (dot(h[1], n), dot(h[2], n), dot(h[3], n)),
     )
 
 
-def _shoulder_roots(
-    shoulder: _Shoulder, h0: Vec, base: Vec, f: Vec
-) -> tuple[tuple[list[float], bool] | None, tuple[Vec, Vec, Vec]]:
-    """q1's subproblem for the wrist centre at ``f`` from axis 1's point, and f's parts about axis 1
-    (:func:`.subproblems.parts`, its part along the axis moved by ``base``: f turned from there)."""
-    a, b = shoulder.a, shoulder.b
-    along = h0[0] * f[0] + h0[1] * f[1] + h0[2] * f[2]
-    x = a[0] * f[0] + a[1] * f[1] + a[2] * f[2]
-    y = b[0] * f[0] + b[1] * f[1] + b[2] * f[2]
-    radius = math.hypot(x, y)
-    f_parts = (
-        (base[0] + along * h0[0], base[1] + along * h0[1], base[2] + along * h0[2]),
-        (f[0] - along * h0[0], f[1] - along * h0[1], f[2] - along * h0[2]),
-        (h0[1] * f[2] - h0[2] * f[1], h0[2] * f[0] - h0[0] * f[2], h0[0] * f[1] - h0[1] * f[0]),
-    )
-    if radius < DEGENERATE:
-        return None, f_parts
-    return angles(math.atan2(y, x), radius, shoulder.offset - shoulder.c * along), f_parts
-
-
 def _three_parallel(form: ClosedForm, r_g: Mat, p_g: Vec) -> list[Branch]:
-    """The chain of the module's docstring, its arithmetic written out on floats (a solve's hot loop): vectors the
-    arm fixes are turned from their parts (:func:`.subproblems.parts`), and theta is read in a frame across n."""
+    """The chain of the module's docstring, its arithmetic written out on floats (a solve's hot loop: no call but
+    the subproblems' and math's): vectors the arm fixes are turned from their parts, and theta is read in a frame
+    across n. Step 1 here, the rest for each root of q1 (:func:`_three_parallel_wrists`)."""
     k = _three_parallel_constants(form)
-    h, p = form.lines.axes, form.lines.points
-    f = sub(add(apply(r_g, form.wrist), p_g), p[0])
-    shoulder, f_parts = _shoulder_roots(k.shoulder, h[0], sub(p[0], p[1]), f)
-    g6 = apply(r_g, h[5])
+    step = _shoulder_roots(k.shoulder, r_g, p_g)
+    if step is None:
+        return []
+    roots, exact, reach = step
+    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = r_g
+    x6, y6, z6 = k.axis_6
+    g6 = (r00 * x6 + r01 * y6 + r02 * z6, r10 * x6 + r11 * y6 + r12 * z6, r20 * x6 + r21 * y6 + r22 * z6)
     found: list[Branch] = []
-    for i, t1 in enumerate(_roots(shoulder)):
-        c1, s1 = math.cos(t1), -math.sin(t1)  # (of q1 = -t1)
-        n1 = turned(k.n_about_1, c1, s1)
-        frame = (
-            apply_transposed(r_g, turned(k.across_about_1, c1, s1)),
-            apply_transposed(r_g, turned(k.normal_about_1, c1, s1)),
-        )
-        back_n1 = apply_transposed(r_g, n1)
-        reach = turned(f_parts, c1, -s1)  # (the wrist centre turned by t1 about axis 1, from axis 2's point)
-        wrist = angles(k.wrist[0], k.wrist[1], dot(n1, g6) - k.wrist[2]) if k.wrist[1] >= DEGENERATE else None
-        for j, q5 in enumerate(_roots(wrist)):
-            c5, s5 = math.cos(q5), -math.sin(q5)  # (of -q5)
-            t6 = subproblem_1(h[5], turned(k.n_about_5, c5, s5), back_n1)
-            theta, to_w = _theta(k, turned(k.across_about_5, c5, s5), h[5], t6, frame, reach)
-            elbow = _elbow_of(k.elbow, to_w, form.parallel or h[1])
-            exact = _exact(shoulder) and _exact(wrist) and _exact(elbow)
-            q6, singular = (-t6, "") if t6 is not None else (0.0, _UR_WRIST)
-            for m, q3 in enumerate(_roots(elbow)):
-                e3 = turned(k.forearm, math.cos(q3), math.sin(q3))
-                q2 = subproblem_1(h[1], (e3[0] + k.upper[0], e3[1] + k.upper[1], e3[2] + k.upper[2]), to_w) or 0.0
-                q4 = k.signs[2] * (theta - k.signs[0] * q2 - k.signs[1] * q3)
-                found.append(Branch((-t1, q2, q3, q4, q5, q6), (i, j, m), exact, singular))
+    for i, t1 in enumerate(roots):
+        _three_parallel_wrists(k, (r_g, g6, reach), t1, (i, exact), found)
     return found
 
 
-def _theta(
-    k: _ThreeParallel, across_5: Vec, h5: Vec, t6: float | None, frame: tuple[Vec, Vec], reach: Vec
-) -> tuple[float, Vec]:
-    """theta = q2 + q3 + q4 (step 4: the angle about n from a vector across n to where the wrist's turns take it,
-    read in the frame made for q1) and w (step 5)."""
-    v = rotate(h5, t6, across_5) if t6 is not None else across_5
-    x, y = dot(v, frame[0]), dot(v, frame[1])
-    theta = math.atan2(y, x) if math.hypot(x, y) >= DEGENERATE else 0.0
-    arm = turned(k.wrist_arm, math.cos(theta), math.sin(theta))
-    return theta, (reach[0] - arm[0], reach[1] - arm[1], reach[2] - arm[2])
-
-
-def _elbow_of(elbow: tuple[float, float, float], to_w: Vec, n: Vec) -> tuple[list[float], bool] | None:
-    """q3 (step 5): subproblem 3 with the distance of w from axis 2, its constants (``elbow``) made once per arm."""
-    phase, radius, constant = elbow
+def _three_parallel_wrists(
+    k: _ThreeParallel, goal: tuple[Mat, Vec, tuple[float, ...]], t1: float, root: tuple[int, bool], found: list[Branch]
+) -> None:
+    """Steps 2 to 4 for the root ``t1`` (-q1) of step 1, then step 5 (:func:`_three_parallel_elbows`); ``goal`` is
+    R_G, R_G h6 and the wrist centre's parts about axis 1, ``root`` the root's index and whether it is exact.
+    (Subproblem 1 for q6 on floats: the part of R_G^T R1 n across axis 6 made once for both roots of q5.)"""
+    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = goal[0]
+    c1, s1, t = math.cos(t1), -math.sin(t1), math.sin(t1)  # (of q1 = -t1)
+    a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.n_about_1
+    n0, n1, n2 = a0 + c1 * b0 + s1 * d0, a1 + c1 * b1 + s1 * d1, a2 + c1 * b2 + s1 * d2
+    a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.across_about_1
+    e0, e1, e2 = a0 + c1 * b0 + s1 * d0, a1 + c1 * b1 + s1 * d1, a2 + c1 * b2 + s1 * d2
+    x0, x1, x2 = r00 * e0 + r10 * e1 + r20 * e2, r01 * e0 + r11 * e1 + r21 * e2, r02 * e0 + r12 * e1 + r22 * e2
+    a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.normal_about_1
+    e0, e1, e2 = a0 + c1 * b0 + s1 * d0, a1 + c1 * b1 + s1 * d1, a2 + c1 * b2 + s1 * d2
+    y0, y1, y2 = r00 * e0 + r10 * e1 + r20 * e2, r01 * e0 + r11 * e1 + r21 * e2, r02 * e0 + r12 * e1 + r22 * e2
+    a0, a1, a2, b0, b1, b2, d0, d1, d2 = goal[2]  # (the wrist centre turned by t1 about axis 1, from axis 2's point)
+    u0, u1, u2 = a0 + c1 * b0 + t * d0, a1 + c1 * b1 + t * d1, a2 + c1 * b2 + t * d2
+    phase, radius, constant = k.wrist_roots
     if radius < DEGENERATE:
-        return None
-    along = dot(to_w, n)
-    return angles(phase, radius, -(dot(to_w, to_w) - along * along) / 2.0 - constant)
+        return
+    g0, g1, g2 = goal[1]
+    fifths, wrist_exact = angles(phase, radius, n0 * g0 + n1 * g1 + n2 * g2 - constant)
+    k0, k1, k2 = k.axis_6
+    g0, g1, g2 = r00 * n0 + r10 * n1 + r20 * n2, r01 * n0 + r11 * n1 + r21 * n2, r02 * n0 + r12 * n1 + r22 * n2
+    along = k0 * g0 + k1 * g1 + k2 * g2  # (R_G^T R1 n, across axis 6: q6's target)
+    g0, g1, g2 = g0 - along * k0, g1 - along * k1, g2 - along * k2
+    turns_6 = math.sqrt(g0 * g0 + g1 * g1 + g2 * g2) >= DEGENERATE
+    for j, q5 in enumerate(fifths):
+        c5, s5 = math.cos(q5), -math.sin(q5)  # (of -q5)
+        a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.n_about_5
+        p0, p1, p2 = a0 + c5 * b0 + s5 * d0, a1 + c5 * b1 + s5 * d1, a2 + c5 * b2 + s5 * d2
+        along = k0 * p0 + k1 * p1 + k2 * p2
+        p0, p1, p2 = p0 - along * k0, p1 - along * k1, p2 - along * k2
+        a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.across_about_5
+        v0, v1, v2 = a0 + c5 * b0 + s5 * d0, a1 + c5 * b1 + s5 * d1, a2 + c5 * b2 + s5 * d2
+        t6 = None
+        if turns_6 and math.sqrt(p0 * p0 + p1 * p1 + p2 * p2) >= DEGENERATE:  # (step 3: subproblem 1; else singular)
+            sine = k0 * (p1 * g2 - p2 * g1) + k1 * (p2 * g0 - p0 * g2) + k2 * (p0 * g1 - p1 * g0)
+            t6 = math.atan2(sine, p0 * g0 + p1 * g1 + p2 * g2)
+            c, s = math.cos(t6), math.sin(t6)  # (step 4: v turned by joint 6; Rodrigues)
+            along = (k0 * v0 + k1 * v1 + k2 * v2) * (1.0 - c)
+            v0, v1, v2 = (
+                v0 * c + (k1 * v2 - k2 * v1) * s + k0 * along,
+                v1 * c + (k2 * v0 - k0 * v2) * s + k1 * along,
+                v2 * c + (k0 * v1 - k1 * v0) * s + k2 * along,
+            )
+        x, y = v0 * x0 + v1 * x1 + v2 * x2, v0 * y0 + v1 * y1 + v2 * y2
+        theta = math.atan2(y, x) if math.hypot(x, y) >= DEGENERATE else 0.0
+        c, s = math.cos(theta), math.sin(theta)
+        a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.wrist_arm
+        w = (u0 - (a0 + c * b0 + s * d0), u1 - (a1 + c * b1 + s * d1), u2 - (a2 + c * b2 + s * d2))
+        q6, singular = (-t6, "") if t6 is not None else (0.0, _UR_WRIST)
+        head = (-t1, q5, q6, root[0], j, root[1] and wrist_exact, singular)
+        _three_parallel_elbows(k, w, theta, head, found)
+
+
+def _three_parallel_elbows(
+    k: _ThreeParallel, w: Vec, theta: float, head: tuple[float, float, float, int, int, bool, str], found: list[Branch]
+) -> None:
+    """Step 5: q3 from w's distance from axis 2, q2 turning the elbow onto w (subproblem 1 on floats, w's part
+    across axis 2 made once for both roots) and q4 = theta - q2 - q3 (each with its axis' sign); the branches
+    appended to ``found``, ``head`` holding q1, q5, q6, the roots of q1 and q5, whether exact, and the singularity."""
+    phase, radius, constant = k.elbow
+    if radius < DEGENERATE:
+        return
+    (w0, w1, w2), (m0, m1, m2), (k0, k1, k2) = w, k.n, k.axis_2
+    along = w0 * m0 + w1 * m1 + w2 * m2
+    square = w0 * w0 + w1 * w1 + w2 * w2  # (w's distance from axis 2)
+    thirds, elbow_exact = angles(phase, radius, -(square - along * along) / 2.0 - constant)
+    q1, q5, q6, i, j, exact, singular = head
+    exact = exact and elbow_exact
+    along = k0 * w0 + k1 * w1 + k2 * w2
+    y0, y1, y2 = w0 - along * k0, w1 - along * k1, w2 - along * k2
+    turns_2 = math.sqrt(y0 * y0 + y1 * y1 + y2 * y2) >= DEGENERATE
+    a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.forearm
+    (u0, u1, u2), (sign2, sign3, sign4) = k.upper, k.signs
+    for m, q3 in enumerate(thirds):
+        c, s = math.cos(q3), math.sin(q3)
+        p0, p1, p2 = a0 + c * b0 + s * d0 + u0, a1 + c * b1 + s * d1 + u1, a2 + c * b2 + s * d2 + u2
+        along = k0 * p0 + k1 * p1 + k2 * p2
+        x0, x1, x2 = p0 - along * k0, p1 - along * k1, p2 - along * k2
+        q2 = 0.0
+        if turns_2 and math.sqrt(x0 * x0 + x1 * x1 + x2 * x2) >= DEGENERATE:
+            sine = k0 * (x1 * y2 - x2 * y1) + k1 * (x2 * y0 - x0 * y2) + k2 * (x0 * y1 - x1 * y0)
+            q2 = math.atan2(sine, x0 * y0 + x1 * y1 + x2 * y2) or 0.0
+        q4 = sign4 * (theta - sign2 * q2 - sign3 * q3)
+        found.append(Branch((q1, q2, q3, q4, q5, q6), (i, j, m), exact, singular))
 
 
 _UR_WRIST = (
@@ -280,8 +361,8 @@ class _WristPair(NamedTuple):
     normal: Vec  # (h4 x across)
     q5_sine: tuple[float, float]  # ((h5 x h6) . h4, (h5 x h6) . across)
     q5_cosine: tuple[float, float]  # ((h6 - (h5.h6) h5) . h4, and . across)
-    q6_across: tuple[Vec, Vec, Vec]  # (axis 6's across vector turned by q5, :func:`.subproblems.parts`)
-    q6_normal: tuple[Vec, Vec, Vec]  # (h6 x across, turned by q5)
+    q6_across: tuple[float, ...]  # (axis 6's across vector turned by q5, :func:`.subproblems.parts`, flat)
+    q6_normal: tuple[float, ...]  # (h6 x across, turned by q5)
 
 
 def _wrist_pair(h: tuple[Vec, ...], across6: Vec) -> _WristPair:
@@ -299,8 +380,8 @@ def _wrist_pair(h: tuple[Vec, ...], across6: Vec) -> _WristPair:
         cross(h4, across),
         (dot(sine_vector, h4), dot(sine_vector, across)),
         (dot(cosine_vector, h4), dot(cosine_vector, across)),
-        parts(h5, across6),
-        parts(h5, cross(h6, across6)),
+        _flat(parts(h5, across6)),
+        _flat(parts(h5, cross(h6, across6))),
     )
 
 
@@ -308,13 +389,14 @@ def _wrist_on_floats(w: _WristPair, v: Vec, v6: Vec) -> tuple[list[Vec], bool] |
     """Step 2 as :func:`_wrist` gives it (q4, q5, q6 for each middle vector, and whether exact), on floats; None
     where subproblem 1 has no direction (the wrist singularity: :func:`_wrist` answers it)."""
     c, (x4, y4, z4), (xa, ya, za), (xn, yn, zn) = w.cosine, w.h4, w.across, w.normal
-    a1 = x4 * v[0] + y4 * v[1] + z4 * v[2]
-    on5 = w.h5[0] * v[0] + w.h5[1] * v[1] + w.h5[2] * v[2]
-    on_across, on_normal = xa * v[0] + ya * v[1] + za * v[2], xn * v[0] + yn * v[1] + zn * v[2]
+    v0, v1, v2 = v
+    a1 = x4 * v0 + y4 * v1 + z4 * v2
+    on5 = w.h5[0] * v0 + w.h5[1] * v1 + w.h5[2] * v2
+    on_across, on_normal = xa * v0 + ya * v1 + za * v2, xn * v0 + yn * v1 + zn * v2
     alpha = (a1 - c * w.along) / (1.0 - c * c)
     beta = (w.along - c * a1) / (1.0 - c * c)
     rest = w.square - alpha * alpha - beta * beta - 2.0 * alpha * beta * c
-    square = v[0] * v[0] + v[1] * v[1] + v[2] * v[2]
+    square = v0 * v0 + v1 * v1 + v2 * v2
     scale_ = max(w.square, square, 1e-300)
     exact = rest >= -TANGENT * scale_ and abs(w.square - square) <= TANGENT * scale_
     gamma = math.sqrt(max(rest, 0.0) / w.sine2)
@@ -322,14 +404,21 @@ def _wrist_on_floats(w: _WristPair, v: Vec, v6: Vec) -> tuple[list[Vec], bool] |
     middle2 = alpha * alpha + beta * beta + 2.0 * alpha * beta * c + gamma * gamma * w.sine2
     if math.sqrt(max(middle2 - on4 * on4, 0.0)) < DEGENERATE or math.sqrt(max(square - a1 * a1, 0.0)) < DEGENERATE:
         return None
-    p0, p1, p2 = parts(w.h4, v6)
+    u0, u1, u2 = v6  # (v6's parts about h4, :func:`.subproblems.parts`)
+    along = x4 * u0 + y4 * u1 + z4 * u2
+    a0, a1_, a2, b0, b1, b2 = along * x4, along * y4, along * z4, u0 - along * x4, u1 - along * y4, u2 - along * z4
+    d0, d1, d2 = y4 * u2 - z4 * u1, z4 * u0 - x4 * u2, x4 * u1 - y4 * u0
+    (sine_4, sine_a), (cosine_4, cosine_a) = w.q5_sine, w.q5_cosine
+    ea0, ea1, ea2, eb0, eb1, eb2, ed0, ed1, ed2 = w.q6_across
+    fa0, fa1, fa2, fb0, fb1, fb2, fd0, fd1, fd2 = w.q6_normal
     found = []
     for g in (gamma, -gamma) if gamma > 0 else (gamma,):
-        q5 = math.atan2(alpha * w.q5_sine[0] + g * w.q5_sine[1], alpha * w.q5_cosine[0] + g * w.q5_cosine[1])
+        q5 = math.atan2(alpha * sine_4 + g * sine_a, alpha * cosine_4 + g * cosine_a)
         q4 = math.atan2(beta * on_across + g * on_normal, alpha * a1 + beta * on5 + g * on_across - on4 * a1)
         c4, s4, c5, s5 = math.cos(q4), -math.sin(q4), math.cos(q5), math.sin(q5)
-        y0, y1, y2 = turned((p0, p1, p2), c4, s4)  # (v6 turned back by q4)
-        (e0, e1, e2), (f0, f1, f2) = turned(w.q6_across, c5, s5), turned(w.q6_normal, c5, s5)
+        y0, y1, y2 = a0 + c4 * b0 + s4 * d0, a1_ + c4 * b1 + s4 * d1, a2 + c4 * b2 + s4 * d2  # (v6 turned back by q4)
+        e0, e1, e2 = ea0 + c5 * eb0 + s5 * ed0, ea1 + c5 * eb1 + s5 * ed1, ea2 + c5 * eb2 + s5 * ed2
+        f0, f1, f2 = fa0 + c5 * fb0 + s5 * fd0, fa1 + c5 * fb1 + s5 * fd1, fa2 + c5 * fb2 + s5 * fd2
         found.append((q4, q5, math.atan2(y0 * f0 + y1 * f1 + y2 * f2, y0 * e0 + y1 * e1 + y2 * e2)))
     return found, exact
 
@@ -339,10 +428,14 @@ class _ParallelArm(NamedTuple):
 
     shoulder: _Shoulder
     elbow: tuple[float, float, float]  # (q3's phase, radius and constant term, as the three-parallel-axes arm's)
-    forearm: tuple[Vec, Vec, Vec]  # (the wrist centre from axis 3's point, turned by q3)
+    n: Vec
+    forearm: tuple[float, ...]  # (the wrist centre from axis 3's point, turned by q3; flat parts)
     upper: Vec  # (axis 3's point from axis 2's)
+    axis_2: Vec
+    axis_3: Vec
     across: Vec  # (a unit vector at right angles to axis 6)
     wrist: _WristPair
+    axes: tuple[Vec, ...]
 
 
 @functools.cache
@@ -351,40 +444,91 @@ def _parallel_arm_constants(form: ClosedForm) -> _ParallelArm:
     fore, back = perpendicular(sub(form.wrist, p[2]), n), scale(-1.0, perpendicular(sub(p[2], p[1]), n))
     phase, radius, constant = _fixed(back, h[2], fore)
     elbow = (phase, radius, constant - (dot(fore, fore) + dot(back, back)) / 2.0)
-    forearm, across = parts(h[2], sub(form.wrist, p[2])), _across(h[5])
-    return _ParallelArm(_shoulder(form, n), elbow, forearm, sub(p[2], p[1]), across, _wrist_pair(h, across))
+    forearm, across = _flat(parts(h[2], sub(form.wrist, p[2]))), _across(h[5])
+    wrist = _wrist_pair(h, across)
+    return _ParallelArm(_shoulder(form, n), elbow, n, forearm, sub(p[2], p[1]), h[1], h[2], across, wrist, h)
 
 
 def _parallel_arm(form: ClosedForm, r_g: Mat, p_g: Vec) -> list[Branch]:
     """Step 1 as the three parallel axes' shoulder and elbow (q1 from n . E1^-1(G W) = n . W, q3 from the wrist
     centre's distance from axis 2, q2 turning it onto), then step 2 on axis 6 and a vector across it turned back
-    by joints 1 to 3 (Rodrigues on floats: no matrices made)."""
+    by joints 1 to 3 (Rodrigues on floats: no matrices made); for each root of q1, :func:`_parallel_arm_elbows`."""
     k = _parallel_arm_constants(form)
-    h, p = form.lines.axes, form.lines.points
-    f = sub(add(apply(r_g, form.wrist), p_g), p[0])
-    shoulder, f_parts = _shoulder_roots(k.shoulder, h[0], sub(p[0], p[1]), f)
-    g6, a6 = parts(h[0], apply(r_g, h[5])), parts(h[0], apply(r_g, k.across))
+    step = _shoulder_roots(k.shoulder, r_g, p_g)
+    if step is None:
+        return []
+    roots, exact, reach = step
+    axis = k.shoulder.axis
+    g6, a6 = _flat(parts(axis, apply(r_g, k.axes[5]))), _flat(parts(axis, apply(r_g, k.across)))
     found: list[Branch] = []
-    for i, t1 in enumerate(_roots(shoulder)):
-        c1, s1 = math.cos(t1), math.sin(t1)
-        reach = turned(f_parts, c1, s1)  # (the wrist centre turned by t1 = -q1 about axis 1, from axis 2's point)
-        elbow = _elbow_of(k.elbow, reach, form.parallel or h[1])
-        back6, back_across = turned(g6, c1, s1), turned(a6, c1, s1)
-        for m, q3 in enumerate(_roots(elbow)):
-            c3, s3 = math.cos(q3), math.sin(q3)
-            e3 = turned(k.forearm, c3, s3)
-            q2 = subproblem_1(h[1], (e3[0] + k.upper[0], e3[1] + k.upper[1], e3[2] + k.upper[2]), reach) or 0.0
-            c2, s2 = math.cos(q2), -math.sin(q2)
-            v = turn(h[2], c3, -s3, turn(h[1], c2, s2, back6))
-            v6 = turn(h[2], c3, -s3, turn(h[1], c2, s2, back_across))
-            exact = _exact(shoulder) and _exact(elbow)
-            fast = _wrist_on_floats(k.wrist, v, v6)
-            if fast is None:
-                for j, values, wrist_exact, singular in _wrist(h, v, v6, k.across):
-                    found.append(Branch((-t1, q2, q3, *values), (i, m, j), exact and wrist_exact, singular))
-                continue
-            for j, (q4, q5, q6) in enumerate(fast[0]):
-                found.append(Branch((-t1, q2, q3, q4, q5, q6), (i, m, j), exact and fast[1]))
+    for i, t1 in enumerate(roots):
+        _parallel_arm_elbows(k, (g6, a6, reach), t1, (i, exact), found)
+    return found
+
+
+def _parallel_arm_elbows(
+    k: _ParallelArm, goal: tuple[tuple[float, ...], ...], t1: float, root: tuple[int, bool], found: list[Branch]
+) -> None:
+    """The branches of the root ``t1`` (= -q1) appended to ``found``: ``goal`` holds the parts about axis 1 of R_G h6,
+    of R_G across and of the wrist centre (:func:`_shoulder_roots`), ``root`` the root's index and whether exact."""
+    c1, s1 = math.cos(t1), math.sin(t1)
+    a0, a1, a2, b0, b1, b2, d0, d1, d2 = goal[2]  # (the wrist centre turned by t1 about axis 1, from axis 2's point)
+    u = (a0 + c1 * b0 + s1 * d0, a1 + c1 * b1 + s1 * d1, a2 + c1 * b2 + s1 * d2)
+    phase, radius, constant = k.elbow
+    if radius < DEGENERATE:
+        return
+    (m0, m1, m2), (u0, u1, u2) = k.n, u
+    along = u0 * m0 + u1 * m1 + u2 * m2
+    thirds, elbow_exact = angles(phase, radius, -(u0 * u0 + u1 * u1 + u2 * u2 - along * along) / 2.0 - constant)
+    a0, a1, a2, b0, b1, b2, d0, d1, d2 = goal[0]
+    back6 = (a0 + c1 * b0 + s1 * d0, a1 + c1 * b1 + s1 * d1, a2 + c1 * b2 + s1 * d2)
+    a0, a1, a2, b0, b1, b2, d0, d1, d2 = goal[1]
+    back_across = (a0 + c1 * b0 + s1 * d0, a1 + c1 * b1 + s1 * d1, a2 + c1 * b2 + s1 * d2)
+    a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.forearm
+    (p0, p1, p2), (k0, k1, k2), exact = k.upper, k.axis_2, root[1] and elbow_exact
+    along = k0 * u0 + k1 * u1 + k2 * u2  # (subproblem 1 for q2 on floats: u's part across axis 2 made once)
+    y0, y1, y2 = u0 - along * k0, u1 - along * k1, u2 - along * k2
+    turns_2 = math.sqrt(y0 * y0 + y1 * y1 + y2 * y2) >= DEGENERATE
+    for m, q3 in enumerate(thirds):
+        c3, s3 = math.cos(q3), math.sin(q3)
+        e0, e1, e2 = a0 + c3 * b0 + s3 * d0 + p0, a1 + c3 * b1 + s3 * d1 + p1, a2 + c3 * b2 + s3 * d2 + p2
+        along = k0 * e0 + k1 * e1 + k2 * e2
+        x0, x1, x2 = e0 - along * k0, e1 - along * k1, e2 - along * k2
+        q2 = 0.0
+        if turns_2 and math.sqrt(x0 * x0 + x1 * x1 + x2 * x2) >= DEGENERATE:
+            sine = k0 * (x1 * y2 - x2 * y1) + k1 * (x2 * y0 - x0 * y2) + k2 * (x0 * y1 - x1 * y0)
+            q2 = math.atan2(sine, x0 * y0 + x1 * y1 + x2 * y2) or 0.0
+        v, v6 = _turned_twice(k, (math.cos(q2), -math.sin(q2), c3, -s3), (back6, back_across))
+        fast = _wrist_on_floats(k.wrist, v, v6)
+        if fast is None:
+            for j, values, wrist_exact, singular in _wrist(k.axes, v, v6, k.across):
+                found.append(Branch((-t1, q2, q3, *values), (root[0], m, j), exact and wrist_exact, singular))
+            continue
+        for j, (q4, q5, q6) in enumerate(fast[0]):
+            found.append(Branch((-t1, q2, q3, q4, q5, q6), (root[0], m, j), exact and fast[1]))
+
+
+def _turned_twice(k: _ParallelArm, turns: tuple[float, float, float, float], pair: tuple[Vec, Vec]) -> list[Vec]:
+    """Both vectors of ``pair`` turned about axis 2, then about axis 3, by the angles of cosines and sines ``turns``
+    (:func:`.subproblems.turn` twice, written out)."""
+    c, s, c3, s3 = turns
+    (k0, k1, k2), (j0, j1, j2) = k.axis_2, k.axis_3
+    found = []
+    for a0, a1, a2 in pair:
+        along = (k0 * a0 + k1 * a1 + k2 * a2) * (1.0 - c)
+        a0, a1, a2 = (
+            a0 * c + (k1 * a2 - k2 * a1) * s + k0 * along,
+            a1 * c + (k2 * a0 - k0 * a2) * s + k1 * along,
+            a2 * c + (k0 * a1 - k1 * a0) * s + k2 * along,
+        )
+        along = (j0 * a0 + j1 * a1 + j2 * a2) * (1.0 - c3)
+        found.append(
+            (
+                a0 * c3 + (j1 * a2 - j2 * a1) * s3 + j0 * along,
+                a1 * c3 + (j2 * a0 - j0 * a2) * s3 + j1 * along,
+                a2 * c3 + (j0 * a1 - j1 * a0) * s3 + j2 * along,
+            )
+        )
     return found
 
 

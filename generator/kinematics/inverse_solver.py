@@ -45,6 +45,8 @@ POLISHABLE = 1e-3  # m or rad: a branch the closed form brought this near is pol
 TURN = 2 * math.pi
 LIMIT_SLACK = 1e-12  # rad: a value this far beyond a limit is at it
 NUMERIC = "numeric (damped least squares)"
+_ROOT = ((1.0, 0.0, 0.0, 0.0), (0.0, 1.0, 0.0, 0.0), (0.0, 0.0, 1.0, 0.0))  # (a pose's rows at the root: no turn)
+_BOTTOM = [0.0, 0.0, 0.0, 1.0]
 
 
 @dataclass(frozen=True)
@@ -111,6 +113,8 @@ class IkSolver:
     names: list[str] = field(init=False, default_factory=list)
     rest_values: list[float] = field(init=False, default_factory=list)  # (the rest pose, plain floats)
     centres: list[float] = field(init=False, default_factory=list)  # (the closed form's chain at rest)
+    bounds: list[tuple[float, float, float, float] | None] = field(init=False, default_factory=list)  # (_nearest_turns)
+    base_rows: tuple[tuple[float, ...], ...] | None = field(init=False, default=None)  # (None: the root's axes)
     whole: bool = field(init=False, default=False)  # (the closed form's chain is every joint one sets, in order)
 
     def __post_init__(self) -> None:
@@ -132,6 +136,10 @@ class IkSolver:
         if self.form is not None:
             self.reposer = Reposer.of(model, target, self.form.lines.joints, self.rest)
             self.centres = [self.rest_values[k] for k in self.form.lines.joints]
+            self.bounds = [None if r is None else (r[0] - LIMIT_SLACK, r[1] + LIMIT_SLACK, *r) for r in self.ranges]
+            rows = tuple(tuple(row) for row in self.base.homogeneous[:3].tolist())
+            signs = all(math.copysign(1.0, v) > 0 for row in rows for v in row)  # (no -0.0: its sums differ)
+            self.base_rows = None if rows == _ROOT and signs else rows
             self.whole = list(self.form.lines.joints) == list(range(len(self.names)))
 
     def chain_names(self, path: set[int]) -> set[str]:
@@ -156,13 +164,15 @@ class IkSolver:
         """The joint values that put the frame at ``target`` (4x4, T_IN_FRAME; its rotation ignored when
         ``position_only``): every branch (``every``), else the one nearest ``near`` (joint values in the joints'
         order; default the rest pose)."""
-        import pinocchio as pin  # (heavy: pinocchio)
-
         matrix = np.asarray(target, dtype=float)
-        goal = self.base * pin.SE3(matrix[:3, :3], matrix[:3, 3])
+        closed = self.form is not None and not position_only
+        pose = self._pose(matrix) if closed else None
+        # (pinocchio's goal: made only when the closed form does not answer, or the target is no 4x4 of finite numbers)
+        goal: Any = self._goal(matrix) if pose is None else None
         seed = self.rest if near is None else np.clip(np.asarray(near, dtype=float), self.chain.lower, self.chain.upper)
-        if self.form is not None and not position_only:
-            found, outside, count = self._closed_form(goal, every=every, seed=seed)
+        if closed:
+            pose = goal.homogeneous.tolist() if pose is None else pose
+            found, outside, count = self._closed_form(matrix, pose, every=every, seed=seed)
             if found:
                 names = list(self.names)
                 complete = len(found) == count
@@ -171,11 +181,39 @@ class IkSolver:
                 )
         else:
             outside = 0
+        goal = self._goal(matrix) if goal is None else goal
         first = [seed] if near is not None else []
         seeds = first + self._nearest(goal, position_only=position_only)
         searched = self._numeric(goal, every=every, position_only=position_only, seeds=seeds)
         searched.solutions.sort(key=lambda s: _order(s.values, seed, self.model.joints))  # (nearest first)
         return dataclasses.replace(searched, outside_limits=outside)  # (the closed form's, when all were outside)
+
+    def _goal(self, matrix: np.ndarray) -> Any:
+        """The target in the root's frame: pinocchio's SE3 (what the numeric search and the check measure)."""
+        import pinocchio as pin  # (heavy: pinocchio)
+
+        return self.base * pin.SE3(matrix[:3, :3], matrix[:3, 3])
+
+    def _pose(self, matrix: np.ndarray) -> list[list[float]] | None:
+        """:meth:`_goal`'s pose as rows of floats without making it (the closed form and the reposer read floats):
+        the base's rows times the target's, summed as pinocchio sums them (with the root's axes, to the zero's sign:
+        a row with a 0 in it); None unless a 4x4 of finite numbers (pinocchio's then, as it takes any other)."""
+        if matrix.shape != (4, 4):
+            return None
+        rows: list[list[float]] = matrix.tolist()
+        m0, m1, m2, _ = rows
+        if not math.isfinite(sum(m0) + sum(m1) + sum(m2)):
+            return None
+        base = self.base_rows
+        if base is None and not (0.0 in m0 or 0.0 in m1 or 0.0 in m2):
+            return rows  # (1 x + 0 y + 0 z is x but for the sign of a 0)
+        composed = []
+        for b0, b1, b2, b3 in base or _ROOT:
+            composed.append(
+                [b0 * m0[0] + b1 * m1[0] + b2 * m2[0], b0 * m0[1] + b1 * m1[1] + b2 * m2[1]]
+                + [b0 * m0[2] + b1 * m1[2] + b2 * m2[2], b0 * m0[3] + b1 * m1[3] + b2 * m2[3] + b3]
+            )
+        return [*composed, _BOTTOM]
 
     def equivalent_values(self, solution: Solution) -> list[dict[str, float]]:
         """The other values of a closed-form ``solution``'s chain joints, whole turns apart and within the limits
@@ -196,29 +234,31 @@ class IkSolver:
         combos = itertools.product(*options)
         return [dict(zip(names, combo, strict=True)) for combo in combos if combo != tuple(options_of(solution, names))]
 
-    def _closed_form(self, goal: Any, *, every: bool, seed: np.ndarray) -> tuple[list[Solution], int, int]:
-        """The closed form's solutions (every branch, or the one nearest ``seed``), the branches outside the limits
-        and the branches within them."""
+    def _closed_form(
+        self, matrix: np.ndarray, pose: list[list[float]], *, every: bool, seed: np.ndarray
+    ) -> tuple[list[Solution], int, int]:
+        """The closed form's solutions (every branch, or the one nearest ``seed``) for the target ``matrix``, its pose
+        in the root's frame ``pose`` (rows), the branches outside the limits and the branches within them."""
         assert self.form is not None  # (only called with one)
-        pose = goal.homogeneous.tolist()
-        rotation = (tuple(pose[0][:3]), tuple(pose[1][:3]), tuple(pose[2][:3]))
-        position = (pose[0][3], pose[1][3], pose[2][3])
+        (r00, r01, r02, x), (r10, r11, r12, y), (r20, r21, r22, z), _ = pose
+        rotation = ((r00, r01, r02), (r10, r11, r12), (r20, r21, r22))
         centres = self.centres if seed is self.rest else [float(seed[k]) for k in self.form.lines.joints]
-        candidates, outside = _candidates(branches(self.form, rotation, position), self.ranges, centres)
+        candidates, outside = _candidates(branches(self.form, rotation, (x, y, z)), self.bounds, centres)
         if not every:  # (checked nearest first: the first that reaches is the answer; ties, the lower values)
-            candidates.sort(key=lambda c: (round(c[3], 9), c[0]))
+            _nearest_first(candidates)
         solutions: list[Solution] = []
-        for wrapped, count, branch, _ in candidates:
-            reached = self._reposed(goal, pose, wrapped)
+        for wrapped, branch, _ in candidates:
+            reached = self._reposed(matrix, pose, wrapped)
             if reached is not None:
                 named = branch_name(self.form, reached[1], branch.roots)
+                count = _turns_count(branch.values, self.bounds, centres)
                 solutions.append(Solution(reached[0], reached[2], named, count, branch.singular))
                 if not every:
                     break
         return solutions, outside, len(candidates)
 
     def _reposed(
-        self, goal: Any, pose: list[list[float]], wrapped: list[float]
+        self, matrix: np.ndarray, pose: list[list[float]], wrapped: list[float]
     ) -> tuple[dict[str, float], tuple[float, ...], float] | None:
         """A branch's values (every joint, by name; and the chain's), re-posed on the robot, and its pose error; None
         when it does not reach. The reposer's error first; a branch it leaves further than CLOSE is measured by
@@ -236,7 +276,7 @@ class IkSolver:
                 return dict(zip(self.names, full, strict=True)), tuple(wrapped), error
         values = self.rest.copy()
         values[list(chain)] = wrapped
-        reached = self._checked(goal, values)
+        reached = self._checked(self._goal(matrix), values)
         if reached is None:
             return None
         return _named(self.model.joints, reached[0]), tuple(float(reached[0][k]) for k in chain), reached[1]
@@ -375,59 +415,86 @@ def _error(chain: Chain, goal: Any, values: np.ndarray) -> float:
 
 
 def _candidates(
-    found: list[Branch], ranges: Sequence[tuple[float, float] | None], centres: Sequence[float]
-) -> tuple[list[tuple[list[float], int, Branch, float]], int]:
+    found: list[Branch], bounds: Sequence[tuple[float, float, float, float] | None], centres: Sequence[float]
+) -> tuple[list[tuple[list[float], Branch, float]], int]:
     """The exact branches by their values nearest ``centres`` (:func:`_nearest_turns`), each once (one met twice,
-    whole turns apart, is left out), with the count of their equivalents and their distance from ``centres``; and
-    how many have no value within the limits."""
-    candidates: list[tuple[list[float], int, Branch, float]] = []
+    whole turns apart, is left out), with their distance from ``centres``; and how many have no value within the
+    limits."""
+    candidates: list[tuple[list[float], Branch, float]] = []
+    kept: list[tuple[float, float, list[float]]] = []  # (each candidate's joints 3 and 5, and its values)
     outside = 0
     for branch in found:
         if not branch.exact:  # (a subproblem without an exact root: this branch's triangle does not close)
             continue
-        wrapped, count, distance = _nearest_turns(branch.values, ranges, centres)
+        wrapped, distance = _nearest_turns(branch.values, bounds, centres)
         if not wrapped:
             outside += 1
             continue
         elbow, wrist = wrapped[2], wrapped[4]
-        for other in candidates:  # (two branches differ at joint 3 or 5, but for the shoulder's: no call for most)
+        for other_elbow, other_wrist, other in kept:  # (two branches differ at joint 3 or 5, but for the shoulder's)
             if (
-                abs(math.remainder(elbow - other[0][2], TURN)) < 1e-6
-                and abs(math.remainder(wrist - other[0][4], TURN)) < 1e-6
-                and _same_turns(wrapped, other[0])
+                abs(math.remainder(elbow - other_elbow, TURN)) < 1e-6
+                and abs(math.remainder(wrist - other_wrist, TURN)) < 1e-6
+                and _same_turns(wrapped, other)
             ):
                 break
         else:
-            candidates.append((wrapped, count, branch, distance))
+            candidates.append((wrapped, branch, distance))
+            kept.append((elbow, wrist, wrapped))
     return candidates, outside
 
 
+def _nearest_first(candidates: list[tuple[list[float], Branch, float]]) -> None:
+    """Sorted in the order the first solution is looked for in: nearest first, two as near (the distances equal to
+    1e-9) the lower values first. (By the distance alone when no two are within 2e-9: rounding to 1e-9 keeps the
+    order, and puts apart two more than 1e-9 apart; it costs a microsecond a value.)"""
+    candidates.sort(key=_distance_of)
+    for k in range(1, len(candidates)):
+        if candidates[k][2] - candidates[k - 1][2] <= 2e-9:
+            candidates.sort(key=lambda c: (round(c[2], 9), c[0]))
+            return
+
+
+def _distance_of(candidate: tuple[list[float], Branch, float]) -> float:
+    return candidate[2]
+
+
 def _nearest_turns(
-    values: Sequence[float], ranges: Sequence[tuple[float, float] | None], centres: Sequence[float]
-) -> tuple[list[float], int, float]:
+    values: Sequence[float], bounds: Sequence[tuple[float, float, float, float] | None], centres: Sequence[float]
+) -> tuple[list[float], float]:
     """Each value turned by whole turns to the one nearest its centre (0, or the value given as ``near``) within
-    its range (None: a continuous joint, any turn), how many combinations of whole turns stay within the ranges
-    (0: endless), and the sum of the values' distances from their centres; an empty list when a value has none."""
-    wrapped, count, distance = [], 1, 0.0
-    for value, limits, centre in zip(values, ranges, centres, strict=True):
+    its range (``bounds``: the limits less and more LIMIT_SLACK, then the limits; None: a continuous joint, any
+    turn), and the sum of the values' distances from their centres; an empty list when a value has none. (A value
+    within its range stays: the turns' count of :func:`_turns_count` is 0 or less below it and 0 or more above.)"""
+    wrapped: list[float] = []
+    distance = 0.0
+    for value, bound, centre in zip(values, bounds, centres, strict=True):
         value = centre + math.remainder(value - centre, TURN)
-        if limits is None:
-            wrapped.append(value)
-            distance += abs(value - centre)
-            count = 0
-            continue
-        lower, upper = limits
-        first = math.ceil((lower - LIMIT_SLACK - value) / TURN)
-        last = math.floor((upper + LIMIT_SLACK - value) / TURN)
-        if first > last:
-            return [], 0, math.inf
-        turns = first if first > 0 else last if last < 0 else 0  # (within half a turn of its centre, or an end)
-        value += TURN * turns
-        value = lower if value < lower else upper if value > upper else value
+        if bound is not None:
+            low, high, lower, upper = bound
+            if not low <= value <= high:
+                first, last = math.ceil((low - value) / TURN), math.floor((high - value) / TURN)
+                if first > last:
+                    return [], math.inf
+                value += TURN * (first if first > 0 else last)  # (below: first > 0; above: last < 0)
+            value = lower if value < lower else upper if value > upper else value
         wrapped.append(value)
         distance += abs(value - centre)
-        count *= last - first + 1
-    return wrapped, count, distance
+    return wrapped, distance
+
+
+def _turns_count(
+    values: Sequence[float], bounds: Sequence[tuple[float, float, float, float] | None], centres: Sequence[float]
+) -> int:
+    """How many combinations of whole turns of ``values`` (taken as :func:`_nearest_turns` takes them) stay within
+    the ranges: a solution's equivalents, this one included (0: a continuous joint makes them endless)."""
+    count = 1
+    for value, bound, centre in zip(values, bounds, centres, strict=True):
+        if bound is None:
+            return 0
+        value = centre + math.remainder(value - centre, TURN)
+        count *= math.floor((bound[1] - value) / TURN) - math.ceil((bound[0] - value) / TURN) + 1
+    return count
 
 
 def options_of(solution: Solution, names: Sequence[str]) -> list[float]:
