@@ -38,6 +38,7 @@ from .subproblems import (
     apply,
     cross,
     dot,
+    flat_parts,
     multiply,
     norm,
     parts,
@@ -158,14 +159,19 @@ class _ThreeParallel(NamedTuple):
     wrist_arm: tuple[float, ...]  # (the wrist centre from axis 4, turned by theta about n)
     elbow: tuple[float, float, float]  # (q3's phase, radius and constant term, |fore|^2 + |back|^2 halved)
     n: Vec
-    forearm: tuple[float, ...]  # (axis 4's point from axis 3's, turned by q3)
     axis_2: Vec
-    upper: Vec  # (axis 3's point from axis 2's)
+    elbow_turn: tuple[float, ...]  # (:func:`_elbow_turn`)
     signs: tuple[float, float, float]
 
 
-def _flat(parts_: tuple[Vec, Vec, Vec]) -> tuple[float, ...]:
-    return (*parts_[0], *parts_[1], *parts_[2])
+def _elbow_turn(k: Vec, fore: tuple[Vec, Vec, Vec], upper: Vec) -> tuple[float, ...]:
+    """Subproblem 1 for q2 made once per arm: the elbow e (axis 4's point from axis 2's, ``upper`` plus ``fore``
+    turned by q3: its :func:`.subproblems.parts`) has its part across axis 2 x = A + cos q3 B + sin q3 D, so that
+    q2 = atan2(k . (x X y), x . y) = atan2((k x A + ...) . y, (A + ...) . y) for y (w across the axis): A, B, D,
+    k x A, k x B, k x D flat, then |x|^2's six coefficients (1, c^2, s^2, c, s, cs)."""
+    a, b, d = perpendicular(add(fore[0], upper), k), perpendicular(fore[1], k), perpendicular(fore[2], k)
+    squares = (dot(a, a), dot(b, b), dot(d, d), 2.0 * dot(a, b), 2.0 * dot(a, d), 2.0 * dot(b, d))
+    return (*a, *b, *d, *cross(k, a), *cross(k, b), *cross(k, d), *squares)
 
 
 @functools.cache
@@ -179,18 +185,17 @@ def _three_parallel_constants(form: ClosedForm) -> _ThreeParallel:
     return _ThreeParallel(
         _shoulder(form, n),
         h[5],
-        _flat(parts(h[0], n)),
-        _flat(parts(h[0], across)),
-        _flat(parts(h[0], cross(n, across))),
+        flat_parts(h[0], n),
+        flat_parts(h[0], across),
+        flat_parts(h[0], cross(n, across)),
         _fixed(n, h[4], h[5]),
-        _flat(parts(h[4], n)),
-        _flat(parts(h[4], across)),
-        _flat(parts(n, sub(form.wrist, p[3]))),
+        flat_parts(h[4], n),
+        flat_parts(h[4], across),
+        flat_parts(n, sub(form.wrist, p[3])),
         elbow,
         n,
-        _flat(parts(h[2], sub(p[3], p[2]))),
         h[1],
-        sub(p[2], p[1]),
+        _elbow_turn(h[1], parts(h[2], sub(p[3], p[2])), sub(p[2], p[1])),
         (dot(h[1], n), dot(h[2], n), dot(h[3], n)),
     )
 
@@ -288,21 +293,20 @@ def _three_parallel_elbows(
     along = k0 * w0 + k1 * w1 + k2 * w2
     y0, y1, y2 = w0 - along * k0, w1 - along * k1, w2 - along * k2
     turns_2 = math.sqrt(y0 * y0 + y1 * y1 + y2 * y2) >= DEGENERATE
-    a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.forearm
-    (u0, u1, u2), (sign2, sign3, sign4) = k.upper, k.signs
+    a0, a1, a2, b0, b1, b2, d0, d1, d2, e0, e1, e2, f0, f1, f2, g0, g1, g2, s0, s1, s2, s3, s4, s5 = k.elbow_turn
+    ya, yb, yd = a0 * y0 + a1 * y1 + a2 * y2, b0 * y0 + b1 * y1 + b2 * y2, d0 * y0 + d1 * y1 + d2 * y2
+    za, zb, zd = e0 * y0 + e1 * y1 + e2 * y2, f0 * y0 + f1 * y1 + f2 * y2, g0 * y0 + g1 * y1 + g2 * y2
+    sign2, sign3, sign4 = k.signs
     for m, q3 in enumerate(thirds):
         c, s = math.cos(q3), math.sin(q3)
-        p0, p1, p2 = a0 + c * b0 + s * d0 + u0, a1 + c * b1 + s * d1 + u1, a2 + c * b2 + s * d2 + u2
-        along = k0 * p0 + k1 * p1 + k2 * p2
-        x0, x1, x2 = p0 - along * k0, p1 - along * k1, p2 - along * k2
         q2 = 0.0
-        if turns_2 and math.sqrt(x0 * x0 + x1 * x1 + x2 * x2) >= DEGENERATE:
-            sine = k0 * (x1 * y2 - x2 * y1) + k1 * (x2 * y0 - x0 * y2) + k2 * (x0 * y1 - x1 * y0)
-            q2 = math.atan2(sine, x0 * y0 + x1 * y1 + x2 * y2) or 0.0
+        if turns_2 and s0 + c * (c * s1 + s3) + s * (s * s2 + s4 + c * s5) >= _SQUARE:  # (else q2 turns nothing)
+            q2 = math.atan2(za + c * zb + s * zd, ya + c * yb + s * yd) or 0.0
         q4 = sign4 * (theta - sign2 * q2 - sign3 * q3)
         found.append(Branch((q1, q2, q3, q4, q5, q6), (i, j, m), exact, singular))
 
 
+_SQUARE = DEGENERATE * DEGENERATE  # (a squared length below it: a vector without direction)
 _UR_WRIST = (
     "wrist singularity: axis 6 is parallel to axes 2, 3 and 4, so joint 6 and the three turn the tool alike: a "
     "continuum of solutions, one given"
@@ -380,8 +384,8 @@ def _wrist_pair(h: tuple[Vec, ...], across6: Vec) -> _WristPair:
         cross(h4, across),
         (dot(sine_vector, h4), dot(sine_vector, across)),
         (dot(cosine_vector, h4), dot(cosine_vector, across)),
-        _flat(parts(h5, across6)),
-        _flat(parts(h5, cross(h6, across6))),
+        flat_parts(h5, across6),
+        flat_parts(h5, cross(h6, across6)),
     )
 
 
@@ -444,7 +448,7 @@ def _parallel_arm_constants(form: ClosedForm) -> _ParallelArm:
     fore, back = perpendicular(sub(form.wrist, p[2]), n), scale(-1.0, perpendicular(sub(p[2], p[1]), n))
     phase, radius, constant = _fixed(back, h[2], fore)
     elbow = (phase, radius, constant - (dot(fore, fore) + dot(back, back)) / 2.0)
-    forearm, across = _flat(parts(h[2], sub(form.wrist, p[2]))), _across(h[5])
+    forearm, across = flat_parts(h[2], sub(form.wrist, p[2])), _across(h[5])
     wrist = _wrist_pair(h, across)
     return _ParallelArm(_shoulder(form, n), elbow, n, forearm, sub(p[2], p[1]), h[1], h[2], across, wrist, h)
 
@@ -459,7 +463,7 @@ def _parallel_arm(form: ClosedForm, r_g: Mat, p_g: Vec) -> list[Branch]:
         return []
     roots, exact, reach = step
     axis = k.shoulder.axis
-    g6, a6 = _flat(parts(axis, apply(r_g, k.axes[5]))), _flat(parts(axis, apply(r_g, k.across)))
+    g6, a6 = flat_parts(axis, apply(r_g, k.axes[5])), flat_parts(axis, apply(r_g, k.across))
     found: list[Branch] = []
     for i, t1 in enumerate(roots):
         _parallel_arm_elbows(k, (g6, a6, reach), t1, (i, exact), found)

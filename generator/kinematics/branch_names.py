@@ -18,7 +18,7 @@ import math
 from typing import NamedTuple
 
 from .arm_geometry import THREE_PARALLEL, ClosedForm
-from .subproblems import Vec, dot, parts, sub, subproblem_1, turn, turned
+from .subproblems import Vec, dot, flat_parts, sub, subproblem_1
 
 UP: Vec = (0.0, 0.0, 1.0)
 SLIGHT = 1e-9  # m, or a sine: a side this close to the line has no side
@@ -28,9 +28,10 @@ class _Naming(NamedTuple):
     """What naming a branch takes of the arm, made once per arm: the sides are measured in the frame joint 1 turns
     with (where the shoulder stays at axis 2's point), up turned back by q1 instead of the arm by it."""
 
-    up: tuple[Vec, Vec, Vec]  # (up, turned by -q1 about axis 1)
-    upper: tuple[Vec, Vec, Vec]  # (axis 3's point from axis 2's, turned by q2)
-    fore: tuple[Vec, Vec, Vec]  # (the wrist centre from axis 3's point, turned by q3)
+    up: tuple[float, ...]  # (up, turned by -q1 about axis 1: its parts, flat)
+    upper: tuple[float, ...]  # (axis 3's point from axis 2's, turned by q2)
+    fore: tuple[float, ...]  # (the wrist centre from axis 3's point, turned by q3)
+    axis_2: Vec
     upper_arm: Vec  # (axis 3's point from axis 2's)
     base: Vec  # (axis 2's point from axis 1's)
     offset: Vec | None  # (three parallel axes: the shoulder's offset along n, at q1 = 0)
@@ -47,9 +48,10 @@ def _naming(form: ClosedForm) -> _Naming:
         offset = (k * n[0], k * n[1], k * n[2])
     along = form.parallel if form.kind == THREE_PARALLEL and form.parallel is not None else h[3]
     return _Naming(
-        parts(h[0], UP),
-        parts(h[1], sub(p[2], p[1])),
-        parts(h[2], sub(form.wrist, p[2])),
+        flat_parts(h[0], UP),
+        flat_parts(h[1], sub(p[2], p[1])),
+        flat_parts(h[2], sub(form.wrist, p[2])),
+        h[1],
         sub(p[2], p[1]),
         sub(p[1], p[0]),
         offset,
@@ -64,12 +66,20 @@ def branch_name(form: ClosedForm, values: tuple[float, ...], roots: tuple[int, i
     when all their vectors turn alike): the shoulder at axis 2's point P2, the elbow at P2 + e, the wrist centre at
     P2 + w. (Written out on floats: a solve names every branch it gives.)"""
     k = _naming(form)
-    u0, u1, u2 = turned(k.up, math.cos(values[0]), -math.sin(values[0]))
+    c, s = math.cos(values[0]), -math.sin(values[0])
+    a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.up
+    u0, u1, u2 = a0 + c * b0 + s * d0, a1 + c * b1 + s * d1, a2 + c * b2 + s * d2
     c2, s2 = math.cos(values[1]), math.sin(values[1])
-    e0, e1, e2 = turned(k.upper, c2, s2)
-    f0, f1, f2 = turned(k.fore, math.cos(values[2]), math.sin(values[2]))
-    a = k.upper_arm
-    w0, w1, w2 = turn(form.lines.axes[1], c2, s2, (f0 + a[0], f1 + a[1], f2 + a[2]))
+    a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.upper
+    e0, e1, e2 = a0 + c2 * b0 + s2 * d0, a1 + c2 * b1 + s2 * d1, a2 + c2 * b2 + s2 * d2
+    c, s = math.cos(values[2]), math.sin(values[2])
+    a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.fore
+    (x0, x1, x2), (k0, k1, k2) = k.upper_arm, k.axis_2
+    f0, f1, f2 = a0 + c * b0 + s * d0 + x0, a1 + c * b1 + s * d1 + x1, a2 + c * b2 + s * d2 + x2
+    along = (k0 * f0 + k1 * f1 + k2 * f2) * (1.0 - c2)  # (turned by q2: Rodrigues)
+    w0 = f0 * c2 + (k1 * f2 - k2 * f1) * s2 + k0 * along
+    w1 = f1 * c2 + (k2 * f0 - k0 * f2) * s2 + k1 * along
+    w2 = f2 * c2 + (k0 * f1 - k1 * f0) * s2 + k2 * along
     b0, b1, b2 = k.base
     r0, r1, r2 = w0 + b0, w1 + b1, w2 + b2  # (the wrist centre from axis 1's point)
     if k.offset is not None:

@@ -114,6 +114,8 @@ class IkSolver:
     rest_values: list[float] = field(init=False, default_factory=list)  # (the rest pose, plain floats)
     centres: list[float] = field(init=False, default_factory=list)  # (the closed form's chain at rest)
     bounds: list[tuple[float, float, float, float] | None] = field(init=False, default_factory=list)  # (_nearest_turns)
+    within: tuple[float, ...] = field(init=False, default=())  # (each chain joint's limits, -inf and inf if none)
+    slack_bounds: tuple[float, ...] | None = field(init=False, default=None)  # (_turns_count's)
     base_rows: tuple[tuple[float, ...], ...] | None = field(init=False, default=None)  # (None: the root's axes)
     whole: bool = field(init=False, default=False)  # (the closed form's chain is every joint one sets, in order)
 
@@ -137,6 +139,9 @@ class IkSolver:
             self.reposer = Reposer.of(model, target, self.form.lines.joints, self.rest)
             self.centres = [self.rest_values[k] for k in self.form.lines.joints]
             self.bounds = [None if r is None else (r[0] - LIMIT_SLACK, r[1] + LIMIT_SLACK, *r) for r in self.ranges]
+            self.within = tuple(v for r in self.ranges for v in (r if r is not None else (-math.inf, math.inf)))
+            ends = [b[:2] for b in self.bounds if b is not None]
+            self.slack_bounds = tuple(v for b in ends for v in b) if len(ends) == len(self.bounds) else None
             rows = tuple(tuple(row) for row in self.base.homogeneous[:3].tolist())
             signs = all(math.copysign(1.0, v) > 0 for row in rows for v in row)  # (no -0.0: its sums differ)
             self.base_rows = None if rows == _ROOT and signs else rows
@@ -243,7 +248,8 @@ class IkSolver:
         (r00, r01, r02, x), (r10, r11, r12, y), (r20, r21, r22, z), _ = pose
         rotation = ((r00, r01, r02), (r10, r11, r12), (r20, r21, r22))
         centres = self.centres if seed is self.rest else [float(seed[k]) for k in self.form.lines.joints]
-        candidates, outside = _candidates(branches(self.form, rotation, (x, y, z)), self.bounds, centres)
+        found = branches(self.form, rotation, (x, y, z))
+        candidates, outside = _candidates(found, (self.within, self.bounds), centres)
         if not every:  # (checked nearest first: the first that reaches is the answer; ties, the lower values)
             _nearest_first(candidates)
         solutions: list[Solution] = []
@@ -251,7 +257,7 @@ class IkSolver:
             reached = self._reposed(matrix, pose, wrapped)
             if reached is not None:
                 named = branch_name(self.form, reached[1], branch.roots)
-                count = _turns_count(branch.values, self.bounds, centres)
+                count = _turns_count(branch.values, self.slack_bounds, centres)
                 solutions.append(Solution(reached[0], reached[2], named, count, branch.singular))
                 if not every:
                     break
@@ -415,32 +421,52 @@ def _error(chain: Chain, goal: Any, values: np.ndarray) -> float:
 
 
 def _candidates(
-    found: list[Branch], bounds: Sequence[tuple[float, float, float, float] | None], centres: Sequence[float]
+    found: list[Branch],
+    bounds: tuple[tuple[float, ...], Sequence[tuple[float, float, float, float] | None]],
+    centres: Sequence[float],
 ) -> tuple[list[tuple[list[float], Branch, float]], int]:
     """The exact branches by their values nearest ``centres`` (:func:`_nearest_turns`), each once (one met twice,
     whole turns apart, is left out), with their distance from ``centres``; and how many have no value within the
-    limits."""
+    limits. ``bounds``: the six joints' limits (flat, -inf and inf for a continuous joint) and their
+    :func:`_nearest_turns` bounds. (The common case written out for the six joints: every value turned to within
+    half a turn of its centre is within the limits, and stays.)"""
     candidates: list[tuple[list[float], Branch, float]] = []
     kept: list[tuple[float, float, list[float]]] = []  # (each candidate's joints 3 and 5, and its values)
     outside = 0
+    l0, h0, l1, h1, l2, h2, l3, h3, l4, h4, l5, h5 = bounds[0]
+    c0, c1, c2, c3, c4, c5 = centres
+    remainder = math.remainder
     for branch in found:
         if not branch.exact:  # (a subproblem without an exact root: this branch's triangle does not close)
             continue
-        wrapped, distance = _nearest_turns(branch.values, bounds, centres)
-        if not wrapped:
-            outside += 1
-            continue
-        elbow, wrist = wrapped[2], wrapped[4]
+        v0, v1, v2, v3, v4, v5 = branch.values
+        w0, w1, w2 = c0 + remainder(v0 - c0, TURN), c1 + remainder(v1 - c1, TURN), c2 + remainder(v2 - c2, TURN)
+        w3, w4, w5 = c3 + remainder(v3 - c3, TURN), c4 + remainder(v4 - c4, TURN), c5 + remainder(v5 - c5, TURN)
+        if (
+            l0 <= w0 <= h0
+            and l1 <= w1 <= h1
+            and l2 <= w2 <= h2
+            and l3 <= w3 <= h3
+            and l4 <= w4 <= h4
+            and l5 <= w5 <= h5
+        ):
+            wrapped = [w0, w1, w2, w3, w4, w5]
+            distance = abs(w0 - c0) + abs(w1 - c1) + abs(w2 - c2) + abs(w3 - c3) + abs(w4 - c4) + abs(w5 - c5)
+        else:
+            wrapped, distance = _nearest_turns(branch.values, bounds[1], centres)
+            if not wrapped:
+                outside += 1
+                continue
         for other_elbow, other_wrist, other in kept:  # (two branches differ at joint 3 or 5, but for the shoulder's)
             if (
-                abs(math.remainder(elbow - other_elbow, TURN)) < 1e-6
-                and abs(math.remainder(wrist - other_wrist, TURN)) < 1e-6
+                abs(remainder(wrapped[2] - other_elbow, TURN)) < 1e-6
+                and abs(remainder(wrapped[4] - other_wrist, TURN)) < 1e-6
                 and _same_turns(wrapped, other)
             ):
                 break
         else:
             candidates.append((wrapped, branch, distance))
-            kept.append((elbow, wrist, wrapped))
+            kept.append((wrapped[2], wrapped[4], wrapped))
     return candidates, outside
 
 
@@ -483,18 +509,28 @@ def _nearest_turns(
     return wrapped, distance
 
 
-def _turns_count(
-    values: Sequence[float], bounds: Sequence[tuple[float, float, float, float] | None], centres: Sequence[float]
-) -> int:
-    """How many combinations of whole turns of ``values`` (taken as :func:`_nearest_turns` takes them) stay within
-    the ranges: a solution's equivalents, this one included (0: a continuous joint makes them endless)."""
-    count = 1
-    for value, bound, centre in zip(values, bounds, centres, strict=True):
-        if bound is None:
-            return 0
-        value = centre + math.remainder(value - centre, TURN)
-        count *= math.floor((bound[1] - value) / TURN) - math.ceil((bound[0] - value) / TURN) + 1
-    return count
+def _turns_count(values: Sequence[float], bounds: Sequence[float] | None, centres: Sequence[float]) -> int:
+    """How many combinations of whole turns of the six ``values`` (taken as :func:`_nearest_turns` takes them)
+    stay within their ranges (``bounds``: each joint's limits less and more LIMIT_SLACK, flat; None when a joint
+    is continuous): a solution's equivalents, this one included (0: a continuous joint makes them endless)."""
+    if bounds is None:
+        return 0
+    l0, h0, l1, h1, l2, h2, l3, h3, l4, h4, l5, h5 = bounds
+    (c0, c1, c2, c3, c4, c5), (v0, v1, v2, v3, v4, v5) = centres, values
+    remainder, floor, ceil = math.remainder, math.floor, math.ceil
+    w0, w1, w2 = c0 + remainder(v0 - c0, TURN), c1 + remainder(v1 - c1, TURN), c2 + remainder(v2 - c2, TURN)
+    w3, w4, w5 = c3 + remainder(v3 - c3, TURN), c4 + remainder(v4 - c4, TURN), c5 + remainder(v5 - c5, TURN)
+    count = (floor((h0 - w0) / TURN) - ceil((l0 - w0) / TURN) + 1) * (
+        floor((h1 - w1) / TURN) - ceil((l1 - w1) / TURN) + 1
+    )
+    count *= (floor((h2 - w2) / TURN) - ceil((l2 - w2) / TURN) + 1) * (
+        floor((h3 - w3) / TURN) - ceil((l3 - w3) / TURN) + 1
+    )
+    return (
+        count
+        * (floor((h4 - w4) / TURN) - ceil((l4 - w4) / TURN) + 1)
+        * (floor((h5 - w5) / TURN) - ceil((l5 - w5) / TURN) + 1)
+    )
 
 
 def options_of(solution: Solution, names: Sequence[str]) -> list[float]:

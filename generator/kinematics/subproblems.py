@@ -165,6 +165,12 @@ def parts(k: Vec, a: Vec) -> tuple[Vec, Vec, Vec]:
     return scale(along, k), (a[0] - along * k[0], a[1] - along * k[1], a[2] - along * k[2]), cross(k, a)
 
 
+def flat_parts(k: Vec, a: Vec) -> tuple[float, ...]:
+    """:func:`parts` as nine floats, for solvers that unpack them into locals (a vector turned in a hot loop)."""
+    (x, y, z), (u, v, w), (r, s, t) = parts(k, a)
+    return (x, y, z, u, v, w, r, s, t)
+
+
 def turned(parts_: tuple[Vec, Vec, Vec], c: float, s: float) -> Vec:
     """The vector of :func:`parts` ``parts_`` turned by the angle of cosine ``c`` and sine ``s``."""
     (a0, a1, a2), (b0, b1, b2), (d0, d1, d2) = parts_
