@@ -18,6 +18,10 @@ ratio is the median over targets of (its time / ours, first solution) on the sam
   1.4e-3), and with tol=5e-13 (|e| up to 1e-6, our threshold); a random start within the limits, up to 100 searches;
 - ikpy ``inverse_kinematics_frame(T, orientation_mode="all")`` from the rest pose (0 clipped to the limits).
 
+Taking turns, every call starts cold (the others' allocations between two of ours: a solve of ours after one of
+ikpy's took twice as long as in a row on 2026-11-29); the rows "ours, first (in a row)" and "ours, every (in a row)"
+time ours again target after target with nothing between (a loop over targets, as ``ik`` in a script runs).
+
 A comparator that is not installed is named and left out (``pip install -e '.[bench]'`` brings them).
 
 Usage: python benchmarks/ik_speed.py [TARGETS]   (targets per robot, default 500; a small count is a smoke run)
@@ -230,6 +234,26 @@ def run(solvers: dict[str, Solve], judge: Judge, targets: list[np.ndarray]) -> d
     return tallies
 
 
+def in_a_row(solvers: dict[str, Solve], judge: Judge, targets: list[np.ndarray]) -> dict[str, Tally]:
+    """Ours again, each target after the one before with nothing between (answers judged afterwards)."""
+    tallies: dict[str, Tally] = {}
+    for name in ("ours, first", "ours, every"):
+        tally, answers = Tally(), []
+        gc.collect()
+        gc.disable()
+        for target in targets:
+            started = time.perf_counter()
+            answers.append(solvers[name](target))
+            tally.times.append(time.perf_counter() - started)
+        gc.enable()
+        for target, found in zip(targets, answers, strict=True):
+            errors = [judge.error(target, values) for values in found]
+            tally.errors.append(min(errors, default=math.inf))
+            tally.missed += sum(e > REACH for e in errors)
+        tallies[f"{name} (in a row)"] = tally
+    return tallies
+
+
 def rows(arm: str, tallies: dict[str, Tally]) -> list[str]:
     base = tallies["ours, first"].times
     lines = []
@@ -291,7 +315,8 @@ def main(count: int) -> None:
             from xacrokit.kinematics import ik_solver
 
             print(f"{arm.name}: {path.name}, frame {arm.frame}, ours {ik_solver(robot, arm.frame).method}")
-            table += rows(arm.name, run(solvers, judge, judge.targets(count)))
+            targets = judge.targets(count)
+            table += rows(arm.name, run(solvers, judge, targets) | in_a_row(solvers, judge, targets))
     for name, why in missing.items():
         print(f"comparator unavailable: {name}: {why} (pip install -e '.[bench]')")
     print("\n".join(table))
