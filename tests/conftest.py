@@ -42,6 +42,36 @@ def pytest_configure(config):
         os.environ["XACROKIT_CACHE"] = config.xacrokit_cache
 
 
+# The real-robot corpus's tests that read a robot's meshes with trimesh (export, view, import: one test a file each),
+# run side by side robot by robot: xacrokit.reader.mesh_copies keeps the meshes a worker read, and the workers
+# (pytest-xdist's worksteal) take the tests in runs of the collection's order, so a robot's three tests share its
+# meshes' reads. (check reads its meshes with numpy-stl, and keeps their facts in the run's cache folder.)
+SHARED_MESH_MODULES = (
+    "export/test_export_realworld.py",
+    "view/test_view_realworld.py",
+    "importer/test_import_realworld.py",
+)
+
+
+def pytest_collection_modifyitems(config, items):
+    """The corpus tests of SHARED_MESH_MODULES ordered by robot, where the first of them was collected; every
+    other test keeps its place. (The same order in every worker: xdist requires their collections equal.)"""
+    by_robot = [
+        item
+        for item in items
+        if item.nodeid.split("::")[0].endswith(SHARED_MESH_MODULES)
+        and hasattr(item, "callspec")
+        and "key" in item.callspec.params
+    ]
+    if not by_robot:
+        return
+    at = items.index(by_robot[0])
+    chosen = set(map(id, by_robot))
+    rest = [item for item in items if id(item) not in chosen]
+    by_robot.sort(key=lambda item: item.callspec.params["key"])  # (stable: a robot's tests in module order)
+    items[:] = rest[:at] + by_robot + rest[at:]
+
+
 def pytest_unconfigure(config):
     folder = getattr(config, "xacrokit_cache", None)
     if folder is not None:
