@@ -47,6 +47,7 @@ LIMIT_SLACK = 1e-12  # rad: a value this far beyond a limit is at it
 NUMERIC = "numeric (damped least squares)"
 _ROOT = ((1.0, 0.0, 0.0, 0.0), (0.0, 1.0, 0.0, 0.0), (0.0, 0.0, 1.0, 0.0))  # (a pose's rows at the root: no turn)
 _BOTTOM = [0.0, 0.0, 0.0, 1.0]
+ROTATION_SLACK = 1e-6  # a target's R^T R this near the identity, determinant +1 (as validate.quantities.ORTHONORMAL)
 
 
 @dataclass(frozen=True)
@@ -170,6 +171,9 @@ class IkSolver:
         ``position_only``): every branch (``every``), else the one nearest ``near`` (joint values in the joints'
         order; default the rest pose)."""
         matrix = np.asarray(target, dtype=float)
+        problem = target_problem(matrix, position_only=position_only)
+        if problem:
+            raise XacrokitError(f"the target {problem}")
         closed = self.form is not None and not position_only
         pose = self._pose(matrix) if closed else None
         # (pinocchio's goal: made only when the closed form does not answer, or the target is no 4x4 of finite numbers)
@@ -346,6 +350,33 @@ class IkSolver:
         names = [j.name for j in self.model.joints]
         complete = method != NUMERIC
         return Solutions(self.frame, self.in_frame, names, solutions, closest, method, ran, complete, outside)
+
+
+def target_problem(matrix: np.ndarray, *, position_only: bool) -> str:
+    """What makes ``matrix`` no pose to solve for ("" when it is one): a 4x4 (or its 3x4 top) of finite numbers whose
+    top-left 3x3 is a rotation (columns of unit length at right angles, to ROTATION_SLACK, determinant +1; not
+    asked when ``position_only``) and whose bottom row is 0 0 0 1 (to 1e-9)."""
+    if matrix.ndim != 2 or matrix.shape[0] not in (3, 4) or matrix.shape[1] != 4:
+        return f"is a {'x'.join(map(str, matrix.shape))} array; give a 4x4 pose (or its top 3x4)"
+    rows = matrix.tolist()
+    if not all(math.isfinite(v) for v in (*rows[0], *rows[1], *rows[2])):
+        return "holds a number that is not finite (nan or inf); give a 4x4 pose of finite numbers"
+    if len(rows) == 4 and max(abs(v - w) for v, w in zip(rows[3], _BOTTOM, strict=True)) > 1e-9:
+        return f"has the bottom row {rows[3]}; a pose's is [0, 0, 0, 1]"
+    if position_only:
+        return ""
+    (a, b, c, _), (d, e, f, _), (g, h, i, _) = rows[:3]
+    gram = (
+        a * a + d * d + g * g - 1.0, b * b + e * e + h * h - 1.0, c * c + f * f + i * i - 1.0,
+        a * b + d * e + g * h, a * c + d * f + g * i, b * c + e * f + h * i,
+    )  # fmt: skip
+    determinant = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+    if max(map(abs, gram)) > ROTATION_SLACK or determinant <= 0.0:
+        return (
+            f"has a top-left 3x3 that is no rotation (its columns' lengths and angles off by up to "
+            f"{max(map(abs, gram)):.3g}, determinant {determinant:.6g}); give a rotation matrix, or position_only"
+        )
+    return ""
 
 
 def numeric_chain(model: KinematicModel, frame: int) -> Chain:

@@ -403,3 +403,37 @@ def test_hostile_but_valid_numbers_are_answered_in_finite_json(tmp_path, capsys,
     code, out, err = run(capsys, words[0], written(tmp_path, arm(**change)), *words[1:], "--json")
     assert code in (0, 1) and "error" not in err, err
     strict_json(out)
+
+
+TURNED = np.array([[0.0, -1.0, 0.0, 0.5], [1.0, 0.0, 0.0, 0.2], [0.0, 0.0, 1.0, 0.1], [0.0, 0.0, 0.0, 1.0]])
+
+
+@pytest.mark.parametrize(
+    ("target", "said"),
+    [
+        (np.full((4, 4), np.nan), "not finite (nan or inf)"),
+        (np.where(np.eye(4) == 1, np.inf, 0.0), "not finite (nan or inf)"),
+        (np.diag([2.0, 2.0, 2.0, 1.0]), "no rotation (its columns' lengths and angles off by up to 3, determinant 8)"),
+        (np.diag([1.0, 1.0, -1.0, 1.0]), "determinant -1"),
+        (TURNED + np.r_[np.zeros((3, 4)), [[0.0, 0.0, 1.0, 0.0]]], "bottom row [0.0, 0.0, 1.0, 1.0]"),
+        (np.eye(3), "is a 3x3 array"),
+        (np.zeros(16), "is a 16 array"),
+    ],
+)
+def test_the_api_refuses_a_target_that_is_no_pose_at_once_naming_the_file(tmp_path, target, said):
+    """ik(robot, frame, target) on a target that is no pose: refused before any search (a NaN searched 256 starts
+    for 1.2 s, then spoke of a pose error beyond a float; 2 I came back as a closest reach 4e-10 away), the file
+    named; position_only asks nothing of the rotation part."""
+    from xacrokit.kinematics import ik
+
+    path = tmp_path / "arm.urdf"
+    path.write_text(arm(lower="-3", upper="3"), encoding="utf-8")
+    robot = read_robot(path)
+    with pytest.raises(XacrokitError) as caught:
+        ik(robot, "tool", target)
+    assert str(caught.value).startswith(f"{path}: the target ") and said in str(caught.value), caught.value
+    stretched = np.diag([2.0, 2.0, 2.0, 1.0])
+    stretched[:3, 3] = [1.8, 0.3, 0.0]
+    (found,) = ik(robot, "tool", stretched, position_only=True).solutions
+    assert found.error < 1e-9
+    assert ik(robot, "tool", TURNED).closest is not None or ik(robot, "tool", TURNED).solutions  # (a pose: answered)

@@ -197,7 +197,8 @@ def pieper_rows(rng, shoulder_offset):
 @pytest.mark.parametrize("seed", range(6))
 def test_arms_built_in_any_frame_convention_are_solved_in_closed_form(tmp_path, seed):
     """UR-like and spherical-wrist arms (with and without a shoulder offset), their frames turned at random and their
-    axes' signs flipped: recognised from the axes, and every branch found (the many-start search's, modulo 2 pi)."""
+    axes' signs flipped: recognised from the axes, and every branch found (the many-start search's, modulo 2 pi),
+    each with a name of its own."""
     rng = np.random.default_rng(100 + seed)
     kind, rows = [(UR_LIKE, ur_rows(rng)), (PIEPER, pieper_rows(rng, True)), (PIEPER, pieper_rows(rng, False))][
         seed % 3
@@ -210,6 +211,7 @@ def test_arms_built_in_any_frame_convention_are_solved_in_closed_form(tmp_path, 
         closed = solver.solve(target, every=True).solutions
         assert any(same_turns(values, s.values, names) for s in closed)
         assert all(reposed_error(robot, "l7", s.values, target) < 1e-9 for s in closed)
+        assert len({s.branch for s in closed}) == len(closed), [s.branch for s in closed]  # (a name a branch)
         numeric = searched(robot, "l7", target)
         assert len(closed) == len(numeric), ([s.values for s in closed], numeric)
         assert all(any(same_turns(v, s.values, names) for s in closed) for v in numeric)

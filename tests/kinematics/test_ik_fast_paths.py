@@ -24,12 +24,13 @@ ARMS = {
     "ur10e": REPO / "examples" / "robots" / "ur10e.yaml",
     "kuka": REPO / "examples" / "robots" / "kuka_kr560_r3100_2.yaml",
 }
-UP = (0.0, 0.0, 1.0)
 
 
 def plain_name(form, values, roots):
-    """The naming rule with every part placed by joints 3, 2, then 1 (the form the fast one replaced)."""
-    h, p = form.lines.axes, form.lines.points
+    """The naming rule as docs/kinematics.md states it, with every part placed by joints 3, 2, then 1 in the root's
+    frame (the form the fast one replaced): up along axis 1 away from the base, the arm's forward across up and axis
+    2, the elbow's side of the line to the wrist (axis 4's point with three parallel axes) in the arm's plane."""
+    h, p, size = form.lines.axes, form.lines.points, form.lines.size
 
     def placed(point, joints):
         for k in reversed(range(joints)):
@@ -39,16 +40,28 @@ def plain_name(form, values, roots):
     def side(measure, names, root):
         return ("a" if root == 0 else "b") if abs(measure) <= SLIGHT else names[0] if measure > 0 else names[1]
 
-    shoulder, elbow, wrist = placed(p[1], 1), placed(p[2], 2), placed(form.wrist, 3)
-    reach = perpendicular(sub(wrist, p[0]), UP)
+    def sensed(direction, *senses):
+        for sense in senses:
+            if abs(dot(direction, sense)) > 1e-6 * size:
+                return direction if dot(direction, sense) > 0 else scale(-1.0, direction)
+        return direction
+
+    up = sensed(h[0], sub(p[1], p[0]), (0.0, 0.0, 1.0))
+    across = cross(h[1], up)
+    forward = sensed(scale(1.0 / norm(across), across), sub(p[1], p[0]), sub(form.wrist, p[0]), (1.0, 0.0, 0.0))
+    shoulder, elbow, wrist = placed(p[1], 1), placed(p[2], 2), placed(form.wrist, 4)
+    corner = placed(p[3], 3) if form.kind == THREE_PARALLEL else wrist  # (the elbow triangle's far corner)
     if form.kind == THREE_PARALLEL:
         offset = scale(dot(form.parallel, sub(form.wrist, p[0])), rotate(h[0], values[0], form.parallel))
-        first = side(dot(offset, cross(UP, reach)), ("left", "right"), roots[0])
+        reach = perpendicular(sub(wrist, p[0]), up)
+        first = side(dot(offset, cross(up, reach)), ("left", "right"), roots[0])
     else:
-        first = side(dot(perpendicular(sub(elbow, p[0]), UP), reach), ("front", "back"), roots[0])
-    line = sub(wrist, shoulder)
-    across = sub(UP, scale(dot(UP, line) / max(dot(line, line), 1e-300), line))
-    bend = side(dot(sub(elbow, shoulder), across) if norm(across) > SLIGHT else 0.0, ("up", "down"), roots[1])
+        first = side(dot(rotate(h[0], values[0], forward), sub(wrist, p[0])), ("front", "back"), roots[0])
+    n, line = rotate(h[0], values[0], h[1]), sub(corner, shoulder)
+    sky = dot(n, cross(line, up))
+    elbow_side = dot(n, cross(line, sub(elbow, shoulder)))
+    clear = abs(sky) > SLIGHT * norm(line)
+    bend = side((elbow_side if sky > 0 else -elbow_side) if clear else 0.0, ("up", "down"), roots[1])
     singular = subproblem_1(h[4], h[5], form.parallel if form.kind == THREE_PARALLEL else h[3])
     flip = side(math.sin(values[4] - singular), ("no flip", "flip"), roots[2])
     return f"shoulder {first}, elbow {bend}, wrist {flip}"
