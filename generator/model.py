@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Literal
 
 from .errors import SpecError
-from .shared.joint_types import AXIAL, JOINT_TYPES, LIMITED, MOVING, JointType  # noqa: F401  (part of the model)
+from .shared.joint_types import AXIAL, HOME_POSE, JOINT_TYPES, LIMITED, MOVING, JointType  # noqa: F401  (part of the model)
 from .shared.sim_sensors import Sensor  # (part of the model: its fields are the sensor's values in sim_sensors' tables)
 
 Vec3 = tuple[float, float, float]
@@ -26,7 +26,6 @@ InertiaKind = Literal["box", "cylinder", "sphere", "capsule", "tube", "mesh", "p
 Axle = Literal["x", "y", "z"]
 DEFAULT_ROW_RADIUS = 0.03  # m: a DH row's body (a cylinder between its joint frames) when the spec gives none
 DEFAULT_TOOL = "tool0"  # an arm's tool frame when the spec names none (ROS-Industrial's name)
-HOME_POSE = "home"  # the named pose a robot starts in (ros2_control initial_value, the first MuJoCo keyframe)
 
 
 # ------------------------------------------------------------------------------------- names of generated elements

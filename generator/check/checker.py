@@ -15,12 +15,12 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ..errors import SpecErrors
-from ..model import HOME_POSE
 from ..reader import InputKind
 from ..reader.named_poses import named_poses, spec_poses
 from ..reader.robot_input import RobotInput, as_input
 from ..reader.robot_source import input_kind, read_source
 from ..shared.gc_pause import collector_paused
+from ..shared.joint_types import HOME_POSE
 from ..write.atomic import staged_packages
 from .consumers import SHARING, chosen, consumer_findings, skipped, start_verdicts
 from .document_rules import first_rules, other_rules

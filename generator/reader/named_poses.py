@@ -6,9 +6,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
-from ..model import HOME_POSE, Robot
+from ..shared.joint_types import HOME_POSE
 from ..shared.urdf_view import UrdfView
+
+if TYPE_CHECKING:  # (check reads a URDF's poses without loading the robot model's classes)
+    from ..model import Robot
 
 
 def initial_values(view: UrdfView) -> dict[str, float]:

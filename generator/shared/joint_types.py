@@ -11,6 +11,7 @@ JOINT_TYPES: tuple[JointType, ...] = ("revolute", "continuous", "prismatic", "fi
 MOVING: tuple[JointType, ...] = ("revolute", "continuous", "prismatic")  # one degree of freedom, driven by a motor
 LIMITED: tuple[JointType, ...] = ("revolute", "prismatic")  # need lower and upper limits
 AXIAL: tuple[JointType, ...] = ("revolute", "continuous", "prismatic", "planar")  # have an <axis> (planar: the normal)
+HOME_POSE = "home"  # the named pose a robot starts in (ros2_control initial_value, the first MuJoCo keyframe)
 
 
 def rest_position(lower: float | None, upper: float | None) -> float:
