@@ -359,7 +359,9 @@ def target_problem(matrix: np.ndarray, *, position_only: bool) -> str:
     if matrix.ndim != 2 or matrix.shape[0] not in (3, 4) or matrix.shape[1] != 4:
         return f"is a {'x'.join(map(str, matrix.shape))} array; give a 4x4 pose (or its top 3x4)"
     rows = matrix.tolist()
-    if not all(math.isfinite(v) for v in (*rows[0], *rows[1], *rows[2])):
+    if not math.isfinite(sum(rows[0]) + sum(rows[1]) + sum(rows[2])) and not all(
+        math.isfinite(v) for v in (*rows[0], *rows[1], *rows[2])
+    ):  # (a finite sum says it at once: a solve asks this of every target)
         return "holds a number that is not finite (nan or inf); give a 4x4 pose of finite numbers"
     if len(rows) == 4 and max(abs(v - w) for v, w in zip(rows[3], _BOTTOM, strict=True)) > 1e-9:
         return f"has the bottom row {rows[3]}; a pose's is [0, 0, 0, 1]"
@@ -371,10 +373,11 @@ def target_problem(matrix: np.ndarray, *, position_only: bool) -> str:
         a * b + d * e + g * h, a * c + d * f + g * i, b * c + e * f + h * i,
     )  # fmt: skip
     determinant = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
-    if max(map(abs, gram)) > ROTATION_SLACK or determinant <= 0.0:
+    off = max(map(abs, gram))
+    if not off <= ROTATION_SLACK or determinant <= 0.0:
         return (
-            f"has a top-left 3x3 that is no rotation (its columns' lengths and angles off by up to "
-            f"{max(map(abs, gram)):.3g}, determinant {determinant:.6g}); give a rotation matrix, or position_only"
+            f"has a top-left 3x3 that is no rotation (its columns' lengths and angles off by up to {off:.3g}, "
+            f"determinant {determinant:.6g}); give a rotation matrix, or position_only"
         )
     return ""
 
