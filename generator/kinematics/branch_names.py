@@ -122,7 +122,7 @@ def branch_name(form: ClosedForm, values: tuple[float, ...], roots: tuple[int, i
     w2 = f2 * c2 + (k0 * f1 - k1 * f0) * s2 + k2 * along
     b0, b1, b2 = k.base
     if k.offset is not None and k.hand is not None:  # (the wrist centre: the corner, and joint 4's turn beyond it)
-        t0, t1, t2 = _beyond(k, values, c2, s2)
+        t0, t1, t2 = _beyond(k, values[3], c, s, c2, s2)
         r0, r1, r2 = w0 + t0 + b0, w1 + t1 + b1, w2 + t2 + b2  # (the wrist centre from axis 1's point)
         o0, o1, o2 = k.offset
         measure = o0 * (u1 * r2 - u2 * r1) + o1 * (u2 * r0 - u0 * r2) + o2 * (u0 * r1 - u1 * r0)
@@ -138,22 +138,23 @@ def branch_name(form: ClosedForm, values: tuple[float, ...], roots: tuple[int, i
     return f"shoulder {side}, elbow {bend}, wrist {_flip(k.singular, values, roots[2])}"
 
 
-def _beyond(k: _Naming, values: tuple[float, ...], c2: float, s2: float) -> Vec:
-    """The wrist centre from axis 4's point, turned by joints 4, 3 and 2 (three parallel axes)."""
+def _beyond(k: _Naming, q4: float, c3: float, s3: float, c2: float, s2: float) -> Vec:
+    """The wrist centre from axis 4's point, turned by joints 4, 3 and 2 (three parallel axes; ``c3``, ``s3``: joint
+    3's cosine and sine, ``c2``, ``s2`` joint 2's). (Rodrigues written out twice: a solve names every branch.)"""
     assert k.hand is not None  # (only called with one)
-    c, s = math.cos(values[3]), math.sin(values[3])
+    c, s = math.cos(q4), math.sin(q4)
     a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.hand
-    v = (a0 + c * b0 + s * d0, a1 + c * b1 + s * d1, a2 + c * b2 + s * d2)
-    return _turned(k.axis_2, _turned(k.axis_3, v, math.cos(values[2]), math.sin(values[2])), c2, s2)
-
-
-def _turned(k: Vec, v: Vec, c: float, s: float) -> Vec:
-    """``v`` turned about the unit axis ``k`` by the angle of cosine ``c`` and sine ``s`` (Rodrigues)."""
-    along = (k[0] * v[0] + k[1] * v[1] + k[2] * v[2]) * (1.0 - c)
+    v0, v1, v2 = a0 + c * b0 + s * d0, a1 + c * b1 + s * d1, a2 + c * b2 + s * d2
+    (h0, h1, h2), (n0, n1, n2) = k.axis_3, k.axis_2
+    along = (h0 * v0 + h1 * v1 + h2 * v2) * (1.0 - c3)
+    t0 = v0 * c3 + (h1 * v2 - h2 * v1) * s3 + h0 * along
+    t1 = v1 * c3 + (h2 * v0 - h0 * v2) * s3 + h1 * along
+    t2 = v2 * c3 + (h0 * v1 - h1 * v0) * s3 + h2 * along
+    along = (n0 * t0 + n1 * t1 + n2 * t2) * (1.0 - c2)
     return (
-        v[0] * c + (k[1] * v[2] - k[2] * v[1]) * s + k[0] * along,
-        v[1] * c + (k[2] * v[0] - k[0] * v[2]) * s + k[1] * along,
-        v[2] * c + (k[0] * v[1] - k[1] * v[0]) * s + k[2] * along,
+        t0 * c2 + (n1 * t2 - n2 * t1) * s2 + n0 * along,
+        t1 * c2 + (n2 * t0 - n0 * t2) * s2 + n1 * along,
+        t2 * c2 + (n0 * t1 - n1 * t0) * s2 + n2 * along,
     )
 
 
