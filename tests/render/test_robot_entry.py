@@ -89,14 +89,26 @@ def test_library_modes_take_their_plain_links_and_joints_from_the_emitter(mode):
         assert calls.count("dh_arm") == len(robot.arms) and calls.count("wheel") == len(robot.wheels)
 
 
+@pytest.fixture(scope="module")
+def generated(tmp_path_factory):
+    """Every example's package with the inline and with the copy macro, generated once in a test process for the
+    three hardware arguments below (which only expand them)."""
+    folder = tmp_path_factory.mktemp("modes")
+    return {
+        (spec, mode): xacrokit.generate(spec, folder / spec.stem / mode, macros=mode)
+        for spec in EXAMPLES
+        for mode in ("inline", "copy")
+    }
+
+
 @pytest.mark.parametrize("hardware", ["mock", "gazebo", "none"])
-def test_every_macro_mode_gives_the_same_robot_with_every_argument(tmp_path, hardware):
+def test_every_macro_mode_gives_the_same_robot_with_every_argument(generated, hardware):
     # the inline macro (plain XML computed by gen-robot) and the copy macro (library macro calls) describe the same
     # robot whatever the entry's arguments
     for spec in EXAMPLES:
         outputs = []
         for mode in ("inline", "copy"):
-            result = xacrokit.generate(spec, tmp_path / spec.stem / mode, macros=mode)
+            result = generated[spec, mode]
             entry = result.output / "urdf" / f"{result.name}.urdf.xacro"
             packages = {result.package: result.output}
             urdf = expand_file(entry, {"prefix": "r7_", "ros2_control": hardware}, package_paths=packages)
