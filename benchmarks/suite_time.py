@@ -1,10 +1,10 @@
 """How long the test suite takes (issue 45, item 3: at most 6 minutes on the project's 2-core machine): the README's
 test command, timed from start to end, with pyproject's options (a worker a core, the ten slowest tests named).
 
-It prints the wall time, the count of tests passed and skipped, and the ten slowest tests as pytest names them; with
-``--by-module`` also the work (the tests' durations summed: what the workers share) by test folder and the modules
-that take the most, so that the next slowness shows where it is. Run it with nothing else on the machine: the workers
-take every core. (No test runs it: it is the suite.)
+It prints the wall time, the count of tests passed and skipped (and each test that failed), and the ten slowest tests
+as pytest names them; with ``--by-module`` also the work (the tests' durations summed: what the workers share) by test
+folder and the modules that take the most, so that the next slowness shows where it is. Run it with nothing else on
+the machine: the workers take every core. (No test runs it: it is the suite.)
 
 Usage: python benchmarks/suite_time.py [--by-module] [PYTEST ARGS...]   (e.g. -n 0 for one process)
 """
@@ -36,6 +36,9 @@ def main() -> None:
     slowest_at = next((k for k, line in enumerate(lines) if "slowest" in line and "durations" in line), None)
     print(f"test suite: {wall:.0f} s wall ({os.cpu_count()} cores, load average then {os.getloadavg()[0]:.1f})")
     print(f"  {summary.strip('= ')}")
+    for line in lines:  # (pytest's -ra summary: a failure is named, not only counted)
+        if line.startswith(("FAILED ", "ERROR ")):
+            print(f"    {line}")
     if slowest_at is not None:
         print("  the ten slowest:")
         for line in lines[slowest_at + 1 : slowest_at + 11]:
