@@ -241,7 +241,9 @@ def ik(
     prepares once.
 
     Raises:
-        as :func:`ik_solver`; XacrokitError: a search whose pose error overflows at every start.
+        as :func:`ik_solver`; XacrokitError: a target that is no pose (not a 4x4, or its top 3x4, of finite numbers
+            with a rotation in its top-left 3x3 and 0 0 0 1 below: said at once, with the file), a search whose pose
+            error overflows at every start.
     """
     read, model = _read(robot)  # (read and checked once: a loop over targets pays the solve alone)
     solver = _solver(read, model, frame, in_frame)
