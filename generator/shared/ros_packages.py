@@ -85,7 +85,11 @@ def find_package(name: str, package_paths: Mapping[str, str | os.PathLike[str]] 
         ExpandError-compatible ``LookupError`` when the package is nowhere to be found.
     """
     given = os.fspath(package_paths[name]) if package_paths and name in package_paths else None
-    key = (name, given, os.getcwd(), os.environ.get("AMENT_PREFIX_PATH", ""), tuple(sys.path))
+    try:
+        here = os.getcwd()
+    except OSError:  # (a working folder since removed: found afresh, as before it was remembered)
+        return _find_package(name, package_paths)
+    key = (name, given, here, os.environ.get("AMENT_PREFIX_PATH", ""), tuple(sys.path))
     found = _FOUND.get(key)
     if found is not None and os.path.isdir(found):
         return found

@@ -41,3 +41,13 @@ def test_a_given_folder_wins_and_is_asked_again_when_it_changes(tmp_path):
     link = tmp_path / "link"
     link.symlink_to(one)
     assert find_package("probe_pkg", {"probe_pkg": link}) == str(one.resolve())
+
+
+def test_a_removed_working_folder_does_not_stop_the_search(tmp_path, monkeypatch):
+    folder = _package(tmp_path / "prefix")
+    monkeypatch.setenv("AMENT_PREFIX_PATH", str(tmp_path / "prefix"))
+    gone = tmp_path / "gone"
+    gone.mkdir()
+    monkeypatch.chdir(gone)
+    gone.rmdir()
+    assert find_package("probe_pkg") == str(folder)
