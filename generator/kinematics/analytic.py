@@ -367,6 +367,7 @@ class _WristPair(NamedTuple):
     q5_cosine: tuple[float, float]  # ((h6 - (h5.h6) h5) . h4, and . across)
     q6_across: tuple[float, ...]  # (axis 6's across vector turned by q5, :func:`.subproblems.parts`, flat)
     q6_normal: tuple[float, ...]  # (h6 x across, turned by q5)
+    flips: bool  # (h5 at right angles to h4 and h6, h6 along h4: the second root is q4 + pi, -q5, q6 + pi)
 
 
 def _wrist_pair(h: tuple[Vec, ...], across6: Vec) -> _WristPair:
@@ -386,6 +387,7 @@ def _wrist_pair(h: tuple[Vec, ...], across6: Vec) -> _WristPair:
         (dot(cosine_vector, h4), dot(cosine_vector, across)),
         flat_parts(h5, across6),
         flat_parts(h5, cross(h6, across6)),
+        abs(dot(h4, h5)) < DEGENERATE and abs(dot(h5, h6)) < DEGENERATE and norm(cross(h4, h6)) < DEGENERATE,
     )
 
 
@@ -423,8 +425,16 @@ def _wrist_on_floats(w: _WristPair, v: Vec, v6: Vec) -> tuple[list[Vec], bool] |
         y0, y1, y2 = a0 + c4 * b0 + s4 * d0, a1_ + c4 * b1 + s4 * d1, a2 + c4 * b2 + s4 * d2  # (v6 turned back by q4)
         e0, e1, e2 = ea0 + c5 * eb0 + s5 * ed0, ea1 + c5 * eb1 + s5 * ed1, ea2 + c5 * eb2 + s5 * ed2
         f0, f1, f2 = fa0 + c5 * fb0 + s5 * fd0, fa1 + c5 * fb1 + s5 * fd1, fa2 + c5 * fb2 + s5 * fd2
-        found.append((q4, q5, math.atan2(y0 * f0 + y1 * f1 + y2 * f2, y0 * e0 + y1 * e1 + y2 * e2)))
+        q6 = math.atan2(y0 * f0 + y1 * f1 + y2 * f2, y0 * e0 + y1 * e1 + y2 * e2)
+        found.append((q4, q5, q6))
+        if w.flips and g > _FLIPPED and abs(q4) > _SIDED and abs(q6) > _SIDED:
+            found.append((q4 - math.pi if q4 > 0 else q4 + math.pi, -q5, q6 - math.pi if q6 > 0 else q6 + math.pi))
+            break  # (the flip, R4(q4 + pi) R5(-q5) R6(q6 + pi) = R4(q4) R5(q5) R6(q6), in atan2's range)
     return found, exact
+
+
+_FLIPPED = 1e-3  # (gamma, about sin q5: above it the flip's values are the second root's to 1e-13)
+_SIDED = 1e-9  # (q4 and q6 this far from 0: their flips are clear of atan2's cut at pi, as the second root's)
 
 
 class _ParallelArm(NamedTuple):
