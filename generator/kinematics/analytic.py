@@ -70,8 +70,9 @@ class Branch(NamedTuple):
     singular: str = ""
 
 
-def branches(form: ClosedForm, rotation_: Mat, position: Vec) -> list[Branch]:
-    """Every branch that puts the chain's frame at (``rotation_``, ``position``) in the root's frame."""
+def branches(form: ClosedForm, rotation_: Mat, position: Vec, *, exact_only: bool = False) -> list[Branch]:
+    """Every branch that puts the chain's frame at (``rotation_``, ``position``) in the root's frame; with
+    ``exact_only``, only those whose subproblems all have exact roots (a solve keeps no other: the rest not made)."""
     (h00, h01, h02), (h10, h11, h12), (h20, h21, h22) = form.lines.home_rotation  # (G = T M^-1, on floats)
     (a0, a1, a2), (b0, b1, b2), (c0, c1, c2) = rotation_
     r0 = (a0 * h00 + a1 * h01 + a2 * h02, a0 * h10 + a1 * h11 + a2 * h12, a0 * h20 + a1 * h21 + a2 * h22)
@@ -85,8 +86,8 @@ def branches(form: ClosedForm, rotation_: Mat, position: Vec) -> list[Branch]:
     )
     r_g = (r0, r1, r2)
     if form.kind == THREE_PARALLEL:
-        return _three_parallel(form, r_g, p_g)
-    return _spherical_wrist(form, r_g, p_g)
+        return _three_parallel(form, r_g, p_g, exact_only)
+    return _spherical_wrist(form, r_g, p_g, exact_only)
 
 
 class _Shoulder(NamedTuple):
@@ -200,7 +201,7 @@ def _three_parallel_constants(form: ClosedForm) -> _ThreeParallel:
     )
 
 
-def _three_parallel(form: ClosedForm, r_g: Mat, p_g: Vec) -> list[Branch]:
+def _three_parallel(form: ClosedForm, r_g: Mat, p_g: Vec, exact_only: bool) -> list[Branch]:
     """The chain of the module's docstring, its arithmetic written out on floats (a solve's hot loop: no call but
     the subproblems' and math's): vectors the arm fixes are turned from their parts, and theta is read in a frame
     across n. Step 1 here, the rest for each root of q1 (:func:`_three_parallel_wrists`)."""
@@ -209,20 +210,27 @@ def _three_parallel(form: ClosedForm, r_g: Mat, p_g: Vec) -> list[Branch]:
     if step is None:
         return []
     roots, exact, reach = step
+    if exact_only and not exact:
+        return []
     (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = r_g
     x6, y6, z6 = k.axis_6
     g6 = (r00 * x6 + r01 * y6 + r02 * z6, r10 * x6 + r11 * y6 + r12 * z6, r20 * x6 + r21 * y6 + r22 * z6)
     found: list[Branch] = []
     for i, t1 in enumerate(roots):
-        _three_parallel_wrists(k, (r_g, g6, reach), t1, (i, exact), found)
+        _three_parallel_wrists(k, (r_g, g6, reach), t1, (i, exact, exact_only), found)
     return found
 
 
 def _three_parallel_wrists(
-    k: _ThreeParallel, goal: tuple[Mat, Vec, tuple[float, ...]], t1: float, root: tuple[int, bool], found: list[Branch]
+    k: _ThreeParallel,
+    goal: tuple[Mat, Vec, tuple[float, ...]],
+    t1: float,
+    root: tuple[int, bool, bool],
+    found: list[Branch],
 ) -> None:
     """Steps 2 to 4 for the root ``t1`` (-q1) of step 1, then step 5 (:func:`_three_parallel_elbows`); ``goal`` is
-    R_G, R_G h6 and the wrist centre's parts about axis 1, ``root`` the root's index and whether it is exact.
+    R_G, R_G h6 and the wrist centre's parts about axis 1, ``root`` the root's index, whether it is exact and
+    whether only exact branches are made.
     (Subproblem 1 for q6 on floats: the part of R_G^T R1 n across axis 6 made once for both roots of q5.)"""
     (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = goal[0]
     c1, s1, t = math.cos(t1), -math.sin(t1), math.sin(t1)  # (of q1 = -t1)
@@ -241,6 +249,8 @@ def _three_parallel_wrists(
         return
     g0, g1, g2 = goal[1]
     fifths, wrist_exact = angles(phase, radius, n0 * g0 + n1 * g1 + n2 * g2 - constant)
+    if root[2] and not wrist_exact:
+        return
     k0, k1, k2 = k.axis_6
     g0, g1, g2 = r00 * n0 + r10 * n1 + r20 * n2, r01 * n0 + r11 * n1 + r21 * n2, r02 * n0 + r12 * n1 + r22 * n2
     along = k0 * g0 + k1 * g1 + k2 * g2  # (R_G^T R1 n, across axis 6: q6's target)
@@ -271,16 +281,21 @@ def _three_parallel_wrists(
         a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.wrist_arm
         w = (u0 - (a0 + c * b0 + s * d0), u1 - (a1 + c * b1 + s * d1), u2 - (a2 + c * b2 + s * d2))
         q6, singular = (-t6, "") if t6 is not None else (0.0, _UR_WRIST)
-        head = (-t1, q5, q6, root[0], j, root[1] and wrist_exact, singular)
+        head = (-t1, q5, q6, root[0], j, root[1] and wrist_exact, singular, root[2])
         _three_parallel_elbows(k, w, theta, head, found)
 
 
 def _three_parallel_elbows(
-    k: _ThreeParallel, w: Vec, theta: float, head: tuple[float, float, float, int, int, bool, str], found: list[Branch]
+    k: _ThreeParallel,
+    w: Vec,
+    theta: float,
+    head: tuple[float, float, float, int, int, bool, str, bool],
+    found: list[Branch],
 ) -> None:
     """Step 5: q3 from w's distance from axis 2, q2 turning the elbow onto w (subproblem 1 on floats, w's part
     across axis 2 made once for both roots) and q4 = theta - q2 - q3 (each with its axis' sign); the branches
-    appended to ``found``, ``head`` holding q1, q5, q6, the roots of q1 and q5, whether exact, and the singularity."""
+    appended to ``found``, ``head`` holding q1, q5, q6, the roots of q1 and q5, whether exact, the singularity, and
+    whether only exact branches are made."""
     phase, radius, constant = k.elbow
     if radius < DEGENERATE:
         return
@@ -288,7 +303,9 @@ def _three_parallel_elbows(
     along = w0 * m0 + w1 * m1 + w2 * m2
     square = w0 * w0 + w1 * w1 + w2 * w2  # (w's distance from axis 2)
     thirds, elbow_exact = angles(phase, radius, -(square - along * along) / 2.0 - constant)
-    q1, q5, q6, i, j, exact, singular = head
+    q1, q5, q6, i, j, exact, singular, exact_only = head
+    if exact_only and not elbow_exact:
+        return
     exact = exact and elbow_exact
     along = k0 * w0 + k1 * w1 + k2 * w2
     y0, y1, y2 = w0 - along * k0, w1 - along * k1, w2 - along * k2
@@ -317,11 +334,11 @@ _SPHERICAL = (
 )
 
 
-def _spherical_wrist(form: ClosedForm, r_g: Mat, p_g: Vec) -> list[Branch]:
+def _spherical_wrist(form: ClosedForm, r_g: Mat, p_g: Vec, exact_only: bool) -> list[Branch]:
     """The module's chain for a spherical wrist: joints 2 and 3 parallel (:func:`_parallel_arm`, on floats), or
     axes 1 and 2 meeting (:func:`_meeting_shoulder`)."""
     if form.parallel is not None:
-        return _parallel_arm(form, r_g, p_g)
+        return _parallel_arm(form, r_g, p_g, exact_only)
     h = form.lines.axes
     centre = add(apply(r_g, form.wrist), p_g)
     found: list[Branch] = []
@@ -463,7 +480,7 @@ def _parallel_arm_constants(form: ClosedForm) -> _ParallelArm:
     return _ParallelArm(_shoulder(form, n), elbow, n, forearm, sub(p[2], p[1]), h[1], h[2], across, wrist, h)
 
 
-def _parallel_arm(form: ClosedForm, r_g: Mat, p_g: Vec) -> list[Branch]:
+def _parallel_arm(form: ClosedForm, r_g: Mat, p_g: Vec, exact_only: bool) -> list[Branch]:
     """Step 1 as the three parallel axes' shoulder and elbow (q1 from n . E1^-1(G W) = n . W, q3 from the wrist
     centre's distance from axis 2, q2 turning it onto), then step 2 on axis 6 and a vector across it turned back
     by joints 1 to 3 (Rodrigues on floats: no matrices made); for each root of q1, :func:`_parallel_arm_elbows`."""
@@ -472,19 +489,22 @@ def _parallel_arm(form: ClosedForm, r_g: Mat, p_g: Vec) -> list[Branch]:
     if step is None:
         return []
     roots, exact, reach = step
+    if exact_only and not exact:
+        return []
     axis = k.shoulder.axis
     g6, a6 = flat_parts(axis, apply(r_g, k.axes[5])), flat_parts(axis, apply(r_g, k.across))
     found: list[Branch] = []
     for i, t1 in enumerate(roots):
-        _parallel_arm_elbows(k, (g6, a6, reach), t1, (i, exact), found)
+        _parallel_arm_elbows(k, (g6, a6, reach), t1, (i, exact, exact_only), found)
     return found
 
 
 def _parallel_arm_elbows(
-    k: _ParallelArm, goal: tuple[tuple[float, ...], ...], t1: float, root: tuple[int, bool], found: list[Branch]
+    k: _ParallelArm, goal: tuple[tuple[float, ...], ...], t1: float, root: tuple[int, bool, bool], found: list[Branch]
 ) -> None:
     """The branches of the root ``t1`` (= -q1) appended to ``found``: ``goal`` holds the parts about axis 1 of R_G h6,
-    of R_G across and of the wrist centre (:func:`_shoulder_roots`), ``root`` the root's index and whether exact."""
+    of R_G across and of the wrist centre (:func:`_shoulder_roots`), ``root`` the root's index, whether exact and
+    whether only exact branches are made."""
     c1, s1 = math.cos(t1), math.sin(t1)
     a0, a1, a2, b0, b1, b2, d0, d1, d2 = goal[2]  # (the wrist centre turned by t1 about axis 1, from axis 2's point)
     u = (a0 + c1 * b0 + s1 * d0, a1 + c1 * b1 + s1 * d1, a2 + c1 * b2 + s1 * d2)
@@ -494,6 +514,8 @@ def _parallel_arm_elbows(
     (m0, m1, m2), (u0, u1, u2) = k.n, u
     along = u0 * m0 + u1 * m1 + u2 * m2
     thirds, elbow_exact = angles(phase, radius, -(u0 * u0 + u1 * u1 + u2 * u2 - along * along) / 2.0 - constant)
+    if root[2] and not elbow_exact:
+        return
     a0, a1, a2, b0, b1, b2, d0, d1, d2 = goal[0]
     back6 = (a0 + c1 * b0 + s1 * d0, a1 + c1 * b1 + s1 * d1, a2 + c1 * b2 + s1 * d2)
     a0, a1, a2, b0, b1, b2, d0, d1, d2 = goal[1]

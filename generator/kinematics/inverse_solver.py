@@ -252,7 +252,7 @@ class IkSolver:
         (r00, r01, r02, x), (r10, r11, r12, y), (r20, r21, r22, z), _ = pose
         rotation = ((r00, r01, r02), (r10, r11, r12), (r20, r21, r22))
         centres = self.centres if seed is self.rest else [float(seed[k]) for k in self.form.lines.joints]
-        found = branches(self.form, rotation, (x, y, z))
+        found = branches(self.form, rotation, (x, y, z), exact_only=True)  # (_candidates keeps no other)
         candidates, outside = _candidates(found, (self.within, self.bounds), centres)
         if not every:  # (checked nearest first: the first that reaches is the answer; ties, the lower values)
             _nearest_first(candidates)
