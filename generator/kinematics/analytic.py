@@ -70,6 +70,9 @@ class Branch(NamedTuple):
     singular: str = ""
 
 
+_made = tuple.__new__  # (Branch(...) without its __new__'s frame: a third of the time, and a solve makes eight)
+
+
 def branches(form: ClosedForm, rotation_: Mat, position: Vec, *, exact_only: bool = False) -> list[Branch]:
     """Every branch that puts the chain's frame at (``rotation_``, ``position``) in the root's frame; with
     ``exact_only``, only those whose subproblems all have exact roots (a solve keeps no other: the rest not made)."""
@@ -320,7 +323,7 @@ def _three_parallel_elbows(
         if turns_2 and s0 + c * (c * s1 + s3) + s * (s * s2 + s4 + c * s5) >= _SQUARE:  # (else q2 turns nothing)
             q2 = math.atan2(za + c * zb + s * zd, ya + c * yb + s * yd) or 0.0
         q4 = sign4 * (theta - sign2 * q2 - sign3 * q3)
-        found.append(Branch((q1, q2, q3, q4, q5, q6), (i, j, m), exact, singular))
+        found.append(_made(Branch, ((q1, q2, q3, q4, q5, q6), (i, j, m), exact, singular)))
 
 
 _SQUARE = DEGENERATE * DEGENERATE  # (a squared length below it: a vector without direction)
@@ -491,16 +494,24 @@ def _parallel_arm(form: ClosedForm, r_g: Mat, p_g: Vec, exact_only: bool) -> lis
     roots, exact, reach = step
     if exact_only and not exact:
         return []
-    axis = k.shoulder.axis
-    g6, a6 = flat_parts(axis, apply(r_g, k.axes[5])), flat_parts(axis, apply(r_g, k.across))
+    (h0, h1, h2), (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = k.shoulder.axis, *r_g
+    goal: list[tuple[float, ...]] = []
+    for v0, v1, v2 in (k.axes[5], k.across):  # (flat_parts(axis 1, apply(r_g, v)), written out)
+        a0, a1, a2 = r00 * v0 + r01 * v1 + r02 * v2, r10 * v0 + r11 * v1 + r12 * v2, r20 * v0 + r21 * v1 + r22 * v2
+        along = h0 * a0 + h1 * a1 + h2 * a2
+        goal.append(
+            (along * h0, along * h1, along * h2, a0 - along * h0, a1 - along * h1, a2 - along * h2)
+            + (h1 * a2 - h2 * a1, h2 * a0 - h0 * a2, h0 * a1 - h1 * a0)
+        )
+    goal.append(reach)
     found: list[Branch] = []
     for i, t1 in enumerate(roots):
-        _parallel_arm_elbows(k, (g6, a6, reach), t1, (i, exact, exact_only), found)
+        _parallel_arm_elbows(k, goal, t1, (i, exact, exact_only), found)
     return found
 
 
 def _parallel_arm_elbows(
-    k: _ParallelArm, goal: tuple[tuple[float, ...], ...], t1: float, root: tuple[int, bool, bool], found: list[Branch]
+    k: _ParallelArm, goal: list[tuple[float, ...]], t1: float, root: tuple[int, bool, bool], found: list[Branch]
 ) -> None:
     """The branches of the root ``t1`` (= -q1) appended to ``found``: ``goal`` holds the parts about axis 1 of R_G h6,
     of R_G across and of the wrist centre (:func:`_shoulder_roots`), ``root`` the root's index, whether exact and
@@ -541,7 +552,7 @@ def _parallel_arm_elbows(
                 found.append(Branch((-t1, q2, q3, *values), (root[0], m, j), exact and wrist_exact, singular))
             continue
         for j, (q4, q5, q6) in enumerate(fast[0]):
-            found.append(Branch((-t1, q2, q3, q4, q5, q6), (root[0], m, j), exact and fast[1]))
+            found.append(_made(Branch, ((-t1, q2, q3, q4, q5, q6), (root[0], m, j), exact and fast[1], "")))
 
 
 def _turned_twice(k: _ParallelArm, turns: tuple[float, float, float, float], pair: tuple[Vec, Vec]) -> list[Vec]:
