@@ -19,6 +19,7 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
+import operator
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -363,7 +364,7 @@ def target_problem(matrix: np.ndarray, *, position_only: bool) -> str:
         math.isfinite(v) for v in (*rows[0], *rows[1], *rows[2])
     ):  # (a finite sum says it at once: a solve asks this of every target)
         return "holds a number that is not finite (nan or inf); give a 4x4 pose of finite numbers"
-    if len(rows) == 4 and max(abs(v - w) for v, w in zip(rows[3], _BOTTOM, strict=True)) > 1e-9:
+    if len(rows) == 4 and max(abs(rows[3][0]), abs(rows[3][1]), abs(rows[3][2]), abs(rows[3][3] - 1.0)) > 1e-9:
         return f"has the bottom row {rows[3]}; a pose's is [0, 0, 0, 1]"
     if position_only:
         return ""
@@ -492,8 +493,11 @@ def _candidates(
                 outside += 1
                 continue
         for other_elbow, other_wrist, other in kept:  # (two branches differ at joint 3 or 5, but for the shoulder's)
+            apart = wrapped[2] - other_elbow
+            if _APART < apart < _TURN_LESS or -_TURN_LESS < apart < -_APART:
+                continue  # (joint 3 more than 1e-6 from a whole turn apart, told without a call)
             if (
-                abs(remainder(wrapped[2] - other_elbow, TURN)) < 1e-6
+                abs(remainder(apart, TURN)) < 1e-6
                 and abs(remainder(wrapped[4] - other_wrist, TURN)) < 1e-6
                 and _same_turns(wrapped, other)
             ):
@@ -504,19 +508,21 @@ def _candidates(
     return candidates, outside
 
 
+_APART, _TURN_LESS = 2e-6, TURN - 2e-6  # (a difference between them is more than 1e-6 from any whole turn)
+
+
 def _nearest_first(candidates: list[tuple[list[float], Branch, float]]) -> None:
     """Sorted in the order the first solution is looked for in: nearest first, two as near (the distances equal to
     1e-9) the lower values first. (By the distance alone when no two are within 2e-9: rounding to 1e-9 keeps the
     order, and puts apart two more than 1e-9 apart; it costs a microsecond a value.)"""
-    candidates.sort(key=_distance_of)
+    candidates.sort(key=_distance_of)  # (an itemgetter: no Python frame per candidate)
     for k in range(1, len(candidates)):
         if candidates[k][2] - candidates[k - 1][2] <= 2e-9:
             candidates.sort(key=lambda c: (round(c[2], 9), c[0]))
             return
 
 
-def _distance_of(candidate: tuple[list[float], Branch, float]) -> float:
-    return candidate[2]
+_distance_of = operator.itemgetter(2)  # (a candidate's distance)
 
 
 def _nearest_turns(
