@@ -423,12 +423,15 @@ def _wrist_on_floats(w: _WristPair, v: Vec, v6: Vec) -> tuple[list[Vec], bool] |
     beta = (w.along - c * a1) / (1.0 - c * c)
     rest = w.square - alpha * alpha - beta * beta - 2.0 * alpha * beta * c
     square = v0 * v0 + v1 * v1 + v2 * v2
-    scale_ = max(w.square, square, 1e-300)
+    # (max(w.square, square, 1e-300) and max(x, 0.0) as comparisons, the same values: no call in the hot loop)
+    scale_ = square if square > w.square else w.square
+    scale_ = 1e-300 if scale_ < 1e-300 else scale_
     exact = rest >= -TANGENT * scale_ and abs(w.square - square) <= TANGENT * scale_
-    gamma = math.sqrt(max(rest, 0.0) / w.sine2)
+    gamma = math.sqrt((0.0 if rest < 0.0 else rest) / w.sine2)
     on4 = alpha + beta * c  # (the middle vector's part along h4)
     middle2 = alpha * alpha + beta * beta + 2.0 * alpha * beta * c + gamma * gamma * w.sine2
-    if math.sqrt(max(middle2 - on4 * on4, 0.0)) < DEGENERATE or math.sqrt(max(square - a1 * a1, 0.0)) < DEGENERATE:
+    off4, off_v = middle2 - on4 * on4, square - a1 * a1  # (the middle vector's and v's parts across h4, squared)
+    if off4 < 0.0 or math.sqrt(off4) < DEGENERATE or off_v < 0.0 or math.sqrt(off_v) < DEGENERATE:
         return None
     u0, u1, u2 = v6  # (v6's parts about h4, :func:`.subproblems.parts`)
     along = x4 * u0 + y4 * u1 + z4 * u2
