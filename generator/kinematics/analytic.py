@@ -207,7 +207,8 @@ def _three_parallel_constants(form: ClosedForm) -> _ThreeParallel:
 def _three_parallel(form: ClosedForm, r_g: Mat, p_g: Vec, exact_only: bool) -> list[Branch]:
     """The chain of the module's docstring, its arithmetic written out on floats (a solve's hot loop: no call but
     the subproblems' and math's): vectors the arm fixes are turned from their parts, and theta is read in a frame
-    across n. Step 1 here, the rest for each root of q1 (:func:`_three_parallel_wrists`)."""
+    across n. Step 1 here, steps 2 to 4 for each root of q1 (:func:`_three_parallel_wrists`), then step 5 for every
+    wrist found (:func:`_three_parallel_elbows`: the arm's constants read once a target)."""
     k = _three_parallel_constants(form)
     step = _shoulder_roots(k.shoulder, r_g, p_g)
     if step is None:
@@ -218,9 +219,11 @@ def _three_parallel(form: ClosedForm, r_g: Mat, p_g: Vec, exact_only: bool) -> l
     (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = r_g
     x6, y6, z6 = k.axis_6
     g6 = (r00 * x6 + r01 * y6 + r02 * z6, r10 * x6 + r11 * y6 + r12 * z6, r20 * x6 + r21 * y6 + r22 * z6)
-    found: list[Branch] = []
+    arms: list[tuple[Vec, float, tuple[float, float, float, int, int, bool, str, bool]]] = []
     for i, t1 in enumerate(roots):
-        _three_parallel_wrists(k, (r_g, g6, reach), t1, (i, exact, exact_only), found)
+        _three_parallel_wrists(k, (r_g, g6, reach), t1, (i, exact, exact_only), arms)
+    found: list[Branch] = []
+    _three_parallel_elbows(k, arms, found)
     return found
 
 
@@ -229,11 +232,11 @@ def _three_parallel_wrists(
     goal: tuple[Mat, Vec, tuple[float, ...]],
     t1: float,
     root: tuple[int, bool, bool],
-    found: list[Branch],
+    arms: list[tuple[Vec, float, tuple[float, float, float, int, int, bool, str, bool]]],
 ) -> None:
-    """Steps 2 to 4 for the root ``t1`` (-q1) of step 1, then step 5 (:func:`_three_parallel_elbows`); ``goal`` is
-    R_G, R_G h6 and the wrist centre's parts about axis 1, ``root`` the root's index, whether it is exact and
-    whether only exact branches are made.
+    """Steps 2 to 4 for the root ``t1`` (-q1) of step 1, each wrist appended to ``arms`` for step 5 (w, theta and
+    :func:`_three_parallel_elbows`' head); ``goal`` is R_G, R_G h6 and the wrist centre's parts about axis 1,
+    ``root`` the root's index, whether it is exact and whether only exact branches are made.
     (Subproblem 1 for q6 on floats: the part of R_G^T R1 n across axis 6 made once for both roots of q5.)"""
     (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = goal[0]
     c1, s1, t = math.cos(t1), -math.sin(t1), math.sin(t1)  # (of q1 = -t1)
@@ -284,46 +287,43 @@ def _three_parallel_wrists(
         a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.wrist_arm
         w = (u0 - (a0 + c * b0 + s * d0), u1 - (a1 + c * b1 + s * d1), u2 - (a2 + c * b2 + s * d2))
         q6, singular = (-t6, "") if t6 is not None else (0.0, _UR_WRIST)
-        head = (-t1, q5, q6, root[0], j, root[1] and wrist_exact, singular, root[2])
-        _three_parallel_elbows(k, w, theta, head, found)
+        arms.append((w, theta, (-t1, q5, q6, root[0], j, root[1] and wrist_exact, singular, root[2])))
 
 
 def _three_parallel_elbows(
     k: _ThreeParallel,
-    w: Vec,
-    theta: float,
-    head: tuple[float, float, float, int, int, bool, str, bool],
+    arms: list[tuple[Vec, float, tuple[float, float, float, int, int, bool, str, bool]]],
     found: list[Branch],
 ) -> None:
-    """Step 5: q3 from w's distance from axis 2, q2 turning the elbow onto w (subproblem 1 on floats, w's part
-    across axis 2 made once for both roots) and q4 = theta - q2 - q3 (each with its axis' sign); the branches
-    appended to ``found``, ``head`` holding q1, q5, q6, the roots of q1 and q5, whether exact, the singularity, and
-    whether only exact branches are made."""
+    """Step 5 for each wrist of ``arms`` (w, theta and a head holding q1, q5, q6, the roots of q1 and q5, whether
+    exact, the singularity, and whether only exact branches are made): q3 from w's distance from axis 2, q2 turning
+    the elbow onto w (subproblem 1 on floats, w's part across axis 2 made once for both roots) and
+    q4 = theta - q2 - q3 (each with its axis' sign); the branches appended to ``found``."""
     phase, radius, constant = k.elbow
     if radius < DEGENERATE:
         return
-    (w0, w1, w2), (m0, m1, m2), (k0, k1, k2) = w, k.n, k.axis_2
-    along = w0 * m0 + w1 * m1 + w2 * m2
-    square = w0 * w0 + w1 * w1 + w2 * w2  # (w's distance from axis 2)
-    thirds, elbow_exact = angles(phase, radius, -(square - along * along) / 2.0 - constant)
-    q1, q5, q6, i, j, exact, singular, exact_only = head
-    if exact_only and not elbow_exact:
-        return
-    exact = exact and elbow_exact
-    along = k0 * w0 + k1 * w1 + k2 * w2
-    y0, y1, y2 = w0 - along * k0, w1 - along * k1, w2 - along * k2
-    turns_2 = math.sqrt(y0 * y0 + y1 * y1 + y2 * y2) >= DEGENERATE
+    (m0, m1, m2), (k0, k1, k2), (sign2, sign3, sign4) = k.n, k.axis_2, k.signs
     a0, a1, a2, b0, b1, b2, d0, d1, d2, e0, e1, e2, f0, f1, f2, g0, g1, g2, s0, s1, s2, s3, s4, s5 = k.elbow_turn
-    ya, yb, yd = a0 * y0 + a1 * y1 + a2 * y2, b0 * y0 + b1 * y1 + b2 * y2, d0 * y0 + d1 * y1 + d2 * y2
-    za, zb, zd = e0 * y0 + e1 * y1 + e2 * y2, f0 * y0 + f1 * y1 + f2 * y2, g0 * y0 + g1 * y1 + g2 * y2
-    sign2, sign3, sign4 = k.signs
-    for m, q3 in enumerate(thirds):
-        c, s = math.cos(q3), math.sin(q3)
-        q2 = 0.0
-        if turns_2 and s0 + c * (c * s1 + s3) + s * (s * s2 + s4 + c * s5) >= _SQUARE:  # (else q2 turns nothing)
-            q2 = math.atan2(za + c * zb + s * zd, ya + c * yb + s * yd) or 0.0
-        q4 = sign4 * (theta - sign2 * q2 - sign3 * q3)
-        found.append(_made(Branch, ((q1, q2, q3, q4, q5, q6), (i, j, m), exact, singular)))
+    for (w0, w1, w2), theta, head in arms:
+        along = w0 * m0 + w1 * m1 + w2 * m2
+        square = w0 * w0 + w1 * w1 + w2 * w2  # (w's distance from axis 2)
+        thirds, elbow_exact = angles(phase, radius, -(square - along * along) / 2.0 - constant)
+        q1, q5, q6, i, j, exact, singular, exact_only = head
+        if exact_only and not elbow_exact:
+            continue
+        exact = exact and elbow_exact
+        along = k0 * w0 + k1 * w1 + k2 * w2
+        y0, y1, y2 = w0 - along * k0, w1 - along * k1, w2 - along * k2
+        turns_2 = math.sqrt(y0 * y0 + y1 * y1 + y2 * y2) >= DEGENERATE
+        ya, yb, yd = a0 * y0 + a1 * y1 + a2 * y2, b0 * y0 + b1 * y1 + b2 * y2, d0 * y0 + d1 * y1 + d2 * y2
+        za, zb, zd = e0 * y0 + e1 * y1 + e2 * y2, f0 * y0 + f1 * y1 + f2 * y2, g0 * y0 + g1 * y1 + g2 * y2
+        for m, q3 in enumerate(thirds):
+            c, s = math.cos(q3), math.sin(q3)
+            q2 = 0.0
+            if turns_2 and s0 + c * (c * s1 + s3) + s * (s * s2 + s4 + c * s5) >= _SQUARE:  # (else q2 turns nothing)
+                q2 = math.atan2(za + c * zb + s * zd, ya + c * yb + s * yd) or 0.0
+            q4 = sign4 * (theta - sign2 * q2 - sign3 * q3)
+            found.append(_made(Branch, ((q1, q2, q3, q4, q5, q6), (i, j, m), exact, singular)))
 
 
 _SQUARE = DEGENERATE * DEGENERATE  # (a squared length below it: a vector without direction)
