@@ -32,6 +32,7 @@ from ..reader.kinematic_model import (
     FollowerValueError,
     KinematicModel,
     LimitWarning,
+    UnknownName,
     joint_values,
     require_leaders,
     shown,
@@ -111,11 +112,15 @@ def _read(robot: Robot) -> tuple[ReadRobot, KinematicModel]:
 
 @contextlib.contextmanager
 def _located(read: ReadRobot) -> Iterator[None]:
-    """A mimic joint's value that overflows, said with the file."""
+    """A mimic joint's value that overflows, and a frame or joint the robot does not have, said with the file (an
+    UnknownName keeps its role, name and detail: the command line says them with the option that named it)."""
     try:
         yield
     except FollowerValueError as exc:
         raise XacrokitError(f"{read.where}: {exc}") from None
+    except UnknownName as exc:
+        exc.args = (f"{read.where}: {exc}",)
+        raise
 
 
 def pose(robot: Robot, frame: str, *, in_frame: str | None = None, at: Mapping[str, str] | None = None) -> Pose:
@@ -127,8 +132,8 @@ def pose(robot: Robot, frame: str, *, in_frame: str | None = None, at: Mapping[s
             parse; XacrokitError: a robot the kinematics cannot take (and, given a path, unreadable input).
     """
     read, model = _read(robot)
-    values, warnings = joint_values(model, at or {})
     with _located(read):
+        values, warnings = joint_values(model, at or {})
         return _pose(model, frame, in_frame or model.root, values, warnings)
 
 
@@ -141,8 +146,8 @@ def jacobian(robot: Robot, frame: str, *, in_frame: str | None = None, at: Mappi
     import pinocchio as pin  # (heavy: pinocchio)
 
     read, model = _read(robot)
-    values, warnings = joint_values(model, at or {})
     with _located(read):
+        values, warnings = joint_values(model, at or {})
         placed = _pose(model, frame, in_frame or model.root, values, warnings)
         q = model.configuration(values)
     target, base = model.frame_id(frame), model.frame_id(placed.in_frame)
@@ -221,7 +226,8 @@ def _solver(read: ReadRobot, model: KinematicModel, frame: str, in_frame: str | 
     solver = model.solvers.get(key)
     if solver is None:
         _require_ranges(read, model)
-        solver = model.solvers[key] = IkSolver(model, frame, in_frame or model.root)
+        with _located(read):
+            solver = model.solvers[key] = IkSolver(model, frame, in_frame or model.root)
     assert isinstance(solver, IkSolver)  # (the only kind kept there)
     return solver
 

@@ -437,3 +437,25 @@ def test_the_api_refuses_a_target_that_is_no_pose_at_once_naming_the_file(tmp_pa
     (found,) = ik(robot, "tool", stretched, position_only=True).solutions
     assert found.error < 1e-9
     assert ik(robot, "tool", TURNED).closest is not None or ik(robot, "tool", TURNED).solutions  # (a pose: answered)
+
+
+def test_the_api_names_the_file_of_a_robot_without_the_frame_or_joint_asked(tmp_path):
+    """pose, jacobian and ik through Python: a frame or joint the robot does not have is said with the robot's file
+    (it was said without), the error still an UnknownName with its role, name and detail (what the command line
+    words with its option)."""
+    from xacrokit.kinematics import ik, jacobian, pose
+    from xacrokit.reader.kinematic_model import UnknownName
+
+    path = tmp_path / "arm.urdf"
+    path.write_text(arm(), encoding="utf-8")
+    robot = read_robot(path)
+    for ask, role, name in [
+        (lambda: pose(robot, "no_such"), "frame", "no_such"),
+        (lambda: jacobian(robot, "tool", in_frame="no_base"), "frame", "no_base"),
+        (lambda: pose(robot, "tool", at={"j9": "1"}), "joint", "j9"),
+        (lambda: ik(robot, "no_tool", np.eye(4)), "frame", "no_tool"),
+    ]:
+        with pytest.raises(UnknownName) as caught:
+            ask()
+        assert (caught.value.role, caught.value.name) == (role, name)
+        assert str(caught.value).startswith(f"{path}: ") and caught.value.detail in str(caught.value)
