@@ -240,14 +240,7 @@ def _three_parallel_wrists(
     (Subproblem 1 for q6 on floats: the part of R_G^T R1 n across axis 6 made once for both roots of q5.)"""
     (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = goal[0]
     c1, s1, t = math.cos(t1), -math.sin(t1), math.sin(t1)  # (of q1 = -t1)
-    a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.n_about_1
-    n0, n1, n2 = a0 + c1 * b0 + s1 * d0, a1 + c1 * b1 + s1 * d1, a2 + c1 * b2 + s1 * d2
-    a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.across_about_1
-    e0, e1, e2 = a0 + c1 * b0 + s1 * d0, a1 + c1 * b1 + s1 * d1, a2 + c1 * b2 + s1 * d2
-    x0, x1, x2 = r00 * e0 + r10 * e1 + r20 * e2, r01 * e0 + r11 * e1 + r21 * e2, r02 * e0 + r12 * e1 + r22 * e2
-    a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.normal_about_1
-    e0, e1, e2 = a0 + c1 * b0 + s1 * d0, a1 + c1 * b1 + s1 * d1, a2 + c1 * b2 + s1 * d2
-    y0, y1, y2 = r00 * e0 + r10 * e1 + r20 * e2, r01 * e0 + r11 * e1 + r21 * e2, r02 * e0 + r12 * e1 + r22 * e2
+    n0, n1, n2, x0, x1, x2, y0, y1, y2 = _turned_by_q1(k, goal[0], c1, s1)
     a0, a1, a2, b0, b1, b2, d0, d1, d2 = goal[2]  # (the wrist centre turned by t1 about axis 1, from axis 2's point)
     u0, u1, u2 = a0 + c1 * b0 + t * d0, a1 + c1 * b1 + t * d1, a2 + c1 * b2 + t * d2
     phase, radius, constant = k.wrist_roots
@@ -288,6 +281,21 @@ def _three_parallel_wrists(
         w = (u0 - (a0 + c * b0 + s * d0), u1 - (a1 + c * b1 + s * d1), u2 - (a2 + c * b2 + s * d2))
         q6, singular = (-t6, "") if t6 is not None else (0.0, _UR_WRIST)
         arms.append((w, theta, (-t1, q5, q6, root[0], j, root[1] and wrist_exact, singular, root[2])))
+
+
+def _turned_by_q1(k: _ThreeParallel, r_g: Mat, c1: float, s1: float) -> tuple[float, ...]:
+    """n turned by joint 1 (``c1``, ``s1``: the cosine and sine of -q1), and the frame across n that theta is read in
+    turned by joint 1, then by R_G^T: nine floats (n, then the frame's x and y)."""
+    (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = r_g
+    a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.n_about_1
+    n0, n1, n2 = a0 + c1 * b0 + s1 * d0, a1 + c1 * b1 + s1 * d1, a2 + c1 * b2 + s1 * d2
+    a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.across_about_1
+    e0, e1, e2 = a0 + c1 * b0 + s1 * d0, a1 + c1 * b1 + s1 * d1, a2 + c1 * b2 + s1 * d2
+    x0, x1, x2 = r00 * e0 + r10 * e1 + r20 * e2, r01 * e0 + r11 * e1 + r21 * e2, r02 * e0 + r12 * e1 + r22 * e2
+    a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.normal_about_1
+    e0, e1, e2 = a0 + c1 * b0 + s1 * d0, a1 + c1 * b1 + s1 * d1, a2 + c1 * b2 + s1 * d2
+    y0, y1, y2 = r00 * e0 + r10 * e1 + r20 * e2, r01 * e0 + r11 * e1 + r21 * e2, r02 * e0 + r12 * e1 + r22 * e2
+    return (n0, n1, n2, x0, x1, x2, y0, y1, y2)
 
 
 def _three_parallel_elbows(
