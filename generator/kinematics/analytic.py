@@ -114,10 +114,13 @@ def _shoulder(form: ClosedForm, n: Vec) -> _Shoulder:
     return _Shoulder(form.wrist, p0, h0, sub(p0, form.lines.points[1]), a, b, hk, offset)
 
 
-def _shoulder_roots(k: _Shoulder, r_g: Mat, p_g: Vec) -> tuple[list[float], bool, tuple[float, ...]] | None:
+def _shoulder_roots(
+    k: _Shoulder, r_g: Mat, p_g: Vec, exact_only: bool
+) -> tuple[list[float], bool, tuple[float, ...]] | None:
     """Step 1 on floats: the roots t1 (= -q1), whether exact, and the wrist centre's parts about axis 1 (flat, as
     :func:`.subproblems.parts` gives them, its part along the axis moved to axis 2's point: turned by t1 it is the
-    wrist centre from there); None when q1 has no equation (the wrist centre's plane holds axis 1)."""
+    wrist centre from there); None when q1 has no equation (the wrist centre's plane holds axis 1), or with
+    ``exact_only`` no exact root."""
     (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = r_g
     (w0, w1, w2), (o0, o1, o2), (g0, g1, g2) = k.wrist, k.origin, p_g
     f0 = r00 * w0 + r01 * w1 + r02 * w2 + g0 - o0  # (the wrist centre from axis 1's point)
@@ -130,6 +133,8 @@ def _shoulder_roots(k: _Shoulder, r_g: Mat, p_g: Vec) -> tuple[list[float], bool
     if radius < DEGENERATE:
         return None
     roots, exact = angles(math.atan2(y, x), radius, k.offset - k.c * along)
+    if exact_only and not exact:
+        return None
     return (
         roots,
         exact,
@@ -210,12 +215,10 @@ def _three_parallel(form: ClosedForm, r_g: Mat, p_g: Vec, exact_only: bool) -> l
     across n. Step 1 here, steps 2 to 4 for each root of q1 (:func:`_three_parallel_wrists`), then step 5 for every
     wrist found (:func:`_three_parallel_elbows`: the arm's constants read once a target)."""
     k = _three_parallel_constants(form)
-    step = _shoulder_roots(k.shoulder, r_g, p_g)
+    step = _shoulder_roots(k.shoulder, r_g, p_g, exact_only)
     if step is None:
         return []
     roots, exact, reach = step
-    if exact_only and not exact:
-        return []
     (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = r_g
     x6, y6, z6 = k.axis_6
     g6 = (r00 * x6 + r01 * y6 + r02 * z6, r10 * x6 + r11 * y6 + r12 * z6, r20 * x6 + r21 * y6 + r22 * z6)
@@ -499,12 +502,10 @@ def _parallel_arm(form: ClosedForm, r_g: Mat, p_g: Vec, exact_only: bool) -> lis
     centre's distance from axis 2, q2 turning it onto), then step 2 on axis 6 and a vector across it turned back
     by joints 1 to 3 (Rodrigues on floats: no matrices made); for each root of q1, :func:`_parallel_arm_elbows`."""
     k = _parallel_arm_constants(form)
-    step = _shoulder_roots(k.shoulder, r_g, p_g)
+    step = _shoulder_roots(k.shoulder, r_g, p_g, exact_only)
     if step is None:
         return []
     roots, exact, reach = step
-    if exact_only and not exact:
-        return []
     (h0, h1, h2), (r00, r01, r02), (r10, r11, r12), (r20, r21, r22) = k.shoulder.axis, *r_g
     goal: list[tuple[float, ...]] = []
     for v0, v1, v2 in (k.axes[5], k.across):  # (flat_parts(axis 1, apply(r_g, v)), written out)
