@@ -114,15 +114,30 @@ def tensor(ixx: float, ixy: float, ixz: float, iyy: float, iyz: float, izz: floa
     return np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]], dtype=float)
 
 
-def principal_moments(entries: Sequence[Sequence[float]]) -> list[list[float]]:
-    """The principal moments (ascending) of many tensors given as (ixx, ixy, ixz, iyy, iyz, izz), in one batched
-    eigvalsh (per-tensor numpy calls cost ten times more on robots with many links). Entries must be finite."""
-    import numpy as np  # (heavy: numpy)
+UNSCALED = 1e140  # LAPACK scales a matrix whose norm is beyond 1e146 or below 1e-146 (and rounds): those go to it
 
-    if not entries:
-        return []
-    batch = np.array(entries, dtype=float).reshape(-1, 6)[:, [0, 1, 2, 1, 3, 4, 2, 4, 5]].reshape(-1, 3, 3)
-    moments: list[list[float]] = np.linalg.eigvalsh(batch).tolist()
+
+def principal_moments(entries: Sequence[Sequence[float]]) -> list[list[float]]:
+    """The principal moments (ascending) of many tensors given as (ixx, ixy, ixz, iyy, iyz, izz). A diagonal tensor's
+    are its diagonal, sorted (LAPACK's eigvalsh gives exactly those bits while it need not scale the tensor:
+    tests/shared/test_solid_inertia.py); the others go in one batched eigvalsh (per-tensor numpy calls cost ten times
+    more on robots with many links), so that a robot whose tensors are all diagonal, as primitives in their own axes
+    are, needs no numpy. Entries must be finite."""
+    moments: list[list[float]] = []
+    full: list[int] = []
+    for k, (ixx, ixy, ixz, iyy, iyz, izz) in enumerate(entries):
+        largest = max(abs(ixx), abs(iyy), abs(izz))
+        plain = ixy == ixz == iyz == 0 and 1 / UNSCALED <= largest <= UNSCALED
+        moments.append(sorted((ixx, iyy, izz)) if plain else [])
+        if not moments[-1]:
+            full.append(k)
+    if full:
+        import numpy as np  # (heavy: numpy)
+
+        rows = np.array([entries[k] for k in full], dtype=float).reshape(-1, 6)
+        batch = rows[:, [0, 1, 2, 1, 3, 4, 2, 4, 5]].reshape(-1, 3, 3)
+        for k, found in zip(full, np.linalg.eigvalsh(batch).tolist(), strict=True):
+            moments[k] = found
     return moments
 
 
@@ -165,4 +180,14 @@ def tensor_problem(matrix: np.ndarray, rel: float = TOLERANCE) -> str | None:
         return "the inertia tensor has entries that are not finite"
     moments = np.linalg.eigvalsh(matrix).tolist()
     problem = moments_problem(moments, rel)
+    return None if problem is None else describe_problem(problem, moments)
+
+
+def entries_problem(ixx: float, ixy: float, ixz: float, iyy: float, iyz: float, izz: float) -> str | None:
+    """:func:`tensor_problem` of six inertia entries (numbers), without numpy when the tensor is diagonal."""
+    entries = (ixx, ixy, ixz, iyy, iyz, izz)
+    if not all(math.isfinite(v) for v in entries):
+        return "the inertia tensor has entries that are not finite"
+    moments = principal_moments([entries])[0]
+    problem = moments_problem(moments)
     return None if problem is None else describe_problem(problem, moments)

@@ -12,7 +12,7 @@ from typing import Any
 from ..errors import SpecError
 from ..load import PathKey, RawSpec
 from ..model import AXIAL, LIMITED
-from ..shared.solid_inertia import tensor, tensor_problem
+from ..shared.solid_inertia import entries_problem
 from .bodies import Body, geometries
 
 AXIS_LENGTHS = (1e-9, 1e9)  # what an axis may measure before it is normalised (resolve divides by its length)
@@ -253,7 +253,7 @@ def _xml_character(ch: str) -> bool:
 
 
 def _inertia_errors(raw: RawSpec, inertia: dict[str, Any], path: PathKey) -> Iterator[SpecError]:
-    matrix = tensor(
+    problem = entries_problem(
         inertia["ixx"],
         inertia.get("ixy", 0.0),
         inertia.get("ixz", 0.0),
@@ -261,7 +261,6 @@ def _inertia_errors(raw: RawSpec, inertia: dict[str, Any], path: PathKey) -> Ite
         inertia.get("iyz", 0.0),
         inertia["izz"],
     )
-    problem = tensor_problem(matrix)
     if problem:
         yield implausible(raw.error(path, problem))
 
