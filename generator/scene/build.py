@@ -19,7 +19,7 @@ from ..model import Robot, Scene, ThirdPartyMacro
 from ..resolve import origin as resolve_origin
 from ..resolve import resolve
 from ..shared.package_data import XACRO_KEYWORDS, schemas_dir
-from ..validate import Quantities, SchemaValidator, inline_refs, schema_errors, validate
+from ..validate import Quantities, SchemaValidator, schema_errors, validate
 from .plan import Planned, ScenePlan, resolve_plan
 
 Source = tuple[Robot, Path] | ThirdPartyMacro  # what an instance is: a robot of ours (and its spec file), or a macro
@@ -34,7 +34,7 @@ def is_scene(raw: RawSpec) -> bool:
 def scene_validator() -> SchemaValidator:
     """The scene spec schema's validator (built once)."""
     schema = json.loads((schemas_dir() / "scene.schema.json").read_text("utf-8"))
-    return SchemaValidator(inline_refs(schema))
+    return SchemaValidator(schema)
 
 
 def build_scene(raw: RawSpec) -> Scene:

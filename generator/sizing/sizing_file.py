@@ -21,7 +21,7 @@ from ..shared.solid_inertia import tensor_problem
 from ..shared.units import MAX_MOMENT, Kind, UnitError, bound_problem, parse_quantity
 from ..shared.value_text import did_you_mean
 from ..validate.quantities import ORIENTATIONS, Quantities
-from ..validate.schema import SchemaValidator, inline_refs, schema_errors
+from ..validate.schema import SchemaValidator, schema_errors
 from .mobile import BaseMotion
 from .motion import (
     DEFAULT_STEP,
@@ -67,7 +67,7 @@ class Sizing:
 @cache
 def _validator() -> SchemaValidator:
     schema = json.loads((schemas_dir() / "sizing.schema.json").read_text("utf-8"))
-    return SchemaValidator(inline_refs(schema))
+    return SchemaValidator(schema)
 
 
 class _Reader:

@@ -94,6 +94,10 @@ class SchemaValidator:
     document it rejects, or cannot take (NaN, a huge integer), goes through jsonschema, whose errors we word and
     locate. jsonschema has the last word: a document it accepts is valid. The property tests check that whatever
     jsonschema-rs accepts, jsonschema accepts too.
+
+    ``schema`` is given with its ``$defs``: jsonschema-rs compiles that form in a quarter of the time the inlined one
+    takes (1.6 against 7.1 ms for the robot schema, and no 2.5 ms inlining: a run validates one spec, so its start-up
+    is what counts), and validates with either at the same speed; jsonschema gets :func:`inline_refs`' form.
     """
 
     def __init__(self, schema: dict[str, Any]) -> None:
@@ -101,8 +105,8 @@ class SchemaValidator:
 
     @cached_property
     def full(self) -> Any:
-        """jsonschema's validator of the schema, which words the errors (made when first asked for)."""
-        return _draft2020()(self.schema)
+        """jsonschema's validator of the schema inlined, which words the errors (made when first asked for)."""
+        return _draft2020()(inline_refs(self.schema))
 
     @cached_property
     def fast(self) -> Any:
@@ -130,7 +134,7 @@ class SchemaValidator:
 @cache
 def robot_validator() -> SchemaValidator:
     """The robot spec schema's validator (built once)."""
-    return SchemaValidator(inline_refs(robot_schema()))
+    return SchemaValidator(robot_schema())
 
 
 # ---------------------------------------------------------------- schema errors
