@@ -33,7 +33,7 @@ _LAZY = {
     "ConflictError": ("xacrokit.write.package_writer", "ConflictError"),
     "check": ("xacrokit.check", "check"),
     "CheckReport": ("xacrokit.check", "CheckReport"),
-    "macros_dir": ("xacrokit.shared.package_data", "macros_dir"),  # (importlib.resources: 15-30 ms a command)
+    "macros_dir": ("xacrokit.shared.package_data", "macros_dir"),
 }
 
 __all__ = [

@@ -1,12 +1,14 @@
 """Where the data shipped inside the package lives: the macro library, the templates and the schemas.
 
-They are sub-packages (``xacrokit.macros`` ...) so that ``importlib.resources`` finds them the same way in an editable
-install (where they are the repository's top-level folders) and in a wheel (where they sit inside ``xacrokit/``).
+They are sub-packages (``xacrokit.macros`` ...) so that the import system finds them the same way in an editable
+install (where they are the repository's top-level folders) and in a wheel (where they sit inside ``xacrokit/``): their
+module spec's search location is the folder (``importlib.util.find_spec``, which start-up has loaded already;
+``importlib.resources`` would add its own modules to every command's start for the same answer on disk).
 """
 
 from __future__ import annotations
 
-import importlib.resources
+import importlib.util
 from pathlib import Path
 
 from ..errors import ResourceError
@@ -36,10 +38,12 @@ XACRO_KEYWORDS = frozenset(
 
 def _data_dir(package: str) -> Path:
     try:
-        traversable = importlib.resources.files(package)
+        found = importlib.util.find_spec(package)
     except ModuleNotFoundError as exc:  # the install is missing a data folder
         raise ResourceError(f"xacrokit is installed without {package}: reinstall it ({exc})") from exc
-    path = Path(str(traversable))
+    if found is None or not found.submodule_search_locations:
+        raise ResourceError(f"xacrokit is installed without {package}: reinstall it")
+    path = Path(next(iter(found.submodule_search_locations)))
     if not path.is_dir():
         # A zipped install has no real folder; xacro needs files it can open by name.
         raise ResourceError(f"{package} is not a folder on disk ({path}); install xacrokit unzipped")
