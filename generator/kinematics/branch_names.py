@@ -24,7 +24,7 @@ import math
 from typing import NamedTuple
 
 from .arm_geometry import THREE_PARALLEL, ClosedForm
-from .subproblems import Vec, cross, dot, flat_parts, norm, scale, sub, subproblem_1
+from .subproblems import Vec, add, cross, dot, norm, parts, scale, sub, subproblem_1
 
 SLIGHT = 1e-9  # m, or a sine: a side this close to the line has no side
 APART = 1e-6  # m per m of the arm's size: parts this far apart along a direction tell its sense
@@ -32,18 +32,14 @@ APART = 1e-6  # m per m of the arm's size: parts this far apart along a directio
 
 class _Naming(NamedTuple):
     """What naming a branch takes of the arm, made once per arm: the sides are measured in the frame joint 1 turns
-    with (where the shoulder stays at axis 2's point; up and axis 2 are the same there at every q1)."""
+    with (where the shoulder stays at axis 2's point; up and axis 2 are the same there at every q1), each measure
+    written as a sum over the cosines and sines of the joints that place its parts (:func:`branch_name`)."""
 
-    up: Vec  # (along axis 1, away from the base: :func:`arm_up`)
-    upper: tuple[float, ...]  # (axis 3's point from axis 2's, turned by q2)
-    fore: tuple[float, ...]  # (the elbow triangle's far corner from axis 3's point, turned by q3)
-    hand: tuple[float, ...] | None  # (three parallel axes: the wrist centre from axis 4's point, turned by q4)
-    axis_3: Vec
-    axis_2: Vec
-    upper_arm: Vec  # (axis 3's point from axis 2's)
-    base: Vec  # (axis 2's point from axis 1's)
-    offset: Vec | None  # (three parallel axes: the shoulder's offset along n, at q1 = 0)
-    forward: Vec  # (across up and axis 2: :func:`arm_forward`)
+    elbow: tuple[float, float, float]  # (the elbow's measure: 1, c3, s3)
+    square: tuple[float, float, float]  # (the line to the wrist's squared length: 1, c3, s3)
+    sky: tuple[float, ...]  # (up's side of that line: (1, c2, s2) x (1, c3, s3))
+    shoulder: tuple[float, ...]  # (front or back: (1, c2, s2) x (1, c3, s3); left or right: then x (1, c4, s4))
+    parallel: bool  # (three parallel axes: left or right)
     singular: float | None  # (joint 5's value where the wrist is singular; None: the wrist has no such value)
 
 
@@ -74,30 +70,43 @@ def arm_forward(form: ClosedForm, up: Vec) -> Vec:
 
 @functools.cache
 def _naming(form: ClosedForm) -> _Naming:
+    """The measures' constants: with k axis 2, x the upper arm (axis 3's point from axis 2's) and f = x + f3 the
+    elbow triangle's far corner from the shoulder turned by joint 3 (f3 = A + c3 B + s3 D, the corner from axis 3's
+    point), the corner is w = R2 f and the elbow R2 x; a rotation about k keeps k, so the elbow's measure
+    k . (w x R2 x) is k . (f3 x x), and k . (w x up) and a direction's dot with w are f . (R2^T v), R2^T v = va + c2 vb
+    - s2 vd (v's parts about k); with three parallel axes, the wrist centre beyond the corner adds R2 R3 R4 (the
+    wrist centre from axis 4's point), dotted the same way."""
     h, p = form.lines.axes, form.lines.points
-    offset = None
-    if form.kind == THREE_PARALLEL and form.parallel is not None:
-        n = form.parallel
-        k = dot(n, sub(form.wrist, p[0]))
-        offset = (k * n[0], k * n[1], k * n[2])
-    along = form.parallel if form.kind == THREE_PARALLEL and form.parallel is not None else h[3]
+    parallel = form.kind == THREE_PARALLEL and form.parallel is not None
     up = arm_up(form)
+    k, x = h[1], sub(p[2], p[1])
     # (the elbow's triangle closes at the wrist centre, fixed to link 3 on axis 4; with three parallel axes, at axis
     # 4's point, the wrist centre (axes 5 and 6 meeting) turning about axis 4 with joint 4)
-    corner = p[3] if offset is not None else form.wrist
-    return _Naming(
-        up,
-        flat_parts(h[1], sub(p[2], p[1])),
-        flat_parts(h[2], sub(corner, p[2])),
-        flat_parts(h[3], sub(form.wrist, p[3])) if offset is not None else None,
-        h[2],
-        h[1],
-        sub(p[2], p[1]),
-        sub(p[1], p[0]),
-        offset,
-        arm_forward(form, up),
-        subproblem_1(h[4], h[5], along),
-    )
+    a, b, d = parts(h[2], sub(p[3] if parallel else form.wrist, p[2]))
+    near = add(a, x)  # (f's part that joint 3 does not turn)
+    elbow = (dot(a, cross(x, k)), dot(b, cross(x, k)), dot(d, cross(x, k)))
+    square = (dot(near, near) + dot(b, b), 2.0 * dot(b, near), 2.0 * dot(d, near))
+    sky = _turned_dots((near, b, d), cross(up, k), k)
+    base = sub(p[1], p[0])
+    if parallel:
+        assert form.parallel is not None  # (parallel says so)
+        n = form.parallel
+        offset = scale(dot(n, sub(form.wrist, p[0])), n)  # (the shoulder's offset along n, at q1 = 0)
+        m = cross(offset, up)  # (o . (up x r) = r . (o x up))
+        hand = parts(h[3], sub(form.wrist, p[3]))
+        beyond = tuple(dot(c, v) for mi in parts(k, m) for c in parts(h[2], mi) for v in hand)
+        shoulder = (dot(m, base), *_turned_dots((near, b, d), m, k), *beyond)
+    else:
+        forward = arm_forward(form, up)
+        shoulder = (dot(forward, base), *_turned_dots((near, b, d), forward, k))
+    singular = subproblem_1(h[4], h[5], form.parallel if parallel and form.parallel is not None else h[3])
+    return _Naming(elbow, square, sky, shoulder, parallel, singular)
+
+
+def _turned_dots(f: tuple[Vec, Vec, Vec], v: Vec, k: Vec) -> tuple[float, ...]:
+    """f . (R2^T v) for f = f[0] + c3 f[1] + s3 f[2] and R2^T v = va + c2 vb - s2 vd (v's parts about k): the nine
+    dot products, v's part by f's part."""
+    return tuple(dot(fi, vi) for vi in parts(k, v) for fi in f)
 
 
 def branch_name(form: ClosedForm, values: tuple[float, ...], roots: tuple[int, int, int]) -> str:
@@ -105,57 +114,42 @@ def branch_name(form: ClosedForm, values: tuple[float, ...], roots: tuple[int, i
 
     The parts are placed by joints 2 and 3 only (dot and cross products do not change when all their vectors turn
     alike, and up and axis 2 do not turn with joint 1 in its own frame): the shoulder at axis 2's point P2, the elbow
-    at P2 + e, the elbow triangle's far corner at P2 + w (the wrist centre; with three parallel axes, axis 4's point,
-    the wrist centre beyond it turned by joint 4 too). (Written out on floats: a solve names every branch it gives.)"""
+    at P2 + R2 x, the elbow triangle's far corner at P2 + w (the wrist centre; with three parallel axes, axis 4's
+    point, the wrist centre beyond it turned by joint 4 too). Each measure is a sum of :func:`_naming`'s constants
+    times the joints' cosines and sines. (Written out on floats: a solve names every branch it gives.)"""
     k = _naming(form)
-    u0, u1, u2 = k.up
-    c2, s2 = math.cos(values[1]), math.sin(values[1])
-    a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.upper
-    e0, e1, e2 = a0 + c2 * b0 + s2 * d0, a1 + c2 * b1 + s2 * d1, a2 + c2 * b2 + s2 * d2
-    c, s = math.cos(values[2]), math.sin(values[2])
-    a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.fore
-    (x0, x1, x2), (k0, k1, k2) = k.upper_arm, k.axis_2
-    f0, f1, f2 = a0 + c * b0 + s * d0 + x0, a1 + c * b1 + s * d1 + x1, a2 + c * b2 + s * d2 + x2
-    along = (k0 * f0 + k1 * f1 + k2 * f2) * (1.0 - c2)  # (turned by q2: Rodrigues)
-    w0 = f0 * c2 + (k1 * f2 - k2 * f1) * s2 + k0 * along
-    w1 = f1 * c2 + (k2 * f0 - k0 * f2) * s2 + k1 * along
-    w2 = f2 * c2 + (k0 * f1 - k1 * f0) * s2 + k2 * along
-    b0, b1, b2 = k.base
-    if k.offset is not None and k.hand is not None:  # (the wrist centre: the corner, and joint 4's turn beyond it)
-        t0, t1, t2 = _beyond(k, values[3], c, s, c2, s2)
-        r0, r1, r2 = w0 + t0 + b0, w1 + t1 + b1, w2 + t2 + b2  # (the wrist centre from axis 1's point)
-        o0, o1, o2 = k.offset
-        measure = o0 * (u1 * r2 - u2 * r1) + o1 * (u2 * r0 - u0 * r2) + o2 * (u0 * r1 - u1 * r0)
+    c2, s2, c3, s3 = math.cos(values[1]), math.sin(values[1]), math.cos(values[2]), math.sin(values[2])
+    t0, t1, t2, t3, t4, t5, t6, t7, t8 = k.sky
+    sky = t0 + c3 * t1 + s3 * t2 + c2 * (t3 + c3 * t4 + s3 * t5) - s2 * (t6 + c3 * t7 + s3 * t8)
+    if k.parallel:
+        measure = _left(k.shoulder, c2, s2, c3, s3, values[3])
         side = _side(measure, ("left", "right"), roots[0])
     else:
-        g0, g1, g2 = k.forward
-        side = _side(g0 * (w0 + b0) + g1 * (w1 + b1) + g2 * (w2 + b2), ("front", "back"), roots[0])
-    # (which side of the line to the wrist, in the arm's plane: the parts along axis 2 leave n . (w x v) as it is)
-    elbow = k0 * (w1 * e2 - w2 * e1) + k1 * (w2 * e0 - w0 * e2) + k2 * (w0 * e1 - w1 * e0)
-    sky = k0 * (w1 * u2 - w2 * u1) + k1 * (w2 * u0 - w0 * u2) + k2 * (w0 * u1 - w1 * u0)
-    clear = abs(sky) > SLIGHT * math.sqrt(w0 * w0 + w1 * w1 + w2 * w2)
+        g, t0, t1, t2, t3, t4, t5, t6, t7, t8 = k.shoulder
+        measure = g + t0 + c3 * t1 + s3 * t2 + c2 * (t3 + c3 * t4 + s3 * t5) - s2 * (t6 + c3 * t7 + s3 * t8)
+        side = _side(measure, ("front", "back"), roots[0])
+    # (which side of the line to the wrist, in the arm's plane: the parts along axis 2 leave k . (w x e) as it is)
+    e0, e1, e2 = k.elbow
+    elbow = e0 + c3 * e1 + s3 * e2
+    q0, q1, q2 = k.square
+    square = q0 + c3 * q1 + s3 * q2
+    clear = abs(sky) > SLIGHT * math.sqrt(square if square > 0.0 else 0.0)
     bend = _side((elbow if sky > 0 else -elbow) if clear else 0.0, ("up", "down"), roots[1])
     return f"shoulder {side}, elbow {bend}, wrist {_flip(k.singular, values, roots[2])}"
 
 
-def _beyond(k: _Naming, q4: float, c3: float, s3: float, c2: float, s2: float) -> Vec:
-    """The wrist centre from axis 4's point, turned by joints 4, 3 and 2 (three parallel axes; ``c3``, ``s3``: joint
-    3's cosine and sine, ``c2``, ``s2`` joint 2's). (Rodrigues written out twice: a solve names every branch.)"""
-    assert k.hand is not None  # (only called with one)
-    c, s = math.cos(q4), math.sin(q4)
-    a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.hand
-    v0, v1, v2 = a0 + c * b0 + s * d0, a1 + c * b1 + s * d1, a2 + c * b2 + s * d2
-    (h0, h1, h2), (n0, n1, n2) = k.axis_3, k.axis_2
-    along = (h0 * v0 + h1 * v1 + h2 * v2) * (1.0 - c3)
-    t0 = v0 * c3 + (h1 * v2 - h2 * v1) * s3 + h0 * along
-    t1 = v1 * c3 + (h2 * v0 - h0 * v2) * s3 + h1 * along
-    t2 = v2 * c3 + (h0 * v1 - h1 * v0) * s3 + h2 * along
-    along = (n0 * t0 + n1 * t1 + n2 * t2) * (1.0 - c2)
-    return (
-        t0 * c2 + (n1 * t2 - n2 * t1) * s2 + n0 * along,
-        t1 * c2 + (n2 * t0 - n0 * t2) * s2 + n1 * along,
-        t2 * c2 + (n0 * t1 - n1 * t0) * s2 + n2 * along,
-    )
+def _left(shoulder: tuple[float, ...], c2: float, s2: float, c3: float, s3: float, q4: float) -> float:
+    """Three parallel axes: o . (up x r), r the wrist centre from axis 1's point: the corner's part (as the front's
+    measure) and the wrist centre's beyond it, R2 R3 R4 h dotted with m = o x up as (R3^T R2^T m) . (R4 h)."""
+    g, t0, t1, t2, t3, t4, t5, t6, t7, t8, *beyond = shoulder
+    measure = g + t0 + c3 * t1 + s3 * t2 + c2 * (t3 + c3 * t4 + s3 * t5) - s2 * (t6 + c3 * t7 + s3 * t8)
+    c4, s4 = math.cos(q4), math.sin(q4)
+    (a0, a1, a2, b0, b1, b2, d0, d1, d2), (e0, e1, e2, f0, f1, f2, g0, g1, g2) = beyond[:9], beyond[9:18]
+    (j0, j1, j2, k0, k1, k2, l0, l1, l2) = beyond[18:]
+    first = a0 + c4 * a1 + s4 * a2 + c3 * (b0 + c4 * b1 + s4 * b2) - s3 * (d0 + c4 * d1 + s4 * d2)
+    second = e0 + c4 * e1 + s4 * e2 + c3 * (f0 + c4 * f1 + s4 * f2) - s3 * (g0 + c4 * g1 + s4 * g2)
+    third = j0 + c4 * j1 + s4 * j2 + c3 * (k0 + c4 * k1 + s4 * k2) - s3 * (l0 + c4 * l1 + s4 * l2)
+    return measure + first + c2 * second - s2 * third
 
 
 def _flip(singular: float | None, values: tuple[float, ...], root: int) -> str:

@@ -17,6 +17,7 @@ ran, and that the list may be incomplete.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import itertools
 import math
 import operator
@@ -81,6 +82,35 @@ class Solutions:
     complete: bool = False
     outside_limits: int = 0
     branches: int = 0  # (the closed form's branches within the limits, of which the solutions are all or one)
+
+
+_new = object.__new__
+
+
+def _solution(values: dict[str, float], error: float, branch: str, equivalents: int, singular: str) -> Solution:
+    """``Solution(values, error, branch, equivalents, singular)``, its fields written at once: a frozen dataclass's
+    __init__ sets each through object.__setattr__, a microsecond a branch (the same object: tested)."""
+    made = _new(Solution)
+    made.__dict__.update(values=values, error=error, branch=branch, equivalents=equivalents, singular=singular)
+    return made
+
+
+def _closed_solutions(solver: IkSolver, found: list[Solution], complete: bool, outside: int, count: int) -> Solutions:
+    """The closed form's ``Solutions`` (as :func:`_solution` makes a Solution: the same object, tested)."""
+    made = _new(Solutions)
+    made.__dict__.update(
+        frame=solver.frame,
+        in_frame=solver.in_frame,
+        joints=list(solver.names),
+        solutions=found,
+        closest=None,
+        method=solver.method,
+        starts=0,
+        complete=complete,
+        outside_limits=outside,
+        branches=count,
+    )
+    return made
 
 
 class MovingFrame(XacrokitError):
@@ -155,7 +185,7 @@ class IkSolver:
         names = {self.model.model.names[j] for j in path}
         return {*names, *(f.leader for f in self.model.followers if f.joint.name in names)}
 
-    @property
+    @functools.cached_property
     def method(self) -> str:
         """'closed form (three parallel axes)', 'closed form (spherical wrist)' or the numeric search's name."""
         return f"closed form ({self.form.kind})" if self.form is not None else NUMERIC
@@ -172,11 +202,16 @@ class IkSolver:
         ``position_only``): every branch (``every``), else the one nearest ``near`` (joint values in the joints'
         order; default the rest pose)."""
         matrix = np.asarray(target, dtype=float)
-        problem = target_problem(matrix, position_only=position_only)
+        shape = matrix.shape
+        if len(shape) == 2 and shape[1] == 4 and shape[0] in (3, 4):  # (its rows read once: checked, then posed)
+            read: list[list[float]] = matrix.tolist()
+            rows, problem = read, _rows_problem(read, position_only=position_only)
+        else:
+            rows, problem = None, target_problem(matrix, position_only=position_only)
         if problem:
             raise XacrokitError(f"the target {problem}")
         closed = self.form is not None and not position_only
-        pose = self._pose(matrix) if closed else None
+        pose = self._pose(rows) if closed and rows is not None else None
         # (pinocchio's goal: made only when the closed form does not answer, or the target is no 4x4 of finite numbers)
         goal: Any = self._goal(matrix) if pose is None else None
         seed = self.rest if near is None else np.clip(np.asarray(near, dtype=float), self.chain.lower, self.chain.upper)
@@ -184,11 +219,7 @@ class IkSolver:
             pose = goal.homogeneous.tolist() if pose is None else pose
             found, outside, count = self._closed_form(matrix, pose, every=every, seed=seed)
             if found:
-                names = list(self.names)
-                complete = len(found) == count
-                return Solutions(
-                    self.frame, self.in_frame, names, found, None, self.method, 0, complete, outside, count
-                )
+                return _closed_solutions(self, found, len(found) == count, outside, count)
         else:
             outside = 0
         goal = self._goal(matrix) if goal is None else goal
@@ -204,13 +235,13 @@ class IkSolver:
 
         return self.base * pin.SE3(matrix[:3, :3], matrix[:3, 3])
 
-    def _pose(self, matrix: np.ndarray) -> list[list[float]] | None:
+    def _pose(self, rows: list[list[float]]) -> list[list[float]] | None:
         """:meth:`_goal`'s pose as rows of floats without making it (the closed form and the reposer read floats):
-        the base's rows times the target's, summed as pinocchio sums them (with the root's axes, to the zero's sign:
-        a row with a 0 in it); None unless a 4x4 of finite numbers (pinocchio's then, as it takes any other)."""
-        if matrix.shape != (4, 4):
+        the base's rows times the target's (``rows``, a 4x4 or 3x4's), summed as pinocchio sums them (with the root's
+        axes, to the zero's sign: a row with a 0 in it); None unless a 4x4 of finite numbers whose sums are finite
+        (pinocchio's then, as it takes any other)."""
+        if len(rows) != 4:
             return None
-        rows: list[list[float]] = matrix.tolist()
         m0, m1, m2, _ = rows
         if not math.isfinite(sum(m0) + sum(m1) + sum(m2)):
             return None
@@ -258,12 +289,15 @@ class IkSolver:
         if not every:  # (checked nearest first: the first that reaches is the answer; ties, the lower values)
             _nearest_first(candidates)
         solutions: list[Solution] = []
-        for wrapped, branch, _ in candidates:
+        for wrapped, branch, _, whole in candidates:
             reached = self._reposed(matrix, pose, wrapped)
             if reached is not None:
                 named = branch_name(self.form, reached[1], branch.roots)
-                count = _turns_count(branch.values, self.slack_bounds, centres)
-                solutions.append(Solution(reached[0], reached[2], named, count, branch.singular))
+                if whole:  # (each value its centre plus a remainder: what _turns_count would take)
+                    count = _turns_of(wrapped, self.slack_bounds)
+                else:
+                    count = _turns_count(branch.values, self.slack_bounds, centres)
+                solutions.append(_solution(reached[0], reached[2], named, count, branch.singular))
                 if not every:
                     break
         return solutions, outside, len(candidates)
@@ -359,7 +393,11 @@ def target_problem(matrix: np.ndarray, *, position_only: bool) -> str:
     asked when ``position_only``) and whose bottom row is 0 0 0 1 (to 1e-9)."""
     if matrix.ndim != 2 or matrix.shape[0] not in (3, 4) or matrix.shape[1] != 4:
         return f"is a {'x'.join(map(str, matrix.shape))} array; give a 4x4 pose (or its top 3x4)"
-    rows = matrix.tolist()
+    return _rows_problem(matrix.tolist(), position_only=position_only)
+
+
+def _rows_problem(rows: list[list[float]], *, position_only: bool) -> str:
+    """:func:`target_problem` of a 4x4 or 3x4's rows (a solve reads them once, for this and the pose)."""
     if not math.isfinite(sum(rows[0]) + sum(rows[1]) + sum(rows[2])) and not all(
         math.isfinite(v) for v in (*rows[0], *rows[1], *rows[2])
     ):  # (a finite sum says it at once: a solve asks this of every target)
@@ -455,18 +493,23 @@ def _error(chain: Chain, goal: Any, values: np.ndarray) -> float:
     return float(np.linalg.norm(pin.log6(goal.actInv(chain.data.oMf[chain.frame])).vector))
 
 
+Candidate = tuple[list[float], Branch, float, bool]  # (values, branch, distance, whether the turns were whole ones)
+
+
 def _candidates(
     found: list[Branch],
     bounds: tuple[tuple[float, ...], Sequence[tuple[float, float, float, float] | None]],
     centres: Sequence[float],
-) -> tuple[list[tuple[list[float], Branch, float]], int]:
+) -> tuple[list[Candidate], int]:
     """The exact branches by their values nearest ``centres`` (:func:`_nearest_turns`), each once (one met twice,
-    whole turns apart, is left out), with their distance from ``centres``; and how many have no value within the
-    limits. ``bounds``: the six joints' limits (flat, -inf and inf for a continuous joint) and their
-    :func:`_nearest_turns` bounds. (The common case written out for the six joints: every value turned to within
-    half a turn of its centre is within the limits, and stays.)"""
-    candidates: list[tuple[list[float], Branch, float]] = []
-    kept: list[tuple[float, float, list[float]]] = []  # (each candidate's joints 3 and 5, and its values)
+    whole turns apart, is left out: :func:`_distinct`), with their distance from ``centres`` and whether each value
+    is its centre plus the remainder of its difference (True: :func:`_turns_of` counts its equivalents); and how
+    many have no value within the limits. ``bounds``: the six joints' limits (flat, -inf and inf for a continuous
+    joint) and their :func:`_nearest_turns` bounds. (The common case written out for the six joints: every value
+    turned to within half a turn of its centre is within the limits, and stays; a difference within half a turn
+    is its own remainder, taken without the call.)"""
+    candidates: list[Candidate] = []
+    elbows: list[float] = []  # (each candidate's joint 3 from its centre, within half a turn: duplicates' test)
     outside = 0
     l0, h0, l1, h1, l2, h2, l3, h3, l4, h4, l5, h5 = bounds[0]
     c0, c1, c2, c3, c4, c5 = centres
@@ -475,8 +518,12 @@ def _candidates(
         if not branch.exact:  # (a subproblem without an exact root: this branch's triangle does not close)
             continue
         v0, v1, v2, v3, v4, v5 = branch.values
-        w0, w1, w2 = c0 + remainder(v0 - c0, TURN), c1 + remainder(v1 - c1, TURN), c2 + remainder(v2 - c2, TURN)
-        w3, w4, w5 = c3 + remainder(v3 - c3, TURN), c4 + remainder(v4 - c4, TURN), c5 + remainder(v5 - c5, TURN)
+        d0, d1, d2, d3, d4, d5 = v0 - c0, v1 - c1, v2 - c2, v3 - c3, v4 - c4, v5 - c5
+        if not (-_HALF <= d0 <= _HALF and -_HALF <= d1 <= _HALF and -_HALF <= d2 <= _HALF):
+            d0, d1, d2 = remainder(d0, TURN), remainder(d1, TURN), remainder(d2, TURN)
+        if not (-_HALF <= d3 <= _HALF and -_HALF <= d4 <= _HALF and -_HALF <= d5 <= _HALF):
+            d3, d4, d5 = remainder(d3, TURN), remainder(d4, TURN), remainder(d5, TURN)
+        w0, w1, w2, w3, w4, w5 = c0 + d0, c1 + d1, c2 + d2, c3 + d3, c4 + d4, c5 + d5
         if (
             l0 <= w0 <= h0
             and l1 <= w1 <= h1
@@ -485,33 +532,63 @@ def _candidates(
             and l4 <= w4 <= h4
             and l5 <= w5 <= h5
         ):
-            wrapped = [w0, w1, w2, w3, w4, w5]
             distance = abs(w0 - c0) + abs(w1 - c1) + abs(w2 - c2) + abs(w3 - c3) + abs(w4 - c4) + abs(w5 - c5)
-        else:
-            wrapped, distance = _nearest_turns(branch.values, bounds[1], centres)
-            if not wrapped:
-                outside += 1
-                continue
-        for other_elbow, other_wrist, other in kept:  # (two branches differ at joint 3 or 5, but for the shoulder's)
-            apart = wrapped[2] - other_elbow
+            candidates.append(([w0, w1, w2, w3, w4, w5], branch, distance, True))
+            elbows.append(d2)
+            continue
+        wrapped, distance = _nearest_turns(branch.values, bounds[1], centres)
+        if not wrapped:
+            outside += 1
+            continue
+        candidates.append((wrapped, branch, distance, False))
+        elbows.append(remainder(wrapped[2] - c2, TURN))
+    return (_distinct(candidates) if _close_pair(elbows) else candidates), outside
+
+
+_HALF = TURN / 2  # (a difference this near 0 is its own remainder: math.remainder(d, TURN) == d, exactly)
+_NEAR = 3e-6  # rad: joint 3 values farther apart than this (less a whole turn) are of different branches
+# (the duplicates' test below takes them within 1e-6; the remainders here are another rounding away from its)
+
+
+def _close_pair(elbows: list[float]) -> bool:
+    """Whether two of the values (each within half a turn of 0) are within _NEAR of each other, a whole turn
+    apart or not: else no two candidates are one branch, and :func:`_distinct` has nothing to do."""
+    if len(elbows) < 2:
+        return False
+    ordered = sorted(elbows)
+    previous = ordered[-1] - TURN
+    for value in ordered:
+        if value - previous <= _NEAR:
+            return True
+        previous = value
+    return False
+
+
+def _distinct(candidates: list[Candidate]) -> list[Candidate]:
+    """The candidates without one met twice, whole turns apart in every joint (to 1e-6), the first one kept."""
+    kept: list[Candidate] = []
+    remainder = math.remainder
+    for candidate in candidates:
+        wrapped = candidate[0]
+        for other in kept:  # (two branches differ at joint 3 or 5, but for the shoulder's)
+            apart = wrapped[2] - other[0][2]
             if _APART < apart < _TURN_LESS or -_TURN_LESS < apart < -_APART:
                 continue  # (joint 3 more than 1e-6 from a whole turn apart, told without a call)
             if (
                 abs(remainder(apart, TURN)) < 1e-6
-                and abs(remainder(wrapped[4] - other_wrist, TURN)) < 1e-6
-                and _same_turns(wrapped, other)
+                and abs(remainder(wrapped[4] - other[0][4], TURN)) < 1e-6
+                and _same_turns(wrapped, other[0])
             ):
                 break
         else:
-            candidates.append((wrapped, branch, distance))
-            kept.append((wrapped[2], wrapped[4], wrapped))
-    return candidates, outside
+            kept.append(candidate)
+    return kept
 
 
 _APART, _TURN_LESS = 2e-6, TURN - 2e-6  # (a difference between them is more than 1e-6 from any whole turn)
 
 
-def _nearest_first(candidates: list[tuple[list[float], Branch, float]]) -> None:
+def _nearest_first(candidates: list[Candidate]) -> None:
     """Sorted in the order the first solution is looked for in: nearest first, two as near (the distances equal to
     1e-9) the lower values first. (By the distance alone when no two are within 2e-9: rounding to 1e-9 keeps the
     order, and puts apart two more than 1e-9 apart; it costs a microsecond a value.)"""
@@ -555,11 +632,21 @@ def _turns_count(values: Sequence[float], bounds: Sequence[float] | None, centre
     is continuous): a solution's equivalents, this one included (0: a continuous joint makes them endless)."""
     if bounds is None:
         return 0
-    l0, h0, l1, h1, l2, h2, l3, h3, l4, h4, l5, h5 = bounds
     (c0, c1, c2, c3, c4, c5), (v0, v1, v2, v3, v4, v5) = centres, values
-    remainder, floor, ceil = math.remainder, math.floor, math.ceil
+    remainder = math.remainder
     w0, w1, w2 = c0 + remainder(v0 - c0, TURN), c1 + remainder(v1 - c1, TURN), c2 + remainder(v2 - c2, TURN)
     w3, w4, w5 = c3 + remainder(v3 - c3, TURN), c4 + remainder(v4 - c4, TURN), c5 + remainder(v5 - c5, TURN)
+    return _turns_of((w0, w1, w2, w3, w4, w5), bounds)
+
+
+def _turns_of(wrapped: Sequence[float], bounds: Sequence[float] | None) -> int:
+    """:func:`_turns_count` of values already turned to their centres (each its centre plus the remainder of its
+    difference, as :func:`_candidates` made them)."""
+    if bounds is None:
+        return 0
+    l0, h0, l1, h1, l2, h2, l3, h3, l4, h4, l5, h5 = bounds
+    w0, w1, w2, w3, w4, w5 = wrapped
+    floor, ceil = math.floor, math.ceil
     count = (floor((h0 - w0) / TURN) - ceil((l0 - w0) / TURN) + 1) * (
         floor((h1 - w1) / TURN) - ceil((l1 - w1) / TURN) + 1
     )
