@@ -60,6 +60,8 @@ class Origin:
 
 @dataclass(frozen=True)
 class Box:
+    """A box centred on its origin, edges ``size`` (x, y, z; m) along the origin's axes."""
+
     size: Vec3
 
 
@@ -73,11 +75,15 @@ class Cylinder:
 
 @dataclass(frozen=True)
 class Sphere:
+    """A sphere centred on its origin (radius in m)."""
+
     radius: float
 
 
 @dataclass(frozen=True)
 class Mesh:
+    """A mesh file (a ``package://`` or ``file://`` address, or a path), scaled per axis."""
+
     filename: str
     scale: Vec3 = (1.0, 1.0, 1.0)
 
@@ -107,6 +113,8 @@ class Inertia:
 
 @dataclass(frozen=True)
 class Visual:
+    """URDF <visual>: a shape placed in the link frame, and its material's name (None: none)."""
+
     shape: Shape
     origin: Origin = Origin()
     material: str | None = None
@@ -114,6 +122,8 @@ class Visual:
 
 @dataclass(frozen=True)
 class Collision:
+    """URDF <collision>: a shape placed in the link frame."""
+
     shape: Shape
     origin: Origin = Origin()
 
@@ -158,6 +168,8 @@ class Limit:
 
 @dataclass(frozen=True)
 class Dynamics:
+    """URDF <dynamics>: viscous damping (N*m*s/rad or N*s/m) and Coulomb friction (N*m or N)."""
+
     damping: float = 0.0
     friction: float = 0.0
     armature: float = 0.0  # (reflected rotor inertia: MuJoCo's; a URDF has no place for it)
@@ -165,6 +177,8 @@ class Dynamics:
 
 @dataclass(frozen=True)
 class Mimic:
+    """URDF <mimic>: this joint's position is ``multiplier`` times ``joint``'s plus ``offset``."""
+
     joint: str
     multiplier: float = 1.0
     offset: float = 0.0
@@ -172,6 +186,8 @@ class Mimic:
 
 @dataclass(frozen=True)
 class SafetyController:
+    """URDF <safety_controller>: the velocity and position gains and the soft limits (rad or m) of a joint."""
+
     k_velocity: float
     k_position: float | None = None
     soft_lower_limit: float | None = None
@@ -188,6 +204,8 @@ class Calibration:
 
 @dataclass(frozen=True)
 class Joint:
+    """A URDF joint: ``child`` placed in ``parent`` at ``origin``, moving about or along ``axis``."""
+
     name: str
     type: JointType
     parent: str
@@ -295,12 +313,16 @@ class Wheel:
 
 @dataclass(frozen=True)
 class Interfaces:
+    """ros2_control's command and state interfaces of a joint (position, velocity, effort)."""
+
     command: tuple[str, ...]
     state: tuple[str, ...]
 
 
 @dataclass(frozen=True)
 class ControlledJoint:
+    """A joint in ros2_control: its interfaces and its initial position (rad or m)."""
+
     name: str
     interfaces: Interfaces
     initial_position: float = 0.0
@@ -308,6 +330,8 @@ class ControlledJoint:
 
 @dataclass(frozen=True)
 class Surface:
+    """Gazebo's contact parameters of a link: friction coefficients (mu1, mu2) and contact stiffness and damping."""
+
     link: str
     mu1: float | None = None
     mu2: float | None = None

@@ -26,6 +26,8 @@ class Group:
 
 @dataclass(frozen=True)
 class EndEffector:
+    """An SRDF end effector: its group, the link it hangs from and that link's group (None: none)."""
+
     name: str
     parent_link: str
     group: str

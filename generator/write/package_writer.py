@@ -50,6 +50,8 @@ Action = Literal["create", "identical", "update", "conflict", "overwrite", "remo
 
 @dataclass(frozen=True)
 class FileAction:
+    """What the write stage did, or would do in a dry run, with one file of the package, and why."""
+
     path: str
     action: Action
     reason: str = ""
