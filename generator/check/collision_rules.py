@@ -6,14 +6,16 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Iterator
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from ..shared.transforms import transform
 from ..shared.urdf_view import Geometry, Joint, joint_tree
 from .findings import Finding, rule_table
 from .inertia_geometry import RobotMeshes, placement, shape_in_link
 from .urdf_document import Doc, triple_of
+
+if TYPE_CHECKING:
+    import numpy as np
 
 RULES = rule_table(
     {
@@ -89,6 +91,8 @@ def ground_rules(doc: Doc, meshes: RobotMeshes) -> Iterator[Finding]:
     """G006 on each link that touches the ground in the default pose of a robot on wheels or feet (not fixed to a
     ``world`` root: :attr:`Doc.fixed_to_world`) and has no mu1, mu2 or mu (SDF's own) in a ``<gazebo reference>``
     block of its rigid body; a note when the file has no ``<gazebo>`` at all (it is not written for Gazebo)."""
+    import numpy as np  # (heavy: numpy)
+
     tree = joint_tree(doc.view)
     roots = tree.roots(doc.link_names)
     if len(roots) != 1 or doc.fixed_to_world:

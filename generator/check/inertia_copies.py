@@ -18,8 +18,6 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator, Mapping
 
-import numpy as np
-
 from ..shared.solid_inertia import is_placeholder
 from ..shared.urdf_view import Link
 from .findings import Finding, rule_table
@@ -42,6 +40,8 @@ SIZES = 1.25  # two geometries whose sizes differ by more than this factor are d
 
 def _size(link: Link, reaches: ReachMemo) -> float | None:
     """The largest distance of the link's geometry points from their centroid (None: no geometry, or unreadable)."""
+    import numpy as np  # (heavy: numpy)
+
     reach = reaches.reach(link)
     if reach is None:
         return None

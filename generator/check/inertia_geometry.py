@@ -29,9 +29,7 @@ import os
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from ..errors import XacrokitError
 from ..reader.mesh_copies import MeshCopyRefused, mesh_reader, mesh_root, require_mesh
@@ -42,6 +40,9 @@ from ..shared.urdf_view import Geometry, Link, Origin, Shape
 from .findings import rule_table
 from .kept_meshes import facts_kept, kept_facts, kept_values
 from .urdf_document import Doc, number_of, triple_of
+
+if TYPE_CHECKING:
+    import numpy as np
 
 RULES = rule_table(
     {
@@ -91,12 +92,14 @@ class Reach:
 
 
 # a mesh's reach: its vertices (mesh frame, scaled) and how to make the solid it encloses
-MeshReach = Callable[[str, tuple[float, float, float]], tuple[np.ndarray, Callable[[], Solid | None]] | None]
+MeshReach = Callable[[str, tuple[float, float, float]], "tuple[np.ndarray, Callable[[], Solid | None]] | None"]
 
 
 def placement(origin: Origin | None) -> tuple[np.ndarray, np.ndarray]:
     """An ``<origin>`` of the view as its rotation and translation (the identity without one): where a visual, a
     collision, an inertial or a joint's child sits in its link (the geometry rules' one reading of it)."""
+    import numpy as np  # (heavy: numpy)
+
     if origin is None:
         return np.eye(3), np.zeros(3)
     return rpy_matrix(*triple_of(origin.rpy)), np.array(triple_of(origin.xyz))
@@ -112,6 +115,8 @@ def _primitive(shape: Shape) -> tuple[np.ndarray, Callable[[], Solid | None]] | 
 
 
 def _primitive_solid(shape: Shape) -> tuple[np.ndarray, Solid] | None:
+    import numpy as np  # (heavy: numpy)
+
     if shape.kind == "box":
         x, y, z = triple_of(shape.get("size"))
         corners = np.array([[a * x, b * y, c * z] for a in (-0.5, 0.5) for b in (-0.5, 0.5) for c in (-0.5, 0.5)])
@@ -136,6 +141,8 @@ def _primitive_solid(shape: Shape) -> tuple[np.ndarray, Solid] | None:
 
 def link_reach(link: Link, meshes: MeshReach | None) -> Reach | None:
     """The link's geometry as :class:`Reach`, None when it has none, a shape does not read, or a mesh cannot be read."""
+    import numpy as np  # (heavy: numpy)
+
     every = [g for g in (*link.visuals, *link.collisions) if g.shape is not None]
     placed = [shape_in_link(g, meshes) for g in every]
     if not every or any(p is None for p in placed):
@@ -183,6 +190,8 @@ def shape_in_link(
 ) -> tuple[np.ndarray, Callable[[], Solid | None], np.ndarray, np.ndarray] | None:
     """A visual's or collision's points in the link frame, how to make its solid, and its placement (turn, shift);
     None when it has no shape, its sizes do not read, or its mesh cannot be read."""
+    import numpy as np  # (heavy: numpy)
+
     if geometry.shape is None:
         return None
     found = _primitive(geometry.shape)
@@ -207,6 +216,8 @@ def _filling(solids: Sequence[tuple[Solid | None, np.ndarray, np.ndarray]]) -> S
 
 def geometry_message(origin: Origin | None, mass: float, entries: Sequence[float], reach: Reach) -> str | None:
     """What I008 says of a tensor at the inertial ``origin`` within ``reach`` (None: nothing)."""
+    import numpy as np  # (heavy: numpy)
+
     turn, centre = placement(origin)
     stated = turn @ tensor(*entries) @ turn.T  # (in the link frame)
     with np.errstate(all="ignore"):  # (a size of 1e308 overflows: such a link is not judged, U002 says why)
@@ -239,6 +250,8 @@ def _bounds(
 ) -> Iterator[tuple[np.ndarray, float, float]]:
     """For each direction n: n, the largest squared distance of the points from the axis along n, and the largest
     squared reach along n (m^2; times the mass they bound the moment and the spread)."""
+    import numpy as np  # (heavy: numpy)
+
     along = np.square(offsets @ directions.T)
     farthest = (squared[:, None] - along).max(axis=0)
     for n, most_moment, most_spread in zip(directions, farthest, along.max(axis=0), strict=True):
@@ -259,6 +272,8 @@ def _excess(
     """How far the tensor passes the larger of the two bounds along ``n`` (a ratio), and the message saying it:
     ``most_moment`` and ``most_spread`` are the bounds (kg*m^2) of the moment about the axis along ``n`` and of the
     spread along it."""
+    import numpy as np  # (heavy: numpy)
+
     moment = float(n @ stated @ n)
     trace = float(np.trace(stated))
     spread = trace / 2.0 - moment
@@ -288,6 +303,8 @@ def _axis_name(n: np.ndarray) -> str:
 
 def _solid_note(solid: Solid | None, mass: float, turn: np.ndarray, filled: str) -> str:
     """'; a uniform box of 0.5 kg filling its collision geometry has ixx, iyy, izz = ...' in the inertial frame."""
+    import numpy as np  # (heavy: numpy)
+
     if solid is None:
         return ""
     tensor = mass * turn.T @ solid.unit_tensor @ turn
@@ -320,6 +337,8 @@ class RobotMeshes:
     def __call__(
         self, filename: str, scale: tuple[float, float, float]
     ) -> tuple[np.ndarray, Callable[[], Solid | None]] | None:
+        import numpy as np  # (heavy: numpy)
+
         facts = self._facts(filename)
         if facts is None:
             return None
@@ -327,6 +346,7 @@ class RobotMeshes:
 
     def _solid(self, filename: str, scale: tuple[float, float, float]) -> Solid | None:
         """The solid for a finding's message (None when trimesh cannot read the file numpy-stl read, or make it)."""
+        import numpy as np  # (heavy: numpy)
 
         try:
             data, suffix, said = self.read_solid(filename).mesh  # (its bytes: trimesh reads them when not kept)
@@ -408,6 +428,7 @@ def _mesh_points(data: bytes, suffix: str, said: str) -> tuple[np.ndarray, int]:
 def _read_mesh_points(data: bytes, suffix: str, said: str) -> tuple[np.ndarray, int]:
     """A mesh file's hull vertices and triangle count: an STL's with numpy-stl, another kind's with trimesh. Raises
     MeshCopyRefused when it holds no triangle."""
+    import numpy as np  # (heavy: numpy)
 
     if suffix != ".stl":
         mesh = require_mesh(data, suffix, said, process=False)
@@ -430,6 +451,7 @@ def _hull_vertices(points: np.ndarray) -> np.ndarray:
     the rules take is a maximum of a convex function of the points, reached at a hull vertex, so the hull's vertices
     give the same bounds from a fraction of the points (327,225 of the corpus' 11.2 million vertex copies), and a
     kept mesh costs that much less memory and time in every robot that uses it."""
+    import numpy as np  # (heavy: numpy)
     from scipy.spatial import ConvexHull, QhullError  # (heavy: scipy)
 
     if len(points) < 5:
@@ -441,7 +463,7 @@ def _hull_vertices(points: np.ndarray) -> np.ndarray:
         return distinct
 
 
-_MIX = (np.uint64(0x9E3779B97F4A7C15), np.uint64(0xC2B2AE3D27D4EB4F), np.uint64(0x165667B19E3779F9))
+_MIX = (0x9E3779B97F4A7C15, 0xC2B2AE3D27D4EB4F, 0x165667B19E3779F9)  # (taken as numpy.uint64 by _distinct)
 
 
 def _distinct(points: np.ndarray) -> np.ndarray:
@@ -449,10 +471,13 @@ def _distinct(points: np.ndarray) -> np.ndarray:
     times), and qhull takes half the time without the copies. Told apart by a 64-bit mix of their bits (one sort of
     integers; np.unique on rows sorts them field by field, slower than qhull itself), then proven: should two distinct
     points share a mix, every point is kept."""
+    import numpy as np  # (heavy: numpy)
+
     rows = np.ascontiguousarray(points, dtype=np.float32)
     bits = rows.view(np.uint32).astype(np.uint64)
+    mix = np.array(_MIX, dtype=np.uint64)
     with np.errstate(over="ignore"):  # (the mix wraps around by design)
-        key = (bits[:, 0] * _MIX[0]) ^ (bits[:, 1] * _MIX[1]) ^ (bits[:, 2] * _MIX[2])
+        key = (bits[:, 0] * mix[0]) ^ (bits[:, 1] * mix[1]) ^ (bits[:, 2] * mix[2])
     _, first, back = np.unique(key, return_index=True, return_inverse=True)
     kept = rows[first]
     return kept if np.array_equal(kept[back.reshape(-1)], rows) else rows
@@ -460,6 +485,8 @@ def _distinct(points: np.ndarray) -> np.ndarray:
 
 def _solid_values(mesh: Any, scale: tuple[float, float, float]) -> list[float] | None:
     """:func:`_enclosed`'s solid as numbers: its volume, centre (3) and tensor per unit mass (9, row by row)."""
+    import numpy as np  # (heavy: numpy)
+
     solid = _enclosed(mesh, scale)
     if solid is None:
         return None
@@ -469,6 +496,8 @@ def _solid_values(mesh: Any, scale: tuple[float, float, float]) -> list[float] |
 def _enclosed(mesh: Any, scale: tuple[float, float, float]) -> Solid | None:
     """The uniform solid a mesh encloses (closed and consistently wound: its own, else its convex hull's; None when
     it has no volume, or qhull refuses its points)."""
+    import numpy as np  # (heavy: numpy)
+
     body = mesh
     body.vertices = body.vertices * np.asarray(scale, dtype=float)
     if float(np.prod(scale)) < 0:

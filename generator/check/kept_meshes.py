@@ -17,14 +17,16 @@ import base64
 import hashlib
 import json
 from collections.abc import Callable
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from .. import __version__
 from ..shared.user_cache import cache_folder, kept, read_cached, source_stamp
 
+if TYPE_CHECKING:
+    import numpy as np
+
 FORMAT = 1  # (raise it when what is kept, or how it is worked out, changes: the old files are then never read)
-Facts = tuple[np.ndarray, int]  # a mesh's hull vertices (float32, N x 3) and its triangle count
+Facts = tuple["np.ndarray", int]  # a mesh's hull vertices (float32, N x 3) and its triangle count
 
 
 def kept_facts(data: bytes, suffix: str, work_out: Callable[[], Facts]) -> Facts:
@@ -72,6 +74,8 @@ def _values(text: str) -> list[float] | None:
 
 
 def _written(facts: Facts) -> str:
+    import numpy as np  # (heavy: numpy)
+
     points, triangles = facts
     rows = np.ascontiguousarray(points, dtype="<f4")
     said = {"triangles": int(triangles), "vertices": len(rows), "points": base64.b64encode(rows.tobytes()).decode()}
@@ -80,6 +84,8 @@ def _written(facts: Facts) -> str:
 
 def _read(text: str) -> Facts:
     """Kept facts. Raises ValueError when the text is not what :func:`_written` writes (a damaged file)."""
+    import numpy as np  # (heavy: numpy)
+
     try:
         said = json.loads(text)
         data = base64.b64decode(said["points"], validate=True)

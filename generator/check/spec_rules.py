@@ -9,8 +9,6 @@ from collections.abc import Iterable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-import numpy as np
-
 from ..errors import SpecError, XacrokitError
 from ..reader.read_robot import ReadRobot
 from ..reader.robot_input import RobotInput
@@ -63,6 +61,7 @@ def spec_findings(problems: Iterable[SpecError], rule: str = "V001") -> tuple[Fi
 def kinematics_rules(doc: Doc, robot: Robot, urdf_text: str) -> Iterator[Finding]:
     """K001: for each DH arm, FK from its parent to its tool frame equals the DH product at sample joint values (the
     URDF's kinematic model as every command builds it, on the view check already read)."""
+    import numpy as np  # (heavy: numpy)
 
     try:
         model = ReadRobot(RobotInput(Path(doc.file or "robot.urdf")), "spec", urdf_text, doc.view).kinematics
