@@ -3,17 +3,18 @@ is said, with its reason, as a located error; a scene at the limit is accepted."
 
 from __future__ import annotations
 
-import shutil
-
 import pytest
 
 import xacrokit
-from conftest import ROBOT_EXAMPLES
 from xacrokit.scene.fleet import MAX_FLEET
 
 
 def big_scene(folder, count):
-    shutil.copy(next(p for p in ROBOT_EXAMPLES if p.stem == "two_dof_arm"), folder / "r.yaml")
+    """A scene of ``count`` instances of a robot of one bare link. The limit is on the instances; what an instance of
+    a robot with joints and geometry adds is its files (1,000 two-DOF arms took 14 s: their controllers' file read
+    again for each, an SRDF of half a million Adjacent pairs), which tests/scene/test_fleets.py proves on fleets and
+    benchmarks/bench.py times for 1,000 links."""
+    (folder / "r.yaml").write_text("robot: dot\nlinks:\n  base_link: {}\n", encoding="utf-8")
     rows = [f"  a{i}: {{spec: r.yaml, prefix: a{i}_, parent: world}}" for i in range(count)]
     path = folder / "big.yaml"
     path.write_text("scene: big\ninstances:\n" + "\n".join(rows) + "\n", encoding="utf-8")
