@@ -10,11 +10,18 @@ machine, in headless Chromium:
   (targets under 3 MB and 8 MB), the time ``gen-robot view`` takes to make it, as a process, and the time the page
   takes to open (no target).
 
-Needs Debian's chromium and chromium-driver (and selenium). Usage: python benchmarks/view_speed.py
+Needs Debian's chromium and chromium-driver (and selenium). Usage:
+
+    python benchmarks/view_speed.py [--fleets BIG SMALL] [--moves N] [--real NAME ...]
+
+``--fleets`` the robots of the two fleets (default 111 12: 1,000 and 109 links), ``--moves`` the joint moves timed
+(default 50), ``--real`` the real robots (default Panda Go1; none: ``--real``). Smaller ones measure less but run
+the same steps (tests/test_benchmarks.py runs it so).
 """
 
 from __future__ import annotations
 
+import argparse
 import shutil
 import statistics
 import subprocess
@@ -58,16 +65,16 @@ def fleet_page(folder: Path, count: int) -> tuple[Path, int]:
 REAL = (("Panda", "panda_description/urdf/panda.urdf", 3.0), ("Go1", "go1_description/urdf/go1.urdf", 8.0))
 
 
-def real_pages(folder: Path) -> list[tuple[str, Path, float, float]]:
-    """example-robot-data's Panda and Go1 pages: (name, page, seconds gen-robot view took, target in MB); none when
-    example-robot-data is not installed."""
+def real_pages(folder: Path, names: list[str]) -> list[tuple[str, Path, float, float]]:
+    """example-robot-data's pages of the robots ``names`` of REAL: (name, page, seconds gen-robot view took, target
+    in MB); none when example-robot-data is not installed."""
     shares = [Path(entry, "cmeel.prefix", "share", "example-robot-data") for entry in sys.path]
     share = next((candidate for candidate in shares if candidate.is_dir()), None)
     if share is None:
         print("example-robot-data is not installed: no Panda or Go1 page (pip install -e '.[test]')")
         return []
     found = []
-    for name, urdf, target in REAL:
+    for name, urdf, target in (row for row in REAL if row[0] in names):
         html = folder / f"{name}.html"
         command = [sys.executable, "-m", "xacrokit.cli", "view", str(share / "robots" / urdf), "-o", str(html)]
         start = time.perf_counter()
@@ -86,14 +93,23 @@ def opened(browser, html: Path) -> float:
     return time.perf_counter() - start
 
 
+def arguments() -> argparse.Namespace:
+    parser = argparse.ArgumentParser(description="gen-robot view's pages timed in headless Chromium")
+    parser.add_argument("--fleets", type=int, nargs=2, default=[111, 12], metavar=("BIG", "SMALL"))
+    parser.add_argument("--moves", type=int, default=50, help="joint moves timed (their median printed)")
+    parser.add_argument("--real", nargs="*", default=[name for name, _, _ in REAL], choices=[n for n, _, _ in REAL])
+    return parser.parse_args()
+
+
 def main() -> None:
     if not (shutil.which("chromium") and shutil.which("chromedriver")):
         raise SystemExit("chromium and chromedriver are not installed")
+    asked = arguments()
     with tempfile.TemporaryDirectory() as scratch:
         folder = Path(scratch)
-        big, big_links = fleet_page(folder, 111)
-        small, small_links = fleet_page(folder, 12)
-        real = real_pages(folder)
+        big, big_links = fleet_page(folder, asked.fleets[0])
+        small, small_links = fleet_page(folder, asked.fleets[1])
+        real = real_pages(folder, asked.real)
         browser = driver()
         try:
             print(f"{big_links}-link fleet page: open and draw {opened(browser, big):.2f} s (target < 1 s)")
@@ -101,18 +117,19 @@ def main() -> None:
             times = browser.execute_script(
                 """
                 const names = window.xacrokit.joints(), out = [];
-                for (let k = 0; k < 50; k++) {
+                for (let k = 0; k < arguments[0]; k++) {
                   const values = Object.fromEntries(names.map((n) => [n, Math.sin(k + n.length)]));
                   const start = performance.now();
                   window.xacrokit.setJoints(values);
                   out.push(performance.now() - start);
                 }
                 return out;
-                """
+                """,
+                asked.moves,
             )
             print(
                 f"{small_links}-link robot: a joint move re-poses and draws in {statistics.median(times):.2f} ms "
-                "(median of 50; target < 16 ms)"
+                f"(median of {asked.moves}; target < 16 ms)"
             )
             for name, html, made, target in real:
                 size = html.stat().st_size / 1e6
