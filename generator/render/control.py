@@ -58,10 +58,10 @@ def axle_offset(robot: Robot) -> tuple[float, float] | None:
     its zero pose; None without a drive or when a wheel's parent is not reached through the spec's joints.
     diff_drive_controller's odometry is of that midpoint and it publishes it as the base frame: off it, the odometry
     is wrong whenever the robot turns."""
-    import numpy as np  # (heavy: numpy)
-
     if _differential_drive(robot, "") is None:
         return None
+    import numpy as np  # (heavy: numpy, for a differential drive only)
+
     joint_of = {joint.child: joint for joint in robot.joints}
     centres = []
     for wheel in robot.wheels:

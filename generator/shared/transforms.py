@@ -78,8 +78,8 @@ def screw_pose(
     (macros/_inc/frames.xacro) computes the same: same operations, same order, each number + 0.0 (no -0.0)."""
     x, y, z = xyz
     ca, sa = math.cos(alpha), math.sin(alpha)
-    # (R(rpy) multiplied out, entry for entry as the macro writes it: rpy_matrix)
-    (b00, b01, b02), (b10, b11, b12), (b20, b21, b22) = (map(float, row) for row in rpy_matrix(*rpy))
+    # (R(rpy) multiplied out, entry for entry as the macro writes it: rpy_rows)
+    (b00, b01, b02), (b10, b11, b12), (b20, b21, b22) = rpy_rows(*rpy)
     r00, r01, r02 = b00, b01, b02
     r10, r11, r12 = ca * b10 - sa * b20, ca * b11 - sa * b21, ca * b12 - sa * b22
     r20 = sa * b10 + ca * b20
@@ -333,12 +333,11 @@ def rot_z(angle: float) -> np.ndarray:
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
-def rpy_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
+def rpy_rows(roll: float, pitch: float, yaw: float) -> tuple[Vec3, Vec3, Vec3]:
     """URDF's fixed-axis roll-pitch-yaw: R = Rz(yaw) Ry(pitch) Rx(roll), multiplied out (as :func:`screw_pose`
-    writes it): each entry one product of sines and cosines, the same bits on every machine, where numpy's ``@``
-    calls the BLAS, whose kernels (chosen by the processor) round differently in the last digit."""
-    import numpy as np  # (heavy: numpy)
-
+    writes it), its rows as plain floats: each entry one product of sines and cosines, the same bits on every
+    machine, where numpy's ``@`` calls the BLAS, whose kernels (chosen by the processor) round differently in the last
+    digit. (Plain floats: generation places a DH arm's joints without loading numpy.)"""
     cr, sr, cp, sp, cy, sy = (
         math.cos(roll),
         math.sin(roll),
@@ -347,13 +346,18 @@ def rpy_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
         math.cos(yaw),
         math.sin(yaw),
     )
-    return np.array(
-        [
-            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-            [-sp, cp * sr, cp * cr],
-        ]
+    return (
+        (cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
+        (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
+        (-sp, cp * sr, cp * cr),
     )
+
+
+def rpy_matrix(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    """:func:`rpy_rows` as a 3x3 array (the same bits: numpy stores the floats as they are)."""
+    import numpy as np  # (heavy: numpy)
+
+    return np.array(rpy_rows(roll, pitch, yaw))
 
 
 def exact_product(left: np.ndarray, right: np.ndarray) -> np.ndarray:
