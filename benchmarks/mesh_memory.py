@@ -5,7 +5,8 @@ process's, from `resource.getrusage`). The copies are streamed from the robot's 
 and only one mesh is read at a time, so the peak should barely grow with the number of meshes; the ratio of the
 two peaks is printed with the meshes' total size (had every mesh been held, the peak would grow by about that).
 
-Usage: python benchmarks/mesh_memory.py [MANY]   (default 16)
+Usage: python benchmarks/mesh_memory.py [MANY [SUBDIVISIONS]]   (default 16 6: the icosphere of 81,920 triangles; each
+subdivision fewer has a quarter of the triangles: tests/test_benchmarks.py runs the steps with small meshes)
 """
 
 from __future__ import annotations
@@ -24,12 +25,13 @@ sys.exit(code)
 """
 
 
-def mesh_chain(folder: Path, links: int) -> Path:
-    """A URDF of ``links`` links in a chain, link k drawn and colliding with meshes/part_k.stl (a distinct file)."""
+def mesh_chain(folder: Path, links: int, subdivisions: int) -> Path:
+    """A URDF of ``links`` links in a chain, link k drawn and colliding with meshes/part_k.stl (a distinct file, an
+    icosphere of 20 x 4^subdivisions triangles)."""
     import trimesh
 
     (folder / "meshes").mkdir(parents=True)
-    sphere = trimesh.creation.icosphere(subdivisions=6, radius=0.05)
+    sphere = trimesh.creation.icosphere(subdivisions=subdivisions, radius=0.05)
     parts = []
     for k in range(links):
         sphere.vertices = sphere.vertices * (1.0 + 1e-6)  # (each file different: no two the same)
@@ -57,12 +59,12 @@ def peak_mb(*argv: str) -> float:
     return float(result.stderr.strip().splitlines()[-1])
 
 
-def main(many: int) -> None:
+def main(many: int, subdivisions: int) -> None:
     with tempfile.TemporaryDirectory() as scratch:
         for command in ("import", "export"):
             peaks = {}
             for links in (1, many):
-                urdf = mesh_chain(Path(scratch, f"{command}{links}"), links)
+                urdf = mesh_chain(Path(scratch, f"{command}{links}"), links, subdivisions)
                 out = Path(scratch, f"out_{command}{links}", "robot.yaml" if command == "import" else "robot.xml")
                 argv = ["import", str(urdf), "-o", str(out)] if command == "import" else ["export", str(urdf), "--mjcf"]
                 peaks[links] = peak_mb(*(argv if command == "import" else [*argv, "-o", str(out)]))
@@ -74,4 +76,4 @@ def main(many: int) -> None:
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 16)
+    main(int(sys.argv[1]) if len(sys.argv) > 1 else 16, int(sys.argv[2]) if len(sys.argv) > 2 else 6)

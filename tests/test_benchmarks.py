@@ -99,10 +99,11 @@ def test_view_speed_script_runs():
 
 
 def test_mesh_memory_script_runs():
-    """benchmarks/mesh_memory.py: import and export of a robot with 1 and with 3 meshes, peak memory (one run)."""
-    result = run_script("mesh_memory.py", "3")
+    """benchmarks/mesh_memory.py: import and export of a robot with 1 and with 2 meshes, peak memory (one run; meshes
+    of 320 triangles: the steps are the same for 81,920, whose memory RESULTS.md's runs measure)."""
+    result = run_script("mesh_memory.py", "2", "2")
     for command in ("import", "export"):
-        assert f"gen-robot {command}: peak" in result.stdout and "with 3 (12 MB of meshes): ratio" in result.stdout
+        assert f"gen-robot {command}: peak" in result.stdout and " MB with 2 (0 MB of meshes): ratio" in result.stdout
 
 
 def test_ik_speed_script_runs():
