@@ -20,7 +20,7 @@ UR10E = REPO / "examples" / "robots" / "ur10e.yaml"
 # the command of each row: its arguments, and whether its cache is filled by a first run
 COMMANDS = {
     "`gen-robot --help`": (["--help"], False),
-    "`gen-robot SPEC` (its collision matrix cached)": ([str(UR5), "-o", "{out}", "--force"], True),
+    "`gen-robot SPEC`, the UR5 example (its collision matrix cached)": ([str(UR5), "-o", "{out}", "--force"], True),
     "`gen-robot fleet SPEC --count 3` (its collision matrix cached)": (
         ["fleet", str(UR5), "--count", "3", "-o", "{out}", "--force"],
         True,
