@@ -22,7 +22,7 @@ from ..reader.robot_source import input_kind, read_source
 from ..shared.gc_pause import collector_paused
 from ..shared.joint_types import HOME_POSE
 from ..write.atomic import staged_packages
-from .consumers import SHARING, chosen, consumer_findings, skipped, start_verdicts
+from .consumers import SHARING, chosen, consumer_findings, skipped, start_verdicts, warm_consumers
 from .document_rules import first_rules, other_rules
 from .findings import CheckReport, Finding
 from .inertia_geometry import RobotMeshes, preload_mesh_readers
@@ -70,30 +70,32 @@ def check(
     say = progress or (lambda message: None)
     kind = input_kind(path)
     names = chosen(consumers)
-    say(f"reading {path.name}")
-    try:
-        source = read_source(given)
-    except SpecErrors as exc:
-        if all(e.line is None for e in exc.errors):  # the file itself cannot be read: no report to give
-            raise
-        return CheckReport(str(path), kind, None, spec_findings(exc.errors, "V002"))
-    notes: tuple[Finding, ...] = spec_findings(source.warnings) if source.warnings else ()
-    with staged_packages(source.carried) as staged:  # (a spec's meshes, where its package will carry them)
-        packages = {**staged, **(source.packages or {})} if staged else source.packages
-        judging = Judging(
-            path=path,
-            kind=kind,
-            text=source.text,
-            robot=source.robot,
-            lines=source.lines,
-            notes=notes,
-            consumers=names,
-            packages=packages,
-            prefix=prefix,
-            say=say,
-            srdf=Path(srdf) if srdf is not None else None,
-        )
-        return _judge(judging)
+    # (the Python consumers' children start now, each importing its library while the file is read)
+    with warm_consumers(names):
+        say(f"reading {path.name}")
+        try:
+            source = read_source(given)
+        except SpecErrors as exc:
+            if all(e.line is None for e in exc.errors):  # the file itself cannot be read: no report to give
+                raise
+            return CheckReport(str(path), kind, None, spec_findings(exc.errors, "V002"))
+        notes: tuple[Finding, ...] = spec_findings(source.warnings) if source.warnings else ()
+        with staged_packages(source.carried) as staged:  # (a spec's meshes, where its package will carry them)
+            packages = {**staged, **(source.packages or {})} if staged else source.packages
+            judging = Judging(
+                path=path,
+                kind=kind,
+                text=source.text,
+                robot=source.robot,
+                lines=source.lines,
+                notes=notes,
+                consumers=names,
+                packages=packages,
+                prefix=prefix,
+                say=say,
+                srdf=Path(srdf) if srdf is not None else None,
+            )
+            return _judge(judging)
 
 
 @dataclass(frozen=True)

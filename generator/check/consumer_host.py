@@ -15,6 +15,7 @@ meets the bound by what it kept. Answers are JSON, never pickle.
 from __future__ import annotations
 
 import contextlib
+import importlib
 import json
 import os
 import select
@@ -33,8 +34,10 @@ class ConsumerHost:
     """A child that loads URDFs with the Python consumers (``load``), within ``bounds`` for each load, started when
     first asked and again after it ends."""
 
-    def __init__(self, load: Load, bounds: Bounds) -> None:
+    def __init__(self, load: Load, bounds: Bounds, warm: str = "", nice: int = 0) -> None:
         self.load, self.bounds = load, bounds
+        self.warm = warm  # (a module the child imports as it starts, before anything is sent: its library)
+        self.nice = nice  # (how much the child yields the CPU to the others: a consumer that finishes early)
         self._pid: int | None = None
         self._send = self._receive = -1
         self._pending = b""
@@ -67,15 +70,21 @@ class ConsumerHost:
 
         return collect
 
+    def warm_up(self) -> None:
+        """Start the host now (before any thread is started), which imports ``warm`` while the caller goes on: a
+        library's import (yourdfpy's is a second) is done by the time the first URDF is sent."""
+        if self._pid is None:
+            self._start()
+
     def _result(self, name: str, answer: dict[str, str] | str) -> ConsumerResult:
         if answer == "timeout":
             self.stop()
             return ConsumerResult(name, "timeout", f"no verdict within {self.bounds.seconds:g} s; stopped")
         if isinstance(answer, str):  # (the host ended without an answer: its end is the verdict)
             return ConsumerResult(name, "crashed", self.stop() or "ended without a verdict")
-        if answer["status"] == "memory":
+        if answer["status"] in ("memory", "output"):
             self.stop()
-            return ConsumerResult(name, "rejected", "went past its memory bound; stopped")
+            return ConsumerResult(name, "rejected", f"went past its {answer['status']} bound; stopped")
         self._grown = int(answer.get("grown", 0))
         return ConsumerResult(name, "accepted" if answer["status"] == "accepted" else "rejected", answer["message"])
 
@@ -114,7 +123,12 @@ class ConsumerHost:
                 signal.signal(signal.SIGINT, signal.SIG_DFL)
                 silence()
                 limit_resources(self.bounds, cpu=False)
-                _serve(self.load, requests, answers)
+                if self.nice:
+                    os.nice(self.nice)
+                if self.warm:
+                    with contextlib.suppress(Exception):  # (one that fails to import fails again in the load)
+                        importlib.import_module(self.warm)
+                _serve(self.load, requests, answers, self.bounds.output)
                 code = 0
             finally:
                 os._exit(code)
@@ -137,9 +151,10 @@ class ConsumerHost:
         return "" if os.WIFSIGNALED(status) and os.WTERMSIG(status) == signal.SIGKILL else status_words(status)
 
 
-def _serve(load: Load, requests: int, answers: int) -> None:
+def _serve(load: Load, requests: int, answers: int, output: int) -> None:
     """The host's loop: a request line in, an answer line out (with how much the host has grown), until the parent
-    closes the requests."""
+    closes the requests. A consumer's description longer than ``output`` characters is out of its bounds, as in a
+    child of its own (:func:`~xacrokit.expansion.bounded_child.start_bounded`)."""
     start = _resident()
     with os.fdopen(requests, "rb") as incoming, os.fdopen(answers, "wb", buffering=0) as outgoing:
         for line in incoming:
@@ -147,17 +162,15 @@ def _serve(load: Load, requests: int, answers: int) -> None:
             answer: dict[str, str]
             try:
                 os.chdir(Path(request["path"]).parent)  # (MuJoCo writes MUJOCO_LOG.TXT where it runs)
-                answer = {
-                    "status": "accepted",
-                    "message": load(request["name"], request["path"], request["packages"]),
-                }
+                seen = load(request["name"], request["path"], request["packages"])
+                answer = {"status": "accepted", "message": seen} if len(seen) <= output else {"status": "output"}
             except MemoryError:
                 answer = {"status": "memory", "message": ""}
             except Exception as exc:  # noqa: BLE001  (a consumer's own complaint is its verdict)
                 answer = {"status": "rejected", "message": one_line(exc)}
             outgoing.write(json.dumps({**answer, "grown": _resident() - start}).encode("utf-8") + b"\n")
-            if answer["status"] == "memory":
-                return  # (a host that ran out of memory is not trusted with the next file)
+            if answer["status"] in ("memory", "output"):
+                return  # (a host that went past a bound is not trusted with the next file)
 
 
 def _resident() -> int:

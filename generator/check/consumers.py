@@ -328,12 +328,15 @@ def start_verdicts(
         python = [n for n in names if forkable and n != "check_urdf" and available(n)]
         if _HOST and prepare is not None:
             prepare()  # (the host, started once, inherits it)
-        hosted = _HOST[0].start(python, urdf, package_paths) if _HOST and python else dict
+        hosted = [_HOST[0].start(python, urdf, package_paths)] if _HOST and python else []
+        # (warm: those whose child started with the check, its library imported meanwhile: sent the URDF now)
+        hosted += [_WARM[n].start([n], urdf, package_paths) for n in python if n in _WARM and not _HOST]
+        each = [n for n in python if n not in _WARM and not _HOST]  # (a child forked now for each)
         # the consumers that share nothing with the caller start first, on the other core, while it prepares
-        forked = {n: _forked(n, urdf, package_paths) for n in python if n not in SHARING} if not _HOST else {}
-        if not _HOST and prepare is not None:
+        forked = {n: _forked(n, urdf, package_paths) for n in each if n not in SHARING}
+        if not _HOST and prepare is not None and any(n in SHARING for n in each):
             prepare()
-        forked |= {n: _forked(n, urdf, package_paths) for n in python if n in SHARING} if not _HOST else {}
+        forked |= {n: _forked(n, urdf, package_paths) for n in each if n in SHARING}
         others = _started([n for n in names if n not in python], urdf, package_paths=package_paths)
     except BaseException:
         folder.cleanup()
@@ -342,7 +345,8 @@ def start_verdicts(
     def collect() -> list[ConsumerResult]:
         try:
             results = {name: wait() for name, wait in forked.items()}
-            results.update(hosted())
+            for wait in hosted:
+                results.update(wait())
             results.update((r.name, r) for r in others())
             # (a message naming the scratch copy names the file checked: a verdict does not depend on where it ran)
             return [replace(results[n], message=results[n].message.replace(str(urdf), shown_as)) for n in names]
@@ -353,6 +357,32 @@ def start_verdicts(
 
 
 _HOST: list[ConsumerHost] = []  # (the host the Python consumers run in, while :func:`hosted_consumers` holds one)
+_WARM: dict[str, ConsumerHost] = {}  # (a host per Python consumer, started early, while :func:`warm_consumers` lasts)
+YIELDING = {"pinocchio": 10}  # consumer -> how much its warm child yields the CPU (a load of a few hundredths)
+
+
+@contextlib.contextmanager
+def warm_consumers(names: Sequence[str]) -> Iterator[None]:
+    """While it lasts, the next check in this process sends each of the Python consumers ``names`` to a child of its
+    own started now (:class:`~xacrokit.check.consumer_host.ConsumerHost`, the bounds of a forked consumer's), which
+    imports the consumer's library at once: the slowest consumer's import (yourdfpy's, a second) then runs while
+    check reads the file and runs its first rules, instead of after. numpy, which every one of them imports, is
+    imported here first and shared; a consumer that loads in a few hundredths (pinocchio) yields the CPU to the
+    others (YIELDING). Nothing is started where there is no fork, or while :func:`hosted_consumers` holds a host."""
+    forkable = hasattr(os, "fork") and not _HOST
+    wanted = [n for n in names if n in LIBRARIES and n not in _WARM and available(n)] if forkable else []
+    if wanted:
+        import numpy  # noqa: F401  (heavy: numpy; imported before the children start, which share it)
+    hosts = {n: ConsumerHost(load_with, CONSUMER_BOUNDS, LIBRARIES[n], YIELDING.get(n, 0)) for n in wanted}
+    try:
+        for host in hosts.values():
+            host.warm_up()
+        _WARM.update(hosts)
+        yield
+    finally:
+        for name, host in hosts.items():
+            _WARM.pop(name, None)
+            host.stop()
 
 
 @contextlib.contextmanager
@@ -394,7 +424,7 @@ def _forked(
             text, error = wait()
         except OutOfBounds as exc:
             if exc.which == "seconds":
-                return ConsumerResult(name, "timeout", f"no verdict within {TIMEOUT_S:g} s; stopped")
+                return ConsumerResult(name, "timeout", f"no verdict within {exc.bounds.seconds:g} s; stopped")
             return ConsumerResult(name, "rejected", f"went past its {exc.which} bound; stopped")
         except ChildFailed as exc:
             return ConsumerResult(name, "crashed", exc.detail)
