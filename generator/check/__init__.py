@@ -4,9 +4,10 @@ Modules: ``checker`` (check), ``urdf_document`` (the URDF as check reads it), ``
 alone, and ``generation_warnings``: what ``gen-robot SPEC`` says of the package it wrote), one module per rule family
 holding its rules and their rows of the table (``number_rules``, ``structure_rules``, ``joint_rules``,
 ``inertia_rules``, ``reference_rules``, ``sensor_rules``, ``spec_rules``), ``consumers`` (the independent consumers;
-``consumer_host``, their host in a worker), ``rule_table`` (the whole table, RULES), ``findings`` (Finding,
-CheckReport), ``robot_files`` (the robots among files and folders), ``file_workers`` (many files in worker processes)
-and the reports: ``text_report``, ``sarif_report``, ``junit_report``.
+``consumer_host``, their host: one a worker, or one a consumer started as a check begins), ``inertia_fit`` (I008
+without numpy where a link's inertia is far inside its bounds), ``rule_table`` (the whole table, RULES), ``findings``
+(Finding, CheckReport), ``robot_files`` (the robots among files and folders), ``file_workers`` (many files in worker
+processes) and the reports: ``text_report``, ``sarif_report``, ``junit_report``.
 
 The names below load on first use: ``python -m xacrokit.check.consumers`` runs in a subprocess per consumer, and
 importing this package must not load that module (nor the rules) before it runs.

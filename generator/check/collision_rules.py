@@ -91,20 +91,22 @@ def ground_rules(doc: Doc, meshes: RobotMeshes) -> Iterator[Finding]:
     """G006 on each link that touches the ground in the default pose of a robot on wheels or feet (not fixed to a
     ``world`` root: :attr:`Doc.fixed_to_world`) and has no mu1, mu2 or mu (SDF's own) in a ``<gazebo reference>``
     block of its rigid body; a note when the file has no ``<gazebo>`` at all (it is not written for Gazebo)."""
-    import numpy as np  # (heavy: numpy)
-
     tree = joint_tree(doc.view)
     roots = tree.roots(doc.link_names)
     if len(roots) != 1 or doc.fixed_to_world:
         return
-    poses = tree.down(roots, np.eye(4), lambda above, joint: above @ _joint_origin(joint))
     moved = tree.down(roots, False, lambda above, joint: above or joint.type != "fixed")
+    wheels = {joint.child for joint in doc.view.joints if joint.type == "continuous"}
+    if not any(moved[name] and (name in wheels or GROUND_NAMES.search(name)) for name in moved):
+        return  # (no moved wheel or foot anywhere, so none on the ground: the poses are not worked out)
+    import numpy as np  # (heavy: numpy)
+
+    poses = tree.down(roots, np.eye(4), lambda above, joint: above @ _joint_origin(joint))
     lows = _lowest_points(doc, meshes, poses)
     if not lows:
         return
     ground = min(lows.values())
     touching = [name for name, z in lows.items() if z <= ground + CONTACT]
-    wheels = {joint.child for joint in doc.view.joints if joint.type == "continuous"}
     if not any(moved[name] and (name in wheels or GROUND_NAMES.search(name)) for name in touching):
         return  # (an arm on its base, a body lying on its side: not a robot on wheels or feet)
     # friction given to any link of a rigid body counts for all of it: Gazebo lumps links joined by fixed joints,

@@ -141,9 +141,11 @@ def _primitive_solid(shape: Shape) -> tuple[np.ndarray, Solid] | None:
 
 def link_reach(link: Link, meshes: MeshReach | None) -> Reach | None:
     """The link's geometry as :class:`Reach`, None when it has none, a shape does not read, or a mesh cannot be read."""
+    every = [g for g in (*link.visuals, *link.collisions) if g.shape is not None]
+    if not every:
+        return None
     import numpy as np  # (heavy: numpy)
 
-    every = [g for g in (*link.visuals, *link.collisions) if g.shape is not None]
     placed = [shape_in_link(g, meshes) for g in every]
     if not every or any(p is None for p in placed):
         return None
@@ -331,7 +333,7 @@ class RobotMeshes:
     def __init__(self, urdf: Path, packages: Mapping[str, str | os.PathLike[str]] | None) -> None:
         self.urdf, self.packages = urdf, packages or {}
         self.read = mesh_reader(urdf, self.packages, parse=_mesh_points)
-        self.read_solid = mesh_reader(urdf, self.packages, parse=lambda data, suffix, said: (data, suffix, said))
+        self.read_solid = mesh_reader(urdf, self.packages, parse=lambda *read: read)  # (bytes, suffix, name, digest)
         self._where: dict[str, tuple[str, Path]] = {}
 
     def __call__(
@@ -349,12 +351,12 @@ class RobotMeshes:
         import numpy as np  # (heavy: numpy)
 
         try:
-            data, suffix, said = self.read_solid(filename).mesh  # (its bytes: trimesh reads them when not kept)
+            data, suffix, said, digest = self.read_solid(filename).mesh  # (its bytes: trimesh reads them if not kept)
 
             def work_out() -> list[float] | None:
                 return _solid_values(require_mesh(data, suffix, said, process=False), scale)
 
-            values = kept_values(data, f"solid:{suffix}:{scale!r}", work_out)
+            values = kept_values(data, f"solid:{suffix}:{scale!r}", work_out, digest)
         except XacrokitError:
             return None
         if values is None:
@@ -364,10 +366,10 @@ class RobotMeshes:
     def kept(self, filename: str) -> bool:
         """Whether the mesh's facts are kept from a run before (a file that cannot be read needs no reader: True)."""
         try:
-            data, suffix, _ = self.read_solid(filename).mesh
+            data, suffix, _, digest = self.read_solid(filename).mesh
         except XacrokitError:
             return True
-        return facts_kept(data, suffix)
+        return facts_kept(data, suffix, digest)
 
     def triangles(self, filename: str) -> int | None:
         """How many triangles the mesh has (None: it cannot be read)."""
@@ -419,10 +421,10 @@ KEPT_BYTES = 128 * 1024 * 1024  # vertices kept read across robots (float32: 10 
 _MESHES: dict[tuple[str, str, int, int], tuple[np.ndarray, int] | None] = {}
 
 
-def _mesh_points(data: bytes, suffix: str, said: str) -> tuple[np.ndarray, int]:
+def _mesh_points(data: bytes, suffix: str, said: str, digest: bytes) -> tuple[np.ndarray, int]:
     """A mesh file's hull vertices (float32, N x 3: :func:`_hull_vertices`) and triangle count, as a run before kept
     them (:mod:`.kept_meshes`: by the file's bytes) or read now. Raises MeshCopyRefused when it holds no triangle."""
-    return kept_facts(data, suffix, lambda: _read_mesh_points(data, suffix, said))
+    return kept_facts(data, suffix, lambda: _read_mesh_points(data, suffix, said), digest)
 
 
 def _read_mesh_points(data: bytes, suffix: str, said: str) -> tuple[np.ndarray, int]:

@@ -21,6 +21,7 @@ from ..shared.solid_inertia import (
 from ..shared.urdf_view import Link, Shape
 from .findings import Finding, rule_table
 from .inertia_copies import copied_inertias
+from .inertia_fit import fits_at_a_glance
 from .inertia_geometry import MARKER, MeshReach, ReachMemo, geometry_key, geometry_message
 from .urdf_document import Doc, number_of, triple_of
 
@@ -232,6 +233,8 @@ def _geometry_message(context: _Context, view: Link, mass: float, entry: tuple[f
     a fleet's robot, or a hand's identical fingers, are judged once."""
     origin = view.inertial.origin if view.inertial is not None else None
     key = (geometry_key(view), None if origin is None else (origin.xyz, origin.rpy), mass, tuple(entry))
+    if key not in context.said_i008 and fits_at_a_glance(view, origin, mass, entry):
+        context.said_i008[key] = None  # (far inside the bounds, shown without numpy: nothing to say)
     if key not in context.said_i008:
         reach = context.reaches.reach(view)
         context.said_i008[key] = None if reach is None else geometry_message(origin, mass, entry, reach)

@@ -2,13 +2,14 @@
 and the uniform solid it encloses at a scale (for a finding's message).
 
 Reading a mesh and taking its hull is most of what ``gen-robot check`` spends on a robot of meshes (TIAGo dual's 124
-mesh files, the G1's 87: a second and more; the consumers read no mesh, or fewer), and the same files are checked
-again and again (CI, an edit of the URDF around unchanged meshes). So the facts of each file are kept in the user's
-cache folder (:mod:`xacrokit.shared.user_cache`: private to the user, ``XACROKIT_CACHE=off`` turns it off), in
-``meshes-VERSION``, one small JSON file a mesh named by the SHA-256 of FORMAT, the file's suffix (which says the
-reader) and its bytes: a file whose bytes change is a new name, and its facts are worked out afresh. The vertices are
-kept as their float32 bytes, so a kept hull is the same array, bit for bit, as the one worked out. A kept file that
-does not read back whole is worked out again and written anew.
+mesh files, the G1's 87: a second and more; the consumers read no mesh, or fewer), and the same files are checked again
+and again (CI, an edit of the URDF around unchanged meshes). So the facts of each file are kept in the user's cache
+folder (:mod:`xacrokit.shared.user_cache`: private to the user, ``XACROKIT_CACHE=off`` turns it off), in
+``meshes-VERSION``, one small JSON file a mesh named by the SHA-256 of FORMAT, the file's suffix (which says the reader)
+and the SHA-256 of its bytes (which the reader of a robot's meshes has taken already): a file whose bytes change is a
+new name, and its facts are worked out afresh. The vertices are kept as their float32 bytes, so a kept hull is the same
+array, bit for bit, as the one worked out. A kept file that does not read back whole is worked out again and written
+anew.
 """
 
 from __future__ import annotations
@@ -25,20 +26,21 @@ from ..shared.user_cache import cache_folder, kept, read_cached, source_stamp
 if TYPE_CHECKING:
     import numpy as np
 
-FORMAT = 1  # (raise it when what is kept, or how it is worked out, changes: the old files are then never read)
+FORMAT = 2  # (raise it when what is kept, or how it is worked out, changes: the old files are then never read)
 Facts = tuple["np.ndarray", int]  # a mesh's hull vertices (float32, N x 3) and its triangle count
 
 
-def kept_facts(data: bytes, suffix: str, work_out: Callable[[], Facts]) -> Facts:
-    """The facts of the mesh file whose bytes are ``data`` (of kind ``suffix``): kept ones, else ``work_out()``'s,
-    then kept. What ``work_out`` raises (a file that is no mesh) is raised, and nothing is kept."""
-    return kept("meshes", __version__, _facts_name(data, suffix), work_out, _written, _read)
+def kept_facts(data: bytes, suffix: str, work_out: Callable[[], Facts], digest: bytes | None = None) -> Facts:
+    """The facts of the mesh file whose bytes are ``data`` (of kind ``suffix``; ``digest``: their SHA-256, when
+    known): kept ones, else ``work_out()``'s, then kept. What ``work_out`` raises (a file that is no mesh) is raised,
+    and nothing is kept."""
+    return kept("meshes", __version__, _facts_name(data, suffix, digest), work_out, _written, _read)
 
 
-def facts_kept(data: bytes, suffix: str) -> bool:
+def facts_kept(data: bytes, suffix: str, digest: bytes | None = None) -> bool:
     """Whether :func:`kept_facts` would find the facts of this mesh file kept (read back whole)."""
     folder = cache_folder("meshes", __version__)
-    text = None if folder is None else read_cached(folder, _facts_name(data, suffix))
+    text = None if folder is None else read_cached(folder, _facts_name(data, suffix, digest))
     if text is None:
         return False
     try:
@@ -48,8 +50,13 @@ def facts_kept(data: bytes, suffix: str) -> bool:
     return True
 
 
-def _facts_name(data: bytes, suffix: str) -> str:
-    return hashlib.sha256(f"{FORMAT}:{_code()}:{suffix}:".encode() + data).hexdigest() + ".json"
+def _facts_name(data: bytes, suffix: str, digest: bytes | None = None) -> str:
+    return _name(f"{FORMAT}:{_code()}:{suffix}:", data, digest)
+
+
+def _name(what: str, data: bytes, digest: bytes | None) -> str:
+    """A kept file's name: the SHA-256 of ``what`` and of the file's bytes' SHA-256 (``digest``, when known)."""
+    return hashlib.sha256(what.encode() + (digest or hashlib.sha256(data).digest())).hexdigest() + ".json"
 
 
 def _code() -> str:
@@ -58,10 +65,13 @@ def _code() -> str:
     return source_stamp("trimesh", "xacrokit.check.inertia_geometry", "xacrokit.shared.mesh_solids")
 
 
-def kept_values(data: bytes, what: str, work_out: Callable[[], list[float] | None]) -> list[float] | None:
+def kept_values(
+    data: bytes, what: str, work_out: Callable[[], list[float] | None], digest: bytes | None = None
+) -> list[float] | None:
     """Numbers worked out from the mesh file whose bytes are ``data`` (``what``: which numbers, and from what: the
-    reader, a scale), kept as :func:`kept_facts` keeps a mesh's facts (None, too: nothing to work out)."""
-    name = hashlib.sha256(f"{FORMAT}:{_code()}:{what}:".encode() + data).hexdigest() + ".json"
+    reader, a scale; ``digest``: the bytes' SHA-256, when known), kept as :func:`kept_facts` keeps a mesh's facts
+    (None, too: nothing to work out)."""
+    name = _name(f"{FORMAT}:{_code()}:{what}:", data, digest)
     return kept("meshes", __version__, name, work_out, json.dumps, _values)  # (a float's repr reads back the same)
 
 

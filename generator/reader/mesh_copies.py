@@ -72,7 +72,8 @@ def mesh_to_copy(root: Path, source: Path, *, where: str = "") -> CopiedFile:
     return read_mesh_below(root, source, where=where, process=False).copy
 
 
-MeshParser = Callable[[bytes, str, str], Any]  # (the file's bytes, its suffix, how messages name it) -> the mesh
+# (the file's bytes, its suffix, how messages name it, the bytes' SHA-256, taken once for both) -> the mesh
+MeshParser = Callable[[bytes, str, str, bytes], Any]
 
 
 def read_mesh_below(
@@ -112,7 +113,7 @@ def read_mesh_below(
     suffix = pure.suffix.lower()
     digest = hashlib.sha256(data)
     if parse is not None:
-        mesh = parse(data, suffix, said)
+        mesh = parse(data, suffix, said, digest.digest())
     else:
         mesh = _memo_or_read(data, digest.digest(), suffix, said, process)
     copy = CopiedFile(root, pure.as_posix(), identity, len(data), digest.hexdigest())
