@@ -56,8 +56,8 @@ _UNEXPANDED = re.compile(r"\$\{|\$\(")
 def xacro_rules(doc: Doc) -> Iterator[Finding]:
     """U004: a xacro document read as a URDF (its xacro: elements are unknown to consumers, which then see another
     robot or none), or ${...}/$(...) left in a name or a value by an expansion that did not happen."""
-    for element in doc.root.iter():
-        if isinstance(element.tag, str) and element.tag.startswith(f"{{{XACRO_NAMESPACE}}}"):
+    for element in doc.root.iter(f"{{{XACRO_NAMESPACE}}}*"):  # (lxml's walk, in document order, selects them)
+        if isinstance(element.tag, str):
             local = element.tag.split("}", 1)[1]
             yield doc.finding(
                 "U004",
@@ -69,25 +69,26 @@ def xacro_rules(doc: Doc) -> Iterator[Finding]:
             )
             return  # (one says it; the rest would say it again)
     said = 0
-    for element in doc.root.iter():
-        for attribute, value in element.items():
-            # (a file name may really hold "${": a file that is not there is R003's, whatever its name)
-            if attribute != "filename" and _UNEXPANDED.search(value) and said < 5:
-                said += 1
-                owner = (
-                    element
-                    if element.tag in ("link", "joint")
-                    else next((a for a in element.iterancestors() if a.tag in ("link", "joint")), doc.root)
-                )
-                kind = owner.tag if owner.tag in ("link", "joint") else "robot"
-                yield doc.finding(
-                    "U004",
-                    kind,
-                    owner.get("name", ""),
-                    f'{element.tag} {attribute}="{value}" holds an unexpanded xacro expression; consumers read it as '
-                    "text: expand the document with its arguments",
-                    element,
-                )
+    # (the attributes that hold "${" or "$(", in document order: one pass of lxml's XPath over the document)
+    for found in doc.root.xpath("descendant-or-self::*/@*[contains(., '${') or contains(., '$(')]"):
+        element, attribute, value = found.getparent(), found.attrname, str(found)
+        # (a file name may really hold "${": a file that is not there is R003's, whatever its name)
+        if attribute != "filename" and _UNEXPANDED.search(value) and said < 5:
+            said += 1
+            owner = (
+                element
+                if element.tag in ("link", "joint")
+                else next((a for a in element.iterancestors() if a.tag in ("link", "joint")), doc.root)
+            )
+            kind = owner.tag if owner.tag in ("link", "joint") else "robot"
+            yield doc.finding(
+                "U004",
+                kind,
+                owner.get("name", ""),
+                f'{element.tag} {attribute}="{value}" holds an unexpanded xacro expression; consumers read it as '
+                "text: expand the document with its arguments",
+                element,
+            )
 
 
 def structure_rules(doc: Doc) -> Iterator[Finding]:
