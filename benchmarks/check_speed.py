@@ -12,7 +12,9 @@ It prints the ratio check / slowest consumer alone (target <= 1.2; it was 1.5) a
 do, meshes and all (``yourdfpy.URDF.load(FILE)``), a consumer that check does not run but that a user compares with;
 the ratio is also given against the slowest of all five. The commands of a run go in one order, the next run's in
 the reverse (pairs side by side), and each ratio is the median of the runs' own ratios; CPU time (user + system,
-children included: the consumers' too) is printed beside wall time, since a loaded machine disturbs it less. Run
+children included: the consumers' too) is printed beside wall time, since a loaded machine disturbs it less, and the
+load average with each robot. On a machine whose CPUs other work keeps busy, check's processes share what the kernel
+gives one session (autogroup), so its wall ratio approaches its CPU ratio: the target is for a quiet machine. Run
 ``python -m compileall -q generator`` first when the package is installed editable with PYTHONDONTWRITEBYTECODE set
 (a real install compiles its modules). Check keeps what it reads of a mesh in the user's cache folder
 (``check.kept_meshes``): the untimed first run fills it; ``XACROKIT_CACHE=off python benchmarks/check_speed.py`` times
@@ -84,6 +86,7 @@ def timed_cpu(command: list[str], cwd: Path) -> tuple[float, float]:
 def main(runs: int, only: list[str]) -> None:
     folder = robots_folder()
     print(f"gen-robot check on real robots, medians of {runs} runs as processes (wall seconds; CPU seconds after /)")
+    print(f"load average at the start: {os.getloadavg()[0]:.1f} (on {os.cpu_count()} CPUs)")
     print(
         f"{'robot':<34} {'links':>5} {'check':>11} {'rules':>11}  consumers alone -> check / slowest consumer "
         "(wall, CPU); / slowest with yourdfpy+meshes"
@@ -109,7 +112,7 @@ def main(runs: int, only: list[str]) -> None:
             f"{path.name:<34} {links:>5} {wall['check']:>5.2f}/{cpu['check']:<5.2f} "
             f"{wall['rules']:>5.2f}/{cpu['rules']:<5.2f}  {each} -> {paired(times, slowest, 0):.2f} wall, "
             f"{paired(times, slowest, 1):.2f} CPU (slowest: {slowest}); {paired(times, heaviest, 0):.2f} wall, "
-            f"{paired(times, heaviest, 1):.2f} CPU ({heaviest})"
+            f"{paired(times, heaviest, 1):.2f} CPU ({heaviest}); load average {os.getloadavg()[0]:.1f}"
         )
 
 
