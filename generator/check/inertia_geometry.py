@@ -23,6 +23,7 @@ light housing) has moments far below the uniform solid's, and a point mass none 
 
 from __future__ import annotations
 
+import functools
 import io
 import math
 import os
@@ -244,7 +245,7 @@ def geometry_message(origin: Origin | None, mass: float, entries: Sequence[float
         )
     if worst[0] <= TOLERANCE:
         return None
-    return worst[1] + _solid_note(reach.solid(), mass, turn, reach.filled)
+    return worst[1]() + _solid_note(reach.solid(), mass, turn, reach.filled)
 
 
 def _bounds(
@@ -270,29 +271,36 @@ def _ratio(value: float, most: float, scale: float) -> float:
 
 def _excess(
     stated: np.ndarray, mass: float, n: np.ndarray, most_moment: float, most_spread: float
-) -> tuple[float, str]:
-    """How far the tensor passes the larger of the two bounds along ``n`` (a ratio), and the message saying it:
-    ``most_moment`` and ``most_spread`` are the bounds (kg*m^2) of the moment about the axis along ``n`` and of the
-    spread along it."""
+) -> tuple[float, Callable[[], str]]:
+    """How far the tensor passes the larger of the two bounds along ``n`` (a ratio), and how to say it (worded for
+    the worst direction alone): ``most_moment`` and ``most_spread`` are the bounds (kg*m^2) of the moment about the
+    axis along ``n`` and of the spread along it."""
     import numpy as np  # (heavy: numpy)
 
     moment = float(n @ stated @ n)
     trace = float(np.trace(stated))
     spread = trace / 2.0 - moment
-    axis = _axis_name(n)
     ratio_moment, ratio_spread = _ratio(moment, most_moment, trace), _ratio(spread, most_spread, trace)
     if ratio_moment >= ratio_spread:
-        return ratio_moment, (
-            f"its moment about {axis} through the centre of mass, {moment:.3g} kg*m^2, is {ratio_moment:.3g} times "
-            f"the most {mass:.4g} kg within the link's geometry can have ({most_moment:.3g}: all of it at the "
-            "points farthest from that axis); the tensor belongs to a larger or heavier body"
-        )
-    reach = math.sqrt(most_spread / mass)
-    return ratio_spread, (
-        f"its moments spread the mass {math.sqrt(max(spread, 0.0) / mass):.3g} m (rms) along {axis} from the centre "
-        f"of mass, but the link's geometry reaches at most {reach:.3g} m that way (the two moments across that axis "
-        f"minus the one about it are 2 sum(m d^2), d along it: {2 * spread:.3g} kg*m^2 here, at most "
-        f"{2 * most_spread:.3g})"
+        return ratio_moment, functools.partial(_moment_said, n, mass, moment, ratio_moment, most_moment)
+    return ratio_spread, functools.partial(_spread_said, n, mass, spread, most_spread)
+
+
+def _moment_said(n: np.ndarray, mass: float, moment: float, ratio: float, most: float) -> str:
+    return (
+        f"its moment about {_axis_name(n)} through the centre of mass, {moment:.3g} kg*m^2, is {ratio:.3g} times "
+        f"the most {mass:.4g} kg within the link's geometry can have ({most:.3g}: all of it at the "
+        "points farthest from that axis); the tensor belongs to a larger or heavier body"
+    )
+
+
+def _spread_said(n: np.ndarray, mass: float, spread: float, most: float) -> str:
+    reach = math.sqrt(most / mass)
+    return (
+        f"its moments spread the mass {math.sqrt(max(spread, 0.0) / mass):.3g} m (rms) along {_axis_name(n)} from the "
+        f"centre of mass, but the link's geometry reaches at most {reach:.3g} m that way (the two moments across that "
+        f"axis minus the one about it are 2 sum(m d^2), d along it: {2 * spread:.3g} kg*m^2 here, at most "
+        f"{2 * most:.3g})"
     )
 
 
