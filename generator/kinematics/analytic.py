@@ -163,7 +163,7 @@ class _ThreeParallel(NamedTuple):
     across_about_1: tuple[float, ...]  # (a unit vector across n, and n x it, turned by q1: theta's frame)
     normal_about_1: tuple[float, ...]
     wrist_roots: tuple[float, float, float]  # (q5's phase, radius and constant term)
-    n_about_5: tuple[float, ...]  # (n turned by -q5 about axis 5)
+    n_about_5: tuple[float, ...]  # (n turned by -q5 about axis 5, its part across axis 6)
     across_about_5: tuple[float, ...]
     wrist_arm: tuple[float, ...]  # (the wrist centre from axis 4, turned by theta about n)
     elbow: tuple[float, float, float]  # (q3's phase, radius and constant term, |fore|^2 + |back|^2 halved)
@@ -183,6 +183,15 @@ def _elbow_turn(k: Vec, fore: tuple[Vec, Vec, Vec], upper: Vec) -> tuple[float, 
     return (*a, *b, *d, *cross(k, a), *cross(k, b), *cross(k, d), *squares)
 
 
+def _across_parts(parts_: tuple[float, ...], k: Vec) -> tuple[float, ...]:
+    """Flat parts (:func:`.subproblems.flat_parts`) with each part's component along the unit ``k`` taken off: the
+    turned vector's part across ``k``."""
+    found: list[float] = []
+    for i in (0, 3, 6):
+        found.extend(perpendicular((parts_[i], parts_[i + 1], parts_[i + 2]), k))
+    return tuple(found)
+
+
 @functools.cache
 def _three_parallel_constants(form: ClosedForm) -> _ThreeParallel:
     h, p = form.lines.axes, form.lines.points
@@ -198,7 +207,7 @@ def _three_parallel_constants(form: ClosedForm) -> _ThreeParallel:
         flat_parts(h[0], across),
         flat_parts(h[0], cross(n, across)),
         _fixed(n, h[4], h[5]),
-        flat_parts(h[4], n),
+        _across_parts(flat_parts(h[4], n), h[5]),
         flat_parts(h[4], across),
         flat_parts(n, sub(form.wrist, p[3])),
         elbow,
@@ -257,20 +266,19 @@ def _three_parallel_wrists(
     g0, g1, g2 = r00 * n0 + r10 * n1 + r20 * n2, r01 * n0 + r11 * n1 + r21 * n2, r02 * n0 + r12 * n1 + r22 * n2
     along = k0 * g0 + k1 * g1 + k2 * g2  # (R_G^T R1 n, across axis 6: q6's target)
     g0, g1, g2 = g0 - along * k0, g1 - along * k1, g2 - along * k2
-    turns_6 = math.sqrt(g0 * g0 + g1 * g1 + g2 * g2) >= DEGENERATE
+    turns_6 = g0 * g0 + g1 * g1 + g2 * g2 >= _SQUARE
+    e0, e1, e2 = g1 * k2 - g2 * k1, g2 * k0 - g0 * k2, g0 * k1 - g1 * k0  # (g x k: p . (g x k) = k . (p x g))
     for j, q5 in enumerate(fifths):
         c5, s5 = math.cos(q5), -math.sin(q5)  # (of -q5)
-        a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.n_about_5
+        a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.n_about_5  # (its parts across axis 6: p is across it)
         p0, p1, p2 = a0 + c5 * b0 + s5 * d0, a1 + c5 * b1 + s5 * d1, a2 + c5 * b2 + s5 * d2
-        along = k0 * p0 + k1 * p1 + k2 * p2
-        p0, p1, p2 = p0 - along * k0, p1 - along * k1, p2 - along * k2
         a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.across_about_5
         v0, v1, v2 = a0 + c5 * b0 + s5 * d0, a1 + c5 * b1 + s5 * d1, a2 + c5 * b2 + s5 * d2
         t6 = None
-        if turns_6 and math.sqrt(p0 * p0 + p1 * p1 + p2 * p2) >= DEGENERATE:  # (step 3: subproblem 1; else singular)
-            sine = k0 * (p1 * g2 - p2 * g1) + k1 * (p2 * g0 - p0 * g2) + k2 * (p0 * g1 - p1 * g0)
-            t6 = math.atan2(sine, p0 * g0 + p1 * g1 + p2 * g2)
-            c, s = math.cos(t6), math.sin(t6)  # (step 4: v turned by joint 6; Rodrigues)
+        if turns_6 and p0 * p0 + p1 * p1 + p2 * p2 >= _SQUARE:  # (step 3: subproblem 1; else singular)
+            sine, cosine = p0 * e0 + p1 * e1 + p2 * e2, p0 * g0 + p1 * g1 + p2 * g2
+            t6, length = math.atan2(sine, cosine), math.hypot(sine, cosine)  # (|p| |g|: t6's cosine and sine)
+            c, s = cosine / length, sine / length  # (step 4: v turned by joint 6; Rodrigues)
             along = (k0 * v0 + k1 * v1 + k2 * v2) * (1.0 - c)
             v0, v1, v2 = (
                 v0 * c + (k1 * v2 - k2 * v1) * s + k0 * along,
@@ -278,8 +286,8 @@ def _three_parallel_wrists(
                 v2 * c + (k0 * v1 - k1 * v0) * s + k2 * along,
             )
         x, y = v0 * x0 + v1 * x1 + v2 * x2, v0 * y0 + v1 * y1 + v2 * y2
-        theta = math.atan2(y, x) if math.hypot(x, y) >= DEGENERATE else 0.0
-        c, s = math.cos(theta), math.sin(theta)
+        length = math.hypot(x, y)
+        theta, c, s = (math.atan2(y, x), x / length, y / length) if length >= DEGENERATE else (0.0, 1.0, 0.0)
         a0, a1, a2, b0, b1, b2, d0, d1, d2 = k.wrist_arm
         w = (u0 - (a0 + c * b0 + s * d0), u1 - (a1 + c * b1 + s * d1), u2 - (a2 + c * b2 + s * d2))
         q6, singular = (-t6, "") if t6 is not None else (0.0, _UR_WRIST)
@@ -484,6 +492,7 @@ class _ParallelArm(NamedTuple):
     across: Vec  # (a unit vector at right angles to axis 6)
     wrist: _WristPair
     axes: tuple[Vec, ...]
+    same: float  # (1 or -1: axis 3 is axis 2 or its opposite to the last bit, R2 R3 one turn about it; 0: not)
 
 
 @functools.cache
@@ -494,7 +503,8 @@ def _parallel_arm_constants(form: ClosedForm) -> _ParallelArm:
     elbow = (phase, radius, constant - (dot(fore, fore) + dot(back, back)) / 2.0)
     forearm, across = flat_parts(h[2], sub(form.wrist, p[2])), _across(h[5])
     wrist = _wrist_pair(h, across)
-    return _ParallelArm(_shoulder(form, n), elbow, n, forearm, sub(p[2], p[1]), h[1], h[2], across, wrist, h)
+    same = 1.0 if h[2] == h[1] else -1.0 if h[2] == scale(-1.0, h[1]) else 0.0
+    return _ParallelArm(_shoulder(form, n), elbow, n, forearm, sub(p[2], p[1]), h[1], h[2], across, wrist, h, same)
 
 
 def _parallel_arm(form: ClosedForm, r_g: Mat, p_g: Vec, exact_only: bool) -> list[Branch]:
@@ -548,6 +558,7 @@ def _parallel_arm_elbows(
     along = k0 * u0 + k1 * u1 + k2 * u2  # (subproblem 1 for q2 on floats: u's part across axis 2 made once)
     y0, y1, y2 = u0 - along * k0, u1 - along * k1, u2 - along * k2
     turns_2 = math.sqrt(y0 * y0 + y1 * y1 + y2 * y2) >= DEGENERATE
+    pair = _parts_about(k.axis_2, back6, back_across) if k.same else ()
     for m, q3 in enumerate(thirds):
         c3, s3 = math.cos(q3), math.sin(q3)
         e0, e1, e2 = a0 + c3 * b0 + s3 * d0 + p0, a1 + c3 * b1 + s3 * d1 + p1, a2 + c3 * b2 + s3 * d2 + p2
@@ -557,7 +568,10 @@ def _parallel_arm_elbows(
         if turns_2 and math.sqrt(x0 * x0 + x1 * x1 + x2 * x2) >= DEGENERATE:
             sine = k0 * (x1 * y2 - x2 * y1) + k1 * (x2 * y0 - x0 * y2) + k2 * (x0 * y1 - x1 * y0)
             q2 = math.atan2(sine, x0 * y0 + x1 * y1 + x2 * y2) or 0.0
-        v, v6 = _turned_twice(k, (math.cos(q2), -math.sin(q2), c3, -s3), (back6, back_across))
+        if pair:  # (R2 R3 = R(axis 2, q2 +- q3): both vectors turned back once, from their parts)
+            v, v6 = _turned_back(pair, q2 + k.same * q3)
+        else:
+            v, v6 = _turned_twice(k, (math.cos(q2), -math.sin(q2), c3, -s3), (back6, back_across))
         fast = _wrist_on_floats(k.wrist, v, v6)
         if fast is None:
             for j, values, wrist_exact, singular in _wrist(k.axes, v, v6, k.across):
@@ -565,6 +579,27 @@ def _parallel_arm_elbows(
             continue
         for j, (q4, q5, q6) in enumerate(fast[0]):
             found.append(_made(Branch, ((-t1, q2, q3, q4, q5, q6), (root[0], m, j), exact and fast[1], "")))
+
+
+def _parts_about(k: Vec, a: Vec, b: Vec) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """:func:`.subproblems.flat_parts` of ``a`` and of ``b`` about the unit ``k``, written out."""
+    k0, k1, k2 = k
+    found = []
+    for a0, a1, a2 in (a, b):
+        along = k0 * a0 + k1 * a1 + k2 * a2
+        x0, x1, x2 = along * k0, along * k1, along * k2
+        found.append((x0, x1, x2, a0 - x0, a1 - x1, a2 - x2, k1 * a2 - k2 * a1, k2 * a0 - k0 * a2, k0 * a1 - k1 * a0))
+    return found[0], found[1]
+
+
+def _turned_back(pair: tuple[tuple[float, ...], ...], angle: float) -> tuple[Vec, Vec]:
+    """Two vectors, each given by its :func:`.subproblems.flat_parts` about one axis, turned by -``angle`` about it."""
+    c, s = math.cos(angle), -math.sin(angle)
+    (a0, a1, a2, b0, b1, b2, d0, d1, d2), (e0, e1, e2, f0, f1, f2, g0, g1, g2) = pair
+    return (
+        (a0 + c * b0 + s * d0, a1 + c * b1 + s * d1, a2 + c * b2 + s * d2),
+        (e0 + c * f0 + s * g0, e1 + c * f1 + s * g1, e2 + c * f2 + s * g2),
+    )
 
 
 def _turned_twice(k: _ParallelArm, turns: tuple[float, float, float, float], pair: tuple[Vec, Vec]) -> list[Vec]:

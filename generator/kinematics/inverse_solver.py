@@ -303,22 +303,24 @@ class IkSolver:
         return solutions, outside, len(candidates)
 
     def _reposed(
-        self, matrix: np.ndarray, pose: list[list[float]], wrapped: list[float]
+        self, matrix: np.ndarray, pose: list[list[float]], wrapped: Sequence[float]
     ) -> tuple[dict[str, float], tuple[float, ...], float] | None:
         """A branch's values (every joint, by name; and the chain's), re-posed on the robot, and its pose error; None
         when it does not reach. The reposer's error first; a branch it leaves further than CLOSE is measured by
         :meth:`_checked` (and polished there when near)."""
         assert self.form is not None  # (only called with one)
         chain = self.form.lines.joints
+        w0, w1, w2, w3, w4, w5 = wrapped
+        wrapped = (w0 + 0.0, w1 + 0.0, w2 + 0.0, w3 + 0.0, w4 + 0.0, w5 + 0.0)  # (-0.0 + 0.0 is 0.0: no "-0")
         if self.reposer is not None:
             error = self.reposer.error(wrapped, pose)
             if error <= CLOSE and self.whole:  # (the chain is every joint: nothing to place among the others)
-                return dict(zip(self.names, wrapped, strict=True)), tuple(wrapped), error
+                return dict(zip(self.names, wrapped, strict=True)), wrapped, error
             if error <= CLOSE:
                 full = self.rest_values.copy()
                 for k, value in zip(chain, wrapped, strict=True):
                     full[k] = value
-                return dict(zip(self.names, full, strict=True)), tuple(wrapped), error
+                return dict(zip(self.names, full, strict=True)), wrapped, error
         values = self.rest.copy()
         values[list(chain)] = wrapped
         reached = self._checked(self._goal(matrix), values)
@@ -412,6 +414,10 @@ def _rows_problem(rows: list[list[float]], *, position_only: bool) -> str:
         a * b + d * e + g * h, a * c + d * f + g * i, b * c + e * f + h * i,
     )  # fmt: skip
     determinant = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+    g0, g1, g2, g3, g4, g5, slack = *gram, ROTATION_SLACK
+    if determinant > 0.0 and -slack <= g0 <= slack and -slack <= g1 <= slack and -slack <= g2 <= slack:
+        if -slack <= g3 <= slack and -slack <= g4 <= slack and -slack <= g5 <= slack:
+            return ""  # (every one within the slack: the largest is, without the calls)
     off = max(map(abs, gram))
     if not off <= ROTATION_SLACK or determinant <= 0.0:
         return (
@@ -493,7 +499,9 @@ def _error(chain: Chain, goal: Any, values: np.ndarray) -> float:
     return float(np.linalg.norm(pin.log6(goal.actInv(chain.data.oMf[chain.frame])).vector))
 
 
-Candidate = tuple[list[float], Branch, float, bool]  # (values, branch, distance, whether the turns were whole ones)
+Candidate = tuple[
+    tuple[float, ...], Branch, float, bool
+]  # (values, branch, distance, whether the turns were whole ones)
 
 
 def _candidates(
@@ -505,57 +513,90 @@ def _candidates(
     whole turns apart, is left out: :func:`_distinct`), with their distance from ``centres`` and whether each value
     is its centre plus the remainder of its difference (True: :func:`_turns_of` counts its equivalents); and how
     many have no value within the limits. ``bounds``: the six joints' limits (flat, -inf and inf for a continuous
-    joint) and their :func:`_nearest_turns` bounds. (The common case written out for the six joints: every value
-    turned to within half a turn of its centre is within the limits, and stays; a difference within half a turn
-    is its own remainder, taken without the call.)"""
+    joint) and their :func:`_nearest_turns` bounds. (The common case written out for the six joints: centres at 0
+    and every value within half a turn of 0 and within the limits: the values as they are, but for a zero's sign,
+    which :meth:`IkSolver._reposed` takes off; else :func:`_turned`.)"""
     candidates: list[Candidate] = []
-    elbows: list[float] = []  # (each candidate's joint 3 from its centre, within half a turn: duplicates' test)
+    keys: list[float] = []  # (each candidate's joints 3 and 5 from their centres, summed: the duplicates' test)
     outside = 0
     l0, h0, l1, h1, l2, h2, l3, h3, l4, h4, l5, h5 = bounds[0]
-    c0, c1, c2, c3, c4, c5 = centres
+    zero = not any(centres)
     remainder = math.remainder
     for branch in found:
         if not branch.exact:  # (a subproblem without an exact root: this branch's triangle does not close)
             continue
-        v0, v1, v2, v3, v4, v5 = branch.values
-        d0, d1, d2, d3, d4, d5 = v0 - c0, v1 - c1, v2 - c2, v3 - c3, v4 - c4, v5 - c5
-        if not (-_HALF <= d0 <= _HALF and -_HALF <= d1 <= _HALF and -_HALF <= d2 <= _HALF):
-            d0, d1, d2 = remainder(d0, TURN), remainder(d1, TURN), remainder(d2, TURN)
-        if not (-_HALF <= d3 <= _HALF and -_HALF <= d4 <= _HALF and -_HALF <= d5 <= _HALF):
-            d3, d4, d5 = remainder(d3, TURN), remainder(d4, TURN), remainder(d5, TURN)
-        w0, w1, w2, w3, w4, w5 = c0 + d0, c1 + d1, c2 + d2, c3 + d3, c4 + d4, c5 + d5
-        if (
-            l0 <= w0 <= h0
-            and l1 <= w1 <= h1
-            and l2 <= w2 <= h2
-            and l3 <= w3 <= h3
-            and l4 <= w4 <= h4
-            and l5 <= w5 <= h5
-        ):
-            distance = abs(w0 - c0) + abs(w1 - c1) + abs(w2 - c2) + abs(w3 - c3) + abs(w4 - c4) + abs(w5 - c5)
-            candidates.append(([w0, w1, w2, w3, w4, w5], branch, distance, True))
-            elbows.append(d2)
-            continue
-        wrapped, distance = _nearest_turns(branch.values, bounds[1], centres)
-        if not wrapped:
+        values = branch.values
+        if zero:  # (each value's remainder, taken only when it is more than half a turn from 0)
+            v0, v1, v2, v3, v4, v5 = values
+            v0 = v0 if -_HALF <= v0 <= _HALF else remainder(v0, TURN)
+            v1 = v1 if -_HALF <= v1 <= _HALF else remainder(v1, TURN)
+            v2 = v2 if -_HALF <= v2 <= _HALF else remainder(v2, TURN)
+            v3 = v3 if -_HALF <= v3 <= _HALF else remainder(v3, TURN)
+            v4 = v4 if -_HALF <= v4 <= _HALF else remainder(v4, TURN)
+            v5 = v5 if -_HALF <= v5 <= _HALF else remainder(v5, TURN)
+            if (
+                l0 <= v0 <= h0
+                and l1 <= v1 <= h1
+                and l2 <= v2 <= h2
+                and l3 <= v3 <= h3
+                and l4 <= v4 <= h4
+                and l5 <= v5 <= h5
+            ):
+                distance = abs(v0) + abs(v1) + abs(v2) + abs(v3) + abs(v4) + abs(v5)
+                candidates.append(((v0, v1, v2, v3, v4, v5), branch, distance, True))
+                keys.append(v2 + v4)
+                continue
+        turned = _turned(values, bounds, centres)
+        if turned is None:
             outside += 1
             continue
-        candidates.append((wrapped, branch, distance, False))
-        elbows.append(remainder(wrapped[2] - c2, TURN))
-    return (_distinct(candidates) if _close_pair(elbows) else candidates), outside
+        candidates.append((turned[0], branch, turned[1], turned[2]))
+        keys.append(turned[3])
+    return (_distinct(candidates) if _close_pair(keys) else candidates), outside
+
+
+def _turned(
+    values: tuple[float, ...],
+    bounds: tuple[tuple[float, ...], Sequence[tuple[float, float, float, float] | None]],
+    centres: Sequence[float],
+) -> tuple[tuple[float, ...], float, bool, float] | None:
+    """One branch's values turned as :func:`_candidates` takes them: each its centre plus the remainder of its
+    difference (a difference within half a turn is its own, taken without the call) when all are within the
+    limits, else :func:`_nearest_turns`'; with their distance from the centres, whether they are the first kind,
+    and joints 3 and 5's differences from their centres, summed (:func:`_close_pair`'s key). None: no value within
+    the limits."""
+    l0, h0, l1, h1, l2, h2, l3, h3, l4, h4, l5, h5 = bounds[0]
+    c0, c1, c2, c3, c4, c5 = centres
+    v0, v1, v2, v3, v4, v5 = values
+    remainder = math.remainder
+    d0, d1, d2, d3, d4, d5 = v0 - c0, v1 - c1, v2 - c2, v3 - c3, v4 - c4, v5 - c5
+    if not (-_HALF <= d0 <= _HALF and -_HALF <= d1 <= _HALF and -_HALF <= d2 <= _HALF):
+        d0, d1, d2 = remainder(d0, TURN), remainder(d1, TURN), remainder(d2, TURN)
+    if not (-_HALF <= d3 <= _HALF and -_HALF <= d4 <= _HALF and -_HALF <= d5 <= _HALF):
+        d3, d4, d5 = remainder(d3, TURN), remainder(d4, TURN), remainder(d5, TURN)
+    w0, w1, w2, w3, w4, w5 = c0 + d0, c1 + d1, c2 + d2, c3 + d3, c4 + d4, c5 + d5
+    if l0 <= w0 <= h0 and l1 <= w1 <= h1 and l2 <= w2 <= h2 and l3 <= w3 <= h3 and l4 <= w4 <= h4 and l5 <= w5 <= h5:
+        distance = abs(w0 - c0) + abs(w1 - c1) + abs(w2 - c2) + abs(w3 - c3) + abs(w4 - c4) + abs(w5 - c5)
+        return (w0, w1, w2, w3, w4, w5), distance, True, d2 + d4
+    wrapped, distance = _nearest_turns(values, bounds[1], centres)
+    if not wrapped:
+        return None
+    return tuple(wrapped), distance, False, remainder(wrapped[2] - c2, TURN) + remainder(wrapped[4] - c4, TURN)
 
 
 _HALF = TURN / 2  # (a difference this near 0 is its own remainder: math.remainder(d, TURN) == d, exactly)
-_NEAR = 3e-6  # rad: joint 3 values farther apart than this (less a whole turn) are of different branches
-# (the duplicates' test below takes them within 1e-6; the remainders here are another rounding away from its)
+_NEAR = 3e-6  # rad: keys farther apart than this (less whole turns) are of branches apart at joint 3 or 5
+# (the duplicates' test below takes two within 1e-6 at each: their keys within 2e-6, and a rounding more)
 
 
-def _close_pair(elbows: list[float]) -> bool:
-    """Whether two of the values (each within half a turn of 0) are within _NEAR of each other, a whole turn
-    apart or not: else no two candidates are one branch, and :func:`_distinct` has nothing to do."""
-    if len(elbows) < 2:
+def _close_pair(keys: list[float]) -> bool:
+    """Whether two of the keys (joints 3 and 5 from their centres, each within half a turn, summed) are within _NEAR
+    of each other, whole turns apart or not: else no two candidates are one branch (two branches of one target
+    differ at joint 3, or share it and differ at joint 5: a spherical wrist's flip), and :func:`_distinct` has
+    nothing to do."""
+    if len(keys) < 2:
         return False
-    ordered = sorted(elbows)
+    ordered = sorted(k - TURN if k > _HALF else k + TURN if k < -_HALF else k for k in keys)
     previous = ordered[-1] - TURN
     for value in ordered:
         if value - previous <= _NEAR:
