@@ -22,6 +22,7 @@ import functools
 import math
 from collections.abc import Mapping, Sequence
 
+from ..shared.transforms import rpy_rows
 from ..shared.urdf_view import Geometry, Link, Origin
 from .inertia_geometry import RIM, SPHERE, TOLERANCE
 from .urdf_document import number_of, triple_of
@@ -104,18 +105,10 @@ def _unit_sphere() -> tuple[Vector, Matrix]:
 
 def _placement(origin: Origin | None) -> tuple[Matrix, Vector]:
     """An origin's turn and shift in plain floats (the twin of :func:`.inertia_geometry.placement`, which gives
-    numpy arrays: R = Rz(yaw) Ry(pitch) Rx(roll), as ``shared.transforms.rpy_matrix`` writes it)."""
+    numpy arrays of the same numbers: R = Rz(yaw) Ry(pitch) Rx(roll), ``shared.transforms.rpy_rows``)."""
     if origin is None:
         return _identity(1.0), (0.0, 0.0, 0.0)
-    roll, pitch, yaw = triple_of(origin.rpy)
-    cr, sr, cp, sp = math.cos(roll), math.sin(roll), math.cos(pitch), math.sin(pitch)
-    cy, sy = math.cos(yaw), math.sin(yaw)
-    turn = (
-        (cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr),
-        (sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr),
-        (-sp, cp * sr, cp * cr),
-    )
-    return turn, triple_of(origin.xyz)
+    return rpy_rows(*triple_of(origin.rpy)), triple_of(origin.xyz)
 
 
 def _definite(matrix: Matrix) -> bool:
