@@ -38,7 +38,8 @@ class _Naming(NamedTuple):
     elbow: tuple[float, float, float]  # (the elbow's measure: 1, c3, s3)
     square: tuple[float, float, float]  # (the line to the wrist's squared length: 1, c3, s3)
     sky: tuple[float, ...]  # (up's side of that line: (1, c2, s2) x (1, c3, s3))
-    shoulder: tuple[float, ...]  # (front or back: (1, c2, s2) x (1, c3, s3); left or right: then x (1, c4, s4))
+    shoulder: tuple[float, ...]  # (front or back, or the corner's part of left or right: (1, c2, s2) x (1, c3, s3))
+    beyond: tuple[tuple[float, ...], ...]  # (left or right: the wrist centre's part, as shoulder's, x (1, c4, s4))
     parallel: bool  # (three parallel axes: left or right)
     singular: float | None  # (joint 5's value where the wrist is singular; None: the wrist has no such value)
 
@@ -94,13 +95,13 @@ def _naming(form: ClosedForm) -> _Naming:
         offset = scale(dot(n, sub(form.wrist, p[0])), n)  # (the shoulder's offset along n, at q1 = 0)
         m = cross(offset, up)  # (o . (up x r) = r . (o x up))
         hand = parts(h[3], sub(form.wrist, p[3]))
-        beyond = tuple(dot(c, v) for mi in parts(k, m) for c in parts(h[2], mi) for v in hand)
-        shoulder = (dot(m, base), *_turned_dots((near, b, d), m, k), *beyond)
+        beyond = tuple(tuple(dot(c, v) for c in parts(h[2], mi) for v in hand) for mi in parts(k, m))
+        shoulder = (dot(m, base), *_turned_dots((near, b, d), m, k))
     else:
         forward = arm_forward(form, up)
-        shoulder = (dot(forward, base), *_turned_dots((near, b, d), forward, k))
+        shoulder, beyond = (dot(forward, base), *_turned_dots((near, b, d), forward, k)), ()
     singular = subproblem_1(h[4], h[5], form.parallel if parallel and form.parallel is not None else h[3])
-    return _Naming(elbow, square, sky, shoulder, parallel, singular)
+    return _Naming(elbow, square, sky, shoulder, beyond, parallel, singular)
 
 
 def _turned_dots(f: tuple[Vec, Vec, Vec], v: Vec, k: Vec) -> tuple[float, ...]:
@@ -121,12 +122,12 @@ def branch_name(form: ClosedForm, values: tuple[float, ...], roots: tuple[int, i
     c2, s2, c3, s3 = math.cos(values[1]), math.sin(values[1]), math.cos(values[2]), math.sin(values[2])
     t0, t1, t2, t3, t4, t5, t6, t7, t8 = k.sky
     sky = t0 + c3 * t1 + s3 * t2 + c2 * (t3 + c3 * t4 + s3 * t5) - s2 * (t6 + c3 * t7 + s3 * t8)
+    g, t0, t1, t2, t3, t4, t5, t6, t7, t8 = k.shoulder
+    measure = g + t0 + c3 * t1 + s3 * t2 + c2 * (t3 + c3 * t4 + s3 * t5) - s2 * (t6 + c3 * t7 + s3 * t8)
     if k.parallel:
-        measure = _left(k.shoulder, c2, s2, c3, s3, values[3])
+        measure += _beyond(k.beyond, c2, s2, c3, s3, values[3])
         side = _side(measure, ("left", "right"), roots[0])
     else:
-        g, t0, t1, t2, t3, t4, t5, t6, t7, t8 = k.shoulder
-        measure = g + t0 + c3 * t1 + s3 * t2 + c2 * (t3 + c3 * t4 + s3 * t5) - s2 * (t6 + c3 * t7 + s3 * t8)
         side = _side(measure, ("front", "back"), roots[0])
     # (which side of the line to the wrist, in the arm's plane: the parts along axis 2 leave k . (w x e) as it is)
     e0, e1, e2 = k.elbow
@@ -138,18 +139,20 @@ def branch_name(form: ClosedForm, values: tuple[float, ...], roots: tuple[int, i
     return f"shoulder {side}, elbow {bend}, wrist {_flip(k.singular, values, roots[2])}"
 
 
-def _left(shoulder: tuple[float, ...], c2: float, s2: float, c3: float, s3: float, q4: float) -> float:
-    """Three parallel axes: o . (up x r), r the wrist centre from axis 1's point: the corner's part (as the front's
-    measure) and the wrist centre's beyond it, R2 R3 R4 h dotted with m = o x up as (R3^T R2^T m) . (R4 h)."""
-    g, t0, t1, t2, t3, t4, t5, t6, t7, t8, *beyond = shoulder
-    measure = g + t0 + c3 * t1 + s3 * t2 + c2 * (t3 + c3 * t4 + s3 * t5) - s2 * (t6 + c3 * t7 + s3 * t8)
+def _beyond(beyond: tuple[tuple[float, ...], ...], c2: float, s2: float, c3: float, s3: float, q4: float) -> float:
+    """Three parallel axes: the wrist centre's part of o . (up x r) beyond the corner, R2 R3 R4 h dotted with
+    m = o x up as (R3^T R2^T m) . (R4 h): R2^T m's parts (1, c2, -s2), each one's parts about axis 3 (1, c3, -s3),
+    each dotted with R4 h's parts (1, c4, s4)."""
     c4, s4 = math.cos(q4), math.sin(q4)
-    (a0, a1, a2, b0, b1, b2, d0, d1, d2), (e0, e1, e2, f0, f1, f2, g0, g1, g2) = beyond[:9], beyond[9:18]
-    (j0, j1, j2, k0, k1, k2, l0, l1, l2) = beyond[18:]
+    (a0, a1, a2, b0, b1, b2, d0, d1, d2), (e0, e1, e2, f0, f1, f2, g0, g1, g2), third = beyond
+    j0, j1, j2, k0, k1, k2, l0, l1, l2 = third
     first = a0 + c4 * a1 + s4 * a2 + c3 * (b0 + c4 * b1 + s4 * b2) - s3 * (d0 + c4 * d1 + s4 * d2)
     second = e0 + c4 * e1 + s4 * e2 + c3 * (f0 + c4 * f1 + s4 * f2) - s3 * (g0 + c4 * g1 + s4 * g2)
-    third = j0 + c4 * j1 + s4 * j2 + c3 * (k0 + c4 * k1 + s4 * k2) - s3 * (l0 + c4 * l1 + s4 * l2)
-    return measure + first + c2 * second - s2 * third
+    return (
+        first
+        + c2 * second
+        - s2 * (j0 + c4 * j1 + s4 * j2 + c3 * (k0 + c4 * k1 + s4 * k2) - s3 * (l0 + c4 * l1 + s4 * l2))
+    )
 
 
 def _flip(singular: float | None, values: tuple[float, ...], root: int) -> str:

@@ -66,7 +66,9 @@ class Reposer:
             self.model, self.data, self.frame
         ).homogeneous.tolist()
         (x0, x1, x2, x3), (y0, y1, y2, y3), (z0, z1, z2, z3), _ = goal
-        moved = (a3 - x3) ** 2 + (b3 - y3) ** 2 + (c3 - z3) ** 2
-        turned = (a0 - x0) ** 2 + (a1 - x1) ** 2 + (a2 - x2) ** 2 + (b0 - y0) ** 2 + (b1 - y1) ** 2
-        turned += (b2 - y2) ** 2 + (c0 - z0) ** 2 + (c1 - z1) ** 2 + (c2 - z2) ** 2
+        a0, a1, a2, a3, b0, b1, b2, b3 = a0 - x0, a1 - x1, a2 - x2, a3 - x3, b0 - y0, b1 - y1, b2 - y2, b3 - y3
+        c0, c1, c2, c3 = c0 - z0, c1 - z1, c2 - z2, c3 - z3  # (the differences, squared by products: no pow)
+        moved = a3 * a3 + b3 * b3 + c3 * c3
+        turned = a0 * a0 + a1 * a1 + a2 * a2 + b0 * b0 + b1 * b1
+        turned += b2 * b2 + c0 * c0 + c1 * c1 + c2 * c2
         return math.sqrt(moved + 0.5 * turned)
