@@ -181,31 +181,48 @@ def _cmd_new(args: argparse.Namespace) -> int:
 
 
 def _cmd_check(args: argparse.Namespace) -> int:
-    from ..check.file_workers import CheckOptions, check_files, run_dict  # (heavy: concurrent)
-    from ..check.robot_files import robot_files  # (heavy: lxml)
+    from ..check.consumers import chosen, warm_consumers  # (start-up: a command's work loads when it runs)
 
     form = "json" if args.json else args.format
     if args.jobs is not None and args.jobs < 1:
         raise XacrokitError(f"-j/--jobs {args.jobs}: give the number of worker processes, 1 or more")
-    if args.consumers in ("all", None):
-        consumers = None
-    elif args.consumers == "none":
-        consumers = []
-    else:
-        consumers = [c.strip() for c in args.consumers.split(",") if c.strip()]
+    consumers = _consumers_asked(args.consumers)
     # (the paths and the name:=value words come as one list of positionals: a word with ':=' is a mapping, as xacro
     # reads its own command line)
     paths = [word for word in args.paths if ":=" not in word]
     if not paths:
         raise XacrokitError("check: give a file or folder to check (name:=value words are xacro arguments)")
-    # (one robot input's arguments, packages and trust for every file checked)
-    given = robot_input(args, paths[0], mappings=[word for word in args.paths if ":=" in word] + args.mappings)
-    packages = {name: Path(folder) for name, folder in given.packages.items()}
-    options = CheckOptions(
-        dict(given.mappings), args.prefix, consumers, packages, bool(given.trust), _srdf(args, paths)
-    )
-    if len(paths) == 1 and not args.robots_only and form in ("text", "json") and not Path(paths[0]).is_dir():
-        return _check_single(Path(paths[0]), options, form, args.strict)  # (one file: its report as before)
+    single = len(paths) == 1 and not args.robots_only and form in ("text", "json") and not Path(paths[0]).is_dir()
+    # (one file: the Python consumers' children start before the rest of check loads, each importing its library
+    # while this process imports ours; the check then finds them started)
+    with warm_consumers(chosen(consumers) if single else []):
+        from ..check.file_workers import CheckOptions  # (heavy: concurrent)
+
+        # (one robot input's arguments, packages and trust for every file checked)
+        given = robot_input(args, paths[0], mappings=[word for word in args.paths if ":=" in word] + args.mappings)
+        packages = {name: Path(folder) for name, folder in given.packages.items()}
+        options = CheckOptions(
+            dict(given.mappings), args.prefix, consumers, packages, bool(given.trust), _srdf(args, paths)
+        )
+        if single:
+            return _check_single(Path(paths[0]), options, form, args.strict)  # (one file: its report as before)
+    return _check_many(args, paths, options, form)
+
+
+def _consumers_asked(asked: str | None) -> list[str] | None:
+    """--consumers: None for every installed one (all, or not given), [] for none, else the names given."""
+    if asked in ("all", None):
+        return None
+    if asked == "none":
+        return []
+    return [c.strip() for c in asked.split(",") if c.strip()]
+
+
+def _check_many(args: argparse.Namespace, paths: list[str], options: CheckOptions, form: str) -> int:
+    """``gen-robot check PATH...``: the robot files found, checked side by side, one report of them all."""
+    from ..check.file_workers import check_files, run_dict  # (heavy: concurrent)
+    from ..check.robot_files import robot_files  # (heavy: lxml)
+
     files = robot_files(paths, exclude=args.exclude, robots_only=args.robots_only)
     if not files:
         print(f"no robot file found in {', '.join(map(printable, paths))}", file=sys.stderr)
