@@ -24,8 +24,9 @@ With ``--many`` it measures ``gen-robot check PATH...`` (issue 33, item 1) inste
 tests/realworld.py (129 URDFs of pinned registry packages, downloaded once into its cache), every consumer on, in one
 call with the default workers (the CPU count), against a process per file for every SAMPLE-th file; it prints the
 seconds per file of each and their ratio (target: at most 0.15 s a file in one call, on 2 cores).
-Usage: python benchmarks/check_speed.py [RUNS [ROBOT...]] | --many [FILES] (the first FILES of the corpus: all by
-default; ROBOT: a part of a file name of ROBOTS or ASKED_ONLY, e.g. xarm7 or panda: those robots only)
+Usage: python benchmarks/check_speed.py [RUNS [ROBOT...]] [--no-warm-up] | --many [FILES] (the first FILES of the
+corpus: all by default; ROBOT: a part of a file name of ROBOTS or ASKED_ONLY, e.g. xarm7 or panda: those robots only;
+--no-warm-up: no untimed first run, for a smoke run that only shows the script works)
 """
 
 from __future__ import annotations
@@ -83,7 +84,7 @@ def timed_cpu(command: list[str], cwd: Path) -> tuple[float, float]:
     return wall, after.children_user - before.children_user + after.children_system - before.children_system
 
 
-def main(runs: int, only: list[str]) -> None:
+def main(runs: int, only: list[str], warm_up: bool = True) -> None:
     folder = robots_folder()
     print(f"gen-robot check on real robots, medians of {runs} runs as processes (wall seconds; CPU seconds after /)")
     print(f"load average at the start: {os.getloadavg()[0]:.1f} (on {os.cpu_count()} CPUs)")
@@ -98,7 +99,7 @@ def main(runs: int, only: list[str]) -> None:
         links = path.read_text(encoding="utf-8").count("<link ")
         todo = commands(path)
         times: dict[str, list[tuple[float, float]]] = {key: [] for key in todo}
-        for command in todo.values():  # (untimed: the files in the page cache, the meshes' facts kept)
+        for command in todo.values() if warm_up else ():  # (untimed: the files in the page cache, the meshes' facts)
             timed_cpu(command, path.parent)
         for run in range(runs):
             for key, command in list(todo.items())[:: 1 if run % 2 == 0 else -1]:
@@ -149,4 +150,5 @@ if __name__ == "__main__":
     if sys.argv[1:2] == ["--many"]:
         many(int(sys.argv[2]) if len(sys.argv) > 2 else None)
     else:
-        main(int(sys.argv[1]) if len(sys.argv) > 1 else 5, sys.argv[2:])
+        words = [w for w in sys.argv[1:] if w != "--no-warm-up"]
+        main(int(words[0]) if words else 5, words[1:], warm_up="--no-warm-up" not in sys.argv)
