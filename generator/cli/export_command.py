@@ -17,9 +17,9 @@ def add_export_command(commands: Any) -> None:
         help="write the robot as a MuJoCo model (--mjcf): bodies named as links, actuators from ros2_control",
         description="Write PATH (a URDF, xacro document, spec or scene) as a MuJoCo MJCF model, from its URDF: every "
         "link a body of its name (massless links also sites), inertials exact, meshes copied into meshes/ next to "
-        "the model (converted to OBJ when MuJoCo cannot read them), mimic joints as equality constraints, actuators "
-        "from the ros2_control block (position servos carrying the weight they hold), parent-child contacts "
-        "excluded, every compiler setting explicit.",
+        "the model (converted to binary STL, or OBJ, when MuJoCo cannot read them), mimic joints as equality "
+        "constraints, actuators from the ros2_control block (position servos carrying the weight they hold), "
+        "parent-child contacts excluded, every compiler setting explicit.",
     )
     export.add_argument("path", help="a .urdf, .xacro or .yaml spec")
     export.add_argument("--mjcf", action="store_true", required=True, help="write MJCF (the one format so far)")

@@ -7,9 +7,9 @@ What it keeps that MuJoCo's URDF import loses (docs/export.md has the whole mapp
 - the inertial exactly as written (``fullinertia`` in the inertial origin's frame, ``inertiafromgeom="false"``);
 - visuals (group 2, no contact) and collisions (group 3) with their colours; meshes copied into ``meshes/`` next to
   the model, those MuJoCo cannot read (COLLADA, PLY, glTF, OFF, text STL, STL of more than 200,000 triangles)
-  converted to OBJ by trimesh; a visual mesh that cannot be found or read is left out with a note (a collision mesh
-  is an error: the robot would not touch what it touches), and so is a flat mesh, visual or collision (MuJoCo cannot
-  make its convex hull: it has no volume to collide with);
+  converted by trimesh (to binary STL, or to OBJ beyond 200,000 triangles); a visual mesh that cannot be found or
+  read is left out with a note (a collision mesh is an error: the robot would not touch what it touches), and so is a
+  flat mesh, visual or collision (MuJoCo cannot make its convex hull: it has no volume to collide with);
 - mimic joints as joint equality constraints (q = offset + multiplier q_leader);
 - actuators from the ``<ros2_control>`` block's command interfaces (:mod:`xacrokit.export.mjcf_actuators`);
 - the parent and child of every joint excluded from colliding with each other, and so are two bodies with collision

@@ -1,7 +1,7 @@
 """gen-robot export --mjcf reads an STL without merging its vertices and merges them only where it needs them
-(xacrokit.export.mjcf_meshes.export_reader: a mesh converted to OBJ, a free robot's hull, a mesh that may be flat):
-what it writes is what it wrote when every mesh was merged as it was read, byte for byte, on real robots of binary
-STL meshes (fixed and free), a robot whose STL is text (converted), and one with a flat STL (left out)."""
+(xacrokit.export.mjcf_meshes.export_reader: a mesh converted to binary STL, a free robot's hull, a mesh that may be
+flat): what it writes is what it wrote when every mesh was merged as it was read, byte for byte, on real robots of
+binary STL meshes (fixed and free), a robot whose STL is text (converted), and one with a flat STL (left out)."""
 
 from __future__ import annotations
 
@@ -65,4 +65,5 @@ def test_a_text_stl_is_converted_and_a_flat_one_left_out_as_before(tmp_path, mon
     )
     ours, before = both(urdf, monkeypatch, base="fixed")
     assert ours == before
-    assert list(ours[1]) == ["ball.obj"] and any("sticker.stl" in note for note in ours[2]), ours[2]
+    assert list(ours[1]) == ["ball.stl"] and any("sticker.stl" in note for note in ours[2]), ours[2]
+    assert ours[1]["ball.stl"][:5] != b"solid"  # (the text STL converted: binary, which MuJoCo reads)

@@ -1,0 +1,41 @@
+"""A mesh MuJoCo cannot read is converted by trimesh: to binary STL (MuJoCo keeps vertices in single precision, as the
+STL holds them), or to OBJ past MuJoCo's STL limit of 200,000 triangles; MuJoCo compiles either with the mesh's
+every triangle, and the vertices are the source's (to single precision)."""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+import pytest
+import trimesh
+
+import xacrokit.export.mjcf_meshes as mjcf_meshes
+from xacrokit.export.mjcf import export_mjcf, write_export
+from xacrokit.reader.read_robot import read_robot
+from xacrokit.reader.robot_input import RobotInput
+
+INERTIAL = '<inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>'
+
+
+@pytest.mark.parametrize(("limit", "suffix"), [(mjcf_meshes.STL_FACES, ".stl"), (10, ".obj")])
+def test_a_ply_mesh_is_converted_to_what_mujoco_reads_with_its_vertices(tmp_path, monkeypatch, limit, suffix):
+    # (a box of 12 triangles: binary STL under the limit; past a limit of 10 triangles, OBJ)
+    monkeypatch.setattr(mjcf_meshes, "STL_FACES", limit)
+    source = trimesh.creation.box(extents=(0.1, 0.2, 0.3))
+    source.apply_translation((0.0123456789, -0.0456789, 0.3))
+    source.export(tmp_path / "part.ply")
+    urdf = tmp_path / "r.urdf"
+    urdf.write_text(
+        f'<robot name="r"><link name="a"><collision><geometry><mesh filename="part.ply"/></geometry></collision>'
+        f"{INERTIAL}</link></robot>",
+        encoding="utf-8",
+    )
+    model = export_mjcf(read_robot(RobotInput(urdf)), base="fixed")
+    assert list(model.meshes) == [f"part{suffix}"], model.meshes
+    assert any(f"part.ply' converted to {'binary STL' if suffix == '.stl' else 'OBJ'}" in n for n in model.notes)
+    write_export(model, tmp_path / "out" / "robot.xml")
+    written = trimesh.load(tmp_path / "out" / "meshes" / f"part{suffix}", force="mesh", process=True)
+    expected = np.unique(np.asarray(source.vertices, dtype=np.float32), axis=0)
+    assert np.array_equal(np.unique(np.asarray(written.vertices, dtype=np.float32), axis=0), expected)
+    m = mujoco.MjModel.from_xml_path(str(tmp_path / "out" / "robot.xml"))
+    assert m.nmesh == 1 and m.mesh_facenum[0] == 12 and m.mesh_vertnum[0] == 8
