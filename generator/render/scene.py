@@ -129,7 +129,8 @@ def _instance_controllers(scene: Scene, spec_name: str, files: list[RenderedFile
         chosen = controllers(ours, instance.prefix, mounted=True)
         text = template.render(robot=ours, version=__version__, spec_name=spec_name, prefix=instance.prefix, **chosen)
         files.append(RenderedFile(f"config/{instance.name}_controllers.yaml", text))
-        data = yaml.safe_load(text)
+        # (libyaml's parser where PyYAML has it: the same data, a tenth of the time, for a fleet's thousand files)
+        data = yaml.load(text, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))  # (a safe loader, C or Python)
         managed = control.merged["controller_manager"]["ros__parameters"]
         broadcaster = instance.prefix + JOINT_STATE_BROADCASTER
         own = data.pop("controller_manager")["ros__parameters"]
