@@ -1,4 +1,5 @@
-"""What the check tests share: the corpus, and a robot whose moved link leaves its mass to a link fixed to it."""
+"""What the check tests share: the corpus, a robot whose moved link leaves its mass to a link fixed to it, and one
+whose joints close a cycle hanging off its root."""
 
 from __future__ import annotations
 
@@ -28,4 +29,13 @@ BODY = (
     '<inertial><mass value="1"/><inertia ixx="0.0108333" iyy="0.0083333" izz="0.0041667" ixy="0" ixz="0" iyz="0"/>'
     "</inertial>"
     '<visual><geometry><box size="0.1 0.2 0.3"/></geometry></visual>'
+)
+
+
+# a cycle a -> b -> a hanging off the root: check reports S002 and sends no consumer anything (check_urdf loops on it)
+ROOTED_CYCLE = (
+    '<robot name="rc"><link name="root"/><link name="a"/><link name="b"/>'
+    '<joint name="ra" type="fixed"><parent link="root"/><child link="a"/></joint>'
+    '<joint name="ab" type="fixed"><parent link="a"/><child link="b"/></joint>'
+    '<joint name="ba" type="fixed"><parent link="b"/><child link="a"/></joint></robot>'
 )

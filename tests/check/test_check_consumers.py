@@ -11,7 +11,7 @@ import time
 from pathlib import Path
 
 import pytest
-from check_helpers import BODY, CORPUS, MOVED_MASSLESS
+from check_helpers import BODY, CORPUS, MOVED_MASSLESS, ROOTED_CYCLE
 
 import xacrokit
 from conftest import gen_robot
@@ -21,13 +21,7 @@ from xacrokit.check.consumers import run_consumer
 
 def test_rooted_cycle_is_reported_and_check_urdf_is_not_left_running(tmp_path):
     urdf = tmp_path / "rooted.urdf"
-    urdf.write_text(
-        '<robot name="rc"><link name="root"/><link name="a"/><link name="b"/>'
-        '<joint name="ra" type="fixed"><parent link="root"/><child link="a"/></joint>'
-        '<joint name="ab" type="fixed"><parent link="a"/><child link="b"/></joint>'
-        '<joint name="ba" type="fixed"><parent link="b"/><child link="a"/></joint></robot>',
-        encoding="utf-8",
-    )
+    urdf.write_text(ROOTED_CYCLE, encoding="utf-8")
     report = check(urdf)
     assert [f.message for f in report.findings if f.rule == "S002"] == [
         "joint 'ba' closes a cycle a -> b -> a; remove it"

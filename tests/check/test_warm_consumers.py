@@ -13,7 +13,7 @@ from dataclasses import replace
 from pathlib import Path
 
 import pytest
-from check_helpers import CORPUS
+from check_helpers import CORPUS, ROOTED_CYCLE
 
 from conftest import gen_robot_process
 from xacrokit.check import check, consumers
@@ -87,13 +87,7 @@ def test_check_sends_the_urdf_to_the_children_started_before_it_and_leaves_none(
 
 def test_a_broken_tree_sends_the_warm_children_nothing_and_leaves_none(tmp_path, monkeypatch):
     urdf = tmp_path / "rooted.urdf"
-    urdf.write_text(
-        '<robot name="rc"><link name="root"/><link name="a"/><link name="b"/>'
-        '<joint name="ra" type="fixed"><parent link="root"/><child link="a"/></joint>'
-        '<joint name="ab" type="fixed"><parent link="a"/><child link="b"/></joint>'
-        '<joint name="ba" type="fixed"><parent link="b"/><child link="a"/></joint></robot>',
-        encoding="utf-8",
-    )
+    urdf.write_text(ROOTED_CYCLE, encoding="utf-8")
     sent = tmp_path / "sent"
     monkeypatch.setattr(consumers, "load_with", lambda name, path, packages=None: sent.write_text(name) or "")
     started: list[int] = []
