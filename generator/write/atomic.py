@@ -80,7 +80,7 @@ def remove_leftover_temporaries(root: Path, paths: Iterable[str]) -> list[Path]:
     """Delete the temporary files :func:`write_text_atomic` left for the files ``paths`` (relative to ``root``) when a
     run was killed mid-write: ``.NAME.XXXXXXXX.tmp`` beside each, mkstemp's names only, nothing else and nowhere else.
     Returns what was removed. (Each folder is listed once, its names matched as text: a glob per file compiled a
-    pattern each, a sixth of generating the UR5 example.)"""
+    pattern each, a sixth of generating the UR5 example under a profiler.)"""
     names_in: dict[Path, set[str]] = {}
     for relative in paths:
         target = root / relative
@@ -88,7 +88,8 @@ def remove_leftover_temporaries(root: Path, paths: Iterable[str]) -> list[Path]:
     removed: list[Path] = []
     for folder, names in names_in.items():
         try:
-            entries = [entry.name for entry in os.scandir(folder)]
+            with os.scandir(folder) as listing:
+                entries = [entry.name for entry in listing]
         except OSError:  # (no folder, or one that cannot be read: nothing of ours to remove there)
             continue
         for entry in sorted(entries):
