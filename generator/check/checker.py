@@ -18,7 +18,7 @@ from ..errors import SpecErrors
 from ..reader import InputKind
 from ..reader.named_poses import named_poses, spec_poses
 from ..reader.robot_input import RobotInput, as_input
-from ..reader.robot_source import input_kind, read_source
+from ..reader.robot_source import RobotSource, input_kind, read_source
 from ..shared.gc_pause import collector_paused
 from ..shared.joint_types import HOME_POSE
 from ..write.atomic import staged_packages
@@ -73,12 +73,9 @@ def check(
     # (the Python consumers' children start now, each importing its library while the file is read)
     with warm_consumers(names):
         say(f"reading {path.name}")
-        try:
-            source = read_source(given)
-        except SpecErrors as exc:
-            if all(e.line is None for e in exc.errors):  # the file itself cannot be read: no report to give
-                raise
-            return CheckReport(str(path), kind, None, spec_findings(exc.errors, "V002"))
+        source = _source_or_report(given, kind)
+        if isinstance(source, CheckReport):
+            return source
         notes: tuple[Finding, ...] = spec_findings(source.warnings) if source.warnings else ()
         with staged_packages(source.carried) as staged:  # (a spec's meshes, where its package will carry them)
             packages = {**staged, **(source.packages or {})} if staged else source.packages
@@ -96,6 +93,16 @@ def check(
                 srdf=Path(srdf) if srdf is not None else None,
             )
             return _judge(judging)
+
+
+def _source_or_report(given: RobotInput, kind: InputKind) -> RobotSource | CheckReport:
+    """The input read, or, for a spec with located errors, the report of them (V002)."""
+    try:
+        return read_source(given)
+    except SpecErrors as exc:
+        if all(e.line is None for e in exc.errors):  # the file itself cannot be read: no report to give
+            raise
+        return CheckReport(str(given.path), kind, None, spec_findings(exc.errors, "V002"))
 
 
 @dataclass(frozen=True)

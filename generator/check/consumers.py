@@ -309,18 +309,9 @@ def start_verdicts(
     and before those are forked, which inherit it."""
     if not names:
         return list
-    from lxml import etree  # (here, not at the top: this module is also each Python consumer's process)
-
-    # relative mesh paths are relative to the checked file: make them absolute before the URDF moves to a scratch folder
-    root = _read(text.encode("utf-8"))
-    for mesh in root.iter("mesh"):
-        filename = mesh.get("filename", "")
-        if filename and "://" not in filename and not Path(filename).is_absolute():
-            mesh.set("filename", str(base_dir.resolve() / filename))
     folder = tempfile.TemporaryDirectory(prefix="xacrokit-check-")
     try:
-        urdf = Path(folder.name) / "robot.urdf"
-        urdf.write_text(etree.tostring(root, encoding="unicode"), encoding="utf-8")
+        urdf = _scratch_copy(text, base_dir, Path(folder.name))
         # the Python consumers in children forked from this process, which has numpy and lxml loaded already (a
         # process of their own would start Python and import them again: a third of the time it takes); started
         # before the thread that runs check_urdf (a fork copies one thread only)
@@ -354,6 +345,21 @@ def start_verdicts(
             folder.cleanup()
 
     return collect
+
+
+def _scratch_copy(text: str, base_dir: Path, folder: Path) -> Path:
+    """The URDF ``text`` written as ``folder``/robot.urdf, its relative mesh paths (relative to the checked file, in
+    ``base_dir``) made absolute first, so that they still lead to the meshes from there."""
+    from lxml import etree  # (here, not at the top: this module is also each Python consumer's process)
+
+    root = _read(text.encode("utf-8"))
+    for mesh in root.iter("mesh"):
+        filename = mesh.get("filename", "")
+        if filename and "://" not in filename and not Path(filename).is_absolute():
+            mesh.set("filename", str(base_dir.resolve() / filename))
+    urdf = folder / "robot.urdf"
+    urdf.write_text(etree.tostring(root, encoding="unicode"), encoding="utf-8")
+    return urdf
 
 
 _HOST: list[ConsumerHost] = []  # (the host the Python consumers run in, while :func:`hosted_consumers` holds one)
