@@ -152,7 +152,13 @@ class _Parser:
             if self.take() != ("op", ")"):
                 raise UnitError(f"missing ')' in {self.source!r}")
             return value
+        if kind == "word" and text.lower() in _NOT_FINITE:  # (what float() reads: said as 1e999 is)
+            where = f" (in {self.source!r})" if self.source.strip() != text else ""
+            raise UnitError(f"{text!r} is not a finite number{where}")
         raise UnitError(f"unexpected {text!r} in {self.source!r}")
+
+
+_NOT_FINITE = ("nan", "inf", "infinity")
 
 
 def _number(text: str) -> Value:
