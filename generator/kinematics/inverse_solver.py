@@ -404,20 +404,21 @@ def _rows_problem(rows: list[list[float]], *, position_only: bool) -> str:
         math.isfinite(v) for v in (*rows[0], *rows[1], *rows[2])
     ):  # (a finite sum says it at once: a solve asks this of every target)
         return "holds a number that is not finite (nan or inf); give a 4x4 pose of finite numbers"
-    if len(rows) == 4 and max(abs(rows[3][0]), abs(rows[3][1]), abs(rows[3][2]), abs(rows[3][3] - 1.0)) > 1e-9:
-        return f"has the bottom row {rows[3]}; a pose's is [0, 0, 0, 1]"
+    if len(rows) == 4 and rows[3] != _BOTTOM:  # (a pose's own bottom row told by one comparison)
+        if max(abs(rows[3][0]), abs(rows[3][1]), abs(rows[3][2]), abs(rows[3][3] - 1.0)) > 1e-9:
+            return f"has the bottom row {rows[3]}; a pose's is [0, 0, 0, 1]"
     if position_only:
         return ""
-    (a, b, c, _), (d, e, f, _), (g, h, i, _) = rows[:3]
-    gram = (
-        a * a + d * d + g * g - 1.0, b * b + e * e + h * h - 1.0, c * c + f * f + i * i - 1.0,
-        a * b + d * e + g * h, a * c + d * f + g * i, b * c + e * f + h * i,
-    )  # fmt: skip
+    (a, b, c, _), (d, e, f, _), (g, h, i, _) = rows[0], rows[1], rows[2]
+    g0, g1, g2 = a * a + d * d + g * g - 1.0, b * b + e * e + h * h - 1.0, c * c + f * f + i * i - 1.0
+    g3, g4, g5 = a * b + d * e + g * h, a * c + d * f + g * i, b * c + e * f + h * i
     determinant = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
-    g0, g1, g2, g3, g4, g5, slack = *gram, ROTATION_SLACK
-    if determinant > 0.0 and -slack <= g0 <= slack and -slack <= g1 <= slack and -slack <= g2 <= slack:
-        if -slack <= g3 <= slack and -slack <= g4 <= slack and -slack <= g5 <= slack:
+    high = ROTATION_SLACK
+    low = -high
+    if determinant > 0.0 and low <= g0 <= high and low <= g1 <= high and low <= g2 <= high:
+        if low <= g3 <= high and low <= g4 <= high and low <= g5 <= high:
             return ""  # (every one within the slack: the largest is, without the calls)
+    gram = (g0, g1, g2, g3, g4, g5)
     off = max(map(abs, gram))
     if not off <= ROTATION_SLACK or determinant <= 0.0:
         return (
@@ -521,20 +522,23 @@ def _candidates(
     outside = 0
     l0, h0, l1, h1, l2, h2, l3, h3, l4, h4, l5, h5 = bounds[0]
     zero = not any(centres)
-    remainder = math.remainder
+    remainder, low, half, turn = math.remainder, -_HALF, _HALF, TURN
+    # (every value within half a turn of 0 is within the limits: the six tests once a target, not once a branch)
+    wide = l0 <= low and l1 <= low and l2 <= low and l3 <= low and l4 <= low and l5 <= low
+    wide = wide and h0 >= half and h1 >= half and h2 >= half and h3 >= half and h4 >= half and h5 >= half
     for branch in found:
-        if not branch.exact:  # (a subproblem without an exact root: this branch's triangle does not close)
+        values, _, exact, _ = branch
+        if not exact:  # (a subproblem without an exact root: this branch's triangle does not close)
             continue
-        values = branch.values
         if zero:  # (each value's remainder, taken only when it is more than half a turn from 0)
             v0, v1, v2, v3, v4, v5 = values
-            v0 = v0 if -_HALF <= v0 <= _HALF else remainder(v0, TURN)
-            v1 = v1 if -_HALF <= v1 <= _HALF else remainder(v1, TURN)
-            v2 = v2 if -_HALF <= v2 <= _HALF else remainder(v2, TURN)
-            v3 = v3 if -_HALF <= v3 <= _HALF else remainder(v3, TURN)
-            v4 = v4 if -_HALF <= v4 <= _HALF else remainder(v4, TURN)
-            v5 = v5 if -_HALF <= v5 <= _HALF else remainder(v5, TURN)
-            if (
+            v0 = v0 if low <= v0 <= half else remainder(v0, turn)
+            v1 = v1 if low <= v1 <= half else remainder(v1, turn)
+            v2 = v2 if low <= v2 <= half else remainder(v2, turn)
+            v3 = v3 if low <= v3 <= half else remainder(v3, turn)
+            v4 = v4 if low <= v4 <= half else remainder(v4, turn)
+            v5 = v5 if low <= v5 <= half else remainder(v5, turn)
+            if wide or (
                 l0 <= v0 <= h0
                 and l1 <= v1 <= h1
                 and l2 <= v2 <= h2
@@ -546,7 +550,9 @@ def _candidates(
                 candidates.append(((v0, v1, v2, v3, v4, v5), branch, distance, True))
                 keys.append(v2 + v4)
                 continue
-        turned = _turned(values, bounds, centres)
+            turned = _wrapped_within(values, bounds[1], centres)  # (what _turned comes to when the remainders fail)
+        else:
+            turned = _turned(values, bounds, centres)
         if turned is None:
             outside += 1
             continue
@@ -578,10 +584,23 @@ def _turned(
     if l0 <= w0 <= h0 and l1 <= w1 <= h1 and l2 <= w2 <= h2 and l3 <= w3 <= h3 and l4 <= w4 <= h4 and l5 <= w5 <= h5:
         distance = abs(w0 - c0) + abs(w1 - c1) + abs(w2 - c2) + abs(w3 - c3) + abs(w4 - c4) + abs(w5 - c5)
         return (w0, w1, w2, w3, w4, w5), distance, True, d2 + d4
-    wrapped, distance = _nearest_turns(values, bounds[1], centres)
+    return _wrapped_within(values, bounds[1], centres)
+
+
+def _wrapped_within(
+    values: tuple[float, ...], bounds: Sequence[tuple[float, float, float, float] | None], centres: Sequence[float]
+) -> tuple[tuple[float, ...], float, bool, float] | None:
+    """:func:`_turned` of values some remainder of which is beyond the limits: :func:`_nearest_turns`' values."""
+    wrapped, distance = _nearest_turns(values, bounds, centres)
     if not wrapped:
         return None
-    return tuple(wrapped), distance, False, remainder(wrapped[2] - c2, TURN) + remainder(wrapped[4] - c4, TURN)
+    remainder = math.remainder
+    return (
+        tuple(wrapped),
+        distance,
+        False,
+        remainder(wrapped[2] - centres[2], TURN) + remainder(wrapped[4] - centres[4], TURN),
+    )
 
 
 _HALF = TURN / 2  # (a difference this near 0 is its own remainder: math.remainder(d, TURN) == d, exactly)
@@ -596,10 +615,11 @@ def _close_pair(keys: list[float]) -> bool:
     nothing to do."""
     if len(keys) < 2:
         return False
-    ordered = sorted(k - TURN if k > _HALF else k + TURN if k < -_HALF else k for k in keys)
-    previous = ordered[-1] - TURN
+    low, half, turn, near = -_HALF, _HALF, TURN, _NEAR
+    ordered = sorted([k - turn if k > half else k + turn if k < low else k for k in keys])
+    previous = ordered[-1] - turn
     for value in ordered:
-        if value - previous <= _NEAR:
+        if value - previous <= near:
             return True
         previous = value
     return False
