@@ -16,12 +16,14 @@ from conftest import REPO
 @pytest.fixture(scope="module")
 def wheel(tmp_path_factory):
     out = tmp_path_factory.mktemp("wheel")
-    # built from a copy of the sources: an in-tree build would package what an earlier build left in build/
+    # built from a copy of the sources: an in-tree build would package what an earlier build left in build/. A
+    # symbolic link is copied as a link, not followed: a checkout's link to a virtual environment elsewhere (1.8 GB,
+    # 90,000 files) took a minute to copy and as long to delete, and the wheel packages the package folders alone
     source = tmp_path_factory.mktemp("source") / "xacrokit"
     leftovers = shutil.ignore_patterns(
         "build", "dist", ".venv", ".git", "*.egg-info", "__pycache__", ".*_cache", ".hypothesis"
     )
-    shutil.copytree(REPO, source, ignore=leftovers)
+    shutil.copytree(REPO, source, symlinks=True, ignore=leftovers)
     result = subprocess.run(
         [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation", "-q", "-w", str(out), str(source)],
         capture_output=True,
