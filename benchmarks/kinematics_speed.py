@@ -14,7 +14,8 @@ time of each, the median of the pairs' wall ratios, and the same for CPU time (u
 children, which a loaded machine disturbs less). Run ``python -m compileall -q generator`` first when the package is
 installed editable with PYTHONDONTWRITEBYTECODE set (a real install compiles its modules).
 
-Usage: python benchmarks/kinematics_speed.py [RUNS]   (default 9)
+Usage: python benchmarks/kinematics_speed.py [RUNS] [--no-warm-up]   (RUNS: default 9; --no-warm-up: no untimed
+first pair, for a smoke run that only shows the script works)
 """
 
 from __future__ import annotations
@@ -97,9 +98,10 @@ def timed(command: list[str]) -> tuple[float, float]:
     return wall, (after.children_user - before.children_user) + (after.children_system - before.children_system)
 
 
-def paired(ours: list[str], bare: list[str], runs: int) -> dict[str, list[float]]:
+def paired(ours: list[str], bare: list[str], runs: int, warm_up: bool = True) -> dict[str, list[float]]:
     times: dict[str, list[float]] = {"ours": [], "bare": [], "ours_cpu": [], "bare_cpu": []}
-    timed(ours), timed(bare)  # (untimed: the files in the page cache)
+    if warm_up:  # (untimed: the files in the page cache)
+        timed(ours), timed(bare)
     for run in range(runs):
         order = [("ours", ours), ("bare", bare)]
         for key, command in order if run % 2 == 0 else order[::-1]:
@@ -109,7 +111,7 @@ def paired(ours: list[str], bare: list[str], runs: int) -> dict[str, list[float]
     return times
 
 
-def main(runs: int) -> None:
+def main(runs: int, warm_up: bool = True) -> None:
     with tempfile.TemporaryDirectory(prefix="xacrokit-bench-") as scratch:
         out = Path(scratch, "ur10e")
         subprocess.run([GEN_ROBOT, "generate", str(SPEC), "-o", str(out)], check=True, capture_output=True)
@@ -124,7 +126,7 @@ def main(runs: int) -> None:
         for name, more in asked.items():
             bare = [sys.executable, str(scripts[name]), str(urdf)]
             for label, robot in (("spec", SPEC), ("URDF", urdf)):
-                times = paired([GEN_ROBOT, name, str(robot), FRAME, *more], bare, runs)
+                times = paired([GEN_ROBOT, name, str(robot), FRAME, *more], bare, runs, warm_up)
                 wall = statistics.median(a / b for a, b in zip(times["ours"], times["bare"], strict=True))
                 cpu = statistics.median(a / b for a, b in zip(times["ours_cpu"], times["bare_cpu"], strict=True))
                 print(
@@ -136,4 +138,5 @@ def main(runs: int) -> None:
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]) if len(sys.argv) > 1 else 9)
+    words = [w for w in sys.argv[1:] if w != "--no-warm-up"]
+    main(int(words[0]) if words else 9, warm_up="--no-warm-up" not in sys.argv)
