@@ -5,6 +5,7 @@ refused (:class:`FlatMesh`)."""
 from __future__ import annotations
 
 import os
+from collections import OrderedDict
 from collections.abc import Callable, Mapping
 from pathlib import Path, PurePosixPath
 from typing import Any
@@ -86,6 +87,7 @@ class Meshes:
         source = Path(read.copy.relative)
         stem = "".join(c if c.isalnum() or c in "_-" else "_" for c in source.stem)[:60] or "mesh"
         suffix = source.suffix.lower()
+        as_read = (read.copy.sha256, suffix, bool(read.mesh.metadata.get("processed")))  # (a conversion's key)
         copied = suffix in READABLE or (
             suffix == ".stl" and _binary_stl_faces(read.head, read.copy.size) in range(1, STL_FACES + 1)
         )
@@ -106,12 +108,11 @@ class Meshes:
             out = f"{stem}{suffix}"
         elif len(mesh.faces) <= STL_FACES:  # (binary STL: trimesh writes it 30-40 times faster than OBJ text, and
             # MuJoCo keeps a mesh's vertices in single precision, as the STL holds them)
-            data = bytes(mesh.export(file_type="stl"))
+            data = _converted(mesh, (*as_read, "stl"))
             out = f"{stem}.stl"
             self.notes.append(f"mesh {filename!r} converted to binary STL for MuJoCo")
         else:
-            exported = mesh.export(file_type="obj", include_normals=False, include_texture=False)
-            data = exported.encode("utf-8") if isinstance(exported, str) else bytes(exported)
+            data = _converted(mesh, (*as_read, "obj"))
             out = f"{stem}.obj"
             self.notes.append(f"mesh {filename!r} converted to OBJ for MuJoCo")
         taken = set(self.files.values())
@@ -135,6 +136,33 @@ def export_reader(urdf: Path, packages: Mapping[str, str | os.PathLike[str]]) ->
         return (plain if PurePosixPath(filename).suffix.lower() == ".stl" else merged)(filename)
 
     return read
+
+
+CONVERTED_BYTES = 128 << 20  # the converted files kept in a process hold at most this many bytes
+# (the file's SHA-256, its suffix, whether its reader merged its vertices, the kind written) -> the bytes written
+_CONVERTED: OrderedDict[tuple[str, str, bool, str], bytes] = OrderedDict()
+
+
+def _converted(mesh: Any, key: tuple[str, str, bool, str]) -> bytes:
+    """``mesh`` (merged) as trimesh writes it in the kind ``key`` ends with, "stl" (binary) or "obj" (text); kept in
+    this process by the file's bytes and how they were read (``key``), the least recently used dropped first past
+    CONVERTED_BYTES: robots share meshes (the real-robot corpus's Stretch, B1 and iCub variants; a fleet), and the
+    Go1's two OBJ files of 200,000 triangles took 3.3 s of its 10 s export. The same bytes read the same way give the
+    same mesh (vertices, faces, colours, name) and so the same file (tests/export/test_mjcf_deterministic.py)."""
+    data = _CONVERTED.get(key)
+    if data is not None:
+        _CONVERTED.move_to_end(key)
+        return data
+    if key[3] == "stl":
+        data = bytes(mesh.export(file_type="stl"))
+    else:
+        exported = mesh.export(file_type="obj", include_normals=False, include_texture=False)
+        data = exported.encode("utf-8") if isinstance(exported, str) else bytes(exported)
+    if len(data) <= CONVERTED_BYTES:
+        _CONVERTED[key] = data
+    while sum(map(len, _CONVERTED.values())) > CONVERTED_BYTES:
+        _CONVERTED.popitem(last=False)
+    return data
 
 
 def _merged(mesh: Any) -> Any:

@@ -39,3 +39,26 @@ def test_a_ply_mesh_is_converted_to_what_mujoco_reads_with_its_vertices(tmp_path
     assert np.array_equal(np.unique(np.asarray(written.vertices, dtype=np.float32), axis=0), expected)
     m = mujoco.MjModel.from_xml_path(str(tmp_path / "out" / "robot.xml"))
     assert m.nmesh == 1 and m.mesh_facenum[0] == 12 and m.mesh_vertnum[0] == 8
+
+
+def test_a_mesh_converted_again_is_the_kept_conversion_and_a_changed_one_is_converted_anew(tmp_path):
+    """Robots that name a mesh of the same bytes (the corpus's Stretch variants, a fleet) convert it once in a
+    process (mjcf_meshes._converted): the second export writes the very bytes of the first, under its own name; a
+    file whose bytes changed is converted again."""
+
+    def exported(folder, lift):
+        folder.mkdir()
+        trimesh.creation.box(extents=(0.1, 0.2, 0.3)).apply_translation((0.0, 0.0, lift)).export(folder / "part.ply")
+        urdf = folder / "r.urdf"
+        urdf.write_text(
+            f'<robot name="r"><link name="a"><visual><geometry><mesh filename="part.ply"/></geometry></visual>'
+            f"{INERTIAL}</link></robot>",
+            encoding="utf-8",
+        )
+        return export_mjcf(read_robot(RobotInput(urdf)), base="fixed").meshes["part.stl"]
+
+    first, again, changed = exported(tmp_path / "a", 0.5), exported(tmp_path / "b", 0.5), exported(tmp_path / "c", 0.7)
+    assert isinstance(first, bytes) and again is first
+    assert changed != first
+    lifted = trimesh.load(trimesh.util.wrap_as_stream(changed), file_type="stl", force="mesh")
+    assert np.isclose(lifted.vertices[:, 2].max(), 0.85)
