@@ -107,7 +107,7 @@ class _Folder:
         node.body = _live(body, set(self.droppable) - self.needed) or [ast.Pass()]
         return node
 
-    def block(self, body: list[ast.stmt], env: dict[str, float], reach: dict[str, set[int]]) -> list[ast.stmt]:
+    def block(self, body: list[ast.stmt], env: dict[str, Any], reach: dict[str, set[int]]) -> list[ast.stmt]:
         out: list[ast.stmt] = []
         for statement in body:
             out.append(self.statement(statement, env, reach))
@@ -123,7 +123,7 @@ class _Folder:
                     else:
                         self.needed.add(origin)
 
-    def statement(self, node: ast.stmt, env: dict[str, float], reach: dict[str, set[int]]) -> ast.stmt:
+    def statement(self, node: ast.stmt, env: dict[str, Any], reach: dict[str, set[int]]) -> ast.stmt:
         if isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name) and node.value is not None:
             node = ast.copy_location(ast.Assign(targets=[node.target], value=node.value), node)  # (its type left out)
         if not isinstance(node, _KNOWN):
@@ -156,7 +156,7 @@ class _Folder:
             reach[name] = set()  # (a store no fold drops)
         return node
 
-    def loop(self, node: ast.For | ast.While, env: dict[str, float], reach: dict[str, set[int]]) -> ast.stmt:
+    def loop(self, node: ast.For | ast.While, env: dict[str, Any], reach: dict[str, set[int]]) -> ast.stmt:
         """A loop: the names it assigns forgotten (a turn may change them); a read in it of one of those reaches
         every assignment of the name in the loop (a later turn's) as well as those before."""
         if node.orelse:
@@ -187,7 +187,7 @@ class _Folder:
             reach[name] = (reach[name] - {mark}) | inner.get(name, set()) | stores
         return node
 
-    def assign(self, node: ast.Assign, env: dict[str, float], reach: dict[str, set[int]]) -> ast.stmt:
+    def assign(self, node: ast.Assign, env: dict[str, Any], reach: dict[str, set[int]]) -> ast.stmt:
         """An assignment: its value folded; names given numbers noted in ``env``, the others forgotten; one of names
         only, of a pure value, noted as droppable."""
         if len(node.targets) != 1:
@@ -212,7 +212,7 @@ class _Folder:
                 reach[name] = {index}
         return node
 
-    def known(self, node: ast.expr, env: dict[str, float]) -> Any:
+    def known(self, node: ast.expr, env: dict[str, Any]) -> Any:
         """The object an expression is when the arm fixes it (a pinned name's attribute, a number, a local holding
         one, a tuple of those), else None."""
         if isinstance(node, ast.Name) and node.ctx.__class__ is ast.Load:
@@ -227,13 +227,13 @@ class _Folder:
             return node.value  # type: ignore[attr-defined]
         return None
 
-    def number(self, node: ast.expr, env: dict[str, float]) -> ast.expr | None:
+    def number(self, node: ast.expr, env: dict[str, Any]) -> ast.expr | None:
         value = self.known(node, env)
         if type(value) is float:
             return ast.copy_location(ast.Constant(_snapped(value, self.snap)), node)
         return None
 
-    def expression(self, node: ast.expr, env: dict[str, float]) -> ast.expr:
+    def expression(self, node: ast.expr, env: dict[str, Any]) -> ast.expr:
         if isinstance(node, (ast.Lambda, ast.ListComp, ast.SetComp, ast.DictComp, ast.GeneratorExp, ast.NamedExpr)):
             raise Unfoldable(type(node).__name__)
         if isinstance(node, (ast.Name, ast.Attribute)):
@@ -262,12 +262,12 @@ def _pairs(target: ast.expr, value: ast.expr) -> Iterator[tuple[ast.expr, ast.ex
     yield target, value
 
 
-def _leaves(target: ast.expr, known: Any) -> Iterator[tuple[str, float]]:
-    """The names a target binds to numbers, when the value assigned is known."""
+def _leaves(target: ast.expr, known: Any) -> Iterator[tuple[str, Any]]:
+    """The names a target binds to numbers (or tuples of them), when the value assigned is known."""
     if known is None:
         return
-    if isinstance(target, ast.Name) and type(known) is float:
-        yield target.id, known
+    if isinstance(target, ast.Name) and (type(known) is float or isinstance(known, tuple)):
+        yield target.id, known  # (a tuple: unpacked later; only a float is written in)
     elif isinstance(target, ast.Tuple) and isinstance(known, tuple) and len(known) == len(target.elts):
         for t, k in zip(target.elts, known, strict=True):
             yield from _leaves(t, k)

@@ -1,8 +1,8 @@
-"""The closed forms made for one arm (:mod:`xacrokit.kinematics.folding`: the arm's numbers written into the steps'
-own source and the arithmetic they make trivial taken out) against the steps as written, on the example arms and on
-random DH arms built in arbitrary frame conventions (UR-like and spherical-wrist, twists of pi/2 and others), at
-random targets, singular ones among them; and the fold's flow rules on small functions of their own (a number read
-on a later turn of a loop, or after an if that may change it, is still there)."""
+"""The closed forms and the branch names made for one arm (:mod:`xacrokit.kinematics.folding`: the arm's numbers
+written into the steps' own source and the arithmetic they make trivial taken out) against them as written, on the
+example arms and on random DH arms built in arbitrary frame conventions (UR-like and spherical-wrist, twists of pi/2
+and others), at random targets, singular ones among them; and the fold's flow rules on small functions of their own
+(a number read on a later turn of a loop, or after an if that may change it, is still there)."""
 
 from __future__ import annotations
 
@@ -19,6 +19,7 @@ from test_ik_branches import dh_arm, pieper_rows, ur_rows
 from conftest import REPO
 from xacrokit.kinematics import ik_solver
 from xacrokit.kinematics.analytic import _branches, branches, folded
+from xacrokit.kinematics.branch_names import _branch_name, _naming_for, branch_name
 from xacrokit.kinematics.folding import specialised
 from xacrokit.reader.read_robot import read_robot
 
@@ -72,15 +73,28 @@ def compare_at_random_targets(robot, frame, count, seed):
                 assert max(abs(x - y) for x, y in zip(a.values, b.values, strict=True)) <= 1e-12, (index, a, b)
 
 
+def compare_names(form, seed):
+    """The folded branch names are the written ones at random joint values and roots."""
+    assert _naming_for(form) is not _branch_name
+    rng = np.random.default_rng(seed)
+    for _ in range(300):
+        values = tuple(float(v) for v in rng.uniform(-2 * math.pi, 2 * math.pi, 6))
+        roots = (int(rng.integers(2)), int(rng.integers(2)), int(rng.integers(2)))
+        assert branch_name(form, values, roots) == _branch_name(form, values, roots), values
+
+
 @pytest.mark.parametrize("arm", sorted(EXAMPLES))
 def test_the_example_arms_folded_give_the_written_branches(arm):
-    compare_at_random_targets(read_robot(EXAMPLES[arm]), "tool0", 100, 3)
+    robot = read_robot(EXAMPLES[arm])
+    compare_at_random_targets(robot, "tool0", 100, 3)
+    compare_names(ik_solver(robot, "tool0").form, 3)
 
 
 @pytest.mark.parametrize("seed", range(6))
 def test_random_arms_folded_give_the_written_branches(tmp_path, seed):
     robot, frame = random_arm(tmp_path, seed)
     compare_at_random_targets(robot, frame, 40, seed)
+    compare_names(ik_solver(robot, frame).form, seed)
 
 
 FLOWS = '''
