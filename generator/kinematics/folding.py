@@ -8,9 +8,12 @@ The closed forms (:mod:`.analytic`) are written once, for any arm; on an arm who
 (axes along its root's) many of the numbers a solve multiplies by are 0 or +-1, and made for it the closed form's
 steps take a quarter fewer instructions (the UR5 of the examples). Only exact 0s and 1s fold, and a number within
 SNAP of 0 (a product of two roundings, 1e-32: a term it makes is below the last bit of any sum it is in): a quarter
-turn's cosine is 6e-17, not 0, and is left as it is, so that every answer is the written steps' to the last bit
-(but for the sign of a zero sum, which no value or flag depends on). A function whose statements this does not know
-(try, with, nested scopes) is not folded at all: :func:`specialised` says None, and the source's own runs.
+turn's cosine is 6e-17, not 0, and is left as it is, so that every answer is the written steps' to the last bit,
+but for the sign of a sum that is exactly 0 (0 - x written -x): at a target of joints on quarter turns an angle
+atan2(+-0, -1) may come out pi where the written steps give -pi, the same position (tests/kinematics/
+test_ik_folded.py: the branches alike, their values to 1e-12 or a whole turn). A function whose statements this
+does not know (try, with, nested scopes) is not folded at all: :func:`specialised` says None, and the source's own
+runs.
 """
 
 from __future__ import annotations

@@ -90,6 +90,28 @@ def test_the_example_arms_folded_give_the_written_branches(arm):
     compare_names(ik_solver(robot, "tool0").form, 3)
 
 
+@pytest.mark.parametrize("arm", sorted(EXAMPLES))
+def test_at_quarter_turns_the_folded_branches_are_the_written_ones_to_a_whole_turn(arm):
+    """At joint values on quarter turns many of a solve's sums are exactly 0, and the fold may give such a 0 the other
+    sign (0 - x written as -x): atan2(+-0, -1) is +-pi, the same joint position. There every branch's roots,
+    exactness and singularity are the written ones', and its values theirs to 1e-12 or to a whole turn."""
+    robot = read_robot(EXAMPLES[arm])
+    model, solver = robot.kinematics, ik_solver(robot, "tool0")
+    form, frame_id = solver.form, model.frame_id("tool0")
+    rng = np.random.default_rng(7)
+    for _ in range(150):
+        values = {j.name: float(rng.integers(-2, 3)) * math.pi / 2 for j in model.joints}
+        pin.framesForwardKinematics(model.model, model.data, model.configuration(values))
+        goal = solver.base.actInv(model.data.oMf[frame_id])
+        rotation, position = tuple(tuple(r) for r in goal.rotation.tolist()), tuple(goal.translation.tolist())
+        ours, written = branches(form, rotation, position), _branches(form, rotation, position, False)
+        assert [b[1:] for b in ours] == [b[1:] for b in written], values
+        for a, b in zip(ours, written, strict=True):
+            for x, y in zip(a.values, b.values, strict=True):
+                whole = round((x - y) / (2 * math.pi))
+                assert abs(x - y - 2 * math.pi * whole) <= 1e-12, (values, a, b)
+
+
 @pytest.mark.parametrize("seed", range(6))
 def test_random_arms_folded_give_the_written_branches(tmp_path, seed):
     robot, frame = random_arm(tmp_path, seed)
