@@ -25,12 +25,9 @@ from __future__ import annotations
 
 import functools
 import math
-import sys
-from collections.abc import Callable
-from typing import Any, NamedTuple
+from typing import NamedTuple
 
 from .arm_geometry import THREE_PARALLEL, ClosedForm
-from .folding import specialised
 from .subproblems import (
     DEGENERATE,
     TANGENT,
@@ -78,51 +75,7 @@ _made = tuple.__new__  # (Branch(...) without its __new__'s frame: a third of th
 
 def branches(form: ClosedForm, rotation_: Mat, position: Vec, *, exact_only: bool = False) -> list[Branch]:
     """Every branch that puts the chain's frame at (``rotation_``, ``position``) in the root's frame; with
-    ``exact_only``, only those whose subproblems all have exact roots (a solve keeps no other: the rest not made).
-    (Solved by :func:`_branches` as folded for the arm, :func:`folded`.)"""
-    return folded(form)(form, rotation_, position, exact_only)
-
-
-@functools.cache
-def folded(form: ClosedForm) -> Callable[[ClosedForm, Mat, Vec, bool], list[Branch]]:
-    """:func:`_branches` and the steps it calls made for the arm from their own source, the arm's numbers written in
-    and the arithmetic they make trivial taken out (:mod:`.folding`); as written when they cannot be."""
-    pins = _pins(form)
-    made = specialised(sys.modules[__name__], pins, form.lines.size) if pins else None
-    return _branches if made is None else made["_branches"]
-
-
-def _pins(form: ClosedForm) -> dict[str, dict[str, Any]]:
-    """For each step :func:`_branches` calls on the arm, the names in it that hold the arm's constants (each step is
-    called with these alone: a step called with other constants too would need a fold of its own)."""
-    whole = {"form": form}
-    if form.kind == THREE_PARALLEL:
-        k = _three_parallel_constants(form)
-        return {
-            "_branches": whole,
-            "_three_parallel": {**whole, "k": k},
-            "_shoulder_roots": {"k": k.shoulder},
-            "_three_parallel_wrists": {"k": k},
-            "_turned_by_q1": {"k": k},
-            "_three_parallel_elbows": {"k": k},
-        }
-    if form.parallel is None:
-        return {}
-    arm = _parallel_arm_constants(form)
-    return {
-        "_branches": whole,
-        "_spherical_wrist": whole,
-        "_parallel_arm": {**whole, "k": arm},
-        "_shoulder_roots": {"k": arm.shoulder},
-        "_parallel_arm_elbows": {"k": arm},
-        "_wrist_on_floats": {"w": arm.wrist},
-        "_turned_twice": {"k": arm},
-        "_parts_about": {"k": arm.axis_2},
-    }
-
-
-def _branches(form: ClosedForm, rotation_: Mat, position: Vec, exact_only: bool) -> list[Branch]:
-    """:func:`branches` as written, for any arm."""
+    ``exact_only``, only those whose subproblems all have exact roots (a solve keeps no other: the rest not made)."""
     (h00, h01, h02), (h10, h11, h12), (h20, h21, h22) = form.lines.home_rotation  # (G = T M^-1, on floats)
     (a0, a1, a2), (b0, b1, b2), (c0, c1, c2) = rotation_
     r0 = (a0 * h00 + a1 * h01 + a2 * h02, a0 * h10 + a1 * h11 + a2 * h12, a0 * h20 + a1 * h21 + a2 * h22)

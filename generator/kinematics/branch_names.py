@@ -21,12 +21,9 @@ from __future__ import annotations
 
 import functools
 import math
-import sys
-from collections.abc import Callable
-from typing import Any, NamedTuple
+from typing import NamedTuple
 
 from .arm_geometry import THREE_PARALLEL, ClosedForm
-from .folding import specialised
 from .subproblems import Vec, add, cross, dot, norm, parts, scale, sub, subproblem_1
 
 SLIGHT = 1e-9  # m, or a sine: a side this close to the line has no side
@@ -121,21 +118,6 @@ def branch_name(form: ClosedForm, values: tuple[float, ...], roots: tuple[int, i
     at P2 + R2 x, the elbow triangle's far corner at P2 + w (the wrist centre; with three parallel axes, axis 4's
     point, the wrist centre beyond it turned by joint 4 too). Each measure is a sum of :func:`_naming`'s constants
     times the joints' cosines and sines. (Written out on floats: a solve names every branch it gives.)"""
-    return _naming_for(form)(form, values, roots)
-
-
-@functools.cache
-def _naming_for(form: ClosedForm) -> Callable[[ClosedForm, tuple[float, ...], tuple[int, int, int]], str]:
-    """:func:`_branch_name` made for the arm from its own source, the arm's numbers written in (:mod:`.folding`);
-    as written when it cannot be."""
-    k = _naming(form)
-    pins: dict[str, dict[str, Any]] = {"_branch_name": {"k": k}, "_beyond": {"beyond": k.beyond}}
-    made = specialised(sys.modules[__name__], pins, form.lines.size)
-    return _branch_name if made is None else made["_branch_name"]
-
-
-def _branch_name(form: ClosedForm, values: tuple[float, ...], roots: tuple[int, int, int]) -> str:
-    """:func:`branch_name` as written, for any arm."""
     k = _naming(form)
     c2, s2, c3, s3 = math.cos(values[1]), math.sin(values[1]), math.cos(values[2]), math.sin(values[2])
     t0, t1, t2, t3, t4, t5, t6, t7, t8 = k.sky
