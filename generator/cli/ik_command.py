@@ -150,8 +150,8 @@ def solutions_text(found: Solutions, solver: IkSolver | None) -> str:
         if solution.branch:
             about.append(_equivalents(solution.equivalents))
         lines.append(f"solution {index} ({'; '.join(about)}):")
-        if solution.singular:
-            lines.append(f"  ({solution.singular})")
+        if solution.singular:  # (a continuum's words name the frame: escaped as the names are)
+            lines.append(f"  ({comment_text(solution.singular)})")
         lines.append(listed_values(solution.values).rstrip("\n"))
         if solver is not None and solution.branch:
             for other in solver.equivalent_values(solution):
@@ -166,6 +166,8 @@ def _how(found: Solutions) -> str:
             return f"{found.method}: {found.branches} branches{left}; the one nearest the rest pose (--all: every one)"
         return f"{found.method}: every branch{left}"
     starts = "1 start" if found.starts == 1 else f"{found.starts} starts"
+    if found.complete:  # (a numeric list is complete only when every solution is on a continuum: one given)
+        return f"{found.method}, {starts}: every solution lies on a continuum (no isolated one); one given"
     left = f" (the closed form's {found.outside_limits} branches are outside the joints' limits)"
     return f"{found.method}, {starts}: the list may be incomplete{left if found.outside_limits else ''}"
 

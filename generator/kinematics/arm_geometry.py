@@ -5,8 +5,11 @@ pose at the zero pose (the product of exponentials: T(q) = E1(q1) ... En(qn) M, 
 From those lines, :func:`recognise` says which closed form fits: a 6R arm whose joints 2, 3 and 4 are parallel and
 whose axes 5 and 6 meet (Universal Robots' arms and their DH variants), or one whose last three axes meet in one
 point (a spherical wrist: Pieper's arms, KUKA, ABB, Fanuc, Staubli) with joints 2 and 3 parallel or axes 1 and 2
-meeting. Lines are parallel, or meet, within TOLERANCE (rad, and m per m of the arm's size): a CAD export's rounding
-is within it, and every branch the closed form gives is checked on the robot and polished (:mod:`.analytic`).
+meeting at a point A that axis 3 misses, as it misses the wrist centre (else joint 3 keeps the wrist centre's
+distance from A, and the first three joints place it in a continuum or nowhere: a waist and a shoulder, two
+spherical groups, is such a chain, solved numerically). Lines are parallel, or meet, within TOLERANCE (rad, and m
+per m of the arm's size): a CAD export's rounding is within it, and every branch the closed form gives is checked on
+the robot and polished (:mod:`.analytic`).
 """
 
 from __future__ import annotations
@@ -131,8 +134,10 @@ def _spherical_wrist(lines: ArmLines) -> ClosedForm | None:
             return None
         return ClosedForm(lines, SPHERICAL_WRIST, wrist, h[1], None)
     shoulder = _meeting(h[0], p[0], h[1], p[1], size)
-    if shoulder is None or norm(sub(wrist, p[2])) < TOLERANCE * size:
+    if shoulder is None:
         return None
+    if min(_distance_to_line(wrist, h[2], p[2]), _distance_to_line(shoulder, h[2], p[2])) < TOLERANCE * size:
+        return None  # (joint 3 keeps |E3 W - A|: joints 1 to 3 place the wrist centre in a continuum, or nowhere)
     return ClosedForm(lines, SPHERICAL_WRIST, wrist, None, shoulder)
 
 

@@ -23,6 +23,11 @@ LONGEST_STEP = 0.5  # rad or m: the most a joint moves in one step
 DISTINCT = 1e-3  # rad or m: two solutions closer than this in every joint are one
 STALL = 6  # steps without halving the error: a start is stuck (another start is cheaper than waiting)
 POLISHED = 4  # the best ends of a search that fails polished for the closest reach
+RANK_TOLERANCE = 1e-6  # of the largest singular value: a smaller one is a direction the frame is not moved in
+# (a chain that lacks a direction by its structure leaves its singular value at rounding's 1e-16 of the largest; a
+# regular arm's smallest exceeds 1e-6 at a random configuration but with odds of about 1e-6, and the largest of 8
+# spread ones was above 0.09 on the UR5, the KR 560 and the Panda; axes that meet within the closed form's tolerance,
+# 1e-6 m per m, leave about 1e-6: counted as meeting, as the closed form counts them)
 
 
 @dataclass(frozen=True)
@@ -105,6 +110,30 @@ def residual_and_jacobian(
     relative = goal.actInv(current)
     full = pin.getFrameJacobian(model, data, chain.frame, pin.ReferenceFrame.LOCAL)
     return pin.log6(relative).vector, pin.Jlog6(relative) @ np.asarray(full).reshape(6, model.nv)
+
+
+def directions(chain: Chain, configurations: Sequence[np.ndarray], *, position_only: bool) -> int:
+    """How many independent directions the joints move the frame in (3 for a position at most, 6 for a pose): the
+    most at any of ``configurations``. At each, the rank of the Jacobian's columns of the joints one sets, its linear
+    rows divided by their longest column (m per rad: a metre and a radian weigh alike), counting the singular values
+    above RANK_TOLERANCE of the largest."""
+    import pinocchio as pin  # (heavy: pinocchio)
+
+    model: Any = chain.model
+    data = chain.data if chain.data is not None else model.createData()
+    most = 0
+    for values in configurations:
+        full = pin.computeFrameJacobian(
+            model, data, chain.configuration(values), chain.frame, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+        )
+        part = chain.selected(np.asarray(full).reshape(6, model.nv))
+        linear = part[:3] / max(float(np.linalg.norm(part[:3], axis=0).max(initial=0.0)), 1e-300)
+        part = linear if position_only else np.vstack((linear, part[3:]))
+        if not np.isfinite(part).all():
+            continue
+        sizes = np.linalg.svd(part, compute_uv=False)
+        most = max(most, int((sizes > RANK_TOLERANCE * sizes.max(initial=0.0)).sum()) if sizes.size else 0)
+    return most
 
 
 def closest_reach(

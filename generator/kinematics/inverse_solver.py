@@ -11,7 +11,11 @@ compared joint by joint from joint 1: the numeric search's order) and the first 
 other chain (and a target the closed form does not reach) is searched numerically (:mod:`.inverse`): from ``near``
 when given, the NEAREST of ATLAS configurations posed once per solver, then Sobol starts over the limits, until one
 reaches (FIRST_STARTS at most) or, for every branch, STARTS more and on until one reaches; the result says how many
-ran, and that the list may be incomplete.
+ran, and that the list may be incomplete. A chain that moves its frame in fewer directions than the target
+constrains (6 for a pose, 3 for a position) at every configuration, and in fewer than it has joints, has a continuum
+of solutions at every target it reaches (a waist and a shoulder, each three axes meeting at a point, move a hand in
+5 of 6): the first solution found is the answer, with or without ``every``, said singular; the list is then complete
+in that no isolated solution exists.
 """
 
 from __future__ import annotations
@@ -32,7 +36,7 @@ from ..reader.kinematic_model import KinematicJoint, KinematicModel
 from .analytic import Branch, branches
 from .arm_geometry import ClosedForm, arm_lines, recognise
 from .branch_names import branch_name
-from .inverse import Chain, closest_reach, distinct, solve, starts
+from .inverse import Chain, closest_reach, directions, distinct, solve, starts
 from .reposed import CLOSE, Reposer
 
 REACHED = 1e-9  # m, or the pose error's norm: a solution farther from the target than this is not one
@@ -40,6 +44,7 @@ STARTS = 32  # numeric starts for every branch (--all)
 FIRST_STARTS = 256  # numeric starts at most until one reaches (the default; 64 left 2% of general 6R arms unsolved)
 ATLAS = 1024  # configurations posed once per solver, the nearest of which start a numeric search
 NEAREST = 4  # of them, tried first
+PROBES = 8  # spread configurations at which the directions the chain moves its frame in are counted (once a solver)
 TURNS_WEIGHT = 0.25  # of the arm's reach: metres per unit of rotation matrices' difference when choosing a start
 # (the wrist's last joints turn the frame in a few steps where the position needs the whole arm: on the Panda, 0.25
 # left 22% of 1,000 random targets needing a second start where 1.0 left 29%)
@@ -69,8 +74,9 @@ class Solution:
 @dataclass(frozen=True)
 class Solutions:
     """What ``ik`` found: the solutions, or when there is none, the closest reach; the method, the numeric starts
-    run (0 for the closed form), whether the list is every branch there is (``complete``), and the closed-form
-    branches left out because no value of theirs is within the joints' limits."""
+    run (0 for the closed form), whether the list is every branch there is (``complete``; a branch or chain whose
+    solutions are a continuum is given once, said singular), and the closed-form branches left out because no value
+    of theirs is within the joints' limits."""
 
     frame: str
     in_frame: str
@@ -150,6 +156,7 @@ class IkSolver:
     slack_bounds: tuple[float, ...] | None = field(init=False, default=None)  # (_turns_count's)
     base_rows: tuple[tuple[float, ...], ...] | None = field(init=False, default=None)  # (None: the root's axes)
     whole: bool = field(init=False, default=False)  # (the closed form's chain is every joint one sets, in order)
+    continua: dict[bool, str] = field(init=False, default_factory=dict)  # (:meth:`_continuum`, by position_only)
 
     def __post_init__(self) -> None:
         model = self.model
@@ -363,30 +370,44 @@ class IkSolver:
         if self.spread is None:  # (drawn once per solver: scipy's Sobol costs milliseconds a draw)
             spread = starts(self.chain, self.rest, FIRST_STARTS)
             self.spread = [np.where(self.moves, start, self.rest) for start in spread]  # (the others stay at rest)
+        continuum = self._continuum(position_only=position_only)
         for start in [*seeds, *self.spread]:
             ran += 1
             values, error = solve(self.chain, goal, position_only=position_only, start=start)
             found.append((values, error))
             reached_one = reached_one or error <= REACHED
-            if reached_one and (not every or ran >= len(seeds) + STARTS):
+            if reached_one and (not every or continuum or ran >= len(seeds) + STARTS):
                 break  # (every branch: STARTS starts, and on until one reaches, as the first solution's search)
         if not any(math.isfinite(error) for _, error in found):
             raise XacrokitError("ik cannot search: the pose error is beyond what a float holds at every start")
         reached = distinct([f for f in found if f[1] <= REACHED])
         joints = self.model.joints
-        solutions = [Solution(_named(joints, v), e) for v, e in reached]
+        solutions = [Solution(_named(joints, v), e, singular=continuum) for v, e in reached]
         closest = None
         if not solutions:
             values, error = closest_reach(self.chain, goal, position_only=position_only, found=found)
             closest = Solution(_named(joints, values), error)
-        return self._result(solutions, closest, NUMERIC, ran, 0)
+        names = [j.name for j in joints]
+        complete = bool(continuum and solutions)  # (no isolated solution: every one is on a continuum)
+        return Solutions(self.frame, self.in_frame, names, solutions, closest, NUMERIC, ran, complete, 0)
 
-    def _result(
-        self, solutions: list[Solution], closest: Solution | None, method: str, ran: int, outside: int
-    ) -> Solutions:
-        names = [j.name for j in self.model.joints]
-        complete = method != NUMERIC
-        return Solutions(self.frame, self.in_frame, names, solutions, closest, method, ran, complete, outside)
+    def _continuum(self, *, position_only: bool) -> str:
+        """What every solution lies on ("" when nothing) when the chain moves the frame in fewer directions than the
+        target constrains (6 for a pose, 3 for a position) at each of PROBES spread configurations (the spread drawn)
+        and in fewer than its joints: every target it reaches then has a continuum of solutions. A regular arm at a
+        singular target is not such a chain. Counted once a solver (:func:`.inverse.directions`)."""
+        if position_only not in self.continua:
+            assert self.spread is not None  # (drawn by the search first)
+            needed, what = (3, "position") if position_only else (6, "pose")
+            found = directions(self.chain, self.spread[1 : 1 + PROBES], position_only=position_only)
+            said = ""
+            if found < needed and found < int(self.moves.sum()):
+                said = (
+                    f"a continuum of solutions: the chain moves {self.frame} in only {found} of the {needed} "
+                    f"directions of a {what} anywhere; one given"
+                )
+            self.continua[position_only] = said
+        return self.continua[position_only]
 
 
 def target_problem(matrix: np.ndarray, *, position_only: bool) -> str:
