@@ -13,7 +13,7 @@ import sys
 
 import pinocchio as pin
 import pytest
-from test_ik_branches import dh_arm, random_targets, reposed_error, searched
+from test_ik_branches import dh_arm, random_targets, reposed_error, same_turns, searched
 
 from conftest import REPO, gen_robot
 from xacrokit.kinematics import ik_solver
@@ -61,18 +61,18 @@ def test_the_humanoids_arm_is_no_spherical_wrist_arm_and_says_its_continuum(huma
     assert position.solutions and not any(s.singular for s in position.solutions) and not position.complete
 
 
-def test_a_built_arm_of_two_spherical_groups_answers_alike(tmp_path):
-    """A six-joint arm built from DH rows in frames of its own: axes 1 to 3 meet at a point, axes 4 to 6 at another
-    (a forearm between them): the numeric search, one solution said singular, re-posed to 1e-9."""
-    rows = [
-        (0, 0.3, 0, math.pi / 2),
-        (0, 0, 0, -math.pi / 2),
-        (0, 0.4, 0.25, math.pi / 2),
-        (0, 0, 0, math.pi / 2),
-        (0, 0, 0, -math.pi / 2),
-        (0, 0.1, 0, 0),
-    ]
-    robot = read_robot(dh_arm(tmp_path, "two_spheres", rows, seed=5))
+SPHERICAL_WRIST = ((0, 0, 0, math.pi / 2), (0, 0, 0, -math.pi / 2), (0, 0.1, 0, 0))  # (axes 4 to 6 meet)
+TWO_GROUPS = ((0, 0.3, 0, math.pi / 2), (0, 0, 0, -math.pi / 2), (0, 0.4, 0.25, math.pi / 2))  # (axes 1 to 3 meet)
+WRIST_ON_AXIS_3 = ((0, 0.3, 0, math.pi / 2), (0, 0, 0.3, -0.6), (0, 0.4, 0, math.pi / 2))  # (the wrist centre on it)
+
+
+@pytest.mark.parametrize("first", [TWO_GROUPS, WRIST_ON_AXIS_3], ids=["axes_1_2_3_meet", "wrist_centre_on_axis_3"])
+def test_a_built_arm_whose_first_joints_cannot_place_the_wrist_centre_answers_alike(tmp_path, first):
+    """Six-joint arms built from DH rows in frames of their own, with a spherical wrist and axes 1 and 2 meeting:
+    axis 3 through that point too, or through the wrist centre. Joint 3 then keeps the wrist centre's distance from
+    where axes 1 and 2 meet, the closed form's step 1 has no finite roots, and the arm moves its tool in 5
+    directions: the numeric search, one solution said singular, re-posed to 1e-9."""
+    robot = read_robot(dh_arm(tmp_path, "arm", [*first, *SPHERICAL_WRIST], seed=5))
     solver = ik_solver(robot, "l7")
     assert solver.method == NUMERIC
     for _, target in random_targets(robot, "l7", 3, seed=9):
@@ -80,6 +80,21 @@ def test_a_built_arm_of_two_spherical_groups_answers_alike(tmp_path):
         (solution,) = found.solutions
         assert found.complete and solution.singular == said("l7")
         assert reposed_error(robot, "l7", solution.values, target) < 1e-9
+
+
+def test_an_arm_whose_axis_3_misses_both_points_stays_in_closed_form(tmp_path):
+    """Axes 1 and 2 meeting, axis 3 neither through that point nor through the wrist centre: the closed form (its
+    shoulder of meeting axes), every branch re-posed to 1e-9 and the target's own joint values among them."""
+    first = ((0, 0.3, 0, math.pi / 2), (0, 0, 0.3, -0.6), (0, 0.4, 0.2, math.pi / 2))
+    robot = read_robot(dh_arm(tmp_path, "arm", [*first, *SPHERICAL_WRIST], seed=5))
+    solver = ik_solver(robot, "l7")
+    assert solver.method == "closed form (spherical wrist)" and solver.form.shoulder is not None
+    names = [j.name for j in robot.kinematics.joints]
+    for values, target in random_targets(robot, "l7", 3, seed=9):
+        found = solver.solve(target, every=True)
+        assert found.complete and not any(s.singular for s in found.solutions)
+        assert any(same_turns(values, s.values, names) for s in found.solutions)
+        assert all(reposed_error(robot, "l7", s.values, target) < 1e-9 for s in found.solutions)
 
 
 def test_a_regular_arm_at_a_singular_pose_is_no_continuum(tmp_path):
