@@ -5,6 +5,7 @@ refused (:class:`FlatMesh`)."""
 from __future__ import annotations
 
 import os
+import threading
 from collections import OrderedDict
 from collections.abc import Callable, Mapping
 from pathlib import Path, PurePosixPath
@@ -141,6 +142,8 @@ def export_reader(urdf: Path, packages: Mapping[str, str | os.PathLike[str]]) ->
 CONVERTED_BYTES = 128 << 20  # the converted files kept in a process hold at most this many bytes
 # (the file's SHA-256, its suffix, whether its reader merged its vertices, the kind written) -> the bytes written
 _CONVERTED: OrderedDict[tuple[str, str, bool, str], bytes] = OrderedDict()
+_KEPT = [0]  # the bytes _CONVERTED holds
+_CONVERTING = threading.Lock()  # (export_mjcf is public: exports from threads share the kept bytes)
 
 
 def _converted(mesh: Any, key: tuple[str, str, bool, str]) -> bytes:
@@ -149,19 +152,22 @@ def _converted(mesh: Any, key: tuple[str, str, bool, str]) -> bytes:
     CONVERTED_BYTES: robots share meshes (the real-robot corpus's Stretch, B1 and iCub variants; a fleet), and the
     Go1's two OBJ files of 200,000 triangles took 3.3 s of its 10 s export. The same bytes read the same way give the
     same mesh (vertices, faces, colours, name) and so the same file (tests/export/test_mjcf_deterministic.py)."""
-    data = _CONVERTED.get(key)
-    if data is not None:
-        _CONVERTED.move_to_end(key)
-        return data
-    if key[3] == "stl":
+    with _CONVERTING:
+        data = _CONVERTED.get(key)
+        if data is not None:
+            _CONVERTED.move_to_end(key)
+            return data
+    if key[3] == "stl":  # (converted outside the lock: two threads converting one mesh write the same bytes)
         data = bytes(mesh.export(file_type="stl"))
     else:
         exported = mesh.export(file_type="obj", include_normals=False, include_texture=False)
         data = exported.encode("utf-8") if isinstance(exported, str) else bytes(exported)
-    if len(data) <= CONVERTED_BYTES:
-        _CONVERTED[key] = data
-    while sum(map(len, _CONVERTED.values())) > CONVERTED_BYTES:
-        _CONVERTED.popitem(last=False)
+    with _CONVERTING:
+        if len(data) <= CONVERTED_BYTES and key not in _CONVERTED:
+            _CONVERTED[key] = data
+            _KEPT[0] += len(data)
+        while _KEPT[0] > CONVERTED_BYTES:
+            _KEPT[0] -= len(_CONVERTED.popitem(last=False)[1])
     return data
 
 

@@ -62,3 +62,40 @@ def test_a_mesh_converted_again_is_the_kept_conversion_and_a_changed_one_is_conv
     assert changed != first
     lifted = trimesh.load(trimesh.util.wrap_as_stream(changed), file_type="stl", force="mesh")
     assert np.isclose(lifted.vertices[:, 2].max(), 0.85)
+
+
+def test_conversions_kept_from_many_threads_stay_within_their_bound(monkeypatch):
+    """export_mjcf is public: exports running in threads share the kept conversions (under a lock: without it, 7 of 8
+    such threads stopped at "OrderedDict mutated during iteration"), and the bytes kept stay within CONVERTED_BYTES
+    and equal to their running count however the threads interleave (the switch interval at a microsecond)."""
+    import sys
+    import threading
+
+    class Made:
+        def export(self, file_type, **_):
+            return b"x" * 1000
+
+    monkeypatch.setattr(mjcf_meshes, "CONVERTED_BYTES", 50_000)
+    monkeypatch.setattr(mjcf_meshes, "_CONVERTED", type(mjcf_meshes._CONVERTED)())
+    monkeypatch.setattr(mjcf_meshes, "_KEPT", [0])
+    interval, failed = sys.getswitchinterval(), []
+
+    def convert(thread):
+        try:
+            for index in range(3_000):
+                assert mjcf_meshes._converted(Made(), (f"{thread}-{index % 120}", ".ply", True, "stl")) == b"x" * 1000
+        except Exception as exc:  # (a thread's failure, said by the test)
+            failed.append(repr(exc))
+
+    sys.setswitchinterval(1e-6)
+    try:
+        threads = [threading.Thread(target=convert, args=(t,)) for t in range(6)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+    finally:
+        sys.setswitchinterval(interval)
+    assert failed == []
+    kept = sum(map(len, mjcf_meshes._CONVERTED.values()))
+    assert kept == mjcf_meshes._KEPT[0] <= 50_000 and kept > 0
