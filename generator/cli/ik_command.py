@@ -166,8 +166,6 @@ def _how(found: Solutions) -> str:
             return f"{found.method}: {found.branches} branches{left}; the one nearest the rest pose (--all: every one)"
         return f"{found.method}: every branch{left}"
     starts = "1 start" if found.starts == 1 else f"{found.starts} starts"
-    if found.complete:  # (a numeric list is complete only when every solution is on a continuum: one given)
-        return f"{found.method}, {starts}: every solution lies on a continuum (no isolated one); one given"
     left = f" (the closed form's {found.outside_limits} branches are outside the joints' limits)"
     return f"{found.method}, {starts}: the list may be incomplete{left if found.outside_limits else ''}"
 

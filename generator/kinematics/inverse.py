@@ -24,9 +24,10 @@ DISTINCT = 1e-3  # rad or m: two solutions closer than this in every joint are o
 STALL = 6  # steps without halving the error: a start is stuck (another start is cheaper than waiting)
 POLISHED = 4  # the best ends of a search that fails polished for the closest reach
 RANK_TOLERANCE = 1e-6  # of the largest singular value: a smaller one is a direction the frame is not moved in
-# (a chain that lacks a direction by its structure leaves its singular value at rounding's 1e-16 of the largest; a
-# regular arm's smallest exceeds 1e-6 at a random configuration but with odds of about 1e-6, and the largest of 8
-# spread ones was above 0.09 on the UR5, the KR 560 and the Panda; axes that meet within the closed form's tolerance,
+# (a chain that lacks a direction by its structure leaves its singular value at rounding's 1e-16 of the largest: the
+# simple humanoid's waist and shoulder 1.8e-17 to 1.5e-16 over 63 spread configurations; a regular arm's smallest
+# exceeds 1e-6 at a random configuration but with odds of about 1e-6, and over 63 spread ones the UR5's, the KR 560's
+# and the Panda's reached 0.26-0.33 (their least 4e-5 to 1e-3); axes that meet within the closed form's tolerance,
 # 1e-6 m per m, leave about 1e-6: counted as meeting, as the closed form counts them)
 
 
@@ -112,27 +113,37 @@ def residual_and_jacobian(
     return pin.log6(relative).vector, pin.Jlog6(relative) @ np.asarray(full).reshape(6, model.nv)
 
 
-def directions(chain: Chain, configurations: Sequence[np.ndarray], *, position_only: bool) -> int:
-    """How many independent directions the joints move the frame in (3 for a position at most, 6 for a pose): the
-    most at any of ``configurations``. At each, the rank of the Jacobian's columns of the joints one sets, its linear
-    rows divided by their longest column (m per rad: a metre and a radian weigh alike), counting the singular values
-    above RANK_TOLERANCE of the largest."""
+def directions(
+    chain: Chain, configurations: Sequence[np.ndarray], *, position_only: bool, free: np.ndarray
+) -> int | None:
+    """How many independent directions the ``free`` joints (a mask over the joints one sets: those with room between
+    their limits) move the frame in (3 for a position at most, 6 for a pose): the most at any of ``configurations``;
+    None when no configuration gives a Jacobian of finite numbers. At each, the rank of the free joints' columns:
+    the linear rows scaled by the longest column's (m per rad: a metre and a radian weigh alike; the lengths taken of
+    columns divided by their largest entry first, so that a rail of 1e200 m does not overflow them), then each column
+    by its largest entry; the singular values above RANK_TOLERANCE of the largest counted."""
     import pinocchio as pin  # (heavy: pinocchio)
 
     model: Any = chain.model
     data = chain.data if chain.data is not None else model.createData()
-    most = 0
+    most: int | None = None
     for values in configurations:
         full = pin.computeFrameJacobian(
             model, data, chain.configuration(values), chain.frame, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
         )
-        part = chain.selected(np.asarray(full).reshape(6, model.nv))
-        linear = part[:3] / max(float(np.linalg.norm(part[:3], axis=0).max(initial=0.0)), 1e-300)
-        part = linear if position_only else np.vstack((linear, part[3:]))
+        part = chain.selected(np.asarray(full).reshape(6, model.nv))[:, free]
         if not np.isfinite(part).all():
             continue
-        sizes = np.linalg.svd(part, compute_uv=False)
-        most = max(most, int((sizes > RANK_TOLERANCE * sizes.max(initial=0.0)).sum()) if sizes.size else 0)
+        linear = part[:3]
+        peak = float(np.abs(linear).max(initial=0.0))
+        longest = peak * float(np.linalg.norm(linear / peak, axis=0).max(initial=0.0)) if peak > 0.0 else 0.0
+        linear = linear / max(longest, 1e-300)
+        part = linear if position_only else np.vstack((linear, part[3:]))
+        peaks = np.abs(part).max(axis=0, initial=0.0)  # (each column to a largest entry of 1: a joint's scale, a
+        part = part / np.where(peaks > 0.0, peaks, 1.0)  # rail of 1e200 m or a mimic's 1e7, hides no other's column)
+        sizes = np.linalg.svd(part, compute_uv=False) if part.size else np.zeros(0)
+        rank = int((sizes > RANK_TOLERANCE * sizes.max(initial=0.0)).sum())
+        most = rank if most is None else max(most, rank)
     return most
 
 

@@ -11,11 +11,10 @@ compared joint by joint from joint 1: the numeric search's order) and the first 
 other chain (and a target the closed form does not reach) is searched numerically (:mod:`.inverse`): from ``near``
 when given, the NEAREST of ATLAS configurations posed once per solver, then Sobol starts over the limits, until one
 reaches (FIRST_STARTS at most) or, for every branch, STARTS more and on until one reaches; the result says how many
-ran, and that the list may be incomplete. A chain that moves its frame in fewer directions than the target
-constrains (6 for a pose, 3 for a position) at every configuration, and in fewer than it has joints, has a continuum
-of solutions at every target it reaches (a waist and a shoulder, each three axes meeting at a point, move a hand in
-5 of 6): the first solution found is the answer, with or without ``every``, said singular; the list is then complete
-in that no isolated solution exists.
+ran, and that the list may be incomplete. A chain whose free joints move its frame in fewer directions than the
+target constrains (6 for a pose, 3 for a position) at every configuration, and in fewer than they are, has a
+continuum of solutions at every target it reaches (a waist and a shoulder, each three axes meeting at a point, move a
+hand in 5 of 6): each solution found is said singular, on a continuum.
 """
 
 from __future__ import annotations
@@ -74,9 +73,9 @@ class Solution:
 @dataclass(frozen=True)
 class Solutions:
     """What ``ik`` found: the solutions, or when there is none, the closest reach; the method, the numeric starts
-    run (0 for the closed form), whether the list is every branch there is (``complete``; a branch or chain whose
-    solutions are a continuum is given once, said singular), and the closed-form branches left out because no value
-    of theirs is within the joints' limits."""
+    run (0 for the closed form), whether the list is every branch there is (``complete``; a branch whose solutions
+    are a continuum is given once, said singular), and the closed-form branches left out because no value of theirs
+    is within the joints' limits."""
 
     frame: str
     in_frame: str
@@ -376,7 +375,7 @@ class IkSolver:
             values, error = solve(self.chain, goal, position_only=position_only, start=start)
             found.append((values, error))
             reached_one = reached_one or error <= REACHED
-            if reached_one and (not every or continuum or ran >= len(seeds) + STARTS):
+            if reached_one and (not every or ran >= len(seeds) + STARTS):
                 break  # (every branch: STARTS starts, and on until one reaches, as the first solution's search)
         if not any(math.isfinite(error) for _, error in found):
             raise XacrokitError("ik cannot search: the pose error is beyond what a float holds at every start")
@@ -387,24 +386,25 @@ class IkSolver:
         if not solutions:
             values, error = closest_reach(self.chain, goal, position_only=position_only, found=found)
             closest = Solution(_named(joints, values), error)
-        names = [j.name for j in joints]
-        complete = bool(continuum and solutions)  # (no isolated solution: every one is on a continuum)
-        return Solutions(self.frame, self.in_frame, names, solutions, closest, NUMERIC, ran, complete, 0)
+        names = [j.name for j in joints]  # (a search's list may be incomplete: a continuum may have parts apart)
+        return Solutions(self.frame, self.in_frame, names, solutions, closest, NUMERIC, ran, False, 0)
 
     def _continuum(self, *, position_only: bool) -> str:
-        """What every solution lies on ("" when nothing) when the chain moves the frame in fewer directions than the
-        target constrains (6 for a pose, 3 for a position) at each of PROBES spread configurations (the spread drawn)
-        and in fewer than its joints: every target it reaches then has a continuum of solutions. A regular arm at a
-        singular target is not such a chain. Counted once a solver (:func:`.inverse.directions`)."""
+        """What every solution lies on ("" when nothing) when the chain's free joints (those with room between their
+        limits) move the frame in fewer directions than the target constrains (6 for a pose, 3 for a position) at each
+        of PROBES spread configurations, and in fewer than they are: every target it reaches then has a continuum of
+        solutions (maybe in parts apart: the search's samples are listed, the list may be incomplete). A regular arm
+        at a singular target is not such a chain. Counted once a solver (:func:`.inverse.directions`)."""
         if position_only not in self.continua:
             assert self.spread is not None  # (drawn by the search first)
             needed, what = (3, "position") if position_only else (6, "pose")
-            found = directions(self.chain, self.spread[1 : 1 + PROBES], position_only=position_only)
+            free = self.moves & (self.chain.upper > self.chain.lower)
+            found = directions(self.chain, self.spread[1 : 1 + PROBES], position_only=position_only, free=free)
             said = ""
-            if found < needed and found < int(self.moves.sum()):
+            if found is not None and found < needed and found < int(free.sum()):
                 said = (
-                    f"a continuum of solutions: the chain moves {self.frame} in only {found} of the {needed} "
-                    f"directions of a {what} anywhere; one given"
+                    f"on a continuum of solutions: the joints move {self.frame} in only {found} of the {needed} "
+                    f"directions of a {what} at any configuration"
                 )
             self.continua[position_only] = said
         return self.continua[position_only]
@@ -426,7 +426,7 @@ def _rows_problem(rows: list[list[float]], *, position_only: bool) -> str:
     ):  # (a finite sum says it at once: a solve asks this of every target)
         return "holds a number that is not finite (nan or inf); give a 4x4 pose of finite numbers"
     if len(rows) == 4 and rows[3] != _BOTTOM:  # (a pose's own bottom row told by one comparison)
-        if max(abs(rows[3][0]), abs(rows[3][1]), abs(rows[3][2]), abs(rows[3][3] - 1.0)) > 1e-9:
+        if not max(abs(rows[3][0]), abs(rows[3][1]), abs(rows[3][2]), abs(rows[3][3] - 1.0)) <= 1e-9:  # (nan too)
             return f"has the bottom row {rows[3]}; a pose's is [0, 0, 0, 1]"
     if position_only:
         return ""

@@ -374,10 +374,10 @@ def test_names_with_control_characters_are_escaped_in_text_outputs(tmp_path, cap
     name, tau = outputs["jacobian"][-2].split()  # (tau = J^T w for joint j\nx: a on its axis, the moment about z)
     assert name == "j\\nx" and float(tau) == 2.0
     # (a on j1's axis: no joint moves it, every value of j1 is a solution; the words name the frame, escaped)
-    continuum = "a continuum of solutions: the chain moves a\\nfake\\x9b2J in only 0 of the 3 directions of a position"
+    continuum = "on a continuum of solutions: the joints move a\\nfake\\x9b2J in only 0 of the 3 directions"
     assert outputs["ik"][1:] == [
         "solution 1 (error < 1e-10):",
-        f"  ({continuum} anywhere; one given)",
+        f"  ({continuum} of a position at any configuration)",
         "  j\\nx = 0.000000000",
         "  j2 = 0.000000000",
     ]
