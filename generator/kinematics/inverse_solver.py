@@ -426,7 +426,8 @@ def _rows_problem(rows: list[list[float]], *, position_only: bool) -> str:
     ):  # (a finite sum says it at once: a solve asks this of every target)
         return "holds a number that is not finite (nan or inf); give a 4x4 pose of finite numbers"
     if len(rows) == 4 and rows[3] != _BOTTOM:  # (a pose's own bottom row told by one comparison)
-        if not max(abs(rows[3][0]), abs(rows[3][1]), abs(rows[3][2]), abs(rows[3][3] - 1.0)) <= 1e-9:  # (nan too)
+        x, y, z, w = rows[3]
+        if not (abs(x) <= 1e-9 and abs(y) <= 1e-9 and abs(z) <= 1e-9 and abs(w - 1.0) <= 1e-9):  # (a nan fails)
             return f"has the bottom row {rows[3]}; a pose's is [0, 0, 0, 1]"
     if position_only:
         return ""
